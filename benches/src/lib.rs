@@ -1,0 +1,1 @@
+//! Benchmarks (criterion, in `benches/benches/`) and the quick bench report binary.

@@ -1,0 +1,1 @@
+//! Meshes, Laplacians, sparse solves, harmonic fields and the CGA mesh deformers.

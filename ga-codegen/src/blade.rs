@@ -1,0 +1,177 @@
+//! Basis blades as bitmaps over the basis vectors, their names and signs.
+//!
+//! Blade `k` of an algebra with basis `v_0 .. v_{n-1}` is the outer product of the basis vectors
+//! whose bits are set in `k`, taken in ascending basis order. Names concatenate the basis names
+//! after one `e` (`eo`, `e1` -> `eo1`); the scalar is `s` (`1` is accepted when parsing).
+
+/// A basis blade: the set of basis vectors in its outer product, as a bitmap.
+pub type Bitmap = u32;
+
+/// Number of basis vectors in the blade.
+pub fn grade(b: Bitmap) -> u32 {
+    b.count_ones()
+}
+
+/// Sign of reordering `a ^ b` (both in ascending order) into ascending order:
+/// `e_a ^ e_b = sign * e_(a|b)` when `a & b == 0`.
+pub fn reorder_sign(a: Bitmap, b: Bitmap) -> i32 {
+    let mut a = a >> 1;
+    let mut swaps = 0;
+    while a != 0 {
+        swaps += (a & b).count_ones();
+        a >>= 1;
+    }
+    if swaps % 2 == 0 {
+        1
+    } else {
+        -1
+    }
+}
+
+/// Sign of the reverse of a grade-`k` blade: `(-1)^(k(k-1)/2)`.
+pub fn reverse_sign(b: Bitmap) -> i32 {
+    let k = grade(b);
+    if (k * k.saturating_sub(1) / 2) % 2 == 0 {
+        1
+    } else {
+        -1
+    }
+}
+
+/// Sign of the grade involution of a grade-`k` blade: `(-1)^k`.
+pub fn involute_sign(b: Bitmap) -> i32 {
+    if grade(b) % 2 == 0 {
+        1
+    } else {
+        -1
+    }
+}
+
+/// The suffix of a basis name after its leading `e` (`eo` -> `o`, `e1` -> `1`).
+pub fn suffix(basis_name: &str) -> &str {
+    basis_name.strip_prefix('e').unwrap_or(basis_name)
+}
+
+/// Canonical name of a blade: `s` for the scalar, else `e` followed by the basis suffixes in
+/// basis order.
+pub fn blade_name(b: Bitmap, basis: &[String]) -> String {
+    if b == 0 {
+        return "s".to_string();
+    }
+    let mut s = String::from("e");
+    for (i, name) in basis.iter().enumerate() {
+        if b & (1 << i) != 0 {
+            s.push_str(suffix(name));
+        }
+    }
+    s
+}
+
+/// Why a blade name could not be read.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum BladeNameError {
+    /// The name does not split into basis suffixes.
+    Unknown,
+    /// The name splits in more than one way.
+    Ambiguous,
+    /// A basis vector appears twice (`e11`).
+    Repeated,
+}
+
+/// Parse a blade name written with basis suffixes in any order (`e31`, `eo1`, `e1o`).
+/// Returns the bitmap and the sign relating the written order to the canonical one:
+/// the written blade equals `sign * canonical`.
+pub fn parse_blade(name: &str, basis: &[String]) -> Result<(Bitmap, i32), BladeNameError> {
+    if name == "s" || name == "1" {
+        return Ok((0, 1));
+    }
+    let rest = name.strip_prefix('e').ok_or(BladeNameError::Unknown)?;
+    if rest.is_empty() {
+        return Err(BladeNameError::Unknown);
+    }
+    let suffixes: Vec<&str> = basis.iter().map(|b| suffix(b)).collect();
+    // All ways to split `rest` into suffixes.
+    let mut parses: Vec<Vec<usize>> = Vec::new();
+    fn split(rest: &str, suffixes: &[&str], cur: &mut Vec<usize>, out: &mut Vec<Vec<usize>>) {
+        if out.len() > 1 {
+            return;
+        }
+        if rest.is_empty() {
+            out.push(cur.clone());
+            return;
+        }
+        for (i, s) in suffixes.iter().enumerate() {
+            if !s.is_empty() && rest.starts_with(s) {
+                cur.push(i);
+                split(&rest[s.len()..], suffixes, cur, out);
+                cur.pop();
+            }
+        }
+    }
+    split(rest, &suffixes, &mut Vec::new(), &mut parses);
+    match parses.len() {
+        0 => Err(BladeNameError::Unknown),
+        1 => {
+            let idx = &parses[0];
+            let mut bitmap: Bitmap = 0;
+            let mut sign = 1;
+            for &i in idx {
+                let bit = 1 << i;
+                if bitmap & bit != 0 {
+                    return Err(BladeNameError::Repeated);
+                }
+                sign *= reorder_sign(bitmap, bit);
+                bitmap |= bit;
+            }
+            Ok((bitmap, sign))
+        }
+        _ => Err(BladeNameError::Ambiguous),
+    }
+}
+
+/// All blades of an `n`-dimensional algebra in the canonical order: by grade, then by
+/// ascending basis indices (shortlex).
+pub fn canonical_order(n: usize) -> Vec<Bitmap> {
+    let mut all: Vec<Bitmap> = (0..(1u32 << n)).collect();
+    all.sort_by_key(|&b| {
+        let idx: Vec<u32> = (0..n as u32).filter(|i| b & (1 << i) != 0).collect();
+        (grade(b), idx)
+    });
+    all
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn basis() -> Vec<String> {
+        ["eo", "e1", "e2", "e3", "ei"].iter().map(|s| s.to_string()).collect()
+    }
+
+    #[test]
+    fn names_round_trip() {
+        let b = basis();
+        for bm in 0..32 {
+            let n = blade_name(bm, &b);
+            assert_eq!(parse_blade(&n, &b), Ok((bm, 1)));
+        }
+        assert_eq!(blade_name(0b10001, &b), "eoi");
+    }
+
+    #[test]
+    fn written_order_gives_sign() {
+        let b = basis();
+        assert_eq!(parse_blade("e31", &b), Ok((0b01010, -1)));
+        assert_eq!(parse_blade("e1o", &b), Ok((0b00011, -1)));
+        assert_eq!(parse_blade("e321", &b), Ok((0b01110, -1)));
+        assert_eq!(parse_blade("e11", &b), Err(BladeNameError::Repeated));
+        assert_eq!(parse_blade("e4", &b), Err(BladeNameError::Unknown));
+    }
+
+    #[test]
+    fn reorder_sign_counts_swaps() {
+        assert_eq!(reorder_sign(0b10, 0b01), -1);
+        assert_eq!(reorder_sign(0b01, 0b10), 1);
+        assert_eq!(reorder_sign(0b110, 0b001), 1);
+    }
+}

@@ -1,0 +1,21 @@
+//! # ga-codegen
+//!
+//! A Gaigen-style geometric algebra generator. From an algebra spec (basis names, any
+//! symmetric metric including null and degenerate ones, and a list of specialised types) it
+//! expands every product symbolically with exact coefficients, drops every term that is
+//! identically zero, and emits `#[repr(C)]` Rust types with straight-line products.
+//!
+//! It also holds the slow generic [`Multivector`] that every generated function is tested
+//! against. The runtime part ([`Algebra`], [`Multivector`]) is always built; the generator
+//! itself is behind the default `codegen` feature.
+
+pub mod algebra;
+pub mod blade;
+pub mod metric;
+pub mod multivector;
+pub mod rational;
+
+pub use algebra::Algebra;
+pub use metric::{Metric, MetricError};
+pub use multivector::Multivector;
+pub use rational::Rational;
