@@ -19,3 +19,11 @@ pub use algebra::Algebra;
 pub use metric::{Metric, MetricError};
 pub use multivector::Multivector;
 pub use rational::Rational;
+
+#[cfg(feature = "codegen")]
+pub mod spec;
+#[cfg(feature = "codegen")]
+pub mod symbolic;
+
+#[cfg(feature = "codegen")]
+pub use spec::{Spec, SpecError};
