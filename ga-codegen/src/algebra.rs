@@ -42,7 +42,11 @@ pub fn wedge(x: &Exact, y: &Exact) -> Exact {
     for (&a, &ca) in x {
         for (&b, &cb) in y {
             if a & b == 0 {
-                add_term(&mut out, a | b, ca * cb * Rational::int(reorder_sign(a, b) as i64));
+                add_term(
+                    &mut out,
+                    a | b,
+                    ca * cb * Rational::int(reorder_sign(a, b) as i64),
+                );
             }
         }
     }
@@ -55,7 +59,13 @@ fn invert(m: &[Vec<Rational>]) -> Vec<Vec<Rational>> {
     let mut inv: Vec<Vec<Rational>> = (0..n)
         .map(|i| {
             (0..n)
-                .map(|j| if i == j { Rational::ONE } else { Rational::ZERO })
+                .map(|j| {
+                    if i == j {
+                        Rational::ONE
+                    } else {
+                        Rational::ZERO
+                    }
+                })
                 .collect()
         })
         .collect();

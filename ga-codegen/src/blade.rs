@@ -145,7 +145,10 @@ mod tests {
     use super::*;
 
     fn basis() -> Vec<String> {
-        ["eo", "e1", "e2", "e3", "ei"].iter().map(|s| s.to_string()).collect()
+        ["eo", "e1", "e2", "e3", "ei"]
+            .iter()
+            .map(|s| s.to_string())
+            .collect()
     }
 
     #[test]

@@ -27,3 +27,7 @@ pub mod symbolic;
 
 #[cfg(feature = "codegen")]
 pub use spec::{Spec, SpecError};
+#[cfg(feature = "codegen")]
+pub mod emit;
+#[cfg(feature = "codegen")]
+pub use emit::{generate, EmitOptions, GenError, Generated, ScalarType};

@@ -83,9 +83,8 @@ fn check_names(names: &[String]) -> Result<(), MetricError> {
         return Err(MetricError::Dimension(names.len()));
     }
     for (i, n) in names.iter().enumerate() {
-        let ok = n.len() > 1
-            && n.starts_with('e')
-            && n[1..].chars().all(|c| c.is_ascii_alphanumeric());
+        let ok =
+            n.len() > 1 && n.starts_with('e') && n[1..].chars().all(|c| c.is_ascii_alphanumeric());
         if !ok {
             return Err(MetricError::BadName(n.clone()));
         }
@@ -242,16 +241,20 @@ impl Metric {
         let mut remaining: Vec<Vec<Rational>> = (0..n)
             .map(|i| {
                 (0..n)
-                    .map(|j| if i == j { Rational::ONE } else { Rational::ZERO })
+                    .map(|j| {
+                        if i == j {
+                            Rational::ONE
+                        } else {
+                            Rational::ZERO
+                        }
+                    })
                     .collect()
             })
             .collect();
         let mut rows = Vec::new();
         let mut squares = Vec::new();
         while !remaining.is_empty() {
-            let mut pivot = remaining
-                .iter()
-                .position(|r| !self.inner(r, r).is_zero());
+            let mut pivot = remaining.iter().position(|r| !self.inner(r, r).is_zero());
             if pivot.is_none() {
                 'outer: for a in 0..remaining.len() {
                     for b in (a + 1)..remaining.len() {
@@ -297,7 +300,10 @@ mod tests {
     use super::*;
 
     fn cga() -> Metric {
-        let names = ["eo", "e1", "e2", "e3", "ei"].iter().map(|s| s.to_string()).collect();
+        let names = ["eo", "e1", "e2", "e3", "ei"]
+            .iter()
+            .map(|s| s.to_string())
+            .collect();
         let z = 0.0;
         Metric::from_f64(
             names,

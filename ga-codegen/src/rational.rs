@@ -118,7 +118,10 @@ impl Add for Rational {
     type Output = Rational;
     fn add(self, o: Rational) -> Rational {
         let g = gcd(self.den, o.den);
-        Rational::new(self.num * (o.den / g) + o.num * (self.den / g), self.den / g * o.den)
+        Rational::new(
+            self.num * (o.den / g) + o.num * (self.den / g),
+            self.den / g * o.den,
+        )
     }
 }
 
@@ -134,7 +137,10 @@ impl Mul for Rational {
     fn mul(self, o: Rational) -> Rational {
         let g1 = gcd(self.num, o.den).max(1);
         let g2 = gcd(o.num, self.den).max(1);
-        Rational::new((self.num / g1) * (o.num / g2), (self.den / g2) * (o.den / g1))
+        Rational::new(
+            (self.num / g1) * (o.num / g2),
+            (self.den / g2) * (o.den / g1),
+        )
     }
 }
 

@@ -35,7 +35,7 @@
 //!
 //! A type holding every blade (the general multivector, `Mv`) is added when the spec has none.
 
-use crate::blade::{blade_name, parse_blade, BladeNameError, Bitmap};
+use crate::blade::{blade_name, parse_blade, Bitmap, BladeNameError};
 use crate::metric::{Metric, MetricError};
 use crate::rational::Rational;
 use serde::Deserialize;
@@ -217,7 +217,9 @@ impl fmt::Display for SpecErrorKind {
             }
             SpecErrorKind::Metric(m) => return write!(f, "{m}"),
             SpecErrorKind::UnknownBlade => "unknown blade: not made of the basis names",
-            SpecErrorKind::AmbiguousBlade => "ambiguous blade name: splits into basis names in two ways",
+            SpecErrorKind::AmbiguousBlade => {
+                "ambiguous blade name: splits into basis names in two ways"
+            }
             SpecErrorKind::RepeatedBasis => "blade names a basis vector twice",
             SpecErrorKind::DuplicateBlade => "blade listed twice",
             SpecErrorKind::EmptyType => "type has no stored blades",
@@ -228,7 +230,9 @@ impl fmt::Display for SpecErrorKind {
             SpecErrorKind::ConstantNotInType => "constant on a blade the type does not list",
             SpecErrorKind::BadConstant => "constant is not a finite number",
             SpecErrorKind::UnknownType => "no type of this name",
-            SpecErrorKind::DuplicateSandwich => "sandwich declared twice for this versor and operand",
+            SpecErrorKind::DuplicateSandwich => {
+                "sandwich declared twice for this versor and operand"
+            }
             SpecErrorKind::NotVersor => "versor type is not marked `versor = true`",
         };
         f.write_str(s)
@@ -319,7 +323,9 @@ impl Spec {
                     let sq: Result<Vec<Rational>, MetricError> = d
                         .iter()
                         .enumerate()
-                        .map(|(i, &x)| Rational::from_f64(x).ok_or(MetricError::NotExact { i, j: i }))
+                        .map(|(i, &x)| {
+                            Rational::from_f64(x).ok_or(MetricError::NotExact { i, j: i })
+                        })
                         .collect();
                     sq.and_then(|sq| Metric::diagonal(raw.basis.clone(), &sq))
                 }
@@ -362,7 +368,11 @@ impl Spec {
                         .ok_or_else(|| err(tn, bn, SpecErrorKind::BadConstant))?;
                     constants.push((bitmap, c * Rational::int(sign as i64)));
                 } else {
-                    let name = if bitmap == 0 { "s".to_string() } else { bname.clone() };
+                    let name = if bitmap == 0 {
+                        "s".to_string()
+                    } else {
+                        bname.clone()
+                    };
                     fields.push(Field { name, bitmap, sign });
                 }
             }
@@ -429,7 +439,11 @@ impl Spec {
                 .iter()
                 .any(|d| d.versor == versor && d.operand == operand)
             {
-                return Err(err(Some(&s.versor), Some(&s.operand), SpecErrorKind::DuplicateSandwich));
+                return Err(err(
+                    Some(&s.versor),
+                    Some(&s.operand),
+                    SpecErrorKind::DuplicateSandwich,
+                ));
             }
             sandwiches.push(SandwichDef {
                 versor,
@@ -460,22 +474,33 @@ impl Spec {
         let basis = metric.names().to_vec();
         let order = crate::blade::canonical_order(n);
         let grade_names = [
-            "Scalar", "Vector", "Bivector", "Trivector", "Quadvector", "Pentavector", "Hexavector",
-            "Heptavector", "Octavector", "Nonavector", "Decavector",
+            "Scalar",
+            "Vector",
+            "Bivector",
+            "Trivector",
+            "Quadvector",
+            "Pentavector",
+            "Hexavector",
+            "Heptavector",
+            "Octavector",
+            "Nonavector",
+            "Decavector",
         ];
         let mut raw = RawSpec {
             name: Some(format!("g{p}{q}{r}")),
-            doc: Some(format!("The geometric algebra G({p},{q},{r}), generated from its signature.")),
+            doc: Some(format!(
+                "The geometric algebra G({p},{q},{r}), generated from its signature."
+            )),
             basis: basis.clone(),
-            diagonal: Some(
-                (0..n)
-                    .map(|i| metric.get(i, i).to_f64())
-                    .collect(),
-            ),
+            diagonal: Some((0..n).map(|i| metric.get(i, i).to_f64()).collect()),
             ..RawSpec::default()
         };
         for k in 1..=n {
-            let name = if k == n && n > 1 { "Pseudoscalar" } else { grade_names[k] };
+            let name = if k == n && n > 1 {
+                "Pseudoscalar"
+            } else {
+                grade_names[k]
+            };
             raw.types.push(RawType {
                 name: name.to_string(),
                 doc: Some(format!("A grade-{k} element.")),
@@ -505,7 +530,11 @@ impl Spec {
             ..RawType::default()
         });
         for k in 1..=n {
-            let name = if k == n && n > 1 { "Pseudoscalar" } else { grade_names[k] };
+            let name = if k == n && n > 1 {
+                "Pseudoscalar"
+            } else {
+                grade_names[k]
+            };
             raw.sandwich.push(RawSandwich {
                 versor: "Even".to_string(),
                 operand: name.to_string(),

@@ -355,7 +355,10 @@ mod tests {
 
     #[test]
     fn chevalley_matches_congruence_route_on_null_basis() {
-        let names: Vec<String> = ["eo", "e1", "e2", "e3", "ei"].iter().map(|s| s.to_string()).collect();
+        let names: Vec<String> = ["eo", "e1", "e2", "e3", "ei"]
+            .iter()
+            .map(|s| s.to_string())
+            .collect();
         let z = 0.0;
         let g = vec![
             vec![z, z, z, z, -1.0],
@@ -369,7 +372,11 @@ mod tests {
         let mut t = BladeTable::new(&metric);
         for a in 0..32 {
             for b in 0..32 {
-                let sym: Vec<(Bitmap, f64)> = t.gp(a, b).into_iter().map(|(k, c)| (k, c.to_f64())).collect();
+                let sym: Vec<(Bitmap, f64)> = t
+                    .gp(a, b)
+                    .into_iter()
+                    .map(|(k, c)| (k, c.to_f64()))
+                    .collect();
                 assert_eq!(sym.as_slice(), alg.gp_blades(a, b), "e_{a} e_{b}");
             }
         }

@@ -1,1 +1,146 @@
-fn main() {}
+//! `ga-codegen`: regenerate an algebra's Rust module from a spec file or a signature.
+//!
+//! ```text
+//! ga-codegen SPEC.toml [-o FILE] [--scalar f32|f64] [--summary]
+//! ga-codegen --signature P,Q,R [-o FILE] [--scalar f32|f64] [--summary]
+//! ```
+//! Without `-o` the module is printed. `--summary` prints the types and the product table
+//! instead of the code. Errors name the file, the type and the blade, and exit with code 2.
+
+use ga_codegen::{generate, EmitOptions, ScalarType, Spec};
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::Instant;
+
+const USAGE: &str =
+    "usage: ga-codegen SPEC.toml [-o FILE] [--scalar f32|f64] [--summary] [--runtime PATH]
+       ga-codegen --signature P,Q,R [-o FILE] [--scalar f32|f64] [--summary] [--runtime PATH]";
+
+struct Args {
+    spec: Option<PathBuf>,
+    signature: Option<(usize, usize, usize)>,
+    out: Option<PathBuf>,
+    scalar: ScalarType,
+    summary: bool,
+    runtime: Option<String>,
+}
+
+fn parse_args() -> Result<Args, String> {
+    let mut a = Args {
+        spec: None,
+        signature: None,
+        out: None,
+        scalar: ScalarType::F64,
+        summary: false,
+        runtime: None,
+    };
+    let mut it = std::env::args().skip(1);
+    while let Some(arg) = it.next() {
+        match arg.as_str() {
+            "-h" | "--help" => return Err(String::new()),
+            "-o" | "--output" => a.out = Some(it.next().ok_or("-o needs a file")?.into()),
+            "--scalar" => {
+                a.scalar = match it.next().as_deref() {
+                    Some("f32") => ScalarType::F32,
+                    Some("f64") => ScalarType::F64,
+                    other => return Err(format!("--scalar must be f32 or f64, not {other:?}")),
+                }
+            }
+            "--summary" => a.summary = true,
+            "--runtime" => a.runtime = Some(it.next().ok_or("--runtime needs a path")?),
+            "--signature" => {
+                let v = it.next().ok_or("--signature needs P,Q,R")?;
+                let parts: Result<Vec<usize>, _> = v.split(',').map(|x| x.trim().parse()).collect();
+                match parts.as_deref() {
+                    Ok([p, q, r]) => a.signature = Some((*p, *q, *r)),
+                    Ok([p, q]) => a.signature = Some((*p, *q, 0)),
+                    _ => {
+                        return Err(format!(
+                            "--signature needs P,Q,R (non-negative integers), not `{v}`"
+                        ))
+                    }
+                }
+            }
+            s if s.starts_with('-') => return Err(format!("unknown option `{s}`")),
+            s => {
+                if a.spec.is_some() {
+                    return Err(format!("more than one spec file given (`{s}`)"));
+                }
+                a.spec = Some(s.into())
+            }
+        }
+    }
+    if a.spec.is_some() == a.signature.is_some() {
+        return Err("give either a spec file or --signature P,Q,R".into());
+    }
+    Ok(a)
+}
+
+fn main() -> ExitCode {
+    let args = match parse_args() {
+        Ok(a) => a,
+        Err(e) => {
+            if e.is_empty() {
+                println!("{USAGE}");
+                return ExitCode::SUCCESS;
+            }
+            eprintln!("error: {e}\n{USAGE}");
+            return ExitCode::from(2);
+        }
+    };
+    let start = Instant::now();
+    let spec = match (&args.spec, args.signature) {
+        (Some(p), _) => Spec::from_file(p),
+        (None, Some((p, q, r))) => Spec::for_signature(p, q, r),
+        _ => unreachable!(),
+    };
+    let spec = match spec {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    let mut opts = EmitOptions {
+        scalar: args.scalar,
+        ..EmitOptions::default()
+    };
+    if let Some(r) = args.runtime {
+        opts.runtime = r;
+    }
+    let generated = match generate(&spec, &opts) {
+        Ok(g) => g,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    let elapsed = start.elapsed();
+    if args.summary {
+        println!(
+            "algebra `{}` from {} ({} basis vectors)",
+            spec.name,
+            spec.source,
+            spec.metric.dim()
+        );
+        print!("{}", generated.summary());
+        println!("generated in {:.1} ms", elapsed.as_secs_f64() * 1e3);
+    }
+    match &args.out {
+        Some(path) => {
+            if let Err(e) = std::fs::write(path, &generated.code) {
+                eprintln!("error: cannot write {}: {e}", path.display());
+                return ExitCode::from(2);
+            }
+            eprintln!(
+                "wrote {} ({} lines, {:.1} ms)",
+                path.display(),
+                generated.lines(),
+                elapsed.as_secs_f64() * 1e3
+            );
+        }
+        None if !args.summary => print!("{}", generated.code),
+        None => {}
+    }
+    ExitCode::SUCCESS
+}

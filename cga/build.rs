@@ -1,0 +1,26 @@
+//! Generates the G(4,1) types from `algebras/cga.toml` at build time, in f64 and f32.
+
+use ga_codegen::{generate, EmitOptions, ScalarType, Spec};
+use std::path::PathBuf;
+
+fn main() {
+    let manifest = PathBuf::from(std::env::var("CARGO_MANIFEST_DIR").expect("cargo sets this"));
+    let spec_path = manifest.join("../algebras/cga.toml");
+    println!("cargo:rerun-if-changed={}", spec_path.display());
+    let text = std::fs::read_to_string(&spec_path)
+        .unwrap_or_else(|e| panic!("cannot read {}: {e}", spec_path.display()));
+    // Name the spec as the CLI user does, so the generated header matches `ga-codegen algebras/cga.toml`.
+    let spec = Spec::from_toml(&text, "algebras/cga.toml").unwrap_or_else(|e| panic!("{e}"));
+    let out = PathBuf::from(std::env::var("OUT_DIR").expect("cargo sets this"));
+    for (scalar, file) in [
+        (ScalarType::F64, "cga_f64.rs"),
+        (ScalarType::F32, "cga_f32.rs"),
+    ] {
+        let opts = EmitOptions {
+            scalar,
+            ..EmitOptions::default()
+        };
+        let g = generate(&spec, &opts).unwrap_or_else(|e| panic!("{e}"));
+        std::fs::write(out.join(file), g.code).expect("write generated code");
+    }
+}
