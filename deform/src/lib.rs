@@ -1,1 +1,40 @@
 //! Meshes, Laplacians, sparse solves, harmonic fields and the CGA mesh deformers.
+//!
+//! * [`Mesh`] with on-demand adjacency ([`adjacency`]), [`validate()`] and [`clean()`];
+//! * files in [`io`]: OBJ, OFF, MEDIT, libigl DMAT and TGF;
+//! * Laplacians ([`cotangent_laplacian`], [`mean_value_laplacian`], [`uniform_laplacian`])
+//!   and mass matrices ([`mass_matrix`]) as `sprs::CsMat<f64>`;
+//! * [`DirichletSolver`]: prefactored sparse Cholesky (faer) with Dirichlet conditions;
+//! * [`Harmonic`] fields and coordinates.
+//!
+//! ```
+//! use deform::{harmonic_field, io, HarmonicOptions};
+//! let off = "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+//! let mesh = io::parse_off(off, "tet").unwrap();
+//! let x = harmonic_field(&mesh, &[0], &[3], HarmonicOptions::default()).unwrap();
+//! assert_eq!((x[0], x[3]), (0.0, 1.0));
+//! assert!(x[1] > 0.0 && x[1] < 1.0);
+//! ```
+
+pub mod adjacency;
+mod error;
+pub mod harmonic;
+pub mod io;
+pub mod laplacian;
+pub mod mass;
+pub mod mesh;
+pub mod solve;
+pub mod validate;
+
+pub use error::{Error, IndexList, Result};
+pub use harmonic::{
+    harmonic_coordinates, harmonic_field, harmonic_system, Harmonic, HarmonicOptions,
+};
+pub use laplacian::{
+    cotangent_laplacian, laplacian, mean_value_laplacian, mean_value_weights, uniform_laplacian,
+    CotangentOptions, DegeneratePolicy, LaplacianKind,
+};
+pub use mass::{mass_diagonal, mass_matrix, MassKind};
+pub use mesh::{Aabb, Mesh};
+pub use solve::{DirichletSolver, Parallelism, SolverOptions};
+pub use validate::{check_solvable, clean, validate, Cleaned, ValidationReport};

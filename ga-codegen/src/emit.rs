@@ -130,8 +130,10 @@ pub struct Generated {
     pub code: String,
     /// Types: name and number of stored fields.
     pub types: Vec<(String, usize)>,
-    /// Every emitted binary operation.
+    /// Every emitted binary operation, sandwich and conversion (`from`).
     pub ops: Vec<OpSummary>,
+    /// Emitted unary methods whose result is not fixed: (type, method).
+    pub methods: Vec<(String, String)>,
     /// Operations skipped because identically zero.
     pub zero_ops: usize,
 }
@@ -272,6 +274,7 @@ struct Gen<'a> {
     rt: String,
     out: String,
     ops: Vec<OpSummary>,
+    methods: Vec<(String, String)>,
     zero_ops: usize,
     /// Type indices ordered by size, for result inference.
     by_size: Vec<usize>,
@@ -510,6 +513,7 @@ pub type Scalar = {s};
             if o == OutType::Zero {
                 continue;
             }
+            self.methods.push((t.name.clone(), fname.to_string()));
             let _ = write!(
                 self.out,
                 "#[doc = {fdoc:?}] #[inline] #[must_use] pub fn {fname}(self) -> {} {{ let a = self; {} }}\n",
@@ -528,6 +532,9 @@ pub type Scalar = {s};
             nsq = names1.poly(&nsq.get(0)),
         );
         if t.constants.is_empty() {
+            for m in ["grade", "normalized", "inverse"] {
+                self.methods.push((t.name.clone(), m.to_string()));
+            }
             let scaled = |sign: &dyn Fn(Bitmap) -> i32, factor: &str| -> String {
                 let parts: Vec<String> = t
                     .fields
@@ -761,6 +768,13 @@ impl ::core::convert::From<{name}> for {rt}::Multivector {{
                 types: [Some(ta), None],
                 prefix: ["a", "b"],
             };
+            self.ops.push(OpSummary {
+                op: "from".to_string(),
+                left: ta.name.clone(),
+                right: tb.name.clone(),
+                output: tb.name.clone(),
+                terms: 0,
+            });
             let _ = write!(
                 self.out,
                 "impl ::core::convert::From<{an}> for {bn} {{ #[inline] fn from(a: {an}) -> {bn} {{ {body} }} }}\n",
@@ -1113,6 +1127,7 @@ pub fn generate(spec: &Spec, opts: &EmitOptions) -> Result<Generated, GenError> 
         rt: opts.runtime.clone(),
         out: String::new(),
         ops: Vec::new(),
+        methods: Vec::new(),
         zero_ops: 0,
         by_size,
         alg: crate::Algebra::new(spec.metric.clone()),
@@ -1147,6 +1162,7 @@ pub fn generate(spec: &Spec, opts: &EmitOptions) -> Result<Generated, GenError> 
             .map(|t| (t.name.clone(), t.fields.len()))
             .collect(),
         ops: g.ops,
+        methods: g.methods,
         zero_ops: g.zero_ops,
     })
 }

@@ -31,3 +31,5 @@ pub use spec::{Spec, SpecError};
 pub mod emit;
 #[cfg(feature = "codegen")]
 pub use emit::{generate, EmitOptions, GenError, Generated, ScalarType};
+#[cfg(feature = "codegen")]
+pub mod checks;

@@ -1,1 +1,45 @@
-//! Cross-crate integration tests live in `tests/tests/`.
+//! Cross-crate integration tests (in `tests/tests/`) and the generated algebras they check.
+//!
+//! Every spec in `algebras/` is generated here (f64) together with a check harness that compares
+//! each generated product and method with the generic [`ga_codegen::Multivector`].
+
+macro_rules! algebra_module {
+    ($name:ident, $file:literal, $checks:literal, $doc:literal) => {
+        #[doc = $doc]
+        #[allow(unused_variables, clippy::all, clippy::pedantic, missing_docs)]
+        pub mod $name {
+            include!(concat!(env!("OUT_DIR"), "/", $file));
+            /// The check harness for this algebra.
+            #[allow(unused_variables, clippy::all, clippy::pedantic, missing_docs)]
+            pub mod checks {
+                include!(concat!(env!("OUT_DIR"), "/", $checks));
+            }
+        }
+    };
+}
+
+algebra_module!(
+    cga,
+    "cga.rs",
+    "cga_checks.rs",
+    "G(4,1) from `algebras/cga.toml`."
+);
+algebra_module!(
+    pga3d,
+    "pga3d.rs",
+    "pga3d_checks.rs",
+    "G(3,0,1) from `algebras/pga3d.toml`."
+);
+algebra_module!(g3, "g3.rs", "g3_checks.rs", "G(3) from `algebras/g3.toml`.");
+algebra_module!(
+    sta,
+    "sta.rs",
+    "sta_checks.rs",
+    "G(1,3) from `algebras/sta.toml`."
+);
+algebra_module!(
+    sig201,
+    "sig201.rs",
+    "sig201_checks.rs",
+    "G(2,0,1) from `--signature 2,0,1`."
+);

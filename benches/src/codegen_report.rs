@@ -1,0 +1,273 @@
+//! Quick speed report for the generator (`ga-codegen`): generated CGA products against the generic
+//! [`ga_codegen::Multivector`] on the same inputs, one unit motor applied to 1M points (matrix
+//! path and fused sandwich) against glam's `DMat4::transform_point3`, and the time and size of
+//! generating the CGA module. Ratios are measured side by side in one run.
+
+use cga::Sandwich;
+use ga_codegen::Multivector;
+use std::fmt::Write as _;
+use std::hint::black_box;
+use std::time::{Duration, Instant};
+
+/// Inputs per timing loop for the generated-vs-generic table.
+const N: usize = 256;
+/// Points in the batch comparison.
+const POINTS: usize = 1_000_000;
+
+/// A small deterministic generator (no dependency on `rand`).
+struct Lcg(u64);
+
+impl Lcg {
+    fn next(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        ((self.0 >> 11) as f64) / ((1u64 << 53) as f64) * 2.0 - 1.0
+    }
+    fn vec3(&mut self) -> glam::DVec3 {
+        glam::DVec3::new(self.next(), self.next(), self.next()) * 3.0
+    }
+    fn motor(&mut self) -> cga::Motor {
+        let axis = glam::DVec3::new(self.next(), self.next(), self.next() + 1e-3).normalize();
+        let q = glam::DQuat::from_axis_angle(axis, 3.0 * self.next());
+        cga::Motor::from_rotation_translation(q, self.vec3())
+    }
+    fn array<const K: usize>(&mut self) -> [f64; K] {
+        std::array::from_fn(|_| self.next())
+    }
+}
+
+/// Nanoseconds per call of `f`, which does `per_call` items; best of `rounds` rounds of `budget`.
+fn time_ns(per_call: usize, budget: Duration, mut f: impl FnMut()) -> f64 {
+    f();
+    let mut best = f64::INFINITY;
+    for _ in 0..5 {
+        let start = Instant::now();
+        let mut iters = 0u64;
+        while iters == 0 || start.elapsed() < budget / 5 {
+            f();
+            iters += 1;
+        }
+        let ns = start.elapsed().as_nanos() as f64 / (iters as f64 * per_call as f64);
+        best = best.min(ns);
+    }
+    best
+}
+
+/// Times a generated binary operation and the generic multivector's version on the same inputs.
+fn pair<A: Copy, B: Copy, R>(
+    a: &[A],
+    b: &[B],
+    to_mv_a: impl Fn(A) -> Multivector,
+    to_mv_b: impl Fn(B) -> Multivector,
+    generated: impl Fn(A, B) -> R,
+    generic: impl Fn(&Multivector, &Multivector) -> Multivector,
+) -> (f64, f64) {
+    let budget = Duration::from_millis(150);
+    let ga = time_ns(a.len(), budget, || {
+        for (x, y) in black_box(a).iter().zip(black_box(b)) {
+            black_box(generated(*x, *y));
+        }
+    });
+    let ma: Vec<Multivector> = a.iter().map(|x| to_mv_a(*x)).collect();
+    let mb: Vec<Multivector> = b.iter().map(|x| to_mv_b(*x)).collect();
+    let gen = time_ns(a.len(), budget, || {
+        for (x, y) in black_box(&ma).iter().zip(black_box(&mb)) {
+            black_box(generic(x, y));
+        }
+    });
+    (ga, gen)
+}
+
+/// Runs every measurement and returns a printable table.
+pub fn report() -> String {
+    let mut rng = Lcg(0xC6A);
+    let mut s = String::new();
+
+    // Generated vs generic.
+    let motors: Vec<cga::Motor> = (0..N).map(|_| rng.motor()).collect();
+    let motors2: Vec<cga::Motor> = (0..N).map(|_| rng.motor()).collect();
+    let points: Vec<cga::Point> = (0..N).map(|_| cga::Point::from_vec3(rng.vec3())).collect();
+    let vectors: Vec<cga::Vector> = (0..N)
+        .map(|_| cga::Vector::from_array(rng.array()))
+        .collect();
+    let vectors2: Vec<cga::Vector> = (0..N)
+        .map(|_| cga::Vector::from_array(rng.array()))
+        .collect();
+    let bivectors: Vec<cga::Bivector> = (0..N)
+        .map(|_| cga::Bivector::from_array(rng.array()))
+        .collect();
+    let evens: Vec<cga::Even> = (0..N).map(|_| cga::Even::from_array(rng.array())).collect();
+    let evens2: Vec<cga::Even> = (0..N).map(|_| cga::Even::from_array(rng.array())).collect();
+    let mvs: Vec<cga::Mv> = (0..N).map(|_| cga::Mv::from_array(rng.array())).collect();
+    let mvs2: Vec<cga::Mv> = (0..N).map(|_| cga::Mv::from_array(rng.array())).collect();
+
+    let mut rows: Vec<(&str, (f64, f64))> = Vec::new();
+    rows.push((
+        "Motor * Motor",
+        pair(
+            &motors,
+            &motors2,
+            |x| x.to_multivector(),
+            |x| x.to_multivector(),
+            |x, y| x * y,
+            |x, y| x.gp(y),
+        ),
+    ));
+    rows.push((
+        "Motor.sandwich(Point)",
+        pair(
+            &motors,
+            &points,
+            |x| x.to_multivector(),
+            |x| x.to_multivector(),
+            |x, y| x.sandwich(y),
+            |x, y| x.gp(y).gp(&x.rev()),
+        ),
+    ));
+    rows.push((
+        "Vector ^ Vector",
+        pair(
+            &vectors,
+            &vectors2,
+            |x| x.to_multivector(),
+            |x| x.to_multivector(),
+            |x, y| x ^ y,
+            |x, y| x.outer(y),
+        ),
+    ));
+    rows.push((
+        "Vector | Bivector",
+        pair(
+            &vectors,
+            &bivectors,
+            |x| x.to_multivector(),
+            |x| x.to_multivector(),
+            |x, y| x | y,
+            |x, y| x.left_contraction(y),
+        ),
+    ));
+    rows.push((
+        "Even * Even",
+        pair(
+            &evens,
+            &evens2,
+            |x| x.to_multivector(),
+            |x| x.to_multivector(),
+            |x, y| x * y,
+            |x, y| x.gp(y),
+        ),
+    ));
+    rows.push((
+        "Mv * Mv (32 x 32)",
+        pair(
+            &mvs,
+            &mvs2,
+            |x| x.to_multivector(),
+            |x| x.to_multivector(),
+            |x, y| x * y,
+            |x, y| x.gp(y),
+        ),
+    ));
+    let _ = writeln!(
+        s,
+        "generated CGA products vs the generic multivector (f64, ns per call; target: speedup >= 50x)"
+    );
+    let _ = writeln!(
+        s,
+        "{:<24} {:>11} {:>11} {:>9}",
+        "operation", "generated", "generic", "speedup"
+    );
+    for (what, (ga, gen)) in &rows {
+        let _ = writeln!(s, "{what:<24} {ga:>11.2} {gen:>11.1} {:>8.0}x", gen / ga);
+    }
+
+    // One unit motor on 1M points.
+    let pts: Vec<glam::DVec3> = (0..POINTS).map(|_| rng.vec3()).collect();
+    let mut out = vec![glam::DVec3::ZERO; POINTS];
+    let m = rng.motor();
+    let mat = m.to_mat4();
+    let budget = Duration::from_millis(600);
+    let glam_ns = time_ns(POINTS, budget, || {
+        let mat = black_box(mat);
+        for (o, p) in out.iter_mut().zip(black_box(&pts)) {
+            *o = mat.transform_point3(*p);
+        }
+        black_box(&out);
+    });
+    let matrix_ns = time_ns(POINTS, budget, || {
+        black_box(m).transform_points(black_box(&pts), &mut out);
+        black_box(&out);
+    });
+    let sandwich_ns = time_ns(POINTS, budget, || {
+        let m = black_box(m);
+        for (o, p) in out.iter_mut().zip(black_box(&pts)) {
+            *o = m.sandwich(cga::Point::from_vec3(*p)).to_vec3();
+        }
+        black_box(&out);
+    });
+    let _ = writeln!(
+        s,
+        "\none unit motor on {POINTS} points (f64, ns per point, ratio to glam in the same run)"
+    );
+    let _ = writeln!(s, "{:<40} {:>8} {:>7}  target", "path", "ns/pt", "ratio");
+    let _ = writeln!(
+        s,
+        "{:<40} {:>8.3} {:>7}  -",
+        "glam DMat4::transform_point3", glam_ns, "1.00"
+    );
+    let _ = writeln!(
+        s,
+        "{:<40} {:>8.3} {:>7.2}  <= 1.1",
+        "Motor::transform_points (point_matrix)",
+        matrix_ns,
+        matrix_ns / glam_ns
+    );
+    let _ = writeln!(
+        s,
+        "{:<40} {:>8.3} {:>7.2}  <= 2",
+        "Motor.sandwich(Point) per point (fused)",
+        sandwich_ns,
+        sandwich_ns / glam_ns
+    );
+
+    // Generating the CGA module.
+    let spec_path = concat!(env!("CARGO_MANIFEST_DIR"), "/../algebras/cga.toml");
+    let _ = writeln!(
+        s,
+        "\ngenerating algebras/cga.toml (spec parse + symbolic products + emit + format; target < 2 s)"
+    );
+    match std::fs::read_to_string(spec_path) {
+        Ok(text) => {
+            let start = Instant::now();
+            let result = ga_codegen::Spec::from_toml(&text, "algebras/cga.toml")
+                .map_err(|e| e.to_string())
+                .and_then(|spec| {
+                    ga_codegen::generate(&spec, &ga_codegen::EmitOptions::default())
+                        .map_err(|e| e.to_string())
+                });
+            let secs = start.elapsed().as_secs_f64();
+            match result {
+                Ok(g) => {
+                    let _ = writeln!(
+                        s,
+                        "{:.3} s, {} lines, {} types, {} operations ({} identically zero, not emitted)",
+                        secs,
+                        g.lines(),
+                        g.types.len(),
+                        g.ops.len(),
+                        g.zero_ops
+                    );
+                }
+                Err(e) => {
+                    let _ = writeln!(s, "generation failed: {e}");
+                }
+            }
+        }
+        Err(e) => {
+            let _ = writeln!(s, "cannot read {spec_path}: {e}");
+        }
+    }
+    s
+}

@@ -1,0 +1,37 @@
+//! The hand-written extensions for the `f32` types: precision aliases, then the shared files.
+
+pub(crate) use crate::error::{CgaError, Result};
+pub(crate) use crate::f32::*;
+pub(crate) type S = f32;
+pub(crate) type V3 = glam::Vec3;
+pub(crate) type Vec4 = glam::Vec4;
+pub(crate) type Quat = glam::Quat;
+pub(crate) type Mat3 = glam::Mat3;
+pub(crate) type Mat4 = glam::Mat4;
+pub(crate) type Affine = glam::Affine3A;
+/// Relative tolerance of validity checks (versor condition, degeneracy).
+pub(crate) const TOL: S = 1e-4;
+/// Absolute tolerance on `R^T R - I` and on the last row of a rigid matrix.
+pub(crate) const TOL_MATRIX: S = 1e-4;
+/// Relative tolerance of the versor condition of motors (accepts accumulated drift, rejects
+/// non-versors).
+pub(crate) const TOL_VERSOR: S = 1e-3;
+
+#[path = "dual_quat.rs"]
+pub(crate) mod dual_quat;
+#[path = "exp_log.rs"]
+mod exp_log;
+#[path = "glam_interop.rs"]
+mod glam_interop;
+#[path = "interpolate.rs"]
+mod interpolate;
+#[path = "motor.rs"]
+pub(crate) mod motor;
+#[path = "objects.rs"]
+pub(crate) mod objects;
+#[path = "point.rs"]
+mod point;
+#[path = "rotor.rs"]
+mod rotor;
+#[path = "scaled.rs"]
+mod scaled;

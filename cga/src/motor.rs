@@ -1,0 +1,233 @@
+//! Rigid motions `M = T R`: construction, composition, action on points (single and batch),
+//! and exact renormalisation.
+//!
+//! A motor is a dual quaternion in disguise: with the rotor's quaternion `q_r` and the dual part
+//! `q_d = 0.5 t q_r`, the coefficients are `s, e12, e13, e23 = q_r.w, -q_r.z, q_r.y, -q_r.x` and
+//! `e1i, e2i, e3i, e123i = -q_d.x, -q_d.y, -q_d.z, -q_d.w`. Composition is the geometric
+//! product: `(b * a)` applies `a` first, like `B * A` for matrices.
+
+use super::*;
+
+impl Motor {
+    /// The identity motion.
+    pub const IDENTITY: Motor = Motor::new(1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+
+    /// The motor of a (rotation, dual) quaternion pair, `q_d = 0.5 t q_r`.
+    #[inline]
+    #[must_use]
+    pub(crate) fn from_quats(r: Quat, d: Quat) -> Self {
+        Motor::new(r.w, -r.z, r.y, -r.x, -d.x, -d.y, -d.z, -d.w)
+    }
+
+    /// The rotation quaternion `q_r` (not normalised here).
+    #[inline]
+    #[must_use]
+    pub(crate) fn real_quat(self) -> Quat {
+        Quat::from_xyzw(-self.e23, self.e13, -self.e12, self.s)
+    }
+
+    /// The dual quaternion part `q_d = 0.5 t q_r` (not normalised here).
+    #[inline]
+    #[must_use]
+    pub(crate) fn dual_quat_part(self) -> Quat {
+        Quat::from_xyzw(-self.e1i, -self.e2i, -self.e3i, -self.e123i)
+    }
+
+    /// Rotate by `rotation` (a unit quaternion) about the origin, then translate by
+    /// `translation`: `x -> rotation * x + translation`, i.e. `M = T R`.
+    #[inline]
+    #[must_use]
+    pub fn from_rotation_translation(rotation: Quat, translation: V3) -> Self {
+        let d = Quat::from_vec4((0.5 * translation).extend(0.0)) * rotation;
+        Self::from_quats(rotation, d)
+    }
+
+    /// [`Motor::from_rotation_translation`] that checks its input and normalises the quaternion.
+    ///
+    /// # Errors
+    /// [`CgaError::NonFinite`], or [`CgaError::ZeroAxis`] for a zero quaternion.
+    pub fn try_from_rotation_translation(rotation: Quat, translation: V3) -> Result<Self> {
+        if !translation.is_finite() {
+            return Err(CgaError::NonFinite {
+                what: "translation",
+            });
+        }
+        let r = Rotor::try_from_quat(rotation)?;
+        Ok(Self::from_rotation_translation(r.to_quat(), translation))
+    }
+
+    /// The pure translation by `t`.
+    #[inline]
+    #[must_use]
+    pub fn from_translation(t: V3) -> Self {
+        Translator::from_translation(t).into()
+    }
+
+    /// The rotation by `angle` about `axis` through the origin (see [`Rotor::from_axis_angle`]).
+    #[inline]
+    #[must_use]
+    pub fn from_axis_angle(axis: V3, angle: S) -> Self {
+        Rotor::from_axis_angle(axis, angle).into()
+    }
+
+    /// The rotation part as a unit quaternion (sign as stored).
+    #[inline]
+    #[must_use]
+    pub fn rotation(self) -> Quat {
+        self.real_quat()
+    }
+
+    /// The rotation part as a rotor.
+    #[inline]
+    #[must_use]
+    pub fn rotor(self) -> Rotor {
+        Rotor::new(self.s, self.e12, self.e13, self.e23)
+    }
+
+    /// The translation part `t` of `x -> R x + t` (`t = 2 q_d q_r*` for a unit motor).
+    #[inline]
+    #[must_use]
+    pub fn translation(self) -> V3 {
+        let t = self.dual_quat_part() * self.real_quat().conjugate();
+        2.0 * V3::new(t.x, t.y, t.z)
+    }
+
+    /// `(rotation, translation)` with `x -> rotation * x + translation`.
+    #[inline]
+    #[must_use]
+    pub fn to_rotation_translation(self) -> (Quat, V3) {
+        (self.rotation(), self.translation())
+    }
+
+    /// Apply the motion to a point: `down(M up(x) ~M)` (fused sandwich). Assumes a unit motor.
+    #[inline]
+    #[must_use]
+    pub fn transform_point(self, x: V3) -> V3 {
+        self.sandwich(Point::from_vec3(x)).to_vec3()
+    }
+
+    /// Apply the rotation part only (for directions and normals).
+    #[inline]
+    #[must_use]
+    pub fn transform_vector(self, v: V3) -> V3 {
+        self.rotor().transform_point(v)
+    }
+
+    /// Apply the motion to many points through its matrix form ([`Motor::point_matrix`]): one
+    /// 3x4 affine map per point, the cost of `DMat4::transform_point3`.
+    ///
+    /// # Panics
+    /// When `src` and `dst` differ in length (see [`Motor::try_transform_points`]).
+    pub fn transform_points(self, src: &[V3], dst: &mut [V3]) {
+        assert_eq!(src.len(), dst.len(), "transform_points: length mismatch");
+        let m = self.point_matrix().m;
+        affine_rows(&m[0], &m[1], &m[2], src, dst);
+    }
+
+    /// [`Motor::transform_points`] without the panic.
+    ///
+    /// # Errors
+    /// [`CgaError::Degenerate`] when the slices differ in length.
+    pub fn try_transform_points(self, src: &[V3], dst: &mut [V3]) -> Result<()> {
+        if src.len() != dst.len() {
+            return Err(CgaError::Degenerate {
+                why: "source and destination lengths differ",
+            });
+        }
+        self.transform_points(src, dst);
+        Ok(())
+    }
+
+    /// `next * self`: the motion that applies `self` first, then `next`.
+    #[inline]
+    #[must_use]
+    pub fn then(self, next: Motor) -> Motor {
+        next * self
+    }
+
+    /// The inverse motion of a unit motor (its reverse).
+    #[inline]
+    #[must_use]
+    pub fn inverse_motion(self) -> Motor {
+        self.rev()
+    }
+
+    /// Twice the `e123i` part of `M ~M`: zero exactly for motors (the versor condition).
+    #[inline]
+    #[must_use]
+    pub fn versor_defect(self) -> S {
+        self.s * self.e123i - self.e12 * self.e3i + self.e13 * self.e2i - self.e23 * self.e1i
+    }
+
+    /// Exact renormalisation `M / sqrt(M ~M)`, with `M ~M = a + b e123i` a dual number: the
+    /// result satisfies `M ~M = 1` (both parts), which plain division by the norm does not.
+    #[inline]
+    #[must_use]
+    pub fn normalize_rigid(self) -> Motor {
+        let a = self.norm_squared();
+        let b = 2.0 * self.versor_defect();
+        // 1/sqrt(a + eps b) = a^-1/2 (1 - eps b/(2a)) with eps = e123i; M = q_r - eps q_d, so
+        // M (p + eps q) has real part p q_r and dual part p q_d - q q_r.
+        let p = 1.0 / a.sqrt();
+        let q = -0.5 * b * p / a;
+        let (r, d) = (self.real_quat(), self.dual_quat_part());
+        Self::from_quats(r * p, d * p - r * q)
+    }
+
+    /// [`Motor::normalize_rigid`] that rejects non-motors.
+    ///
+    /// # Errors
+    /// [`CgaError::NonFinite`], or [`CgaError::NotAMotor`] when the rotor part is zero or the
+    /// versor condition fails by more than a relative tolerance.
+    pub fn try_normalize_rigid(self) -> Result<Motor> {
+        self.check_motor()?;
+        Ok(self.normalize_rigid())
+    }
+
+    /// Check that this is (a multiple of) a motor.
+    pub(crate) fn check_motor(self) -> Result<()> {
+        if !self.to_array().iter().all(|c| c.is_finite()) {
+            return Err(CgaError::NonFinite { what: "motor" });
+        }
+        let a = self.norm_squared();
+        if !(a > S::MIN_POSITIVE) {
+            return Err(CgaError::NotAMotor {
+                what: "motor",
+                why: "zero rotor part",
+            });
+        }
+        let dual2 = self.e1i * self.e1i
+            + self.e2i * self.e2i
+            + self.e3i * self.e3i
+            + self.e123i * self.e123i;
+        if self.versor_defect().abs() > TOL_VERSOR * (a * (a + dual2)).sqrt() {
+            return Err(CgaError::NotAMotor {
+                what: "motor",
+                why: "M ~M has a grade-4 part (not a versor)",
+            });
+        }
+        Ok(())
+    }
+}
+
+/// `dst[i] = (r0 . p, r1 . p, r2 . p)` with rows `[m_x, m_y, m_z, _, m_const]`: a 3x4 affine map.
+#[inline]
+pub(crate) fn affine_rows(r0: &[S; 5], r1: &[S; 5], r2: &[S; 5], src: &[V3], dst: &mut [V3]) {
+    let (a00, a01, a02, a03) = (r0[0], r0[1], r0[2], r0[4]);
+    let (a10, a11, a12, a13) = (r1[0], r1[1], r1[2], r1[4]);
+    let (a20, a21, a22, a23) = (r2[0], r2[1], r2[2], r2[4]);
+    for (o, p) in dst.iter_mut().zip(src) {
+        *o = V3::new(
+            a00 * p.x + a01 * p.y + a02 * p.z + a03,
+            a10 * p.x + a11 * p.y + a12 * p.z + a13,
+            a20 * p.x + a21 * p.y + a22 * p.z + a23,
+        );
+    }
+}
+
+impl From<Translator> for V3 {
+    #[inline]
+    fn from(t: Translator) -> Self {
+        t.translation()
+    }
+}

@@ -1,0 +1,228 @@
+//! Harmonic (and biharmonic) fields with Dirichlet conditions, section VIII of
+//! López Belón, "Applications of conformal geometric algebra in mesh deformation".
+//!
+//! The field `x` minimises the discrete Dirichlet energy `-x^T L x` (order 1: `L x = 0` at
+//! the free vertices) or the Laplacian energy `x^T L M^-1 L x` (order 2: `L M^-1 L x = 0`),
+//! with prescribed values on the constrained vertex sets.
+
+use crate::{
+    check_solvable, laplacian, mass_diagonal, DirichletSolver, Error, IndexList, LaplacianKind,
+    MassKind, Mesh, Result, SolverOptions,
+};
+use sprs::CsMat;
+
+/// Options for [`Harmonic`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HarmonicOptions {
+    /// The Laplacian (default: libigl's cotangent matrix).
+    pub laplacian: LaplacianKind,
+    /// 1 for harmonic, 2 for biharmonic.
+    pub order: u32,
+    /// Mass matrix used for `order = 2`.
+    pub mass: MassKind,
+    /// Factorisation settings.
+    pub solver: SolverOptions,
+}
+
+impl Default for HarmonicOptions {
+    fn default() -> Self {
+        HarmonicOptions {
+            laplacian: LaplacianKind::Default,
+            order: 1,
+            mass: MassKind::Voronoi,
+            solver: SolverOptions::default(),
+        }
+    }
+}
+
+/// The symmetric positive semi-definite system matrix: `-L` for order 1, `L M^-1 L` for
+/// order 2. Checks the mesh first ([`crate::check_solvable`]).
+pub fn harmonic_system(mesh: &Mesh, options: &HarmonicOptions) -> Result<CsMat<f64>> {
+    check_solvable(mesh)?;
+    let mut l = laplacian(mesh, options.laplacian)?;
+    match options.order {
+        1 => {
+            l.data_mut().iter_mut().for_each(|x| *x = -*x);
+            Ok(l)
+        }
+        2 => {
+            let m = mass_diagonal(mesh, options.mass);
+            let mut zero = Vec::new();
+            let minv: Vec<f64> = (0..m.len())
+                .map(|i| {
+                    if m[i] > 0.0 {
+                        1.0 / m[i]
+                    } else {
+                        let row = l.outer_view(i).map(|r| r.data().iter().any(|&x| x != 0.0));
+                        if row == Some(true) {
+                            zero.push(i as u32);
+                        }
+                        0.0
+                    }
+                })
+                .collect();
+            if !zero.is_empty() {
+                return Err(Error::ZeroMass {
+                    vertices: IndexList(zero),
+                });
+            }
+            // M^-1 L scales rows; L is symmetric so L (M^-1 L) = L^T M^-1 L.
+            let mut ml = l.clone();
+            let indptr = ml.indptr().into_raw_storage().to_vec();
+            let data = ml.data_mut();
+            for (i, w) in minv.iter().enumerate() {
+                data[indptr[i]..indptr[i + 1]]
+                    .iter_mut()
+                    .for_each(|x| *x *= w);
+            }
+            Ok(&l * &ml)
+        }
+        k => Err(Error::InvalidArgument(format!(
+            "harmonic order {k} (supported: 1, 2)"
+        ))),
+    }
+}
+
+/// A prefactored harmonic problem over several disjoint constrained vertex sets, each
+/// holding one value per field.
+///
+/// ```
+/// use deform::{Harmonic, HarmonicOptions, Mesh};
+/// use glam::DVec3;
+/// // A 3x1 strip of squares along x; fix the left edge to 0, the right edge to 1.
+/// let p: Vec<DVec3> = (0..8).map(|i| DVec3::new((i % 4) as f64, (i / 4) as f64, 0.0)).collect();
+/// let t = (0..3).flat_map(|i| [[i, i + 1, i + 5], [i, i + 5, i + 4]]).collect();
+/// let h = Harmonic::new(&Mesh::new(p, t), &[&[0, 4], &[3, 7]], HarmonicOptions::default()).unwrap();
+/// let x = h.field(&[0.0, 1.0]).unwrap();
+/// assert!((x[1] - 1.0 / 3.0).abs() < 1e-12 && (x[6] - 2.0 / 3.0).abs() < 1e-12);
+/// ```
+#[derive(Debug)]
+pub struct Harmonic {
+    solver: DirichletSolver,
+    /// `constrained[starts[s]..starts[s + 1]]` is set `s`.
+    starts: Vec<usize>,
+}
+
+impl Harmonic {
+    /// Validates the mesh and the sets, builds the system and factorises it.
+    ///
+    /// Errors: [`Error::EmptyMesh`], [`Error::FaceIndexOutOfRange`], [`Error::NonFinite`],
+    /// [`Error::NonManifold`], [`Error::ConstraintOutOfRange`],
+    /// [`Error::OverlappingConstraints`] (a vertex in two sets or twice in one),
+    /// [`Error::Unconstrained`] (a component without constrained vertices, e.g. unreferenced
+    /// vertices: run [`crate::clean()`]), [`Error::NotPositiveDefinite`].
+    pub fn new(mesh: &Mesh, sets: &[&[u32]], options: HarmonicOptions) -> Result<Self> {
+        let n = mesh.positions.len();
+        let bad: Vec<u32> = sets
+            .iter()
+            .flat_map(|s| s.iter().copied())
+            .filter(|&v| v as usize >= n)
+            .collect();
+        if !bad.is_empty() {
+            return Err(Error::ConstraintOutOfRange {
+                vertices: IndexList(bad),
+                vertex_count: n,
+            });
+        }
+        let constrained: Vec<u32> = sets.iter().flat_map(|s| s.iter().copied()).collect();
+        let mut seen = vec![false; n];
+        let mut overlap: Vec<u32> = constrained
+            .iter()
+            .copied()
+            .filter(|&v| std::mem::replace(&mut seen[v as usize], true))
+            .collect();
+        if !overlap.is_empty() {
+            overlap.sort_unstable();
+            overlap.dedup();
+            return Err(Error::OverlappingConstraints {
+                vertices: IndexList(overlap),
+            });
+        }
+        let q = harmonic_system(mesh, &options)?;
+        let solver = DirichletSolver::new(&q, &constrained, options.solver)?;
+        let mut starts = vec![0];
+        for s in sets {
+            starts.push(starts.last().copied().unwrap_or(0) + s.len());
+        }
+        Ok(Harmonic { solver, starts })
+    }
+
+    /// Number of constrained sets.
+    pub fn set_count(&self) -> usize {
+        self.starts.len() - 1
+    }
+
+    /// The underlying prefactored solver (constrained rows are the sets concatenated).
+    pub fn solver(&self) -> &DirichletSolver {
+        &self.solver
+    }
+
+    /// Boundary values `values[s]` on set `s` for every field (`values` is
+    /// `set_count() x ncols`, column-major) expanded to one value per constrained vertex.
+    fn expand(&self, values: &[f64], ncols: usize) -> Result<Vec<f64>> {
+        let m = self.set_count();
+        if values.len() != m * ncols {
+            return Err(Error::DimensionMismatch {
+                what: "values per set",
+                expected: m * ncols,
+                got: values.len(),
+            });
+        }
+        let nc = self.solver.constrained().len();
+        let mut bc = vec![0.0; nc * ncols];
+        for c in 0..ncols {
+            for s in 0..m {
+                bc[c * nc + self.starts[s]..c * nc + self.starts[s + 1]].fill(values[c * m + s]);
+            }
+        }
+        Ok(bc)
+    }
+
+    /// The field with value `values[s]` on set `s`.
+    pub fn field(&self, values: &[f64]) -> Result<Vec<f64>> {
+        self.solver.solve(&self.expand(values, 1)?, 1)
+    }
+
+    /// Several fields at once: `values` is `set_count() x ncols`, column-major; the result is
+    /// `vertex_count x ncols`, column-major.
+    pub fn fields(&self, values: &[f64], ncols: usize) -> Result<Vec<f64>> {
+        self.solver.solve(&self.expand(values, ncols)?, ncols)
+    }
+
+    /// Harmonic coordinates: field `j` is 1 on set `j` and 0 on the others. For order 1 (a
+    /// maximum principle holds for the mean-value and uniform Laplacians, and for cotangent
+    /// weights on meshes without obtuse angles) they lie in `[0, 1]`; for any order they sum
+    /// to one at every vertex (up to rounding).
+    pub fn coordinates(&self) -> Result<Vec<Vec<f64>>> {
+        let m = self.set_count();
+        let mut id = vec![0.0; m * m];
+        for j in 0..m {
+            id[j * m + j] = 1.0;
+        }
+        let all = self.fields(&id, m)?;
+        let n = self.solver.len();
+        Ok((0..m).map(|j| all[j * n..(j + 1) * n].to_vec()).collect())
+    }
+}
+
+/// The harmonic field that is 0 on `fixed` and 1 on `handles` (paper, section VIII).
+///
+/// Pass the union of several fixed (or handle) sets as one slice.
+pub fn harmonic_field(
+    mesh: &Mesh,
+    fixed: &[u32],
+    handles: &[u32],
+    options: HarmonicOptions,
+) -> Result<Vec<f64>> {
+    Harmonic::new(mesh, &[fixed, handles], options)?.field(&[0.0, 1.0])
+}
+
+/// Per-handle harmonic coordinates: one field per set, 1 on it and 0 on the other sets; they
+/// form a partition of unity.
+pub fn harmonic_coordinates(
+    mesh: &Mesh,
+    sets: &[&[u32]],
+    options: HarmonicOptions,
+) -> Result<Vec<Vec<f64>>> {
+    Harmonic::new(mesh, sets, options)?.coordinates()
+}

@@ -1,0 +1,101 @@
+//! Mesh and matrix files: OBJ (read, write), OFF, MEDIT `.mesh`, libigl DMAT and TGF.
+
+mod dmat;
+mod medit;
+mod obj;
+mod off;
+mod tgf;
+
+pub use dmat::{parse_dmat, read_dmat, write_dmat, Dmat};
+pub use medit::{parse_medit, read_medit, MeditMesh};
+pub use obj::{parse_obj, read_obj, write_obj, write_obj_to};
+pub use off::{parse_off, read_off};
+pub use tgf::{parse_tgf, read_tgf, Skeleton};
+
+use crate::{Error, Mesh, Result};
+use std::path::Path;
+
+/// Reads a triangle mesh, choosing the format by extension (`obj`, `off`, `mesh`; any case).
+///
+/// Polygons are fan-triangulated; for MEDIT files the `Triangles` section is returned.
+pub fn read_mesh(path: impl AsRef<Path>) -> Result<Mesh> {
+    let path = path.as_ref();
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .unwrap_or("")
+        .to_ascii_lowercase();
+    match ext.as_str() {
+        "obj" => read_obj(path),
+        "off" => read_off(path),
+        "mesh" => Ok(read_medit(path)?.surface()),
+        _ => Err(Error::UnsupportedFormat(ext)),
+    }
+}
+
+pub(crate) fn read_bytes(path: &Path) -> Result<Vec<u8>> {
+    std::fs::read(path).map_err(|source| Error::Io {
+        path: path.to_path_buf(),
+        source,
+    })
+}
+
+pub(crate) fn read_text(path: &Path) -> Result<String> {
+    let bytes = read_bytes(path)?;
+    String::from_utf8(bytes).map_err(|e| Error::Parse {
+        path: path.display().to_string(),
+        line: 0,
+        message: format!("not UTF-8: {e}"),
+    })
+}
+
+/// Parse-error helper carrying the source name and the current line.
+#[derive(Clone, Copy)]
+pub(crate) struct Ctx<'a> {
+    pub name: &'a str,
+    pub line: usize,
+}
+
+impl Ctx<'_> {
+    pub(crate) fn err(&self, message: impl Into<String>) -> Error {
+        Error::Parse {
+            path: self.name.to_string(),
+            line: self.line,
+            message: message.into(),
+        }
+    }
+
+    pub(crate) fn f64(&self, tok: Option<&str>, what: &str) -> Result<f64> {
+        let tok = tok.ok_or_else(|| self.err(format!("missing {what}")))?;
+        tok.parse::<f64>()
+            .map_err(|_| self.err(format!("bad {what} {tok:?}")))
+    }
+
+    pub(crate) fn usize(&self, tok: Option<&str>, what: &str) -> Result<usize> {
+        let tok = tok.ok_or_else(|| self.err(format!("missing {what}")))?;
+        tok.parse::<usize>()
+            .map_err(|_| self.err(format!("bad {what} {tok:?}")))
+    }
+
+    /// A 1-based index converted to 0-based `u32`.
+    pub(crate) fn index1(&self, tok: Option<&str>, what: &str) -> Result<u32> {
+        let i = self.usize(tok, what)?;
+        if i == 0 || i > u32::MAX as usize {
+            return Err(self.err(format!("{what} {i} is not a valid 1-based index")));
+        }
+        Ok((i - 1) as u32)
+    }
+
+    /// A 0-based index as `u32`.
+    pub(crate) fn index0(&self, tok: Option<&str>, what: &str) -> Result<u32> {
+        let i = self.usize(tok, what)?;
+        u32::try_from(i).map_err(|_| self.err(format!("{what} {i} is too large")))
+    }
+}
+
+/// Appends the fan triangulation of a polygon.
+pub(crate) fn push_fan(poly: &[u32], out: &mut Vec<[u32; 3]>) {
+    for k in 1..poly.len().saturating_sub(1) {
+        out.push([poly[0], poly[k], poly[k + 1]]);
+    }
+}

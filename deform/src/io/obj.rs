@@ -1,0 +1,96 @@
+//! Wavefront OBJ: vertices (`v`) and faces (`f`); polygons are fan-triangulated.
+//!
+//! A small dedicated parser rather than `tobj`: `tobj` renumbers vertices in order of first
+//! use and drops unreferenced ones, which would break per-vertex selection files (libigl DMAT)
+//! and the vertex counts of raw scans.
+
+use super::{push_fan, read_text, Ctx};
+use crate::{Mesh, Result};
+use glam::DVec3;
+use std::io::Write;
+use std::path::Path;
+
+/// Reads an OBJ file; see [`parse_obj`].
+pub fn read_obj(path: impl AsRef<Path>) -> Result<Mesh> {
+    let path = path.as_ref();
+    parse_obj(&read_text(path)?, &path.display().to_string())
+}
+
+/// Parses OBJ text. Vertices keep their file order (unreferenced ones included); face
+/// corners may be `v`, `v/t`, `v//n` or `v/t/n`, with negative (relative) indices allowed;
+/// polygons become triangle fans. Texture coordinates, normals, groups, materials, lines and
+/// points are ignored. Indices past the last vertex are kept and reported by
+/// [`crate::validate()`].
+///
+/// ```
+/// let m = deform::io::parse_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n", "quad").unwrap();
+/// assert_eq!(m.triangles, vec![[0, 1, 2], [0, 2, 3]]);
+/// ```
+pub fn parse_obj(text: &str, name: &str) -> Result<Mesh> {
+    let mut positions = Vec::new();
+    let mut triangles = Vec::new();
+    let mut poly: Vec<u32> = Vec::new();
+    for (ln, line) in text.lines().enumerate() {
+        let ctx = Ctx { name, line: ln + 1 };
+        let mut toks = line.split_ascii_whitespace();
+        match toks.next() {
+            Some("v") => {
+                let x = ctx.f64(toks.next(), "x coordinate")?;
+                let y = ctx.f64(toks.next(), "y coordinate")?;
+                let z = ctx.f64(toks.next(), "z coordinate")?;
+                positions.push(DVec3::new(x, y, z));
+            }
+            Some("f") => {
+                poly.clear();
+                for tok in toks {
+                    let v = tok.split('/').next().unwrap_or("");
+                    let i: i64 = v
+                        .parse()
+                        .map_err(|_| ctx.err(format!("bad face index {tok:?}")))?;
+                    let idx = if i > 0 {
+                        i - 1
+                    } else if i < 0 {
+                        positions.len() as i64 + i
+                    } else {
+                        return Err(ctx.err("face index 0 (OBJ indices start at 1)"));
+                    };
+                    let idx = u32::try_from(idx)
+                        .map_err(|_| ctx.err(format!("face index {i} is out of range")))?;
+                    poly.push(idx);
+                }
+                if poly.len() < 3 {
+                    return Err(ctx.err(format!("face with {} corners", poly.len())));
+                }
+                push_fan(&poly, &mut triangles);
+            }
+            _ => {}
+        }
+    }
+    Ok(Mesh {
+        positions,
+        triangles,
+    })
+}
+
+/// Writes `v` and `f` lines (shortest round-trip decimal form) to a writer.
+pub fn write_obj_to(mesh: &Mesh, mut w: impl Write) -> std::io::Result<()> {
+    let mut buf = std::io::BufWriter::new(&mut w);
+    for p in &mesh.positions {
+        writeln!(buf, "v {} {} {}", p.x, p.y, p.z)?;
+    }
+    for t in &mesh.triangles {
+        writeln!(buf, "f {} {} {}", t[0] + 1, t[1] + 1, t[2] + 1)?;
+    }
+    buf.flush()
+}
+
+/// Writes an OBJ file.
+pub fn write_obj(mesh: &Mesh, path: impl AsRef<Path>) -> Result<()> {
+    let path = path.as_ref();
+    let io = |source| crate::Error::Io {
+        path: path.to_path_buf(),
+        source,
+    };
+    let file = std::fs::File::create(path).map_err(io)?;
+    write_obj_to(mesh, file).map_err(io)
+}

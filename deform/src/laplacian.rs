@@ -1,0 +1,307 @@
+//! Discrete Laplacians as `sprs::CsMat<f64>` (CSR, symmetric, negative semi-definite).
+//!
+//! All three follow libigl's sign convention: `L_ij = w_ij >= 0`-ish off the diagonal for
+//! every edge `ij`, `L_ii = -sum_j L_ij`, so every row sums to zero, constants are in the
+//! null space and `-L` is positive semi-definite. Nothing is divided by area (use
+//! [`crate::mass_matrix`] for that). The sparsity pattern is always the diagonal plus every
+//! mesh edge (entries may be zero), so matrices of the same mesh share one pattern.
+//!
+//! Triangle indices must be in range (see [`crate::validate()`]).
+
+use crate::mesh::is_degenerate_triangle;
+use crate::{Error, IndexList, Mesh, Result};
+use glam::DVec3;
+use rayon::prelude::*;
+use sprs::CsMat;
+
+/// What to do with triangles of (numerically) zero area, see
+/// [`crate::mesh::is_degenerate_triangle`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum DegeneratePolicy {
+    /// Skip them: they add nothing to any weight (their cotangents are infinite or undefined,
+    /// and a linear function's gradient over a zero-area triangle is meaningless). Their edges
+    /// stay in the sparsity pattern. If this leaves a vertex without weights the solver
+    /// reports it as unconstrained.
+    #[default]
+    Skip,
+    /// Fail with [`Error::DegenerateTriangles`] naming them.
+    Error,
+}
+
+/// Options for [`cotangent_laplacian`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct CotangentOptions {
+    /// Clamp negative edge weights to zero (after summing the two half-weights of an edge),
+    /// as CGAL does for ARAP. Off by default, like libigl: with obtuse triangles a weight
+    /// `(cot a + cot b) / 2` can be negative, but `-L` stays positive semi-definite anyway.
+    pub clamp_negative: bool,
+    /// Treatment of zero-area triangles.
+    pub degenerate: DegeneratePolicy,
+}
+
+/// Which Laplacian to build (see [`laplacian`]).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum LaplacianKind {
+    /// Cotangent weights [`cotangent_laplacian`].
+    Cotangent(CotangentOptions),
+    /// Symmetrised mean-value weights [`mean_value_laplacian`].
+    MeanValue,
+    /// Uniform (graph) weights [`uniform_laplacian`].
+    Uniform,
+    /// libigl-compatible default: cotangent without clamping, degenerate triangles skipped.
+    #[default]
+    Default,
+}
+
+/// Builds the Laplacian of the given kind.
+pub fn laplacian(mesh: &Mesh, kind: LaplacianKind) -> Result<CsMat<f64>> {
+    match kind {
+        LaplacianKind::Cotangent(o) => cotangent_laplacian(mesh, o),
+        LaplacianKind::Default => cotangent_laplacian(mesh, CotangentOptions::default()),
+        LaplacianKind::MeanValue => Ok(mean_value_laplacian(mesh)),
+        LaplacianKind::Uniform => Ok(uniform_laplacian(mesh)),
+    }
+}
+
+/// The cotangent Laplacian, libigl's `cotmatrix`: `L_ij = (cot a_ij + cot b_ij) / 2` where
+/// `a_ij, b_ij` are the angles opposite edge `ij`, `L_ii = -sum_j L_ij`. A boundary edge has
+/// only one angle. Obtuse angles give negative cotangents and these are kept unless
+/// [`CotangentOptions::clamp_negative`]; zero-area triangles follow
+/// [`CotangentOptions::degenerate`].
+///
+/// ```
+/// use deform::{cotangent_laplacian, Mesh};
+/// use glam::DVec3;
+/// // A right isosceles triangle: the right angle (cot 0) faces the hypotenuse.
+/// let m = Mesh::new(vec![DVec3::ZERO, DVec3::X, DVec3::Y], vec![[0, 1, 2]]);
+/// let l = cotangent_laplacian(&m, Default::default()).unwrap();
+/// assert!((l.get(0, 1).unwrap() - 0.5).abs() < 1e-15);
+/// assert!(l.get(1, 2).unwrap().abs() < 1e-15);
+/// assert!((l.get(0, 0).unwrap() + 1.0).abs() < 1e-15);
+/// ```
+pub fn cotangent_laplacian(mesh: &Mesh, options: CotangentOptions) -> Result<CsMat<f64>> {
+    // Per-triangle weights in parallel (`None`: degenerate).
+    let per_face: Vec<Option<[f64; 3]>> = mesh
+        .triangles
+        .par_iter()
+        .map(|t| half_cotangents(t.map(|v| mesh.positions[v as usize])))
+        .collect();
+    let degenerate: Vec<u32> = (0..per_face.len() as u32)
+        .filter(|&f| per_face[f as usize].is_none())
+        .collect();
+    let weights: Vec<[[f64; 2]; 3]> = per_face
+        .iter()
+        .map(|w| w.unwrap_or([0.0; 3]).map(|w| [w, w]))
+        .collect();
+    if options.degenerate == DegeneratePolicy::Error && !degenerate.is_empty() {
+        return Err(Error::DegenerateTriangles {
+            faces: IndexList(degenerate),
+        });
+    }
+    let mut l = assemble(mesh.positions.len(), &mesh.triangles, &weights);
+    if options.clamp_negative {
+        for_each_off_diagonal(&mut l, |w| *w = w.max(0.0));
+        rebuild_diagonal(&mut l);
+    }
+    Ok(l)
+}
+
+/// Half cotangents of a triangle's angles, `[cot(A)/2, cot(B)/2, cot(C)/2]`, or `None` when it
+/// is degenerate ([`is_degenerate_triangle`]). Entry `k` is the weight of the edge opposite
+/// corner `k`.
+#[inline]
+pub(crate) fn half_cotangents(p: [DVec3; 3]) -> Option<[f64; 3]> {
+    // e_k is the edge opposite corner k.
+    let (e0, e1, e2) = (p[2] - p[1], p[0] - p[2], p[1] - p[0]);
+    let l2max = e0
+        .length_squared()
+        .max(e1.length_squared())
+        .max(e2.length_squared());
+    let dbl_area = e2.cross(-e1).length();
+    // Same test as `is_degenerate_triangle` (written so that NaN fails it).
+    if dbl_area.partial_cmp(&(f64::EPSILON * l2max)) != Some(std::cmp::Ordering::Greater)
+        || !l2max.is_finite()
+    {
+        return None;
+    }
+    // cot at a corner = (dot of its two outgoing edges) / (2 area).
+    let s = 0.5 / dbl_area;
+    Some([-e2.dot(e1) * s, -e0.dot(e2) * s, -e1.dot(e0) * s])
+}
+
+/// The mean-value Laplacian (Floater 2003), symmetrised.
+///
+/// Floater's weight of the directed edge `i -> j` is
+/// `w_ij = (tan(a_ij / 2) + tan(b_ij / 2)) / |p_j - p_i|`, where `a_ij, b_ij` are the angles
+/// *at `p_i`* of the two triangles sharing edge `ij`. These weights are positive for any
+/// non-degenerate triangle but not symmetric (`w_ij != w_ji`). We use the symmetric part
+/// `(w_ij + w_ji) / 2` as the edge weight, so `L` is a weighted graph Laplacian with positive
+/// weights: symmetric, negative semi-definite, and `-L` restricted to the free vertices is
+/// symmetric positive definite when every component has a constrained vertex (a
+/// Cholesky-friendly system). The per-row normalisation `1 / sum_j w_ij` of the paper's
+/// eq. (14) only scales rows; it does not change the solution of `L x = 0` with Dirichlet
+/// values and is left out to keep the matrix symmetric. Zero-area triangles are skipped.
+///
+/// ```
+/// use deform::{mean_value_laplacian, Mesh};
+/// use glam::DVec3;
+/// let m = Mesh::new(vec![DVec3::ZERO, DVec3::X, DVec3::Y], vec![[0, 1, 2]]);
+/// let l = mean_value_laplacian(&m);
+/// // Edge 0-1 (length 1): tan(90°/2) at vertex 0 and tan(45°/2) at vertex 1, averaged.
+/// let expect = (1.0 + std::f64::consts::FRAC_PI_8.tan()) / 2.0;
+/// assert!((l.get(0, 1).unwrap() - expect).abs() < 1e-15);
+/// ```
+pub fn mean_value_laplacian(mesh: &Mesh) -> CsMat<f64> {
+    mean_value(mesh, true)
+}
+
+/// Floater's original, non-symmetric mean-value matrix: row `i` holds the directed weights
+/// `w_ij` (see [`mean_value_laplacian`]) and `-sum_j w_ij` on the diagonal. Dividing row `i`
+/// by `sum_j w_ij` gives the mean-value coordinates, which reproduce linear functions on a
+/// planar mesh (the symmetrised matrix does not).
+pub fn mean_value_weights(mesh: &Mesh) -> CsMat<f64> {
+    mean_value(mesh, false)
+}
+
+fn mean_value(mesh: &Mesh, symmetric: bool) -> CsMat<f64> {
+    let weights: Vec<[[f64; 2]; 3]> = mesh
+        .triangles
+        .iter()
+        .map(|t| {
+            let p = t.map(|v| mesh.positions[v as usize]);
+            if is_degenerate_triangle(p[0], p[1], p[2]) {
+                return [[0.0; 2]; 3];
+            }
+            // tan of the half angle at each corner: |e1 x e2| / (|e1||e2| + e1.e2).
+            let th: [f64; 3] = std::array::from_fn(|k| {
+                let e1 = p[(k + 1) % 3] - p[k];
+                let e2 = p[(k + 2) % 3] - p[k];
+                e1.cross(e2).length() / (e1.length() * e2.length() + e1.dot(e2))
+            });
+            std::array::from_fn(|k| {
+                let (a, b) = ((k + 1) % 3, (k + 2) % 3);
+                let len = (p[b] - p[a]).length();
+                if symmetric {
+                    let w = (th[a] + th[b]) / (2.0 * len);
+                    [w, w]
+                } else {
+                    [th[a] / len, th[b] / len]
+                }
+            })
+        })
+        .collect();
+    assemble(mesh.positions.len(), &mesh.triangles, &weights)
+}
+
+/// The uniform (graph) Laplacian: `L_ij = 1` for every edge, `L_ii = -valence(i)`.
+///
+/// ```
+/// use deform::{uniform_laplacian, Mesh};
+/// use glam::DVec3;
+/// let m = Mesh::new(vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::ONE], vec![[0, 1, 2], [1, 3, 2]]);
+/// let l = uniform_laplacian(&m);
+/// assert_eq!(l.get(1, 1), Some(&-3.0));
+/// assert_eq!(l.get(1, 2), Some(&1.0));
+/// ```
+pub fn uniform_laplacian(mesh: &Mesh) -> CsMat<f64> {
+    let weights = vec![[[1.0; 2]; 3]; mesh.triangles.len()];
+    let mut l = assemble(mesh.positions.len(), &mesh.triangles, &weights);
+    for_each_off_diagonal(&mut l, |w| *w = 1.0);
+    rebuild_diagonal(&mut l);
+    l
+}
+
+/// Applies `f` to every stored off-diagonal value.
+fn for_each_off_diagonal(m: &mut CsMat<f64>, mut f: impl FnMut(&mut f64)) {
+    let n = m.rows();
+    let indptr = m.indptr().into_raw_storage().to_vec();
+    let indices = m.indices().to_vec();
+    let data = m.data_mut();
+    for i in 0..n {
+        for k in indptr[i]..indptr[i + 1] {
+            if indices[k] != i {
+                f(&mut data[k]);
+            }
+        }
+    }
+}
+
+/// Sets every diagonal entry to minus the sum of the row's off-diagonal entries.
+pub(crate) fn rebuild_diagonal(m: &mut CsMat<f64>) {
+    let n = m.rows();
+    let indptr = m.indptr().into_raw_storage().to_vec();
+    let indices = m.indices().to_vec();
+    let data = m.data_mut();
+    for i in 0..n {
+        let mut sum = 0.0;
+        let mut diag = None;
+        for k in indptr[i]..indptr[i + 1] {
+            if indices[k] == i {
+                diag = Some(k);
+            } else {
+                sum += data[k];
+            }
+        }
+        if let Some(k) = diag {
+            data[k] = -sum;
+        }
+    }
+}
+
+/// Assembles `L` from per-triangle edge weights: `weights[f][k] = [w_ab, w_ba]` belongs to the
+/// edge `(a, b)` opposite corner `k` of triangle `f` (`a, b` the next corners in order);
+/// `w_ab` is added to `L_ab` and subtracted from `L_aa`, `w_ba` likewise in row `b`. The
+/// pattern is the diagonal plus all edges, rows sorted, duplicates summed.
+pub(crate) fn assemble(n: usize, triangles: &[[u32; 3]], weights: &[[[f64; 2]; 3]]) -> CsMat<f64> {
+    // Row capacities: the diagonal plus two slots per incident triangle.
+    let mut offsets = vec![0usize; n + 1];
+    for t in triangles {
+        for &v in t {
+            offsets[v as usize + 1] += 2;
+        }
+    }
+    for i in 0..n {
+        offsets[i + 1] += offsets[i] + 1;
+    }
+    let total = offsets[n];
+    let mut entries: Vec<(u32, f64)> = vec![(0, 0.0); total];
+    let mut fill: Vec<usize> = offsets[..n].to_vec();
+    let mut diag = vec![0.0f64; n];
+    for i in 0..n {
+        entries[fill[i]] = (i as u32, 0.0);
+        fill[i] += 1;
+    }
+    for (t, w) in triangles.iter().zip(weights) {
+        for k in 0..3 {
+            let (a, b) = (t[(k + 1) % 3] as usize, t[(k + 2) % 3] as usize);
+            let [wab, wba] = w[k];
+            entries[fill[a]] = (b as u32, wab);
+            fill[a] += 1;
+            entries[fill[b]] = (a as u32, wba);
+            fill[b] += 1;
+            diag[a] -= wab;
+            diag[b] -= wba;
+        }
+    }
+    // Sort each row, merge duplicates, compact in place.
+    let mut indptr = Vec::with_capacity(n + 1);
+    let mut indices = Vec::with_capacity(total);
+    let mut data = Vec::with_capacity(total);
+    indptr.push(0);
+    for i in 0..n {
+        let row = &mut entries[offsets[i]..offsets[i + 1]];
+        row.sort_unstable_by_key(|e| e.0);
+        let mut last = u32::MAX;
+        for &(c, w) in row.iter() {
+            if c == last {
+                *data.last_mut().expect("a previous entry exists") += w;
+            } else {
+                indices.push(c as usize);
+                data.push(if c as usize == i { diag[i] } else { w });
+                last = c;
+            }
+        }
+        indptr.push(indices.len());
+    }
+    CsMat::new((n, n), indptr, indices, data)
+}

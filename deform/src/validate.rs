@@ -1,0 +1,342 @@
+//! Mesh validation (with the offending indices) and cleaning of raw scans.
+
+use crate::mesh::is_degenerate_triangle;
+use crate::{Error, IndexList, Mesh, Result};
+
+/// What [`validate()`] found. Every list holds indices into the input mesh.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct ValidationReport {
+    /// Number of vertices.
+    pub vertex_count: usize,
+    /// Number of triangles.
+    pub triangle_count: usize,
+    /// Triangles with an index `>= vertex_count`.
+    pub out_of_range_faces: Vec<u32>,
+    /// Triangles with (numerically) zero area or a repeated vertex index.
+    pub degenerate_faces: Vec<u32>,
+    /// `[face, earlier]`: `face` uses the same three vertices as `earlier`.
+    pub duplicate_faces: Vec<[u32; 2]>,
+    /// Edges `[a, b]` (`a < b`) shared by more than two triangles.
+    pub non_manifold_edges: Vec<[u32; 2]>,
+    /// Vertices whose incident triangles form more than one edge-connected fan (bow-ties).
+    pub non_manifold_vertices: Vec<u32>,
+    /// Vertices used by no triangle.
+    pub unreferenced_vertices: Vec<u32>,
+    /// Vertices with a NaN or infinite coordinate.
+    pub non_finite_vertices: Vec<u32>,
+    /// Number of boundary edges (one incident triangle).
+    pub boundary_edges: usize,
+    /// The smallest vertex of each connected component of referenced vertices.
+    pub components: Vec<u32>,
+}
+
+impl ValidationReport {
+    /// True when nothing at all was found: no bad, degenerate, duplicate, non-manifold,
+    /// unreferenced or non-finite element, and exactly one component (boundaries are fine).
+    pub fn is_clean(&self) -> bool {
+        self.out_of_range_faces.is_empty()
+            && self.degenerate_faces.is_empty()
+            && self.duplicate_faces.is_empty()
+            && self.non_manifold_edges.is_empty()
+            && self.non_manifold_vertices.is_empty()
+            && self.unreferenced_vertices.is_empty()
+            && self.non_finite_vertices.is_empty()
+            && self.components.len() == 1
+    }
+
+    /// The first hard error for Laplacian-based solves: empty mesh, out-of-range indices,
+    /// non-finite coordinates, non-manifold edges or vertices. Degenerate triangles,
+    /// unreferenced vertices and several components are not errors here (the Laplacians skip
+    /// degenerate triangles; unconstrained parts are caught by the solver).
+    pub fn check_solvable(&self) -> Result<()> {
+        if self.vertex_count == 0 || self.triangle_count == 0 {
+            return Err(Error::EmptyMesh {
+                vertices: self.vertex_count,
+                triangles: self.triangle_count,
+            });
+        }
+        if !self.out_of_range_faces.is_empty() {
+            return Err(Error::FaceIndexOutOfRange {
+                faces: IndexList(self.out_of_range_faces.clone()),
+                vertex_count: self.vertex_count,
+            });
+        }
+        if !self.non_finite_vertices.is_empty() {
+            return Err(Error::NonFinite {
+                vertices: IndexList(self.non_finite_vertices.clone()),
+            });
+        }
+        if !self.non_manifold_edges.is_empty() || !self.non_manifold_vertices.is_empty() {
+            let mut ev: Vec<u32> = self.non_manifold_edges.iter().flatten().copied().collect();
+            ev.sort_unstable();
+            ev.dedup();
+            return Err(Error::NonManifold {
+                vertices: IndexList(self.non_manifold_vertices.clone()),
+                edge_vertices: IndexList(ev),
+            });
+        }
+        Ok(())
+    }
+}
+
+/// Checks a mesh and reports every problem with its indices. Never panics.
+///
+/// ```
+/// use deform::{validate, Mesh};
+/// use glam::DVec3;
+/// let m = Mesh::new(vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z], vec![[0, 1, 2], [0, 1, 7]]);
+/// let r = validate(&m);
+/// assert_eq!(r.out_of_range_faces, vec![1]);
+/// assert_eq!(r.unreferenced_vertices, vec![3]);
+/// assert!(r.check_solvable().is_err());
+/// ```
+pub fn validate(mesh: &Mesh) -> ValidationReport {
+    inspect(mesh, true)
+}
+
+/// The checks of [`ValidationReport::check_solvable`] only (empty mesh, out-of-range indices,
+/// non-finite coordinates, non-manifold edges and vertices), skipping the duplicate-face and
+/// component analyses: the fast path used before building Laplacian systems.
+pub fn check_solvable(mesh: &Mesh) -> Result<()> {
+    inspect(mesh, false).check_solvable()
+}
+
+/// Validation; `full = false` skips duplicates and components.
+fn inspect(mesh: &Mesh, full: bool) -> ValidationReport {
+    let n = mesh.positions.len();
+    let mut r = ValidationReport {
+        vertex_count: n,
+        triangle_count: mesh.triangles.len(),
+        ..Default::default()
+    };
+    r.non_finite_vertices = (0..n as u32)
+        .filter(|&v| !mesh.positions[v as usize].is_finite())
+        .collect();
+    // Triangles usable for topology: in range and with three distinct indices.
+    let mut good = Vec::with_capacity(mesh.triangles.len());
+    let mut good_ids = Vec::with_capacity(mesh.triangles.len());
+    for (f, t) in mesh.triangles.iter().enumerate() {
+        if t.iter().any(|&v| v as usize >= n) {
+            r.out_of_range_faces.push(f as u32);
+            continue;
+        }
+        let [a, b, c] = t.map(|v| mesh.positions[v as usize]);
+        let repeated = t[0] == t[1] || t[1] == t[2] || t[0] == t[2];
+        if repeated || is_degenerate_triangle(a, b, c) {
+            r.degenerate_faces.push(f as u32);
+        }
+        if !repeated {
+            good.push(*t);
+            good_ids.push(f as u32);
+        }
+    }
+    let sub = Mesh {
+        positions: Vec::new(),
+        triangles: good,
+    };
+    if full {
+        // Duplicates: same vertex set, any order.
+        let mut keys: Vec<([u32; 3], u32)> = sub
+            .triangles
+            .iter()
+            .zip(&good_ids)
+            .map(|(t, &f)| {
+                let mut k = *t;
+                k.sort_unstable();
+                (k, f)
+            })
+            .collect();
+        keys.sort_unstable();
+        for w in keys.windows(2) {
+            if w[0].0 == w[1].0 {
+                // `keys` is sorted by face within equal keys; report against the first occurrence.
+                let first = keys.partition_point(|k| k.0 < w[1].0);
+                r.duplicate_faces.push([w[1].1, keys[first].1]);
+            }
+        }
+        r.duplicate_faces.sort_unstable();
+    }
+    // Edges (positions are not needed for topology; pad the vertex count).
+    let sub = Mesh {
+        positions: vec![glam::DVec3::ZERO; n],
+        triangles: sub.triangles,
+    };
+    let edges = sub.edges();
+    r.boundary_edges = edges.boundary().count();
+    r.non_manifold_edges = edges.non_manifold().map(|e| edges.edges[e]).collect();
+    // Non-manifold vertices: the link (opposite edges of incident triangles) must be connected.
+    let vf = sub.vertex_faces();
+    // Reused buffers: link vertices and a tiny union-find over them.
+    let mut link: Vec<u32> = Vec::new();
+    let mut parent: Vec<usize> = Vec::new();
+    for v in 0..n {
+        let faces = vf.row(v);
+        if faces.is_empty() {
+            r.unreferenced_vertices.push(v as u32);
+            continue;
+        }
+        link.clear();
+        parent.clear();
+        let slot = |w: u32, link: &mut Vec<u32>, parent: &mut Vec<usize>| -> usize {
+            match link.iter().position(|&x| x == w) {
+                Some(i) => i,
+                None => {
+                    link.push(w);
+                    parent.push(parent.len());
+                    link.len() - 1
+                }
+            }
+        };
+        let mut merges = 0;
+        for &f in faces {
+            let t = sub.triangles[f as usize];
+            let k = t.iter().position(|&w| w as usize == v).unwrap_or(0);
+            let i = slot(t[(k + 1) % 3], &mut link, &mut parent);
+            let j = slot(t[(k + 2) % 3], &mut link, &mut parent);
+            let (ri, rj) = (root(&mut parent, i), root(&mut parent, j));
+            if ri != rj {
+                parent[ri] = rj;
+                merges += 1;
+            }
+        }
+        // Link components = link vertices - successful merges.
+        if link.len() - merges > 1 {
+            r.non_manifold_vertices.push(v as u32);
+        }
+    }
+    if full {
+        // Components among referenced vertices.
+        let comps = sub.components();
+        let mut seen = vec![false; comps.count];
+        let referenced = sub.referenced();
+        for (v, &used) in referenced.iter().enumerate() {
+            let c = comps.labels[v] as usize;
+            if used && !seen[c] {
+                seen[c] = true;
+                r.components.push(v as u32);
+            }
+        }
+    }
+    r
+}
+
+/// Root of `i` in a small union-find forest (with path halving).
+fn root(parent: &mut [usize], mut i: usize) -> usize {
+    while parent[i] != i {
+        parent[i] = parent[parent[i]];
+        i = parent[i];
+    }
+    i
+}
+
+/// The result of [`clean()`]: the cleaned mesh and the vertex maps.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Cleaned {
+    /// The cleaned mesh.
+    pub mesh: Mesh,
+    /// For each input vertex, its index in the cleaned mesh (`None` when removed).
+    pub old_to_new: Vec<Option<u32>>,
+    /// For each cleaned vertex, its input index.
+    pub new_to_old: Vec<u32>,
+    /// Input triangles that were dropped.
+    pub removed_faces: Vec<u32>,
+}
+
+impl Cleaned {
+    /// Maps input vertex indices (e.g. handles) to cleaned indices; an error names indices
+    /// that are out of range or were removed.
+    pub fn remap(&self, vertices: &[u32]) -> Result<Vec<u32>> {
+        let bad: Vec<u32> = vertices
+            .iter()
+            .copied()
+            .filter(|&v| v as usize >= self.old_to_new.len())
+            .collect();
+        if !bad.is_empty() {
+            return Err(Error::ConstraintOutOfRange {
+                vertices: IndexList(bad),
+                vertex_count: self.old_to_new.len(),
+            });
+        }
+        let removed: Vec<u32> = vertices
+            .iter()
+            .copied()
+            .filter(|&v| self.old_to_new[v as usize].is_none())
+            .collect();
+        if !removed.is_empty() {
+            return Err(Error::RemovedVertices {
+                vertices: IndexList(removed),
+            });
+        }
+        Ok(vertices
+            .iter()
+            .filter_map(|&v| self.old_to_new[v as usize])
+            .collect())
+    }
+}
+
+/// Drops triangles that are out of range, degenerate (zero area, repeated or non-finite
+/// corners) or duplicates of an earlier triangle, then vertices no remaining triangle uses;
+/// the remaining vertices keep their relative order.
+///
+/// ```
+/// use deform::{clean, Mesh};
+/// use glam::DVec3;
+/// let m = Mesh::new(
+///     vec![DVec3::ZERO, DVec3::ONE, DVec3::X, DVec3::Y],
+///     vec![[0, 2, 3], [0, 0, 2]],
+/// );
+/// let c = clean(&m);
+/// assert_eq!(c.mesh.triangles, vec![[0, 1, 2]]);
+/// assert_eq!(c.remap(&[3]).unwrap(), vec![2]);
+/// assert!(c.remap(&[1]).is_err());
+/// ```
+pub fn clean(mesh: &Mesh) -> Cleaned {
+    let report = validate(mesh);
+    let mut drop = vec![false; mesh.triangles.len()];
+    for &f in report
+        .out_of_range_faces
+        .iter()
+        .chain(&report.degenerate_faces)
+        .chain(report.duplicate_faces.iter().map(|d| &d[0]))
+    {
+        drop[f as usize] = true;
+    }
+    let n = mesh.positions.len();
+    let mut used = vec![false; n];
+    let mut removed_faces = Vec::new();
+    for (f, t) in mesh.triangles.iter().enumerate() {
+        if drop[f] {
+            removed_faces.push(f as u32);
+        } else {
+            t.iter().for_each(|&v| used[v as usize] = true);
+        }
+    }
+    let mut old_to_new = vec![None; n];
+    let mut new_to_old = Vec::new();
+    for v in 0..n {
+        if used[v] {
+            old_to_new[v] = Some(new_to_old.len() as u32);
+            new_to_old.push(v as u32);
+        }
+    }
+    let triangles = mesh
+        .triangles
+        .iter()
+        .enumerate()
+        .filter(|(f, _)| !drop[*f])
+        .map(|(_, t)| t.map(|v| old_to_new[v as usize].unwrap_or(u32::MAX)))
+        .collect();
+    let positions = new_to_old
+        .iter()
+        .map(|&v| mesh.positions[v as usize])
+        .collect();
+    Cleaned {
+        mesh: Mesh {
+            positions,
+            triangles,
+        },
+        old_to_new,
+        new_to_old,
+        removed_faces,
+    }
+}

@@ -1,0 +1,141 @@
+//! Shared helpers: locating the shared data and reference directories.
+#![allow(dead_code)]
+
+use std::path::{Path, PathBuf};
+
+fn locate(var: &str, default: &str, what: &str) -> Option<PathBuf> {
+    let dir = std::env::var_os(var)
+        .map(PathBuf::from)
+        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join(default));
+    if dir.is_dir() {
+        return Some(dir);
+    }
+    if std::env::var("CI").as_deref() == Ok("true") {
+        panic!("{what} directory {} is missing (CI=true)", dir.display());
+    }
+    eprintln!(
+        "skipped: {what} directory {} not found (set {var})",
+        dir.display()
+    );
+    None
+}
+
+/// `$CGA_DATA_DIR`, else `../shared/data` next to the workspace; `None` (test skipped) when
+/// absent, a panic under `CI=true`.
+pub fn data_dir() -> Option<PathBuf> {
+    locate("CGA_DATA_DIR", "../../shared/data", "test data")
+}
+
+/// `$CGA_REFERENCE_DIR`, else `../shared/reference`.
+pub fn reference_dir() -> Option<PathBuf> {
+    locate("CGA_REFERENCE_DIR", "../../shared/reference", "reference")
+}
+
+/// A file of the mesh data set, e.g. `mesh("libigl/decimated-knight.off")`.
+pub fn mesh_path(rel: &str) -> Option<PathBuf> {
+    data_dir().map(|d| d.join("meshes").join(rel))
+}
+
+/// Reads a libigl reference JSON.
+pub fn reference(name: &str) -> Option<serde_json::Value> {
+    let path = reference_dir()?.join(name);
+    let text = std::fs::read_to_string(&path)
+        .unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()));
+    Some(serde_json::from_str(&text).expect("reference JSON parses"))
+}
+
+/// Vertices and faces stored in a reference JSON.
+pub fn reference_mesh(r: &serde_json::Value) -> deform::Mesh {
+    let positions = r["V"]
+        .as_array()
+        .expect("V")
+        .iter()
+        .map(|p| {
+            let c: Vec<f64> = p
+                .as_array()
+                .expect("vertex")
+                .iter()
+                .map(|x| x.as_f64().expect("coordinate"))
+                .collect();
+            glam::DVec3::new(c[0], c[1], c[2])
+        })
+        .collect();
+    let triangles = r["F"]
+        .as_array()
+        .expect("F")
+        .iter()
+        .map(|t| {
+            let c: Vec<u32> = t
+                .as_array()
+                .expect("face")
+                .iter()
+                .map(|x| x.as_u64().expect("index") as u32)
+                .collect();
+            [c[0], c[1], c[2]]
+        })
+        .collect();
+    deform::Mesh::new(positions, triangles)
+}
+
+/// A JSON array of numbers.
+pub fn f64s(v: &serde_json::Value) -> Vec<f64> {
+    v.as_array()
+        .expect("array")
+        .iter()
+        .map(|x| x.as_f64().expect("number"))
+        .collect()
+}
+
+/// A JSON array of indices.
+pub fn u32s(v: &serde_json::Value) -> Vec<u32> {
+    v.as_array()
+        .expect("array")
+        .iter()
+        .map(|x| x.as_u64().expect("index") as u32)
+        .collect()
+}
+
+/// A planar `nx x ny`-vertex grid with unit spacing, triangulated with alternating diagonals.
+/// With `jitter`, interior vertices move deterministically by up to 0.3 in x and y (the
+/// triangulation stays valid).
+pub fn grid(nx: u32, ny: u32, jitter: bool) -> deform::Mesh {
+    let mut positions = Vec::new();
+    for j in 0..ny {
+        for i in 0..nx {
+            let mut p = glam::DVec3::new(i as f64, j as f64, 0.0);
+            let interior = i > 0 && j > 0 && i + 1 < nx && j + 1 < ny;
+            if jitter && interior {
+                let s = (i * 7919 + j * 104729) as f64;
+                p.x += 0.3 * (s * 0.37).sin();
+                p.y += 0.3 * (s * 0.91).cos();
+            }
+            positions.push(p);
+        }
+    }
+    let mut triangles = Vec::new();
+    for j in 0..ny - 1 {
+        for i in 0..nx - 1 {
+            let (a, b, c, d) = (
+                j * nx + i,
+                j * nx + i + 1,
+                (j + 1) * nx + i + 1,
+                (j + 1) * nx + i,
+            );
+            if (i + j) % 2 == 0 {
+                triangles.push([a, b, c]);
+                triangles.push([a, c, d]);
+            } else {
+                triangles.push([a, b, d]);
+                triangles.push([b, c, d]);
+            }
+        }
+    }
+    deform::Mesh::new(positions, triangles)
+}
+
+/// `y = A x` for a CSR matrix.
+pub fn mul(a: &sprs::CsMat<f64>, x: &[f64]) -> Vec<f64> {
+    a.outer_iterator()
+        .map(|row| row.iter().map(|(j, v)| v * x[j]).sum())
+        .collect()
+}

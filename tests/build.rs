@@ -1,0 +1,29 @@
+//! Generates every algebra in `algebras/` (f64), plus the default spec of a signature, each with
+//! the check harness that compares its generated functions with the generic multivector.
+
+use ga_codegen::checks::emit_checks;
+use ga_codegen::{generate, EmitOptions, Spec};
+use std::path::PathBuf;
+
+fn main() {
+    let manifest = PathBuf::from(std::env::var("CARGO_MANIFEST_DIR").expect("cargo sets this"));
+    let out = PathBuf::from(std::env::var("OUT_DIR").expect("cargo sets this"));
+    let opts = EmitOptions::default();
+    let mut specs = Vec::new();
+    for name in ["cga", "pga3d", "g3", "sta"] {
+        let path = manifest.join(format!("../algebras/{name}.toml"));
+        println!("cargo:rerun-if-changed={}", path.display());
+        let spec = Spec::from_file(&path).unwrap_or_else(|e| panic!("{e}"));
+        specs.push((name.to_string(), spec));
+    }
+    specs.push((
+        "sig201".to_string(),
+        Spec::for_signature(2, 0, 1).unwrap_or_else(|e| panic!("{e}")),
+    ));
+    for (name, spec) in specs {
+        let g = generate(&spec, &opts).unwrap_or_else(|e| panic!("{e}"));
+        let checks = emit_checks(&spec, &g, "::ga_codegen");
+        std::fs::write(out.join(format!("{name}.rs")), &g.code).expect("write");
+        std::fs::write(out.join(format!("{name}_checks.rs")), checks).expect("write");
+    }
+}

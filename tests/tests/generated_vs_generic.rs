@@ -1,0 +1,38 @@
+//! Every generated product, method, sandwich, matrix form and conversion, for every type pair of
+//! every algebra, against the slow generic multivector on 200 seeded random inputs.
+
+fn run(name: &str, (count, fails): (usize, Vec<String>)) {
+    println!("{name}: {count} comparisons");
+    assert!(count > 0, "{name}: no comparisons made");
+    assert!(
+        fails.is_empty(),
+        "{name}: {} failures:\n{}",
+        fails.len(),
+        fails.join("\n")
+    );
+}
+
+#[test]
+fn cga_generated_matches_generic() {
+    run("cga", tests::cga::checks::check_all(200, 1));
+}
+
+#[test]
+fn pga3d_generated_matches_generic() {
+    run("pga3d", tests::pga3d::checks::check_all(200, 2));
+}
+
+#[test]
+fn g3_generated_matches_generic() {
+    run("g3", tests::g3::checks::check_all(200, 3));
+}
+
+#[test]
+fn sta_generated_matches_generic() {
+    run("sta", tests::sta::checks::check_all(200, 4));
+}
+
+#[test]
+fn signature_201_generated_matches_generic() {
+    run("sig201", tests::sig201::checks::check_all(200, 5));
+}
