@@ -1,0 +1,94 @@
+//! The expansion: input tokens -> spec -> `ga_codegen::generate` -> tokens.
+
+use crate::grammar::{error_at, Input, Range, Source};
+use crate::locate;
+use ga_codegen::{generate, EmitOptions, Spec};
+use proc_macro2::TokenStream;
+use std::path::PathBuf;
+use syn::LitStr;
+
+/// What an inline spec is called in the generated header and in errors.
+pub(crate) const INLINE_SOURCE: &str = "algebra!";
+
+/// Expand `algebra!` input into the generated items, or the error to report.
+pub(crate) fn expand(tokens: TokenStream) -> syn::Result<TokenStream> {
+    let input: Input = syn::parse2(tokens)?;
+    let mut opts = EmitOptions {
+        scalar: input.scalar,
+        ..EmitOptions::default()
+    };
+    if let Some(rt) = input.runtime {
+        opts.runtime = rt;
+    }
+    match input.source {
+        Source::File(lit) => expand_file(&lit, &opts),
+        Source::Inline(inline) => {
+            let spec = Spec::from_raw(inline.raw.clone(), INLINE_SOURCE).map_err(|e| {
+                let at = locate::spec_error(&e, &inline.raw, &inline.spans);
+                error_at(at, without_source(&e.to_string()))
+            })?;
+            let generated = generate(&spec, &opts).map_err(|e| {
+                let at = locate::gen_error(&e, &inline.raw, &inline.spans);
+                error_at(at, without_source(&e.to_string()))
+            })?;
+            to_tokens(&generated.code)
+        }
+    }
+}
+
+/// `path = "spec.toml"`: read the file relative to the calling crate's manifest directory.
+/// Every error points at the path literal and names the file.
+fn expand_file(lit: &LitStr, opts: &EmitOptions) -> syn::Result<TokenStream> {
+    let written = lit.value();
+    let path = match std::env::var_os("CARGO_MANIFEST_DIR") {
+        Some(dir) => PathBuf::from(dir).join(&written),
+        None => PathBuf::from(&written),
+    };
+    let text = std::fs::read_to_string(&path).map_err(|e| {
+        // The OS's wording of "not found" differs between platforms; say it one way.
+        let why = if e.kind() == std::io::ErrorKind::NotFound {
+            "no such file".to_string()
+        } else {
+            e.to_string()
+        };
+        syn::Error::new(
+            lit.span(),
+            format!(
+                "cannot read spec file `{written}`: {why} (the path is relative to the directory \
+                 of the calling crate's Cargo.toml)"
+            ),
+        )
+    })?;
+    // Name the spec as written, as the CLI does, so errors and the generated header read the
+    // same as `ga-codegen <path>` run from the crate's directory.
+    let spec = Spec::from_toml(&text, &written).map_err(|e| syn::Error::new(lit.span(), e))?;
+    let generated = generate(&spec, opts).map_err(|e| syn::Error::new(lit.span(), e))?;
+    let mut out = to_tokens(&generated.code)?;
+    // Make the compiler track the file, so that editing the spec re-expands the macro.
+    if let Some(abs) = path.to_str().filter(|_| path.is_absolute()) {
+        out.extend(quote::quote! {
+            const _: &[u8] = ::core::include_bytes!(#abs);
+        });
+    }
+    Ok(out)
+}
+
+/// The generated module source as tokens (spanned at the macro call site).
+fn to_tokens(code: &str) -> syn::Result<TokenStream> {
+    code.parse().map_err(|e| {
+        error_at(
+            Range::call_site(),
+            format!("internal error: the generated code does not tokenize: {e}"),
+        )
+    })
+}
+
+/// An error message without the `algebra!: ` prefix naming the source: for an inline spec
+/// the error already points into the macro.
+fn without_source(message: &str) -> String {
+    message
+        .strip_prefix(INLINE_SOURCE)
+        .and_then(|m| m.strip_prefix(": "))
+        .unwrap_or(message)
+        .to_string()
+}

@@ -1,0 +1,11 @@
+mod g3 {
+    ga_macros::algebra! {
+        basis = [e1, e2, e3];
+        diagonal = [1, 1, 1];
+        type Vector { blades = [e1, e2, e3] }
+        type Bivector { blades = [e12, e13, e23] }
+        type Vector { blades = [e1, e2] }
+    }
+}
+
+fn main() {}

@@ -1,0 +1,5 @@
+mod g3 {
+    ga_macros::algebra!(path = "algebras/no_such_spec.toml");
+}
+
+fn main() {}

@@ -1,0 +1,9 @@
+mod g3 {
+    ga_macros::algebra! {
+        basis = [e1, e2, e3];
+        diagonal = [1, 1, 1];
+        type Rotor { blades = [s, e12, e13, e23], versors = true }
+    }
+}
+
+fn main() {}
