@@ -103,73 +103,74 @@ pub fn report() -> String {
     let mvs: Vec<cga::Mv> = (0..N).map(|_| cga::Mv::from_array(rng.array())).collect();
     let mvs2: Vec<cga::Mv> = (0..N).map(|_| cga::Mv::from_array(rng.array())).collect();
 
-    let mut rows: Vec<(&str, (f64, f64))> = Vec::new();
-    rows.push((
-        "Motor * Motor",
-        pair(
-            &motors,
-            &motors2,
-            |x| x.to_multivector(),
-            |x| x.to_multivector(),
-            |x, y| x * y,
-            |x, y| x.gp(y),
+    let rows: Vec<(&str, (f64, f64))> = vec![
+        (
+            "Motor * Motor",
+            pair(
+                &motors,
+                &motors2,
+                |x| x.to_multivector(),
+                |x| x.to_multivector(),
+                |x, y| x * y,
+                |x, y| x.gp(y),
+            ),
         ),
-    ));
-    rows.push((
-        "Motor.sandwich(Point)",
-        pair(
-            &motors,
-            &points,
-            |x| x.to_multivector(),
-            |x| x.to_multivector(),
-            |x, y| x.sandwich(y),
-            |x, y| x.gp(y).gp(&x.rev()),
+        (
+            "Motor.sandwich(Point)",
+            pair(
+                &motors,
+                &points,
+                |x| x.to_multivector(),
+                |x| x.to_multivector(),
+                |x, y| x.sandwich(y),
+                |x, y| x.gp(y).gp(&x.rev()),
+            ),
         ),
-    ));
-    rows.push((
-        "Vector ^ Vector",
-        pair(
-            &vectors,
-            &vectors2,
-            |x| x.to_multivector(),
-            |x| x.to_multivector(),
-            |x, y| x ^ y,
-            |x, y| x.outer(y),
+        (
+            "Vector ^ Vector",
+            pair(
+                &vectors,
+                &vectors2,
+                |x| x.to_multivector(),
+                |x| x.to_multivector(),
+                |x, y| x ^ y,
+                |x, y| x.outer(y),
+            ),
         ),
-    ));
-    rows.push((
-        "Vector | Bivector",
-        pair(
-            &vectors,
-            &bivectors,
-            |x| x.to_multivector(),
-            |x| x.to_multivector(),
-            |x, y| x | y,
-            |x, y| x.left_contraction(y),
+        (
+            "Vector | Bivector",
+            pair(
+                &vectors,
+                &bivectors,
+                |x| x.to_multivector(),
+                |x| x.to_multivector(),
+                |x, y| x | y,
+                |x, y| x.left_contraction(y),
+            ),
         ),
-    ));
-    rows.push((
-        "Even * Even",
-        pair(
-            &evens,
-            &evens2,
-            |x| x.to_multivector(),
-            |x| x.to_multivector(),
-            |x, y| x * y,
-            |x, y| x.gp(y),
+        (
+            "Even * Even",
+            pair(
+                &evens,
+                &evens2,
+                |x| x.to_multivector(),
+                |x| x.to_multivector(),
+                |x, y| x * y,
+                |x, y| x.gp(y),
+            ),
         ),
-    ));
-    rows.push((
-        "Mv * Mv (32 x 32)",
-        pair(
-            &mvs,
-            &mvs2,
-            |x| x.to_multivector(),
-            |x| x.to_multivector(),
-            |x, y| x * y,
-            |x, y| x.gp(y),
+        (
+            "Mv * Mv (32 x 32)",
+            pair(
+                &mvs,
+                &mvs2,
+                |x| x.to_multivector(),
+                |x| x.to_multivector(),
+                |x, y| x * y,
+                |x, y| x.gp(y),
+            ),
         ),
-    ));
+    ];
     let _ = writeln!(
         s,
         "generated CGA products vs the generic multivector (f64, ns per call; target: speedup >= 50x)"

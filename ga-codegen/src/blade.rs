@@ -31,7 +31,7 @@ pub fn reorder_sign(a: Bitmap, b: Bitmap) -> i32 {
 /// Sign of the reverse of a grade-`k` blade: `(-1)^(k(k-1)/2)`.
 pub fn reverse_sign(b: Bitmap) -> i32 {
     let k = grade(b);
-    if (k * k.saturating_sub(1) / 2) % 2 == 0 {
+    if (k * k.saturating_sub(1) / 2).is_multiple_of(2) {
         1
     } else {
         -1
@@ -40,7 +40,7 @@ pub fn reverse_sign(b: Bitmap) -> i32 {
 
 /// Sign of the grade involution of a grade-`k` blade: `(-1)^k`.
 pub fn involute_sign(b: Bitmap) -> i32 {
-    if grade(b) % 2 == 0 {
+    if grade(b).is_multiple_of(2) {
         1
     } else {
         -1

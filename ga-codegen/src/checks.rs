@@ -142,9 +142,9 @@ fn check(count: &mut usize, fails: &mut Vec<String>, what: &str, got: Multivecto
         if t.versor {
             // On unit versors the versor inverse is the true inverse: check against the
             // generic inverse (a linear solve), which does not assume anything.
-            let _ = write!(
+            let _ = writeln!(
                 s,
-                "{{ let u = unit_{sn}(&mut rng); let mu = u.mv(); if let Some(inv) = mu.inverse() {{ check(c, f, \"unit {name}::inverse vs generic inverse\", u.inverse().mv(), inv); }} else {{ f.push(\"unit {name} has no generic inverse\".to_string()); }} }}\n"
+                "{{ let u = unit_{sn}(&mut rng); let mu = u.mv(); if let Some(inv) = mu.inverse() {{ check(c, f, \"unit {name}::inverse vs generic inverse\", u.inverse().mv(), inv); }} else {{ f.push(\"unit {name} has no generic inverse\".to_string()); }} }}"
             );
         }
         s.push_str("}\n");
@@ -159,9 +159,9 @@ fn check(count: &mut usize, fails: &mut Vec<String>, what: &str, got: Multivecto
             "+" => format!("check(c, f, \"{ln} + {rn}\", (a + b).mv(), &ma + &mb);"),
             "-" => format!("check(c, f, \"{ln} - {rn}\", (a - b).mv(), &ma - &mb);"),
             "from" => {
-                let _ = write!(
+                let _ = writeln!(
                     s,
-                    "{{ let a = rand_{l}(&mut rng); check(c, f, \"{rn}::from({ln})\", {rn}::from(a).mv(), a.mv()); }}\n"
+                    "{{ let a = rand_{l}(&mut rng); check(c, f, \"{rn}::from({ln})\", {rn}::from(a).mv(), a.mv()); }}"
                 );
                 continue;
             }
@@ -182,9 +182,9 @@ fn check(count: &mut usize, fails: &mut Vec<String>, what: &str, got: Multivecto
             }
             _ => continue,
         };
-        let _ = write!(
+        let _ = writeln!(
             s,
-            "{{ let a = rand_{l}(&mut rng); let b = rand_{r}(&mut rng); let (ma, mb) = (a.mv(), b.mv()); {body} }}\n"
+            "{{ let a = rand_{l}(&mut rng); let b = rand_{r}(&mut rng); let (ma, mb) = (a.mv(), b.mv()); {body} }}"
         );
     }
     s.push_str("}\n(count, fails)\n}\n");

@@ -428,9 +428,9 @@ pub type Scalar = {s};
             t.name
         );
         for f in &t.fields {
-            let _ = write!(
+            let _ = writeln!(
                 self.out,
-                "#[doc = {:?}] pub {}: {s},\n",
+                "#[doc = {:?}] pub {}: {s},",
                 format!("Coefficient of `{}`.", f.name),
                 f.name
             );
@@ -514,9 +514,9 @@ pub type Scalar = {s};
                 continue;
             }
             self.methods.push((t.name.clone(), fname.to_string()));
-            let _ = write!(
+            let _ = writeln!(
                 self.out,
-                "#[doc = {fdoc:?}] #[inline] #[must_use] pub fn {fname}(self) -> {} {{ let a = self; {} }}\n",
+                "#[doc = {fdoc:?}] #[inline] #[must_use] pub fn {fname}(self) -> {} {{ let a = self; {} }}",
                 self.out_name(o),
                 self.build(o, m, &names1)
             );
@@ -637,9 +637,9 @@ impl ::core::convert::From<{name}> for {rt}::Multivector {{
             } else {
                 format!("<{rhs}>")
             };
-            let _ = write!(
+            let _ = writeln!(
                 self.out,
-                "impl ::core::ops::{tr}{gen} for {name} {{ type Output = {on}; #[inline] fn {method}(self{arg}) -> {on} {{ let a = self; {pre} {body} }} }}\n",
+                "impl ::core::ops::{tr}{gen} for {name} {{ type Output = {on}; #[inline] fn {method}(self{arg}) -> {on} {{ let a = self; {pre} {body} }} }}",
                 name = t.name,
                 on = self.out_name(o),
                 body = self.build(o, m, &names1),
@@ -746,9 +746,9 @@ impl ::core::convert::From<{name}> for {rt}::Multivector {{
                 _ => "Difference.",
             };
             let on = self.out_name(o);
-            let _ = write!(
+            let _ = writeln!(
                 self.out,
-                "impl ::core::ops::{tr}<{bn}> for {an} {{ type Output = {on}; #[doc = {doc:?}] #[inline] fn {method}(self, b: {bn}) -> {on} {{ let a = self; {body} }} }}\n",
+                "impl ::core::ops::{tr}<{bn}> for {an} {{ type Output = {on}; #[doc = {doc:?}] #[inline] fn {method}(self, b: {bn}) -> {on} {{ let a = self; {body} }} }}",
                 an = ta.name,
                 bn = tb.name,
                 body = self.build(o, m, &names),
@@ -775,9 +775,9 @@ impl ::core::convert::From<{name}> for {rt}::Multivector {{
                 output: tb.name.clone(),
                 terms: 0,
             });
-            let _ = write!(
+            let _ = writeln!(
                 self.out,
-                "impl ::core::convert::From<{an}> for {bn} {{ #[inline] fn from(a: {an}) -> {bn} {{ {body} }} }}\n",
+                "impl ::core::convert::From<{an}> for {bn} {{ #[inline] fn from(a: {an}) -> {bn} {{ {body} }} }}",
                 an = ta.name,
                 bn = tb.name,
                 body = self.build(OutType::Type(bi), &m, &names1),
@@ -811,7 +811,7 @@ impl ::core::convert::From<{name}> for {rt}::Multivector {{
             }
             let mut m = bv.exp();
             let n = m.norm();
-            if !(n > 1e-6) {
+            if n.is_nan() || n <= 1e-6 {
                 return false;
             }
             m = m.scale(1.0 / n);
@@ -989,7 +989,7 @@ impl ::core::convert::From<{name}> for {rt}::Multivector {{
                     continue;
                 }
                 nterms += p.0.len();
-                let inner = names.poly_with(p, &mono);
+                let inner = names.poly_with(p, mono);
                 let dinner = names.poly(p);
                 if j < nx {
                     parts.push(format!("b.{} * ({inner})", tx.fields[j].name));
@@ -1035,7 +1035,7 @@ impl ::core::convert::From<{name}> for {rt}::Multivector {{
                 format!(
                     "[{}]",
                     row.iter()
-                        .map(|p| names.poly_with(p, &mono))
+                        .map(|p| names.poly_with(p, mono))
                         .collect::<Vec<_>>()
                         .join(", ")
                 )
@@ -1068,6 +1068,7 @@ impl ::core::convert::From<{name}> for {rt}::Multivector {{
             .chain(std::iter::once("1".to_string()))
             .collect();
         let rows: Vec<String> = to.fields.iter().map(|f| format!("`{}`", f.name)).collect();
+        #[allow(clippy::format_in_format_args)] // named pieces of a long template read better
         let _ = write!(
             self.out,
             r#"impl Sandwich<{xn}> for {vn} {{

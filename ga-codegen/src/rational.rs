@@ -146,6 +146,7 @@ impl Mul for Rational {
 
 impl Div for Rational {
     type Output = Rational;
+    #[allow(clippy::suspicious_arithmetic_impl)] // a / b = a * (1 / b)
     fn div(self, o: Rational) -> Rational {
         self * o.recip().expect("division by zero rational")
     }

@@ -517,7 +517,7 @@ impl Spec {
             doc: Some("An element of the even subalgebra (rotors, motors).".to_string()),
             blades: order
                 .iter()
-                .filter(|&&b| crate::blade::grade(b) % 2 == 0)
+                .filter(|&&b| crate::blade::grade(b).is_multiple_of(2))
                 .map(|&b| blade_name(b, &basis))
                 .collect(),
             versor: true,

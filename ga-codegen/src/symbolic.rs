@@ -296,7 +296,7 @@ impl BladeTable {
             }
             if b & (1 << i) == 0 {
                 let below = (b & ((1 << i) - 1)).count_ones();
-                let s = if below % 2 == 0 { c } else { -c };
+                let s = if below.is_multiple_of(2) { c } else { -c };
                 add_term(&mut out, b | (1 << i), s);
             }
         }
