@@ -118,7 +118,6 @@ pub use error::{CgaError, Result};
 
 /// The generated G(4,1) types with `f64` coefficients, plus the hand-written objects and
 /// `DualQuat` on glam's `f64` types.
-#[allow(unused_variables, clippy::all, clippy::pedantic, missing_docs)]
 pub mod f64 {
     include!(concat!(env!("OUT_DIR"), "/cga_f64.rs"));
     pub use crate::ext64::dual_quat::DualQuat;
@@ -127,7 +126,6 @@ pub mod f64 {
 
 /// The generated G(4,1) types with `f32` coefficients, plus the hand-written objects and
 /// `DualQuat` on glam's `f32` types.
-#[allow(unused_variables, clippy::all, clippy::pedantic, missing_docs)]
 pub mod f32 {
     include!(concat!(env!("OUT_DIR"), "/cga_f32.rs"));
     pub use crate::ext32::dual_quat::DualQuat;

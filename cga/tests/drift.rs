@@ -17,12 +17,18 @@ fn fresh(scalar: ScalarType) -> String {
 #[test]
 fn compiled_f64_code_is_what_the_cli_prints() {
     let compiled = include_str!(concat!(env!("OUT_DIR"), "/cga_f64.rs"));
-    assert!(compiled == fresh(ScalarType::F64), "cga_f64.rs drifted from algebras/cga.toml");
+    assert!(
+        compiled == fresh(ScalarType::F64),
+        "cga_f64.rs drifted from algebras/cga.toml"
+    );
     assert!(compiled.contains("algebras/cga.toml"));
 }
 
 #[test]
 fn compiled_f32_code_is_what_the_cli_prints_with_scalar_f32() {
     let compiled = include_str!(concat!(env!("OUT_DIR"), "/cga_f32.rs"));
-    assert!(compiled == fresh(ScalarType::F32), "cga_f32.rs drifted from algebras/cga.toml");
+    assert!(
+        compiled == fresh(ScalarType::F32),
+        "cga_f32.rs drifted from algebras/cga.toml"
+    );
 }

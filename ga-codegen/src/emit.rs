@@ -459,6 +459,7 @@ pub type Scalar = {s};
     /// A value from its coefficients, in storage order.
     #[inline]
     #[must_use]
+    #[allow(clippy::too_many_arguments)]
     pub const fn new({args}) -> Self {{ Self {{ {fields} }} }}
     /// The coefficients in storage order.
     #[inline]
@@ -516,20 +517,20 @@ pub type Scalar = {s};
             self.methods.push((t.name.clone(), fname.to_string()));
             let _ = writeln!(
                 self.out,
-                "#[doc = {fdoc:?}] #[inline] #[must_use] pub fn {fname}(self) -> {} {{ let a = self; {} }}",
+                "#[doc = {fdoc:?}] #[inline] #[must_use] pub fn {fname}(self) -> {} {{ {} }}",
                 self.out_name(o),
-                self.build(o, m, &names1)
+                bind_self(&self.build(o, m, &names1))
             );
         }
         let nsq = self.table.product(&a, &a.rev(), Product::Scalar);
         let _ = write!(
             self.out,
             r#"/// `<x ~x>_0`, the squared norm (zero for null elements such as conformal points).
-    #[inline] #[must_use] pub fn norm_squared(self) -> {s} {{ let a = self; {nsq} }}
+    #[inline] #[must_use] pub fn norm_squared(self) -> {s} {{ {nsq} }}
     /// `sqrt(|<x ~x>_0|)`.
     #[inline] #[must_use] pub fn norm(self) -> {s} {{ self.norm_squared().abs().sqrt() }}
 "#,
-            nsq = names1.poly(&nsq.get(0)),
+            nsq = bind_self(&names1.poly(&nsq.get(0))),
         );
         if t.constants.is_empty() {
             for m in ["grade", "normalized", "inverse"] {
@@ -578,10 +579,12 @@ pub type Scalar = {s};
         for f in &t.fields {
             let _ = write!(
                 to_mv,
-                "m.set({}, {}self.{} as f64);",
+                "m.set({}, {}self.{}{});",
                 f.bitmap,
                 if f.sign < 0 { "-" } else { "" },
-                f.name
+                f.name,
+                // The generic multivector is f64: widen f32 coefficients, leave f64 ones alone.
+                if self.s == "f64" { "" } else { " as f64" }
             );
         }
         for &(b, c) in &t.constants {
@@ -591,12 +594,12 @@ pub type Scalar = {s};
             .fields
             .iter()
             .map(|f| {
-                format!(
-                    "{}: ({}m.get({})) as {s}",
-                    f.name,
-                    if f.sign < 0 { "-" } else { "" },
-                    f.bitmap
-                )
+                let sign = if f.sign < 0 { "-" } else { "" };
+                if s == "f64" {
+                    format!("{}: {sign}m.get({})", f.name, f.bitmap)
+                } else {
+                    format!("{}: ({sign}m.get({})) as {s}", f.name, f.bitmap)
+                }
             })
             .collect();
         let _ = write!(
@@ -648,7 +651,7 @@ impl ::core::convert::From<{name}> for {rt}::Multivector {{
                 let _ = write!(
                     self.out,
                     "impl ::core::ops::Mul<{name}> for {s} {{ type Output = {on}; #[inline] fn mul(self, a: {name}) -> {on} {{ let s = self; {body} }} }}\n\
-                     impl ::core::ops::Div<{s}> for {name} {{ type Output = {on}; #[inline] fn div(self, s: {s}) -> {on} {{ let a = self; let s = 1.0 / s; {body} }} }}\n",
+                     impl ::core::ops::Div<{s}> for {name} {{ type Output = {on}; #[inline] #[allow(clippy::suspicious_arithmetic_impl)] fn div(self, s: {s}) -> {on} {{ let a = self; let s = 1.0 / s; {body} }} }}\n",
                     name = t.name,
                     on = self.out_name(o),
                     body = self.build(o, m, &names1),
@@ -748,10 +751,16 @@ impl ::core::convert::From<{name}> for {rt}::Multivector {{
             let on = self.out_name(o);
             let _ = writeln!(
                 self.out,
-                "impl ::core::ops::{tr}<{bn}> for {an} {{ type Output = {on}; #[doc = {doc:?}] #[inline] fn {method}(self, b: {bn}) -> {on} {{ let a = self; {body} }} }}",
+                "impl ::core::ops::{tr}<{bn}> for {an} {{ type Output = {on}; #[doc = {doc:?}] #[inline] {allow}fn {method}(self, b: {bn}) -> {on} {{ let a = self; {body} }} }}",
                 an = ta.name,
                 bn = tb.name,
                 body = self.build(o, m, &names),
+                // `^` and `|` are products written with `*`: say that this is meant.
+                allow = if matches!(*tr, "BitXor" | "BitOr") {
+                    "#[allow(clippy::suspicious_arithmetic_impl)] "
+                } else {
+                    ""
+                },
             );
             self.ops.push(OpSummary {
                 op: sym.to_string(),
@@ -1166,4 +1175,16 @@ pub fn generate(spec: &Spec, opts: &EmitOptions) -> Result<Generated, GenError> 
         methods: g.methods,
         zero_ops: g.zero_ops,
     })
+}
+
+/// `let a = self;` in front of a method body, when the body reads `a` at all.
+fn bind_self(body: &str) -> String {
+    let reads_a = body.match_indices("a.").any(|(i, _)| {
+        i == 0 || !body.as_bytes()[i - 1].is_ascii_alphanumeric() && body.as_bytes()[i - 1] != b'_'
+    });
+    if reads_a {
+        format!("let a = self; {body}")
+    } else {
+        body.to_string()
+    }
 }

@@ -12,6 +12,11 @@ pub(crate) const INLINE_SOURCE: &str = "algebra!";
 
 /// Expand `algebra!` input into the generated items, or the error to report.
 pub(crate) fn expand(tokens: TokenStream) -> syn::Result<TokenStream> {
+    let first = tokens
+        .clone()
+        .into_iter()
+        .next()
+        .map_or_else(proc_macro2::Span::call_site, |t| t.span());
     let input: Input = syn::parse2(tokens)?;
     let mut opts = EmitOptions {
         scalar: input.scalar,
@@ -21,7 +26,7 @@ pub(crate) fn expand(tokens: TokenStream) -> syn::Result<TokenStream> {
         opts.runtime = rt;
     }
     match input.source {
-        Source::File(lit) => expand_file(&lit, &opts),
+        Source::File(lit) => expand_file(&lit, &opts, first),
         Source::Inline(inline) => {
             let spec = Spec::from_raw(inline.raw.clone(), INLINE_SOURCE).map_err(|e| {
                 let at = locate::spec_error(&e, &inline.raw, &inline.spans);
@@ -31,14 +36,18 @@ pub(crate) fn expand(tokens: TokenStream) -> syn::Result<TokenStream> {
                 let at = locate::gen_error(&e, &inline.raw, &inline.spans);
                 error_at(at, without_source(&e.to_string()))
             })?;
-            to_tokens(&generated.code)
+            to_tokens(&generated.code, first)
         }
     }
 }
 
 /// `path = "spec.toml"`: read the file relative to the calling crate's manifest directory.
 /// Every error points at the path literal and names the file.
-fn expand_file(lit: &LitStr, opts: &EmitOptions) -> syn::Result<TokenStream> {
+fn expand_file(
+    lit: &LitStr,
+    opts: &EmitOptions,
+    at: proc_macro2::Span,
+) -> syn::Result<TokenStream> {
     let written = lit.value();
     let path = match std::env::var_os("CARGO_MANIFEST_DIR") {
         Some(dir) => PathBuf::from(dir).join(&written),
@@ -63,7 +72,7 @@ fn expand_file(lit: &LitStr, opts: &EmitOptions) -> syn::Result<TokenStream> {
     // same as `ga-codegen <path>` run from the crate's directory.
     let spec = Spec::from_toml(&text, &written).map_err(|e| syn::Error::new(lit.span(), e))?;
     let generated = generate(&spec, opts).map_err(|e| syn::Error::new(lit.span(), e))?;
-    let mut out = to_tokens(&generated.code)?;
+    let mut out = to_tokens(&generated.code, at)?;
     // Make the compiler track the file, so that editing the spec re-expands the macro.
     if let Some(abs) = path.to_str().filter(|_| path.is_absolute()) {
         out.extend(quote::quote! {
@@ -73,14 +82,38 @@ fn expand_file(lit: &LitStr, opts: &EmitOptions) -> syn::Result<TokenStream> {
     Ok(out)
 }
 
-/// The generated module source as tokens (spanned at the macro call site).
-fn to_tokens(code: &str) -> syn::Result<TokenStream> {
-    code.parse().map_err(|e| {
+/// The generated module source as tokens, with call-site hygiene but located at one token of
+/// the input (`at`). A single-line location matters: clippy's `possible_missing_comma` reads
+/// the source between the tokens of an array element, and with the whole (multi-line)
+/// invocation as location it would find line breaks there and fire on generated matrices.
+fn to_tokens(code: &str, at: proc_macro2::Span) -> syn::Result<TokenStream> {
+    let tokens: TokenStream = code.parse().map_err(|e| {
         error_at(
             Range::call_site(),
             format!("internal error: the generated code does not tokenize: {e}"),
         )
-    })
+    })?;
+    Ok(respan(
+        tokens,
+        proc_macro2::Span::call_site().located_at(at),
+    ))
+}
+
+fn respan(tokens: TokenStream, span: proc_macro2::Span) -> TokenStream {
+    use proc_macro2::{Group, TokenTree};
+    tokens
+        .into_iter()
+        .map(|mut t| {
+            if let TokenTree::Group(g) = &t {
+                let mut ng = Group::new(g.delimiter(), respan(g.stream(), span));
+                ng.set_span(span);
+                t = TokenTree::Group(ng);
+            } else {
+                t.set_span(span);
+            }
+            t
+        })
+        .collect()
 }
 
 /// An error message without the `algebra!: ` prefix naming the source: for an inline spec

@@ -23,18 +23,15 @@
 //! ## Use
 //!
 //! The macro expands to items (constants, structs, impls, the `Sandwich` trait), as the binary
-//! writes a module's content, so wrap it in a module of its own. The generated code trips a
-//! few clippy lints (`too_many_arguments` on wide constructors, `suspicious_arithmetic_impl`
-//! on products), so allow them on that module, as `cga` does for its generated modules:
+//! writes a module's content, so wrap it in a module of its own. The generated code is
+//! documented and clippy-clean, so the module needs no `allow`:
 //!
 //! ```
-//! #[allow(clippy::all)]
 //! mod g3 {
 //!     // Relative to this crate's Cargo.toml: the workspace's `algebras/g3.toml`.
 //!     ga_macros::algebra!(path = "../algebras/g3.toml");
 //! }
 //!
-//! #[allow(clippy::all)]
 //! mod g2 {
 //!     ga_macros::algebra! {
 //!         //! The Euclidean plane G(2,0,0).
@@ -125,7 +122,6 @@ use proc_macro::TokenStream;
 /// Either read a TOML spec file (relative to the calling crate's `Cargo.toml`):
 ///
 /// ```
-/// #[allow(clippy::all)]
 /// mod g3_f32 {
 ///     ga_macros::algebra!(path = "../algebras/g3.toml", scalar = f32);
 /// }
@@ -136,7 +132,6 @@ use proc_macro::TokenStream;
 /// or write the spec inline:
 ///
 /// ```
-/// #[allow(clippy::all)]
 /// mod g3 {
 ///     ga_macros::algebra! {
 ///         name = "g3";

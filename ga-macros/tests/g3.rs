@@ -1,15 +1,10 @@
 //! `algebra!(path = ..)` on the workspace's G(3,0,0) spec: the generated products agree with
 //! the generic reference `ga_codegen::Multivector`, in f64 and f32.
-//!
-//! The generated code is not clippy-clean, so each module allows `clippy::all` (as `cga`
-//! does for its generated modules).
 
-#[allow(clippy::all)]
 mod g3 {
     ga_macros::algebra!(path = "../algebras/g3.toml");
 }
 
-#[allow(clippy::all)]
 mod g3_f32 {
     ga_macros::algebra!(path = "../algebras/g3.toml", scalar = f32);
 }

@@ -1,17 +1,12 @@
 //! The inline form of `algebra!`: it behaves exactly like the file form of the same spec (the
 //! exact token equality with `ga_codegen::generate` is checked by the crate's unit tests), and
 //! doc comments, null metrics, constants and `runtime` work.
-//!
-//! The generated code is not clippy-clean, so each module allows `clippy::all` (as `cga`
-//! does for its generated modules).
 
-#[allow(clippy::all)]
 mod g3_file {
     ga_macros::algebra!(path = "../algebras/g3.toml");
 }
 
 /// `algebras/g3.toml`, written inline.
-#[allow(clippy::all)]
 mod g3_inline {
     ga_macros::algebra! {
         //! The geometric algebra of Euclidean 3-space G(3,0,0).
@@ -33,7 +28,6 @@ mod g3_inline {
 }
 
 /// The crate documentation's example.
-#[allow(clippy::all)]
 mod g2 {
     ga_macros::algebra! {
         //! The Euclidean plane G(2,0,0).
@@ -48,7 +42,6 @@ mod g2 {
 }
 
 /// A conformal line G(2,1) in a null basis, with a normalised point (`eo = 1`, not stored).
-#[allow(clippy::all)]
 mod c1 {
     ga_macros::algebra! {
         name = "c1";
@@ -66,7 +59,6 @@ mod rt {
     pub use ga_codegen::{Algebra, Multivector};
 }
 
-#[allow(clippy::all)]
 mod g1 {
     ga_macros::algebra! {
         basis = [e1];
