@@ -749,12 +749,17 @@ impl ::core::convert::From<{name}> for {rt}::Multivector {{
                 _ => "Difference.",
             };
             let on = self.out_name(o);
+            let paired = match o {
+                OutType::Type(ti) if *sym == "*" => self.build_paired(ti, m, ta, tb),
+                _ => None,
+            };
             let _ = writeln!(
                 self.out,
                 "impl ::core::ops::{tr}<{bn}> for {an} {{ type Output = {on}; #[doc = {doc:?}] #[inline] {allow}fn {method}(self, b: {bn}) -> {on} {{ let a = self; {body} }} }}",
                 an = ta.name,
                 bn = tb.name,
-                body = self.build(o, m, &names),
+                doc = if paired.is_some() { "Geometric product (paired-lane form: two output fields per `F64x2`)." } else { doc },
+                body = paired.unwrap_or_else(|| self.build(o, m, &names)),
                 // `^` and `|` are products written with `*`: say that this is meant.
                 allow = if matches!(*tr, "BitXor" | "BitOr") {
                     "#[allow(clippy::suspicious_arithmetic_impl)] "
@@ -1187,4 +1192,216 @@ fn bind_self(body: &str) -> String {
     } else {
         body.to_string()
     }
+}
+
+/// One term of a paired-lane product: `splat(a_j) * bvec`, where `bvec` holds the operand
+/// fields of the two lanes (`None`: that lane has no term).
+struct LaneTerm {
+    a: u16,
+    b: [Option<u16>; 2],
+}
+
+impl Gen<'_> {
+    /// The body of a geometric product between two versor types in paired-lane form, or `None`
+    /// when the product does not qualify (f32, constants, small types, non-bilinear terms).
+    ///
+    /// The output fields are taken two by two; each pair is one [`crate::lanes::F64x2`]
+    /// computed as a sum of `splat(a.x) * (b.y, b.z)` terms, grouped by their pair of
+    /// coefficients so that each group is scaled once. Operand fields that sit next to each
+    /// other in storage (`b.s, b.e12`) load as one pair, or as that pair swapped.
+    fn build_paired(&self, ti: usize, m: &SymMv, ta: &TypeDef, tb: &TypeDef) -> Option<String> {
+        let t = &self.spec.types[ti];
+        let qualifies = self.s == "f64"
+            && ta.versor
+            && tb.versor
+            && ta.constants.is_empty()
+            && tb.constants.is_empty()
+            && ta.fields.len() >= 4
+            && tb.fields.len() >= 4
+            && t.fields.len() >= 4;
+        if !qualifies {
+            return None;
+        }
+        // Per output field: a_j -> [(b_k, c)].
+        let mut lanes: Vec<BTreeMap<u16, Vec<(u16, Rational)>>> = Vec::new();
+        for f in &t.fields {
+            let mut by_a: BTreeMap<u16, Vec<(u16, Rational)>> = BTreeMap::new();
+            for (mono, &c) in &m.get(f.bitmap).0 {
+                match mono.as_slice() {
+                    [x, y] if x.operand == 0 && y.operand == 1 => by_a
+                        .entry(x.field)
+                        .or_default()
+                        .push((y.field, c * Rational::int(f.sign as i64))),
+                    _ => return None,
+                }
+            }
+            lanes.push(by_a);
+        }
+        let af = |j: u16| &ta.fields[j as usize].name;
+        let bf = |k: u16| &tb.fields[k as usize].name;
+        let mut body = format!("type L = {}::lanes::F64x2;", self.rt);
+        let mut used_a = std::collections::BTreeSet::new();
+        let mut used_pairs = std::collections::BTreeSet::new();
+        let mut outputs = Vec::new();
+        let mut lane_terms = 0usize;
+        for (pi, pair) in t.fields.chunks(2).enumerate() {
+            let l0 = &lanes[2 * pi];
+            let empty = BTreeMap::new();
+            let l1 = lanes
+                .get(2 * pi + 1)
+                .filter(|_| pair.len() == 2)
+                .unwrap_or(&empty);
+            // Coefficient pair (first one positive) -> signed terms; a lane without a term takes
+            // the other lane's coefficient. `(c0, c1)` and `(-c0, -c1)` share a group.
+            let mut groups: BTreeMap<(Rational, Rational), Vec<(bool, LaneTerm)>> = BTreeMap::new();
+            let js: std::collections::BTreeSet<u16> = l0.keys().chain(l1.keys()).copied().collect();
+            for j in js {
+                let (t0, t1) = (
+                    l0.get(&j).map_or(&[][..], |v| v),
+                    l1.get(&j).map_or(&[][..], |v| v),
+                );
+                for i in 0..t0.len().max(t1.len()) {
+                    let (x0, x1) = (t0.get(i), t1.get(i));
+                    let c0 = x0.or(x1).map(|x| x.1).expect("a term");
+                    let c1 = x1.or(x0).map(|x| x.1).expect("a term");
+                    let neg = c0 < Rational::ZERO;
+                    let key = if neg { (-c0, -c1) } else { (c0, c1) };
+                    used_a.insert(j);
+                    groups.entry(key).or_default().push((
+                        neg,
+                        LaneTerm {
+                            a: j,
+                            b: [x0.map(|x| x.0), x1.map(|x| x.0)],
+                        },
+                    ));
+                }
+            }
+            let mut parts: Vec<(bool, String)> = Vec::new();
+            let parts_terms: usize = groups.values().map(Vec::len).sum();
+            for ((c0, c1), mut terms) in groups {
+                // Lead with an added term; if every term is subtracted, negate the group.
+                let all_neg = terms.iter().all(|t| t.0);
+                if all_neg {
+                    terms.iter_mut().for_each(|t| t.0 = false);
+                }
+                if let Some(first) = terms.iter().position(|t| !t.0) {
+                    terms.swap(0, first);
+                }
+                let mut sum = String::new();
+                for (i, (neg, lt)) in terms.iter().enumerate() {
+                    let bvec = match lt.b {
+                        [Some(k0), Some(k1)] if k0 % 2 == 0 && k1 == k0 + 1 => {
+                            used_pairs.insert((k0, false));
+                            format!("b_{}_{}", bf(k0), bf(k1))
+                        }
+                        [Some(k0), Some(k1)] if k1 % 2 == 0 && k0 == k1 + 1 => {
+                            used_pairs.insert((k1, true));
+                            format!("b_{}_{}", bf(k0), bf(k1))
+                        }
+                        [k0, k1] => format!(
+                            "L::new({}, {})",
+                            k0.map_or("0.0".to_string(), |k| format!("b.{}", bf(k))),
+                            k1.map_or("0.0".to_string(), |k| format!("b.{}", bf(k)))
+                        ),
+                    };
+                    if i > 0 {
+                        sum.push_str(if *neg { " - " } else { " + " });
+                    }
+                    let _ = write!(sum, "a_{} * {bvec}", af(lt.a));
+                }
+                let grouped = if terms.len() > 1 {
+                    format!("({sum})")
+                } else {
+                    sum
+                };
+                let part = if c0 == c1 && c0 == Rational::ONE {
+                    (all_neg, grouped)
+                } else if c0 == c1 {
+                    (all_neg, format!("{grouped} * L::splat({})", lit(c0)))
+                } else {
+                    (
+                        all_neg,
+                        format!("{grouped} * L::new({}, {})", lit(c0), lit(c1)),
+                    )
+                };
+                parts.push(part);
+            }
+            // Start with a group that is added, so that no negation is needed up front.
+            if let Some(first) = parts.iter().position(|p| !p.0) {
+                parts.swap(0, first);
+            }
+            let mut expr = String::new();
+            for (i, (neg, part)) in parts.iter().enumerate() {
+                if i == 0 {
+                    expr = if *neg {
+                        format!("L::splat(0.0) - {part}")
+                    } else {
+                        part.clone()
+                    };
+                } else {
+                    let _ = write!(expr, " {} {part}", if *neg { "-" } else { "+" });
+                }
+            }
+            if expr.is_empty() {
+                expr = "L::splat(0.0)".to_string();
+            }
+            lane_terms += parts_terms;
+            outputs.push(format!("let o{pi} = {};", strip_outer_parens(&expr)));
+        }
+        // Worth it only when pairing saves most multiplies (sparse products stay scalar).
+        let scalar_terms: usize = lanes.iter().flat_map(|l| l.values()).map(Vec::len).sum();
+        if 5 * lane_terms > 3 * scalar_terms {
+            return None;
+        }
+        for j in &used_a {
+            let _ = write!(body, " let a_{0} = L::splat(a.{0});", af(*j));
+        }
+        for &(k, swapped) in &used_pairs {
+            if !swapped || !used_pairs.contains(&(k, false)) {
+                let _ = write!(
+                    body,
+                    " let b_{0}_{1} = L::new(b.{0}, b.{1});",
+                    bf(k),
+                    bf(k + 1)
+                );
+            }
+        }
+        for &(k, swapped) in &used_pairs {
+            if swapped {
+                let _ = write!(body, " let b_{1}_{0} = b_{0}_{1}.swap();", bf(k), bf(k + 1));
+            }
+        }
+        for o in outputs {
+            body.push(' ');
+            body.push_str(&o);
+        }
+        let _ = write!(body, " {} {{", t.name);
+        for (i, f) in t.fields.iter().enumerate() {
+            let lane = if i % 2 == 0 { "lo" } else { "hi" };
+            let _ = write!(body, " {}: o{}.{lane}(),", f.name, i / 2);
+        }
+        body.push_str(" }");
+        Some(body)
+    }
+}
+
+/// `(x + y)` -> `x + y` when the outer parentheses enclose the whole expression.
+fn strip_outer_parens(e: &str) -> &str {
+    if !(e.starts_with('(') && e.ends_with(')')) {
+        return e;
+    }
+    let mut depth = 0i32;
+    for (i, ch) in e.char_indices() {
+        match ch {
+            '(' => depth += 1,
+            ')' => {
+                depth -= 1;
+                if depth == 0 && i + 1 < e.len() {
+                    return e;
+                }
+            }
+            _ => {}
+        }
+    }
+    &e[1..e.len() - 1]
 }

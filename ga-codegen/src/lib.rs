@@ -15,6 +15,7 @@
 
 pub mod algebra;
 pub mod blade;
+pub mod lanes;
 pub mod metric;
 pub mod multivector;
 pub mod rational;
