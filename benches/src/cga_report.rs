@@ -4,51 +4,20 @@
 //! In-process timing loops with `std::time::Instant` and `black_box`; the whole report takes a
 //! few seconds. Ratios below 1 mean the GA path is faster.
 
+use crate::timing::Lcg;
 use cga::Sandwich;
 use std::fmt::Write as _;
 use std::hint::black_box;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 /// Elements per batch in each timing loop.
 const N: usize = 1024;
 /// Time budget per measurement.
 const BUDGET: Duration = Duration::from_millis(250);
 
-/// A small deterministic generator (no dependency on `rand`).
-struct Lcg(u64);
-
-impl Lcg {
-    fn next(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        ((self.0 >> 11) as f64) / ((1u64 << 53) as f64) * 2.0 - 1.0
-    }
-    fn vec3(&mut self) -> glam::DVec3 {
-        glam::DVec3::new(self.next(), self.next(), self.next()) * 3.0
-    }
-    fn quat(&mut self) -> glam::DQuat {
-        let axis = glam::DVec3::new(self.next(), self.next(), self.next() + 1e-3).normalize();
-        glam::DQuat::from_axis_angle(axis, 3.0 * self.next())
-    }
-}
-
 /// Nanoseconds per element of `f`, which processes `N` elements per call; best of 5 rounds.
-fn time_ns(mut f: impl FnMut()) -> f64 {
-    f();
-    let mut best = f64::INFINITY;
-    for _ in 0..5 {
-        let start = Instant::now();
-        let mut iters = 0u64;
-        while start.elapsed() < BUDGET / 5 {
-            f();
-            iters += 1;
-        }
-        let ns = start.elapsed().as_nanos() as f64 / (iters as f64 * N as f64);
-        best = best.min(ns);
-    }
-    best
+fn time_ns(f: impl FnMut()) -> f64 {
+    crate::timing::time_ns(N, BUDGET, f)
 }
 
 struct Row {

@@ -3,6 +3,7 @@
 //! path and fused sandwich) against glam's `DMat4::transform_point3`, and the time and size of
 //! generating the CGA module. Ratios are measured side by side in one run.
 
+use crate::timing::{time_ns, Lcg};
 use cga::Sandwich;
 use ga_codegen::Multivector;
 use std::fmt::Write as _;
@@ -13,47 +14,6 @@ use std::time::{Duration, Instant};
 const N: usize = 256;
 /// Points in the batch comparison.
 const POINTS: usize = 1_000_000;
-
-/// A small deterministic generator (no dependency on `rand`).
-struct Lcg(u64);
-
-impl Lcg {
-    fn next(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        ((self.0 >> 11) as f64) / ((1u64 << 53) as f64) * 2.0 - 1.0
-    }
-    fn vec3(&mut self) -> glam::DVec3 {
-        glam::DVec3::new(self.next(), self.next(), self.next()) * 3.0
-    }
-    fn motor(&mut self) -> cga::Motor {
-        let axis = glam::DVec3::new(self.next(), self.next(), self.next() + 1e-3).normalize();
-        let q = glam::DQuat::from_axis_angle(axis, 3.0 * self.next());
-        cga::Motor::from_rotation_translation(q, self.vec3())
-    }
-    fn array<const K: usize>(&mut self) -> [f64; K] {
-        std::array::from_fn(|_| self.next())
-    }
-}
-
-/// Nanoseconds per call of `f`, which does `per_call` items; best of `rounds` rounds of `budget`.
-fn time_ns(per_call: usize, budget: Duration, mut f: impl FnMut()) -> f64 {
-    f();
-    let mut best = f64::INFINITY;
-    for _ in 0..5 {
-        let start = Instant::now();
-        let mut iters = 0u64;
-        while iters == 0 || start.elapsed() < budget / 5 {
-            f();
-            iters += 1;
-        }
-        let ns = start.elapsed().as_nanos() as f64 / (iters as f64 * per_call as f64);
-        best = best.min(ns);
-    }
-    best
-}
 
 /// Times a generated binary operation and the generic multivector's version on the same inputs.
 fn pair<A: Copy, B: Copy, R>(

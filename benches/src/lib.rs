@@ -2,3 +2,4 @@
 //! (`cargo run --release -p benches --bin bench-report`).
 pub mod cga_report;
 pub mod codegen_report;
+pub mod timing;
