@@ -7,7 +7,7 @@ pub struct Lcg(pub u64);
 
 impl Lcg {
     /// Uniform in [-1, 1).
-    pub fn next(&mut self) -> f64 {
+    pub fn uniform(&mut self) -> f64 {
         self.0 = self
             .0
             .wrapping_mul(6364136223846793005)
@@ -17,13 +17,14 @@ impl Lcg {
 
     /// A point in the cube [-3, 3)^3.
     pub fn vec3(&mut self) -> glam::DVec3 {
-        glam::DVec3::new(self.next(), self.next(), self.next()) * 3.0
+        glam::DVec3::new(self.uniform(), self.uniform(), self.uniform()) * 3.0
     }
 
     /// A rotation by up to 3 radians about a random axis.
     pub fn quat(&mut self) -> glam::DQuat {
-        let axis = glam::DVec3::new(self.next(), self.next(), self.next() + 1e-3).normalize();
-        glam::DQuat::from_axis_angle(axis, 3.0 * self.next())
+        let axis =
+            glam::DVec3::new(self.uniform(), self.uniform(), self.uniform() + 1e-3).normalize();
+        glam::DQuat::from_axis_angle(axis, 3.0 * self.uniform())
     }
 
     /// A random unit motor.
@@ -34,7 +35,7 @@ impl Lcg {
 
     /// `K` coefficients in [-1, 1).
     pub fn array<const K: usize>(&mut self) -> [f64; K] {
-        std::array::from_fn(|_| self.next())
+        std::array::from_fn(|_| self.uniform())
     }
 }
 
