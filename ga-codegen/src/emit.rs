@@ -1239,7 +1239,7 @@ impl Gen<'_> {
         }
         let af = |j: u16| &ta.fields[j as usize].name;
         let bf = |k: u16| &tb.fields[k as usize].name;
-        let mut body = format!("type L = {}::lanes::F64x2;", self.rt);
+        let mut body = format!("use {}::lanes::F64x2;", self.rt);
         let mut used_a = std::collections::BTreeSet::new();
         let mut used_pairs = std::collections::BTreeSet::new();
         let mut outputs = Vec::new();
@@ -1299,7 +1299,7 @@ impl Gen<'_> {
                             format!("b_{}_{}", bf(k0), bf(k1))
                         }
                         [k0, k1] => format!(
-                            "L::new({}, {})",
+                            "F64x2::new({}, {})",
                             k0.map_or("0.0".to_string(), |k| format!("b.{}", bf(k))),
                             k1.map_or("0.0".to_string(), |k| format!("b.{}", bf(k)))
                         ),
@@ -1317,11 +1317,11 @@ impl Gen<'_> {
                 let part = if c0 == c1 && c0 == Rational::ONE {
                     (all_neg, grouped)
                 } else if c0 == c1 {
-                    (all_neg, format!("{grouped} * L::splat({})", lit(c0)))
+                    (all_neg, format!("{grouped} * F64x2::splat({})", lit(c0)))
                 } else {
                     (
                         all_neg,
-                        format!("{grouped} * L::new({}, {})", lit(c0), lit(c1)),
+                        format!("{grouped} * F64x2::new({}, {})", lit(c0), lit(c1)),
                     )
                 };
                 parts.push(part);
@@ -1334,7 +1334,7 @@ impl Gen<'_> {
             for (i, (neg, part)) in parts.iter().enumerate() {
                 if i == 0 {
                     expr = if *neg {
-                        format!("L::splat(0.0) - {part}")
+                        format!("F64x2::splat(0.0) - {part}")
                     } else {
                         part.clone()
                     };
@@ -1343,7 +1343,7 @@ impl Gen<'_> {
                 }
             }
             if expr.is_empty() {
-                expr = "L::splat(0.0)".to_string();
+                expr = "F64x2::splat(0.0)".to_string();
             }
             lane_terms += parts_terms;
             outputs.push(format!("let o{pi} = {};", strip_outer_parens(&expr)));
@@ -1354,13 +1354,13 @@ impl Gen<'_> {
             return None;
         }
         for j in &used_a {
-            let _ = write!(body, " let a_{0} = L::splat(a.{0});", af(*j));
+            let _ = write!(body, " let a_{0} = F64x2::splat(a.{0});", af(*j));
         }
         for &(k, swapped) in &used_pairs {
             if !swapped || !used_pairs.contains(&(k, false)) {
                 let _ = write!(
                     body,
-                    " let b_{0}_{1} = L::new(b.{0}, b.{1});",
+                    " let b_{0}_{1} = F64x2::new(b.{0}, b.{1});",
                     bf(k),
                     bf(k + 1)
                 );

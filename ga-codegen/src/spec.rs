@@ -225,7 +225,7 @@ impl fmt::Display for SpecErrorKind {
             SpecErrorKind::EmptyType => "type has no stored blades",
             SpecErrorKind::DuplicateType => "type name used twice",
             SpecErrorKind::BadTypeName => {
-                "type name must be an UpperCamelCase identifier other than `Scalar` or `Sandwich`"
+                "type name must be an UpperCamelCase identifier other than `Scalar`, `Sandwich` or `F64x2`"
             }
             SpecErrorKind::ConstantNotInType => "constant on a blade the type does not list",
             SpecErrorKind::BadConstant => "constant is not a finite number",
@@ -274,7 +274,7 @@ fn valid_type_name(n: &str) -> bool {
     let mut c = n.chars();
     matches!(c.next(), Some(ch) if ch.is_ascii_uppercase())
         && n.chars().all(|ch| ch.is_ascii_alphanumeric())
-        && !["Scalar", "Sandwich", "Self"].contains(&n)
+        && !["Scalar", "Sandwich", "Self", "F64x2"].contains(&n)
 }
 
 impl Spec {
