@@ -5,7 +5,8 @@ use thiserror::Error;
 /// What went wrong in a fallible constructor, conversion or logarithm.
 ///
 /// Every `try_` function of this crate returns one of these instead of panicking or producing
-/// NaNs; the infallible twins document which inputs they assume.
+/// NaNs: it returns `Ok` only when its result is finite and valid (the result is checked, not
+/// only the input). The infallible twins document which inputs they assume.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Error)]
 pub enum CgaError {
     /// An input coordinate, angle, scale or coefficient was NaN or infinite.
@@ -52,6 +53,15 @@ pub enum CgaError {
     Degenerate {
         /// Why it was rejected.
         why: &'static str,
+    },
+    /// Finite input whose result overflowed, underflowed to nothing or lost every significant
+    /// digit (for example a point at `1e300`, whose `0.5 |x|^2` is infinite, or a dilator by
+    /// `1e300`, whose scale cannot be recovered). The input is valid in principle but outside
+    /// the range this representation can hold.
+    #[error("result not representable: {what}")]
+    Overflow {
+        /// Which result.
+        what: &'static str,
     },
     /// Weights and motors of different lengths, or no motor at all.
     #[error("blend: {why}")]

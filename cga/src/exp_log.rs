@@ -53,13 +53,14 @@ impl Bivector {
     /// translation part `b`, dilation part `l`.
     #[inline]
     fn from_parts(u: V3, b: V3, l: S) -> Bivector {
-        Bivector::new(0.0, 0.0, 0.0, l, -u.z, u.y, -u.x, b.x, b.y, b.z)
+        let [e12, e13, e23] = quat_map::rotation_plane(u);
+        Bivector::new(0.0, 0.0, 0.0, l, e12, e13, e23, b.x, b.y, b.z)
     }
 
     /// The half rotation vector `u = phi n` of the Euclidean part.
     #[inline]
     fn half_rotation(self) -> V3 {
-        V3::new(-self.e23, self.e13, -self.e12)
+        quat_map::rotation_vector([self.e12, self.e13, self.e23])
     }
 
     /// The rotation generator of a rotation by `angle` about `axis`: `-(angle/2) n I3`.
@@ -109,18 +110,23 @@ impl Bivector {
     /// Checked [`Bivector::exp_motor`].
     ///
     /// # Errors
-    /// [`CgaError::NonFinite`], or [`CgaError::NotAGenerator`] when an `eo` part is not zero.
+    /// [`CgaError::NonFinite`], [`CgaError::NotAGenerator`] when an `eo` part is not zero,
+    /// [`CgaError::Overflow`] when the generator is too large for a finite result.
     pub fn try_exp_motor(self) -> Result<Motor> {
-        if !self.to_array().iter().all(|c| c.is_finite()) {
-            return Err(CgaError::NonFinite { what: "bivector" });
-        }
+        finite_input(&self.to_array(), "bivector")?;
         if self.eo1 != 0.0 || self.eo2 != 0.0 || self.eo3 != 0.0 || self.eoi != 0.0 {
             return Err(CgaError::NotAGenerator {
                 what: "rigid motion",
                 why: "eo^ek or eo^ei part present",
             });
         }
-        Ok(self.exp_motor())
+        let m = self.exp_motor();
+        finite_result(m, &m.to_array(), "exp (generator too large)")?;
+        m.rescaled()
+            .map_err(|_| CgaError::Overflow {
+                what: "exp (generator too large for a valid motor)",
+            })
+            .map(|_| m)
     }
 
     /// The exponential of a similarity generator (rigid part plus `eoi` dilation part), in
@@ -166,12 +172,11 @@ impl Bivector {
     /// Checked [`Bivector::exp_scaled`].
     ///
     /// # Errors
-    /// [`CgaError::NonFinite`] (also when the dilation overflows), or
-    /// [`CgaError::NotAGenerator`] when an `eo^ek` part is not zero.
+    /// [`CgaError::NonFinite`], [`CgaError::NotAGenerator`] when an `eo^ek` part is not zero,
+    /// [`CgaError::Overflow`] when the result overflows or its dilation is too large to be
+    /// read back.
     pub fn try_exp_scaled(self) -> Result<ScaledMotor> {
-        if !self.to_array().iter().all(|c| c.is_finite()) {
-            return Err(CgaError::NonFinite { what: "bivector" });
-        }
+        finite_input(&self.to_array(), "bivector")?;
         if self.eo1 != 0.0 || self.eo2 != 0.0 || self.eo3 != 0.0 {
             return Err(CgaError::NotAGenerator {
                 what: "similarity",
@@ -179,12 +184,12 @@ impl Bivector {
             });
         }
         let m = self.exp_scaled();
-        if !m.to_array().iter().all(|c| c.is_finite()) {
-            return Err(CgaError::NonFinite {
-                what: "exp (dilation overflows)",
-            });
-        }
-        Ok(m)
+        finite_result(m, &m.to_array(), "exp (generator too large)")?;
+        m.rescaled()
+            .map_err(|_| CgaError::Overflow {
+                what: "exp (dilation too large for a valid scaled motor)",
+            })
+            .map(|_| m)
     }
 }
 
@@ -221,11 +226,12 @@ impl Motor {
     /// Checked [`Motor::log`].
     ///
     /// # Errors
-    /// [`CgaError::NonFinite`], or [`CgaError::NotAMotor`] when the value is not (a multiple
-    /// of) a motor.
+    /// [`CgaError::NonFinite`], [`CgaError::NotAMotor`] when the value is not (a multiple
+    /// of) a motor, [`CgaError::Overflow`] when the translation is too large for a finite
+    /// logarithm. Any finite multiple of a motor works (`1e300 M` is the motion of `M`).
     pub fn try_log(self) -> Result<Bivector> {
-        self.check_motor()?;
-        Ok(self.log())
+        let b = self.rescaled()?.log();
+        finite_result(b, &b.to_array(), "log")
     }
 
     /// `exp(B)` for a rigid generator; the same as [`Bivector::exp_motor`].
@@ -282,11 +288,11 @@ impl ScaledMotor {
     /// Checked [`ScaledMotor::log`].
     ///
     /// # Errors
-    /// [`CgaError::NonFinite`], or [`CgaError::NotAMotor`] when the value is not (a multiple
-    /// of) a scaled motor.
+    /// [`CgaError::NonFinite`], [`CgaError::NotAMotor`] when the value is not (a multiple
+    /// of) a scaled motor, [`CgaError::Overflow`] for a result that is not finite.
     pub fn try_log(self) -> Result<Bivector> {
-        self.check()?;
-        Ok(self.log())
+        let b = self.rescaled()?.log();
+        finite_result(b, &b.to_array(), "log")
     }
 
     /// `exp(B)` for a similarity generator; the same as [`Bivector::exp_scaled`].

@@ -8,6 +8,10 @@ pub(crate) type Vec4 = glam::DVec4;
 pub(crate) type Quat = glam::DQuat;
 pub(crate) type Mat3 = glam::DMat3;
 pub(crate) type Mat4 = glam::DMat4;
+pub(crate) use quat_map::{dual_coeffs, dual_quat, rotor_coeffs, rotor_quat};
+pub(crate) use validity::{
+    all_finite, finite3, finite_input, finite_result, max_abs, try_unit_direction, unit_direction,
+};
 pub(crate) type Affine = glam::DAffine3;
 /// Relative tolerance of validity checks (versor condition, degeneracy).
 pub(crate) const TOL: S = 1e-9;
@@ -27,10 +31,14 @@ mod glam_interop;
 mod interpolate;
 #[path = "motor.rs"]
 pub(crate) mod motor;
-#[path = "objects.rs"]
+#[path = "objects/mod.rs"]
 pub(crate) mod objects;
 #[path = "point.rs"]
 mod point;
+#[path = "quat_map.rs"]
+mod quat_map;
+#[path = "validity.rs"]
+mod validity;
 #[path = "rotor.rs"]
 mod rotor;
 #[path = "scaled.rs"]

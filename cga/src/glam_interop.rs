@@ -17,7 +17,8 @@ fn rotation_of(m: Mat3) -> Result<Quat> {
         .max_element()
         .max(e.y_axis.abs().max_element())
         .max(e.z_axis.abs().max_element());
-    if err > TOL_MATRIX {
+    // `!(err <= tol)`: an overflowed (NaN or infinite) product fails too.
+    if !(err <= TOL_MATRIX) || !mtm.is_finite() {
         return Err(CgaError::NotRigid {
             why: "linear part is not orthonormal (scale or shear)",
         });
@@ -38,6 +39,11 @@ fn scaled_rotation_of(m: Mat3) -> Result<(S, Quat)> {
     let det = m.determinant();
     if !(det > 0.0) {
         return Err(CgaError::NonPositiveScale);
+    }
+    if !det.is_finite() {
+        return Err(CgaError::Overflow {
+            what: "determinant of the linear part",
+        });
     }
     let s = det.cbrt();
     let q = rotation_of(m * (1.0 / s)).map_err(|_| CgaError::NotRigid {
@@ -69,16 +75,14 @@ impl Motor {
             return Err(CgaError::NonFinite { what: "matrix" });
         }
         let row3 = m.row(3);
-        if (row3 - Vec4::new(0.0, 0.0, 0.0, 1.0)).abs().max_element() > TOL_MATRIX {
+        if !((row3 - Vec4::new(0.0, 0.0, 0.0, 1.0)).abs().max_element() <= TOL_MATRIX) {
             return Err(CgaError::NotRigid {
                 why: "last row is not (0, 0, 0, 1)",
             });
         }
         let q = rotation_of(Mat3::from_mat4(m))?;
-        Ok(Self::from_rotation_translation(
-            q,
-            m.w_axis.truncate().into(),
-        ))
+        let r = Self::from_rotation_translation(q, m.w_axis.truncate().into());
+        finite_result(r, &r.to_array(), "motor of a matrix")
     }
 
     /// The motor of a rigid affine transform.
@@ -88,18 +92,9 @@ impl Motor {
     pub fn try_from_affine(a: Affine) -> Result<Self> {
         let q = rotation_of(Mat3::from(a.matrix3))?;
         let t = V3::from(a.translation);
-        finite3_t(t)?;
-        Ok(Self::from_rotation_translation(q, t))
-    }
-}
-
-fn finite3_t(t: V3) -> Result<()> {
-    if t.is_finite() {
-        Ok(())
-    } else {
-        Err(CgaError::NonFinite {
-            what: "translation",
-        })
+        finite3(t, "translation")?;
+        let r = Self::from_rotation_translation(q, t);
+        finite_result(r, &r.to_array(), "motor of an affine transform")
     }
 }
 
@@ -121,17 +116,13 @@ impl ScaledMotor {
             return Err(CgaError::NonFinite { what: "matrix" });
         }
         let row3 = m.row(3);
-        if (row3 - Vec4::new(0.0, 0.0, 0.0, 1.0)).abs().max_element() > TOL_MATRIX {
+        if !((row3 - Vec4::new(0.0, 0.0, 0.0, 1.0)).abs().max_element() <= TOL_MATRIX) {
             return Err(CgaError::NotRigid {
                 why: "last row is not (0, 0, 0, 1)",
             });
         }
         let (s, q) = scaled_rotation_of(Mat3::from_mat4(m))?;
-        Ok(Self::from_scale_rotation_translation(
-            s,
-            q,
-            m.w_axis.truncate().into(),
-        ))
+        Self::try_from_scale_rotation_translation(s, q, m.w_axis.truncate().into())
     }
 }
 

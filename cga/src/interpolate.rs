@@ -3,7 +3,8 @@
 //! * Linear blend: `normalise(sum_i w_i M_i)`, after bringing every motor into the hemisphere of
 //!   the first (`M` and `-M` are the same motion; without this a blend can take the long way
 //!   round), as dual-quaternion skinning does.
-//! * Log blend: `exp(sum_i w_i log M_i)` (equation (1) of the seed papers) with principal logs.
+//! * Log blend: `exp(sum_i w_i log M_i)` (equation (1) of the seed papers) with principal logs,
+//!   summed by [`Bivector::weighted_sum`].
 //! * `interpolate(a, b, t) = a exp(t log(~a b))`: constant-speed screw motion from `a` to `b`.
 //!
 //! All blends return the key motor exactly (up to rounding and sign) when its weight is 1 and
@@ -11,6 +12,7 @@
 
 use super::*;
 
+/// The checks every fallible blend makes on its slices.
 fn check_blend(n_motors: usize, n_weights: usize, weights: &[S]) -> Result<()> {
     if n_motors == 0 {
         return Err(CgaError::BadBlend { why: "no motors" });
@@ -20,85 +22,122 @@ fn check_blend(n_motors: usize, n_weights: usize, weights: &[S]) -> Result<()> {
             why: "motors and weights differ in length",
         });
     }
-    if !weights.iter().all(|w| w.is_finite()) {
-        return Err(CgaError::NonFinite { what: "weight" });
-    }
-    Ok(())
+    finite_input(weights, "weight")
 }
 
 impl Bivector {
-    /// `sum_i w_i B_i` over the rigid and dilation parts (zips the slices).
+    /// `sum_i w_i B_i` over every part (zips the iterator with the weights). Every log blend of
+    /// this crate is this sum followed by an exponential.
     #[must_use]
-    pub fn weighted_sum(bivectors: &[Bivector], weights: &[S]) -> Bivector {
+    pub fn weighted_sum(bivectors: impl IntoIterator<Item = Bivector>, weights: &[S]) -> Bivector {
         let mut acc = Bivector::default();
-        for (b, &w) in bivectors.iter().zip(weights) {
-            acc = acc + *b * w;
+        for (b, &w) in bivectors.into_iter().zip(weights) {
+            acc = acc + b * w;
         }
         acc
+    }
+
+    /// [`Bivector::weighted_sum`] of fallible terms: the first error is returned, and a sum
+    /// that overflows is [`CgaError::Overflow`].
+    ///
+    /// # Errors
+    /// The first term's error, [`CgaError::NonFinite`] for a non-finite weight,
+    /// [`CgaError::BadBlend`] when the lengths differ, [`CgaError::Overflow`].
+    pub fn try_weighted_sum(
+        bivectors: impl IntoIterator<Item = Result<Bivector>>,
+        weights: &[S],
+    ) -> Result<Bivector> {
+        finite_input(weights, "weight")?;
+        let mut first_err = None;
+        let mut count = 0;
+        let terms = bivectors.into_iter().map_while(|b| {
+            count += 1;
+            b.map_err(|e| first_err = Some(e)).ok()
+        });
+        let sum = Bivector::weighted_sum(terms, weights);
+        if let Some(e) = first_err {
+            return Err(e);
+        }
+        if count != weights.len() {
+            return Err(CgaError::BadBlend {
+                why: "bivectors and weights differ in length",
+            });
+        }
+        finite_result(sum, &sum.to_array(), "weighted sum of bivectors")
+    }
+
+    /// `self * t` (a method, for chaining).
+    #[inline]
+    #[must_use]
+    pub fn mul_scalar(self, t: S) -> Bivector {
+        self * t
     }
 }
 
 impl Motor {
+    /// `sum_i w_i M_i` with every `M_i` brought into the hemisphere of the first motor (the
+    /// one loop behind both linear blends).
+    fn hemisphere_sum(motors: impl IntoIterator<Item = Motor>, weights: &[S]) -> Motor {
+        let mut first = None;
+        let mut acc = Motor::default();
+        for (m, &w) in motors.into_iter().zip(weights) {
+            let r = m.real_quat();
+            let r0 = *first.get_or_insert(r);
+            let w = if r.dot(r0) < 0.0 { -w } else { w };
+            acc = acc + m * w;
+        }
+        acc
+    }
+
     /// `sum_i w_i M_i` with every `M_i` brought into the hemisphere of `motors[0]`, then
     /// [`Motor::normalize_rigid`]. Zips the slices; an empty input or a sum with zero rotor part
     /// gives the identity (see [`Motor::try_blend_linear`]).
     #[must_use]
     pub fn blend_linear(motors: &[Motor], weights: &[S]) -> Motor {
-        let Some(first) = motors.first() else {
-            return Motor::IDENTITY;
-        };
-        let r0 = first.real_quat();
-        let mut acc = Motor::default();
-        for (m, &w) in motors.iter().zip(weights) {
-            let w = if m.real_quat().dot(r0) < 0.0 { -w } else { w };
-            acc = acc + *m * w;
-        }
+        let acc = Self::hemisphere_sum(motors.iter().copied(), weights);
         if !(acc.norm_squared() > S::MIN_POSITIVE) {
             return Motor::IDENTITY;
         }
         acc.normalize_rigid()
     }
 
-    /// Checked [`Motor::blend_linear`].
+    /// Checked [`Motor::blend_linear`]. The inputs may be any finite multiples of motors: they
+    /// are normalised first, so the weights act on motions, not on coefficient scales.
     ///
     /// # Errors
     /// [`CgaError::BadBlend`] for empty or mismatched slices, [`CgaError::NonFinite`],
-    /// [`CgaError::NotAMotor`] for an input that is not a motor or a blend that cancels.
+    /// [`CgaError::NotAMotor`] for an input that is not a motor or a blend that cancels,
+    /// [`CgaError::Overflow`] when the weighted sum overflows.
     pub fn try_blend_linear(motors: &[Motor], weights: &[S]) -> Result<Motor> {
         check_blend(motors.len(), weights.len(), weights)?;
-        for m in motors {
-            m.check_motor()?;
+        let mut first_err = None;
+        let unit = motors.iter().map_while(|m| {
+            m.try_normalize_rigid()
+                .map_err(|e| first_err = Some(e))
+                .ok()
+        });
+        let acc = Self::hemisphere_sum(unit, weights);
+        if let Some(e) = first_err {
+            return Err(e);
         }
-        let r0 = motors[0].real_quat();
-        let mut acc = Motor::default();
-        for (m, &w) in motors.iter().zip(weights) {
-            let w = if m.real_quat().dot(r0) < 0.0 { -w } else { w };
-            acc = acc + *m * w;
-        }
+        finite_result((), &acc.to_array(), "linear blend (weighted sum)")?;
         acc.try_normalize_rigid()
     }
 
     /// `exp(sum_i w_i log M_i)` with principal logarithms. Zips the slices (empty: identity).
     #[must_use]
     pub fn blend_log(motors: &[Motor], weights: &[S]) -> Motor {
-        let mut acc = Bivector::default();
-        for (m, &w) in motors.iter().zip(weights) {
-            acc = acc + m.log() * w;
-        }
-        acc.exp_motor()
+        Bivector::weighted_sum(motors.iter().map(|m| m.log()), weights).exp_motor()
     }
 
     /// Checked [`Motor::blend_log`].
     ///
     /// # Errors
-    /// [`CgaError::BadBlend`], [`CgaError::NonFinite`], [`CgaError::NotAMotor`].
+    /// [`CgaError::BadBlend`], [`CgaError::NonFinite`], [`CgaError::NotAMotor`],
+    /// [`CgaError::Overflow`] when the weighted logarithms are too large to exponentiate.
     pub fn try_blend_log(motors: &[Motor], weights: &[S]) -> Result<Motor> {
         check_blend(motors.len(), weights.len(), weights)?;
-        let mut acc = Bivector::default();
-        for (m, &w) in motors.iter().zip(weights) {
-            acc = acc + m.try_log()? * w;
-        }
-        acc.try_exp_motor()
+        Bivector::try_weighted_sum(motors.iter().map(|m| m.try_log()), weights)?.try_exp_motor()
     }
 
     /// Screw interpolation `a exp(t log(~a b))`: `a` at `t = 0`, `+-b` at `t = 1`, constant
@@ -111,26 +150,14 @@ impl Motor {
     /// Checked [`Motor::interpolate`].
     ///
     /// # Errors
-    /// [`CgaError::NonFinite`], [`CgaError::NotAMotor`].
+    /// [`CgaError::NonFinite`], [`CgaError::NotAMotor`], [`CgaError::Overflow`] when `t` is so
+    /// far outside `[0, 1]` that the motion overflows.
     pub fn try_interpolate(a: Motor, b: Motor, t: S) -> Result<Motor> {
-        a.check_motor()?;
-        b.check_motor()?;
-        if !t.is_finite() {
-            return Err(CgaError::NonFinite {
-                what: "interpolation parameter",
-            });
-        }
-        let (a, b) = (a.normalize_rigid(), b.normalize_rigid());
-        Ok(a * (a.rev() * b).try_log()?.mul_scalar(t).try_exp_motor()?)
-    }
-}
-
-impl Bivector {
-    /// `self * t` (a method, for chaining).
-    #[inline]
-    #[must_use]
-    pub fn mul_scalar(self, t: S) -> Bivector {
-        self * t
+        finite_input(&[t], "interpolation parameter")?;
+        let (a, b) = (a.try_normalize_rigid()?, b.try_normalize_rigid()?);
+        let g = Bivector::try_weighted_sum([(a.rev() * b).try_log()], &[t])?;
+        let m = a * g.try_exp_motor()?;
+        finite_result(m, &m.to_array(), "interpolated motor")
     }
 }
 
@@ -138,24 +165,17 @@ impl ScaledMotor {
     /// `exp(sum_i w_i log S_i)`: blends rotation, translation and log-scale. Zips the slices.
     #[must_use]
     pub fn blend_log(motors: &[ScaledMotor], weights: &[S]) -> ScaledMotor {
-        let mut acc = Bivector::default();
-        for (m, &w) in motors.iter().zip(weights) {
-            acc = acc + m.log() * w;
-        }
-        acc.exp_scaled()
+        Bivector::weighted_sum(motors.iter().map(|m| m.log()), weights).exp_scaled()
     }
 
     /// Checked [`ScaledMotor::blend_log`].
     ///
     /// # Errors
-    /// [`CgaError::BadBlend`], [`CgaError::NonFinite`], [`CgaError::NotAMotor`].
+    /// [`CgaError::BadBlend`], [`CgaError::NonFinite`], [`CgaError::NotAMotor`],
+    /// [`CgaError::Overflow`].
     pub fn try_blend_log(motors: &[ScaledMotor], weights: &[S]) -> Result<ScaledMotor> {
         check_blend(motors.len(), weights.len(), weights)?;
-        let mut acc = Bivector::default();
-        for (m, &w) in motors.iter().zip(weights) {
-            acc = acc + m.try_log()? * w;
-        }
-        acc.try_exp_scaled()
+        Bivector::try_weighted_sum(motors.iter().map(|m| m.try_log()), weights)?.try_exp_scaled()
     }
 
     /// `a exp(t log(a^-1 b))`: from `a` at `t = 0` to `+-b` at `t = 1`, scale interpolated

@@ -16,21 +16,23 @@ impl Motor {
     #[inline]
     #[must_use]
     pub(crate) fn from_quats(r: Quat, d: Quat) -> Self {
-        Motor::new(r.w, -r.z, r.y, -r.x, -d.x, -d.y, -d.z, -d.w)
+        let [s, e12, e13, e23] = rotor_coeffs(r);
+        let [e1i, e2i, e3i, e123i] = dual_coeffs(d);
+        Motor::new(s, e12, e13, e23, e1i, e2i, e3i, e123i)
     }
 
     /// The rotation quaternion `q_r` (not normalised here).
     #[inline]
     #[must_use]
     pub(crate) fn real_quat(self) -> Quat {
-        Quat::from_xyzw(-self.e23, self.e13, -self.e12, self.s)
+        rotor_quat([self.s, self.e12, self.e13, self.e23])
     }
 
     /// The dual quaternion part `q_d = 0.5 t q_r` (not normalised here).
     #[inline]
     #[must_use]
     pub(crate) fn dual_quat_part(self) -> Quat {
-        Quat::from_xyzw(-self.e1i, -self.e2i, -self.e3i, -self.e123i)
+        dual_quat([self.e1i, self.e2i, self.e3i, self.e123i])
     }
 
     /// Rotate by `rotation` (a unit quaternion) about the origin, then translate by
@@ -47,13 +49,10 @@ impl Motor {
     /// # Errors
     /// [`CgaError::NonFinite`], or [`CgaError::ZeroAxis`] for a zero quaternion.
     pub fn try_from_rotation_translation(rotation: Quat, translation: V3) -> Result<Self> {
-        if !translation.is_finite() {
-            return Err(CgaError::NonFinite {
-                what: "translation",
-            });
-        }
+        finite3(translation, "translation")?;
         let r = Rotor::try_from_quat(rotation)?;
-        Ok(Self::from_rotation_translation(r.to_quat(), translation))
+        let m = Self::from_rotation_translation(r.to_quat(), translation);
+        finite_result(m, &m.to_array(), "motor (translation overflows)")
     }
 
     /// The pure translation by `t`.
@@ -177,36 +176,51 @@ impl Motor {
     /// [`Motor::normalize_rigid`] that rejects non-motors.
     ///
     /// # Errors
-    /// [`CgaError::NonFinite`], or [`CgaError::NotAMotor`] when the rotor part is zero or the
-    /// versor condition fails by more than a relative tolerance.
+    /// [`CgaError::NonFinite`], [`CgaError::NotAMotor`] when the rotor part is zero or the
+    /// versor condition fails by more than a relative tolerance, [`CgaError::Overflow`] when
+    /// the translation is too large for the rotor part. Huge and tiny multiples of a motor
+    /// (`1e300 M`, `1e-310 M`) are accepted: they are the same motion.
     pub fn try_normalize_rigid(self) -> Result<Motor> {
-        self.check_motor()?;
-        Ok(self.normalize_rigid())
+        let m = self.rescaled()?.normalize_rigid();
+        finite_result(m, &m.to_array(), "normalised motor")
     }
 
-    /// Check that this is (a multiple of) a motor.
-    pub(crate) fn check_motor(self) -> Result<()> {
-        if !self.to_array().iter().all(|c| c.is_finite()) {
-            return Err(CgaError::NonFinite { what: "motor" });
-        }
-        let a = self.norm_squared();
-        if !(a > S::MIN_POSITIVE) {
+    /// This motor divided by the largest coefficient of its rotor part (the same motion, with
+    /// a rotor part of order 1), after checking that it is a multiple of a motor: finite, a
+    /// rotor part that is not zero, and the versor condition `M ~M` scalar (its `e123i` part
+    /// zero to a relative tolerance). Scaling first makes the check work for any finite
+    /// multiple, `1e300 M` and `1e-310 M` included.
+    pub(crate) fn rescaled(self) -> Result<Motor> {
+        let c = self.to_array();
+        finite_input(&c, "motor")?;
+        let k = max_abs(&c[..4]);
+        if !(k > 0.0) {
             return Err(CgaError::NotAMotor {
                 what: "motor",
                 why: "zero rotor part",
             });
         }
-        let dual2 = self.e1i * self.e1i
-            + self.e2i * self.e2i
-            + self.e3i * self.e3i
-            + self.e123i * self.e123i;
-        if self.versor_defect().abs() > TOL_VERSOR * (a * (a + dual2)).sqrt() {
+        let m = Motor::from_array(c.map(|x| x / k));
+        let c = m.to_array();
+        if !all_finite(&c) {
+            return Err(CgaError::Overflow {
+                what: "motor (translation too large for its rotor part)",
+            });
+        }
+        // The check in units of the dual part when it is large, so that it cannot overflow.
+        let a = m.norm_squared();
+        let dk = max_abs(&c[4..]).max(1.0);
+        let d = [c[4] / dk, c[5] / dk, c[6] / dk, c[7] / dk];
+        let dual2: S = d.iter().map(|x| x * x).sum();
+        let defect = Motor::new(c[0], c[1], c[2], c[3], d[0], d[1], d[2], d[3]).versor_defect();
+        let tol = TOL_VERSOR * (a * (a / (dk * dk) + dual2)).sqrt();
+        if !(defect.abs() <= tol) {
             return Err(CgaError::NotAMotor {
                 what: "motor",
                 why: "M ~M has a grade-4 part (not a versor)",
             });
         }
-        Ok(())
+        Ok(m)
     }
 }
 

@@ -20,12 +20,12 @@ impl Point {
     /// Up-projection that rejects non-finite coordinates.
     ///
     /// # Errors
-    /// [`CgaError::NonFinite`] when a coordinate is NaN or infinite.
+    /// [`CgaError::NonFinite`] when a coordinate is NaN or infinite, [`CgaError::Overflow`]
+    /// when `0.5 |x|^2` overflows (beyond about `1.3e154` in `f64`, `1.8e19` in `f32`).
     pub fn try_from_vec3(x: V3) -> Result<Self> {
-        if !x.is_finite() {
-            return Err(CgaError::NonFinite { what: "point" });
-        }
-        Ok(Self::from_vec3(x))
+        finite3(x, "point")?;
+        let p = Self::from_vec3(x);
+        finite_result(p, &[p.ei], "point (0.5 |x|^2 overflows)")
     }
 
     /// Down-projection. A normalised point has weight `-X.ei = 1`, so this reads `e1, e2, e3`.
@@ -116,22 +116,17 @@ impl Vector {
     ///
     /// # Errors
     /// [`CgaError::NonFinite`] for non-finite coefficients, [`CgaError::Degenerate`] when the
-    /// weight is zero (a plane, or a point at infinity).
+    /// weight is zero (a plane, or a point at infinity), [`CgaError::Overflow`] when the
+    /// weight is so small (subnormal, say) that the point's coordinates overflow.
     pub fn try_to_point(self) -> Result<Point> {
-        if !self.to_array().iter().all(|c| c.is_finite()) {
-            return Err(CgaError::NonFinite { what: "vector" });
-        }
+        finite_input(&self.to_array(), "vector")?;
         if self.eo == 0.0 {
             return Err(CgaError::Degenerate {
                 why: "zero weight: not a finite point",
             });
         }
-        let r = 1.0 / self.eo;
-        Ok(Point::new(
-            self.e1 * r,
-            self.e2 * r,
-            self.e3 * r,
-            self.ei * r,
-        ))
+        let w = self.eo;
+        let p = Point::new(self.e1 / w, self.e2 / w, self.e3 / w, self.ei / w);
+        finite_result(p, &p.to_array(), "point (weight too small for its coordinates)")
     }
 }

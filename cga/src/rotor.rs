@@ -11,16 +11,16 @@ impl Rotor {
     pub const IDENTITY: Rotor = Rotor::new(1.0, 0.0, 0.0, 0.0);
 
     /// The rotation by `angle` (radians, right-hand rule) about `axis`. The axis is normalised
-    /// here; a zero or non-finite axis gives the identity (see [`Rotor::try_from_axis_angle`]).
+    /// here (any finite length, `1e300` and `1e-310` included); a zero or non-finite axis gives
+    /// the identity (see [`Rotor::try_from_axis_angle`]).
     #[inline]
     #[must_use]
     pub fn from_axis_angle(axis: V3, angle: S) -> Self {
-        let n = axis.normalize_or_zero();
-        if n == V3::ZERO {
+        let Some(n) = unit_direction(axis) else {
             return Self::IDENTITY;
-        }
+        };
         let (sn, c) = (0.5 * angle).sin_cos();
-        Rotor::new(c, -sn * n.z, sn * n.y, -sn * n.x)
+        Self::from_quat(Quat::from_xyzw(sn * n.x, sn * n.y, sn * n.z, c))
     }
 
     /// [`Rotor::from_axis_angle`] that rejects bad input.
@@ -29,14 +29,8 @@ impl Rotor {
     /// [`CgaError::NonFinite`] for a non-finite axis or angle, [`CgaError::ZeroAxis`] for a
     /// zero axis.
     pub fn try_from_axis_angle(axis: V3, angle: S) -> Result<Self> {
-        if !axis.is_finite() || !angle.is_finite() {
-            return Err(CgaError::NonFinite { what: "axis/angle" });
-        }
-        if axis.length_squared() == 0.0 || !axis.length_squared().is_normal() {
-            return Err(CgaError::ZeroAxis {
-                what: "rotation axis",
-            });
-        }
+        finite_input(&[angle], "rotation angle")?;
+        try_unit_direction(axis, "rotation axis")?;
         Ok(Self::from_axis_angle(axis, angle))
     }
 
@@ -44,29 +38,29 @@ impl Rotor {
     #[inline]
     #[must_use]
     pub fn from_quat(q: Quat) -> Self {
-        Rotor::new(q.w, -q.z, q.y, -q.x)
+        Rotor::from_array(rotor_coeffs(q))
     }
 
-    /// The rotor of a quaternion, normalised.
+    /// The rotor of a quaternion of any finite, non-zero length, normalised.
     ///
     /// # Errors
     /// [`CgaError::NonFinite`] or [`CgaError::ZeroAxis`] (a zero quaternion).
     pub fn try_from_quat(q: Quat) -> Result<Self> {
-        if !q.is_finite() {
-            return Err(CgaError::NonFinite { what: "quaternion" });
-        }
-        let l = q.length();
-        if l == 0.0 || !l.is_normal() {
+        let c = q.to_array();
+        finite_input(&c, "quaternion")?;
+        let k = max_abs(&c);
+        if !(k > 0.0) {
             return Err(CgaError::ZeroAxis { what: "quaternion" });
         }
-        Ok(Self::from_quat(q / l))
+        let q = Quat::from_array(c.map(|x| x / k));
+        Ok(Self::from_quat(q / q.length()))
     }
 
     /// The unit quaternion of this rotor (the same sign convention as glam).
     #[inline]
     #[must_use]
     pub fn to_quat(self) -> Quat {
-        Quat::from_xyzw(-self.e23, self.e13, -self.e12, self.s)
+        rotor_quat(self.to_array())
     }
 
     /// Rotate a point (or direction) about the origin: `down(R up(x) ~R)`.
@@ -108,11 +102,7 @@ impl Translator {
     /// # Errors
     /// [`CgaError::NonFinite`].
     pub fn try_from_translation(t: V3) -> Result<Self> {
-        if !t.is_finite() {
-            return Err(CgaError::NonFinite {
-                what: "translation",
-            });
-        }
+        finite3(t, "translation")?;
         Ok(Self::from_translation(t))
     }
 

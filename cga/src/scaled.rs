@@ -24,15 +24,22 @@ impl Dilator {
     /// [`Dilator::from_scale`] that rejects bad scales.
     ///
     /// # Errors
-    /// [`CgaError::NonPositiveScale`] for `scale <= 0`, NaN, infinity, or a scale whose square
-    /// root over- or underflows.
+    /// [`CgaError::NonPositiveScale`] for `scale <= 0`, NaN or infinity;
+    /// [`CgaError::Overflow`] for a scale this form cannot hold: `D` stores `cosh` and `sinh`
+    /// of `ln(d)/2`, so the scale read back, `(s + eoi)/(s - eoi)`, loses about `eps * max(d,
+    /// 1/d)` of relative precision. Scales whose read-back differs by more than the crate's
+    /// versor tolerance (about `1e-10 < d < 1e10` passes in `f64`, `1e-3 < d < 1e3` in `f32`)
+    /// are refused.
     pub fn try_from_scale(scale: S) -> Result<Self> {
-        if !(scale > 0.0) || !scale.is_finite() || !scale.is_normal() {
+        if !(scale > 0.0) || !scale.is_finite() {
             return Err(CgaError::NonPositiveScale);
         }
         let d = Self::from_scale(scale);
-        if !d.s.is_finite() || !d.eoi.is_finite() {
-            return Err(CgaError::NonPositiveScale);
+        let back = d.scale();
+        if !all_finite(&d.to_array()) || !((back - scale).abs() <= TOL_VERSOR * scale) {
+            return Err(CgaError::Overflow {
+                what: "dilator (scale outside the range a dilator can hold)",
+            });
         }
         Ok(d)
     }
@@ -78,14 +85,17 @@ impl ScaledMotor {
     /// Checked [`ScaledMotor::from_scale_rotation_translation`].
     ///
     /// # Errors
-    /// [`CgaError::NonPositiveScale`], [`CgaError::NonFinite`], [`CgaError::ZeroAxis`].
+    /// [`CgaError::NonPositiveScale`], [`CgaError::NonFinite`], [`CgaError::ZeroAxis`],
+    /// [`CgaError::Overflow`] (see [`Dilator::try_from_scale`]; also when the product
+    /// overflows).
     pub fn try_from_scale_rotation_translation(
         scale: S,
         rotation: Quat,
         translation: V3,
     ) -> Result<Self> {
         let d = Dilator::try_from_scale(scale)?;
-        Ok(Motor::try_from_rotation_translation(rotation, translation)? * d)
+        let m = Motor::try_from_rotation_translation(rotation, translation)? * d;
+        finite_result(m, &m.to_array(), "scaled motor (translation times scale overflows)")
     }
 
     /// A rigid motion followed by nothing else: the same motion as a scaled motor.
@@ -106,10 +116,10 @@ impl ScaledMotor {
             + self.e23 * self.eo23i;
         let th = p / a2; // tanh(g/2)
         let a = a2.sqrt();
-        let rq = Quat::from_xyzw(-self.e23, self.e13, -self.e12, self.s) * (1.0 / a);
+        let rq = self.rotor_quat() * (1.0 / a);
         // The ei parts are (cosh - sinh) times those of the rigid motor T R.
         let f = 1.0 / (a * (1.0 - th));
-        let dq = Quat::from_xyzw(-self.e1i, -self.e2i, -self.e3i, -self.e123i) * f;
+        let dq = self.dual_quat_part() * f;
         let t = dq * rq.conjugate();
         let log_scale = ((a2 + p) / (a2 - p)).ln();
         Similarity {
@@ -120,49 +130,64 @@ impl ScaledMotor {
         }
     }
 
-    /// Check that this is (a multiple of) a scaled motor `T R D`.
-    pub(crate) fn check(self) -> Result<()> {
+    /// The rotation quaternion of the rotor part (not normalised here).
+    #[inline]
+    fn rotor_quat(self) -> Quat {
+        rotor_quat([self.s, self.e12, self.e13, self.e23])
+    }
+
+    /// The dual quaternion part `(e1i, e2i, e3i, e123i)` (not normalised here).
+    #[inline]
+    fn dual_quat_part(self) -> Quat {
+        dual_quat([self.e1i, self.e2i, self.e3i, self.e123i])
+    }
+
+    /// This scaled motor divided by the largest coefficient of its rotor part (the same
+    /// similarity), after checking that it is a multiple of `T R D`: finite, a rotor part that
+    /// is not zero and dominates the dilation part, the dilation part aligned with the rotor
+    /// part, and a rigid part that is a motor.
+    pub(crate) fn rescaled(self) -> Result<ScaledMotor> {
         let c = self.to_array();
-        if !c.iter().all(|x| x.is_finite()) {
-            return Err(CgaError::NonFinite {
-                what: "scaled motor",
-            });
-        }
-        let a2 = self.s * self.s + self.e12 * self.e12 + self.e13 * self.e13 + self.e23 * self.e23;
-        let b2 = self.eoi * self.eoi
-            + self.eo12i * self.eo12i
-            + self.eo13i * self.eo13i
-            + self.eo23i * self.eo23i;
-        if !(a2 > S::MIN_POSITIVE) || !(a2 - b2 > TOL * a2) {
+        finite_input(&c, "scaled motor")?;
+        let k = max_abs(&[self.s, self.e12, self.e13, self.e23]);
+        if !(k > 0.0) {
             return Err(CgaError::NotAMotor {
                 what: "scaled motor",
-                why: "rotor part zero or dominated by the dilation part",
+                why: "zero rotor part",
+            });
+        }
+        let m = ScaledMotor::from_array(c.map(|x| x / k));
+        if !all_finite(&m.to_array()) {
+            return Err(CgaError::Overflow {
+                what: "scaled motor (too large for its rotor part)",
+            });
+        }
+        let a2 = m.s * m.s + m.e12 * m.e12 + m.e13 * m.e13 + m.e23 * m.e23;
+        let b2 = m.eoi * m.eoi + m.eo12i * m.eo12i + m.eo13i * m.eo13i + m.eo23i * m.eo23i;
+        if !(a2 - b2 > TOL * a2) {
+            return Err(CgaError::NotAMotor {
+                what: "scaled motor",
+                why: "rotor part dominated by the dilation part",
             });
         }
         // The dilation part must be tanh(g/2) times the rotor part.
-        let th = (self.s * self.eoi
-            + self.e12 * self.eo12i
-            + self.e13 * self.eo13i
-            + self.e23 * self.eo23i)
-            / a2;
-        let dev = (self.eoi - th * self.s).abs()
-            + (self.eo12i - th * self.e12).abs()
-            + (self.eo13i - th * self.e13).abs()
-            + (self.eo23i - th * self.e23).abs();
-        let scale = c.iter().fold(0.0, |m: S, x| m.max(x.abs()));
-        if dev > TOL_VERSOR * scale {
+        let th = (m.s * m.eoi + m.e12 * m.eo12i + m.e13 * m.eo13i + m.e23 * m.eo23i) / a2;
+        let dev = (m.eoi - th * m.s).abs()
+            + (m.eo12i - th * m.e12).abs()
+            + (m.eo13i - th * m.e13).abs()
+            + (m.eo23i - th * m.e23).abs();
+        if !(dev <= TOL_VERSOR) {
             return Err(CgaError::NotAMotor {
                 what: "scaled motor",
                 why: "dilation part not aligned with the rotor part",
             });
         }
-        let sim = self.similarity();
         let rigid = Motor::from_quats(
-            sim.rotation,
-            Quat::from_xyzw(-self.e1i, -self.e2i, -self.e3i, -self.e123i)
-                * (1.0 / (a2.sqrt() * (1.0 - th))),
+            m.rotor_quat() * (1.0 / a2.sqrt()),
+            m.dual_quat_part() * (1.0 / (a2.sqrt() * (1.0 - th))),
         );
-        rigid.check_motor()
+        rigid.rescaled()?;
+        Ok(m)
     }
 
     /// The scale factor.
