@@ -37,9 +37,9 @@ pub(crate) mod objects;
 mod point;
 #[path = "quat_map.rs"]
 mod quat_map;
-#[path = "validity.rs"]
-mod validity;
 #[path = "rotor.rs"]
 mod rotor;
 #[path = "scaled.rs"]
 mod scaled;
+#[path = "validity.rs"]
+mod validity;

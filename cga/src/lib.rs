@@ -103,8 +103,12 @@
 //!
 //! Infallible constructors assume valid input (finite, non-zero axis, positive scale, a real
 //! motor) and never panic, but may return non-finite values for invalid input; every one has a
-//! `try_` twin that returns a [`CgaError`] instead. The batch `transform_points` panic only on
-//! slices of different lengths (`try_transform_points` returns an error).
+//! `try_` twin that returns a [`CgaError`] instead. A `try_` function returns `Ok` only when its
+//! *result* is finite and valid: finite input whose result overflows (a point at `1e300`, whose
+//! `0.5 |x|^2` is infinite; a blend with weight `1e300`) is [`CgaError::Overflow`], and any
+//! finite multiple of a motor (`1e300 M`, `1e-310 M`) is accepted as the motion it represents.
+//! The batch `transform_points` panic only on slices of different lengths
+//! (`try_transform_points` returns an error).
 //!
 //! # Features
 //!

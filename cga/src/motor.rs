@@ -123,17 +123,29 @@ impl Motor {
         affine_rows(&m[0], &m[1], &m[2], src, dst);
     }
 
-    /// [`Motor::transform_points`] without the panic.
+    /// [`Motor::transform_points`] without the panic, for any finite multiple of a motor
+    /// (normalised first), with every output point checked.
     ///
     /// # Errors
-    /// [`CgaError::Degenerate`] when the slices differ in length.
+    /// [`CgaError::Degenerate`] when the slices differ in length; the errors of
+    /// [`Motor::try_normalize_rigid`]; [`CgaError::NonFinite`] for a non-finite source point;
+    /// [`CgaError::Overflow`] when a moved point overflows (`dst` then holds partial results).
     pub fn try_transform_points(self, src: &[V3], dst: &mut [V3]) -> Result<()> {
         if src.len() != dst.len() {
             return Err(CgaError::Degenerate {
                 why: "source and destination lengths differ",
             });
         }
-        self.transform_points(src, dst);
+        let m = self.try_normalize_rigid()?;
+        m.transform_points(src, dst);
+        if !dst.iter().all(|p| p.is_finite()) {
+            if !src.iter().all(|p| p.is_finite()) {
+                return Err(CgaError::NonFinite { what: "point" });
+            }
+            return Err(CgaError::Overflow {
+                what: "transformed point",
+            });
+        }
         Ok(())
     }
 

@@ -127,6 +127,10 @@ impl Vector {
         }
         let w = self.eo;
         let p = Point::new(self.e1 / w, self.e2 / w, self.e3 / w, self.ei / w);
-        finite_result(p, &p.to_array(), "point (weight too small for its coordinates)")
+        finite_result(
+            p,
+            &p.to_array(),
+            "point (weight too small for its coordinates)",
+        )
     }
 }

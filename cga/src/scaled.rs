@@ -95,7 +95,11 @@ impl ScaledMotor {
     ) -> Result<Self> {
         let d = Dilator::try_from_scale(scale)?;
         let m = Motor::try_from_rotation_translation(rotation, translation)? * d;
-        finite_result(m, &m.to_array(), "scaled motor (translation times scale overflows)")
+        finite_result(
+            m,
+            &m.to_array(),
+            "scaled motor (translation times scale overflows)",
+        )
     }
 
     /// A rigid motion followed by nothing else: the same motion as a scaled motor.
@@ -164,10 +168,17 @@ impl ScaledMotor {
         }
         let a2 = m.s * m.s + m.e12 * m.e12 + m.e13 * m.e13 + m.e23 * m.e23;
         let b2 = m.eoi * m.eoi + m.eo12i * m.eo12i + m.eo13i * m.eo13i + m.eo23i * m.eo23i;
-        if !(a2 - b2 > TOL * a2) {
+        if !(a2 - b2 > 0.0) {
             return Err(CgaError::NotAMotor {
                 what: "scaled motor",
                 why: "rotor part dominated by the dilation part",
+            });
+        }
+        // The scale is read back with a relative precision of about eps a2 / (a2 - b2)
+        // (`eps max(d, 1/d)`): the same limit as `Dilator::try_from_scale`, a little wider.
+        if !(S::EPSILON * a2 <= TOL_VERSOR * (a2 - b2)) {
+            return Err(CgaError::Overflow {
+                what: "scaled motor (scale outside the range a dilator can hold)",
             });
         }
         // The dilation part must be tanh(g/2) times the rotor part.

@@ -20,7 +20,11 @@ impl Circle {
         Plane::through_points(a, b, c)?;
         let [a, b, c] = up_all([a, b, c])?;
         let direct = a ^ b ^ c;
-        finite_result(Circle { direct }, &direct.to_array(), "circle (points too far out)")
+        finite_result(
+            Circle { direct },
+            &direct.to_array(),
+            "circle (points too far out)",
+        )
     }
 
     /// The carrier plane `(C ^ ei)*`.

@@ -24,24 +24,28 @@ impl Line {
             });
         }
         let direct = pa ^ pb ^ EI;
-        finite_result(Line { direct }, &direct.to_array(), "line (points too far out)")
+        finite_result(
+            Line { direct },
+            &direct.to_array(),
+            "line (points too far out)",
+        )
     }
 
-    /// The line through `point` along `direction`.
+    /// The line through `point` along `direction` (any finite non-zero length; the line is
+    /// stored with the unit direction, so [`Line::direction`] returns it normalised).
     ///
     /// # Errors
     /// As [`Line::through_points`]; a zero direction is [`CgaError::ZeroAxis`].
     pub fn from_point_direction(point: V3, direction: V3) -> Result<Self> {
         finite3(point, "point")?;
-        try_unit_direction(direction, "line direction")?;
-        let end = point + direction;
-        finite_result((), &end.to_array(), "line (point + direction)")?;
-        if end == point {
-            return Err(CgaError::Degenerate {
-                why: "direction vanishes next to the point (below its precision)",
-            });
-        }
-        Self::through_points(point, end)
+        let u = try_unit_direction(direction, "line direction")?;
+        let [p] = up_all([point])?;
+        let direct = p ^ Vector::new(0.0, u.x, u.y, u.z, 0.0) ^ EI;
+        finite_result(
+            Line { direct },
+            &direct.to_array(),
+            "line (point too far out)",
+        )
     }
 
     /// The dual (inner product null space) form, a bivector.

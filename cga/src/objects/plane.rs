@@ -55,7 +55,11 @@ impl Plane {
         let n = V3::new(v.e1, v.e2, v.e3);
         let l = n.length();
         let span = (b - a).length() * (c - a).length();
-        finite_result((), &[v.e1, v.e2, v.e3, v.ei, l, span], "plane (points too far out)")?;
+        finite_result(
+            (),
+            &[v.e1, v.e2, v.e3, v.ei, l, span],
+            "plane (points too far out)",
+        )?;
         if !(l > TOL * span) || l == 0.0 {
             return Err(CgaError::Degenerate {
                 why: "collinear or coincident points",

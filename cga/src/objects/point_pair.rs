@@ -19,7 +19,11 @@ impl PointPair {
     pub fn from_points(a: V3, b: V3) -> Result<Self> {
         let [a, b] = up_all([a, b])?;
         let direct = a ^ b;
-        finite_result(PointPair { direct }, &direct.to_array(), "point pair (points too far out)")
+        finite_result(
+            PointPair { direct },
+            &direct.to_array(),
+            "point pair (points too far out)",
+        )
     }
 
     /// The two points `(T -+ sqrt(T^2)) (-ei . T)`, or `None` for an imaginary or degenerate

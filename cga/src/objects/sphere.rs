@@ -52,7 +52,8 @@ impl Sphere {
                 why: "coplanar or coincident points",
             });
         }
-        let dual = s / s.eo;
+        let w = s.eo;
+        let dual = Vector::new(1.0, s.e1 / w, s.e2 / w, s.e3 / w, s.ei / w);
         finite_result(Sphere { dual }, &dual.to_array(), "sphere (normalisation)")
     }
 
