@@ -143,6 +143,39 @@ pub enum Error {
         /// Offending (original) indices.
         vertices: IndexList,
     },
+    /// A computed quantity left the `f64` range (overflow to infinity or NaN, or underflow to
+    /// zero where zero is invalid); rescale the input.
+    #[error(
+        "{what} at index {index} is outside the floating-point range (overflow); rescale the input"
+    )]
+    Overflow {
+        /// What was computed.
+        what: &'static str,
+        /// Row, vertex or triangle where it happened.
+        index: usize,
+    },
+    /// Vertices with a coordinate beyond [`crate::validate::MAX_COORDINATE`] in magnitude,
+    /// where edge vectors could overflow.
+    #[error(
+        "vertices {vertices} have coordinates beyond +-{limit:e} (edge vectors would overflow)"
+    )]
+    CoordinateRange {
+        /// Offending vertices.
+        vertices: IndexList,
+        /// The largest usable magnitude.
+        limit: f64,
+    },
+    /// Forming a matrix product would need too many nonzeros (e.g. `L M^-1 L` on a mesh with a
+    /// vertex of huge valence, such as a fan-triangulated polygon with thousands of corners).
+    #[error("{what} would have up to {estimated} nonzeros (limit {limit}); a vertex of very high valence makes it dense: split large polygons")]
+    TooDense {
+        /// Which matrix.
+        what: &'static str,
+        /// Upper bound of its nonzeros.
+        estimated: usize,
+        /// The limit.
+        limit: usize,
+    },
     /// Parameters outside their domain.
     #[error("invalid argument: {0}")]
     InvalidArgument(String),

@@ -5,6 +5,7 @@
 //! the free vertices) or the Laplacian energy `x^T L M^-1 L x` (order 2: `L M^-1 L x = 0`),
 //! with prescribed values on the constrained vertex sets.
 
+use crate::laplacian::ensure_finite;
 use crate::{
     check_solvable, laplacian, mass_diagonal, DirichletSolver, Error, IndexList, LaplacianKind,
     MassKind, Mesh, Result, SolverOptions,
@@ -35,8 +36,24 @@ impl Default for HarmonicOptions {
     }
 }
 
-/// The symmetric positive semi-definite system matrix: `-L` for order 1, `L M^-1 L` for
-/// order 2. Checks the mesh first ([`crate::check_solvable`]).
+/// The most nonzeros [`harmonic_system`] lets `L M^-1 L` have: this many per nonzero of `L`
+/// (a regular triangle mesh needs about 3), or [`BIHARMONIC_FILL_FLOOR`] if that is larger.
+pub const BIHARMONIC_FILL_PER_NONZERO: usize = 32;
+
+/// The smallest fill limit of `L M^-1 L` (about 16 MB of values and indices).
+pub const BIHARMONIC_FILL_FLOOR: usize = 1 << 20;
+
+/// The symmetric positive semi-definite system matrix: `-L` for order 1, a positive multiple
+/// of `L M^-1 L` for order 2 (`L` and `M` are divided by their largest entries first, which
+/// keeps the product in floating-point range at any mesh scale and leaves the minimiser
+/// unchanged). Checks the mesh first ([`crate::check_solvable`]).
+///
+/// Errors, besides the mesh checks: [`Error::ZeroMass`] (order 2, a vertex whose triangles
+/// are all degenerate), [`Error::TooDense`] (order 2, when an upper bound of the nonzeros of
+/// `L M^-1 L`, the sum over vertices of the squared row lengths of `L`, exceeds
+/// [`BIHARMONIC_FILL_PER_NONZERO`] times the nonzeros of `L` and [`BIHARMONIC_FILL_FLOOR`]:
+/// a fan-triangulated polygon with thousands of corners would make it dense),
+/// [`Error::Overflow`] (a non-finite entry).
 pub fn harmonic_system(mesh: &Mesh, options: &HarmonicOptions) -> Result<CsMat<f64>> {
     check_solvable(mesh)?;
     let mut l = laplacian(mesh, options.laplacian)?;
@@ -46,12 +63,24 @@ pub fn harmonic_system(mesh: &Mesh, options: &HarmonicOptions) -> Result<CsMat<f
             Ok(l)
         }
         2 => {
-            let m = mass_diagonal(mesh, options.mass);
+            let estimated: usize = l.outer_iterator().map(|r| r.nnz() * r.nnz()).sum();
+            let limit = (BIHARMONIC_FILL_PER_NONZERO * l.nnz()).max(BIHARMONIC_FILL_FLOOR);
+            if estimated > limit {
+                return Err(Error::TooDense {
+                    what: "the biharmonic matrix L M^-1 L",
+                    estimated,
+                    limit,
+                });
+            }
+            let m = mass_diagonal(mesh, options.mass)?;
+            let lmax = l.data().iter().fold(0.0f64, |a, x| a.max(x.abs()));
+            let mmax = m.iter().copied().fold(0.0f64, f64::max);
             let mut zero = Vec::new();
             let minv: Vec<f64> = (0..m.len())
                 .map(|i| {
                     if m[i] > 0.0 {
-                        1.0 / m[i]
+                        // (L / lmax) rows scaled by mmax / m_i, at most 1 / lmax each.
+                        (mmax / m[i]) / lmax
                     } else {
                         let row = l.outer_view(i).map(|r| r.data().iter().any(|&x| x != 0.0));
                         if row == Some(true) {
@@ -66,7 +95,10 @@ pub fn harmonic_system(mesh: &Mesh, options: &HarmonicOptions) -> Result<CsMat<f
                     vertices: IndexList(zero),
                 });
             }
-            // M^-1 L scales rows; L is symmetric so L (M^-1 L) = L^T M^-1 L.
+            if lmax == 0.0 {
+                return Ok(&l * &l);
+            }
+            // (M / mmax)^-1 (L / lmax) scales rows; L is symmetric so L (M^-1 L) = L^T M^-1 L.
             let mut ml = l.clone();
             let indptr = ml.indptr().into_raw_storage().to_vec();
             let data = ml.data_mut();
@@ -75,7 +107,10 @@ pub fn harmonic_system(mesh: &Mesh, options: &HarmonicOptions) -> Result<CsMat<f
                     .iter_mut()
                     .for_each(|x| *x *= w);
             }
-            Ok(&l * &ml)
+            l.data_mut().iter_mut().for_each(|x| *x /= lmax);
+            let q = &l * &ml;
+            ensure_finite(&q, "biharmonic matrix row")?;
+            Ok(q)
         }
         k => Err(Error::InvalidArgument(format!(
             "harmonic order {k} (supported: 1, 2)"

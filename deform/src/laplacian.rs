@@ -6,11 +6,15 @@
 //! [`crate::mass_matrix`] for that). The sparsity pattern is always the diagonal plus every
 //! mesh edge (entries may be zero), so matrices of the same mesh share one pattern.
 //!
+//! Angles are computed scale-invariantly (see [`crate::mesh::is_degenerate_triangle`]): the
+//! cotangent Laplacian of a mesh scaled by `1e-300` or `1e300` is the same matrix. The
+//! mean-value weights have units of 1/length and are checked after assembly; a matrix with a
+//! non-finite entry is [`Error::Overflow`], never `Ok`.
+//!
 //! Triangle indices must be in range (see [`crate::validate()`]).
 
-use crate::mesh::is_degenerate_triangle;
+use crate::triangle::Frame;
 use crate::{Error, IndexList, Mesh, Result};
-use glam::DVec3;
 use rayon::prelude::*;
 use sprs::CsMat;
 
@@ -58,7 +62,7 @@ pub fn laplacian(mesh: &Mesh, kind: LaplacianKind) -> Result<CsMat<f64>> {
     match kind {
         LaplacianKind::Cotangent(o) => cotangent_laplacian(mesh, o),
         LaplacianKind::Default => cotangent_laplacian(mesh, CotangentOptions::default()),
-        LaplacianKind::MeanValue => Ok(mean_value_laplacian(mesh)),
+        LaplacianKind::MeanValue => mean_value_laplacian(mesh),
         LaplacianKind::Uniform => Ok(uniform_laplacian(mesh)),
     }
 }
@@ -84,7 +88,7 @@ pub fn cotangent_laplacian(mesh: &Mesh, options: CotangentOptions) -> Result<CsM
     let per_face: Vec<Option<[f64; 3]>> = mesh
         .triangles
         .par_iter()
-        .map(|t| half_cotangents(t.map(|v| mesh.positions[v as usize])))
+        .map(|t| Frame::new(t.map(|v| mesh.positions[v as usize])).map(|f| f.half_cotangents()))
         .collect();
     let degenerate: Vec<u32> = (0..per_face.len() as u32)
         .filter(|&f| per_face[f as usize].is_none())
@@ -103,30 +107,8 @@ pub fn cotangent_laplacian(mesh: &Mesh, options: CotangentOptions) -> Result<CsM
         for_each_off_diagonal(&mut l, |w| *w = w.max(0.0));
         rebuild_diagonal(&mut l);
     }
+    ensure_finite(&l, "cotangent Laplacian row")?;
     Ok(l)
-}
-
-/// Half cotangents of a triangle's angles, `[cot(A)/2, cot(B)/2, cot(C)/2]`, or `None` when it
-/// is degenerate ([`is_degenerate_triangle`]). Entry `k` is the weight of the edge opposite
-/// corner `k`.
-#[inline]
-pub(crate) fn half_cotangents(p: [DVec3; 3]) -> Option<[f64; 3]> {
-    // e_k is the edge opposite corner k.
-    let (e0, e1, e2) = (p[2] - p[1], p[0] - p[2], p[1] - p[0]);
-    let l2max = e0
-        .length_squared()
-        .max(e1.length_squared())
-        .max(e2.length_squared());
-    let dbl_area = e2.cross(-e1).length();
-    // Same test as `is_degenerate_triangle` (written so that NaN fails it).
-    if dbl_area.partial_cmp(&(f64::EPSILON * l2max)) != Some(std::cmp::Ordering::Greater)
-        || !l2max.is_finite()
-    {
-        return None;
-    }
-    // cot at a corner = (dot of its two outgoing edges) / (2 area).
-    let s = 0.5 / dbl_area;
-    Some([-e2.dot(e1) * s, -e0.dot(e2) * s, -e1.dot(e0) * s])
 }
 
 /// The mean-value Laplacian (Floater 2003), symmetrised.
@@ -146,12 +128,12 @@ pub(crate) fn half_cotangents(p: [DVec3; 3]) -> Option<[f64; 3]> {
 /// use deform::{mean_value_laplacian, Mesh};
 /// use glam::DVec3;
 /// let m = Mesh::new(vec![DVec3::ZERO, DVec3::X, DVec3::Y], vec![[0, 1, 2]]);
-/// let l = mean_value_laplacian(&m);
+/// let l = mean_value_laplacian(&m).unwrap();
 /// // Edge 0-1 (length 1): tan(90°/2) at vertex 0 and tan(45°/2) at vertex 1, averaged.
 /// let expect = (1.0 + std::f64::consts::FRAC_PI_8.tan()) / 2.0;
 /// assert!((l.get(0, 1).unwrap() - expect).abs() < 1e-15);
 /// ```
-pub fn mean_value_laplacian(mesh: &Mesh) -> CsMat<f64> {
+pub fn mean_value_laplacian(mesh: &Mesh) -> Result<CsMat<f64>> {
     mean_value(mesh, true)
 }
 
@@ -159,38 +141,46 @@ pub fn mean_value_laplacian(mesh: &Mesh) -> CsMat<f64> {
 /// `w_ij` (see [`mean_value_laplacian`]) and `-sum_j w_ij` on the diagonal. Dividing row `i`
 /// by `sum_j w_ij` gives the mean-value coordinates, which reproduce linear functions on a
 /// planar mesh (the symmetrised matrix does not).
-pub fn mean_value_weights(mesh: &Mesh) -> CsMat<f64> {
+pub fn mean_value_weights(mesh: &Mesh) -> Result<CsMat<f64>> {
     mean_value(mesh, false)
 }
 
-fn mean_value(mesh: &Mesh, symmetric: bool) -> CsMat<f64> {
+fn mean_value(mesh: &Mesh, symmetric: bool) -> Result<CsMat<f64>> {
     let weights: Vec<[[f64; 2]; 3]> = mesh
         .triangles
         .iter()
         .map(|t| {
-            let p = t.map(|v| mesh.positions[v as usize]);
-            if is_degenerate_triangle(p[0], p[1], p[2]) {
+            let Some(f) = Frame::new(t.map(|v| mesh.positions[v as usize])) else {
                 return [[0.0; 2]; 3];
-            }
-            // tan of the half angle at each corner: |e1 x e2| / (|e1||e2| + e1.e2).
-            let th: [f64; 3] = std::array::from_fn(|k| {
-                let e1 = p[(k + 1) % 3] - p[k];
-                let e2 = p[(k + 2) % 3] - p[k];
-                e1.cross(e2).length() / (e1.length() * e2.length() + e1.dot(e2))
-            });
+            };
+            let th = f.tan_half_angles();
             std::array::from_fn(|k| {
                 let (a, b) = ((k + 1) % 3, (k + 2) % 3);
-                let len = (p[b] - p[a]).length();
+                // Weights are 1/length: divide in normalised units, then scale back.
+                let inv = |x: f64| f.unscale(x / f.edge_length(k), -1);
                 if symmetric {
-                    let w = (th[a] + th[b]) / (2.0 * len);
+                    let w = inv(0.5 * (th[a] + th[b]));
                     [w, w]
                 } else {
-                    [th[a] / len, th[b] / len]
+                    [inv(th[a]), inv(th[b])]
                 }
             })
         })
         .collect();
-    assemble(mesh.positions.len(), &mesh.triangles, &weights)
+    let l = assemble(mesh.positions.len(), &mesh.triangles, &weights);
+    ensure_finite(&l, "mean-value Laplacian row")?;
+    Ok(l)
+}
+
+/// [`Error::Overflow`] naming the first row of `m` with a non-finite entry.
+pub(crate) fn ensure_finite(m: &CsMat<f64>, what: &'static str) -> Result<()> {
+    match m
+        .outer_iterator()
+        .position(|r| r.data().iter().any(|x| !x.is_finite()))
+    {
+        Some(index) => Err(Error::Overflow { what, index }),
+        None => Ok(()),
+    }
 }
 
 /// The uniform (graph) Laplacian: `L_ij = 1` for every edge, `L_ii = -valence(i)`.

@@ -24,11 +24,14 @@ pub mod laplacian;
 pub mod mass;
 pub mod mesh;
 pub mod solve;
+mod triangle;
+mod union_find;
 pub mod validate;
 
 pub use error::{Error, IndexList, Result};
 pub use harmonic::{
     harmonic_coordinates, harmonic_field, harmonic_system, Harmonic, HarmonicOptions,
+    BIHARMONIC_FILL_FLOOR, BIHARMONIC_FILL_PER_NONZERO,
 };
 pub use laplacian::{
     cotangent_laplacian, laplacian, mean_value_laplacian, mean_value_weights, uniform_laplacian,
@@ -36,5 +39,5 @@ pub use laplacian::{
 };
 pub use mass::{mass_diagonal, mass_matrix, MassKind};
 pub use mesh::{Aabb, Mesh};
-pub use solve::{DirichletSolver, Parallelism, SolverOptions};
+pub use solve::{DirichletSolver, Parallelism, SolveScratch, SolverOptions};
 pub use validate::{check_solvable, clean, validate, Cleaned, ValidationReport};

@@ -1,7 +1,7 @@
 //! Lumped (diagonal) mass matrices.
 
-use crate::mesh::is_degenerate_triangle;
-use crate::Mesh;
+use crate::triangle::Frame;
+use crate::{Error, Mesh, Result};
 use sprs::CsMat;
 
 /// How a triangle's area is shared among its corners.
@@ -19,55 +19,54 @@ pub enum MassKind {
 /// The lumped mass of every vertex (sum over incident triangles). Zero-area triangles add
 /// nothing; unreferenced vertices get zero. Triangle indices must be in range.
 ///
+/// Shares are computed in each triangle's normalised frame (see
+/// [`crate::mesh::is_degenerate_triangle`]) and scaled back to real units; masses are areas,
+/// so coordinates beyond about `1e150` (or below `1e-160`) can leave the `f64` range: that
+/// is [`Error::Overflow`] (a non-degenerate triangle whose area overflows or underflows to
+/// zero, or a vertex whose sum overflows), never an infinite or zero mass.
+///
 /// ```
 /// use deform::{mass_diagonal, MassKind, Mesh};
 /// use glam::DVec3;
 /// let m = Mesh::new(vec![DVec3::ZERO, DVec3::X, DVec3::Y], vec![[0, 1, 2]]);
-/// let v = mass_diagonal(&m, MassKind::Voronoi);
+/// let v = mass_diagonal(&m, MassKind::Voronoi).unwrap();
 /// // Right triangle: the right-angle corner gets half, the others a quarter of the area 1/2.
 /// assert_eq!(v, vec![0.25, 0.125, 0.125]);
 /// ```
-pub fn mass_diagonal(mesh: &Mesh, kind: MassKind) -> Vec<f64> {
+pub fn mass_diagonal(mesh: &Mesh, kind: MassKind) -> Result<Vec<f64>> {
     let mut m = vec![0.0; mesh.positions.len()];
-    for t in &mesh.triangles {
-        let p = t.map(|v| mesh.positions[v as usize]);
-        if is_degenerate_triangle(p[0], p[1], p[2]) {
+    for (f, t) in mesh.triangles.iter().enumerate() {
+        let Some(frame) = Frame::new(t.map(|v| mesh.positions[v as usize])) else {
             continue;
-        }
-        let area = 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).length();
+        };
+        let area = 0.5 * frame.double_area();
         let share = match kind {
             MassKind::Barycentric => [area / 3.0; 3],
-            MassKind::Voronoi => voronoi_shares(p, area),
+            MassKind::Voronoi => frame.voronoi_shares(),
         };
         for k in 0..3 {
-            m[t[k] as usize] += share[k];
+            let s = frame.unscale(share[k], 2);
+            if !s.is_finite() || s <= 0.0 {
+                return Err(Error::Overflow {
+                    what: "triangle area",
+                    index: f,
+                });
+            }
+            m[t[k] as usize] += s;
         }
     }
-    m
-}
-
-/// Mixed Voronoi area of each corner of a non-degenerate triangle.
-fn voronoi_shares(p: [glam::DVec3; 3], area: f64) -> [f64; 3] {
-    // Dot products at each corner tell obtuse (< 0) angles.
-    let dots: [f64; 3] =
-        std::array::from_fn(|k| (p[(k + 1) % 3] - p[k]).dot(p[(k + 2) % 3] - p[k]));
-    if let Some(o) = (0..3).find(|&k| dots[k] < 0.0) {
-        let mut s = [area / 4.0; 3];
-        s[o] = area / 2.0;
-        return s;
+    if let Some(index) = m.iter().position(|x| !x.is_finite()) {
+        return Err(Error::Overflow {
+            what: "vertex mass",
+            index,
+        });
     }
-    // cot of the angle at each corner = dot / (2 area).
-    let cot: [f64; 3] = std::array::from_fn(|k| dots[k] / (2.0 * area));
-    std::array::from_fn(|k| {
-        let (j, l) = ((k + 1) % 3, (k + 2) % 3);
-        // Edge k-j is opposite corner l; edge k-l is opposite corner j.
-        ((p[j] - p[k]).length_squared() * cot[l] + (p[l] - p[k]).length_squared() * cot[j]) / 8.0
-    })
+    Ok(m)
 }
 
-/// The diagonal mass matrix `M` (CSR).
-pub fn mass_matrix(mesh: &Mesh, kind: MassKind) -> CsMat<f64> {
-    let d = mass_diagonal(mesh, kind);
+/// The diagonal mass matrix `M` (CSR); see [`mass_diagonal`].
+pub fn mass_matrix(mesh: &Mesh, kind: MassKind) -> Result<CsMat<f64>> {
+    let d = mass_diagonal(mesh, kind)?;
     let n = d.len();
-    CsMat::new((n, n), (0..=n).collect(), (0..n).collect(), d)
+    Ok(CsMat::new((n, n), (0..=n).collect(), (0..n).collect(), d))
 }

@@ -51,20 +51,7 @@ impl Aabb {
     }
 }
 
-/// True when a triangle with these corners has (numerically) zero area: twice its area is at
-/// most `f64::EPSILON` times its longest squared edge, i.e. the cross product is at rounding
-/// level. Non-finite corners also count as degenerate.
-pub fn is_degenerate_triangle(a: DVec3, b: DVec3, c: DVec3) -> bool {
-    let (e0, e1, e2) = (c - b, a - c, b - a);
-    let l2max = e0
-        .length_squared()
-        .max(e1.length_squared())
-        .max(e2.length_squared());
-    let dbl_area = e2.cross(-e1).length();
-    // Not strictly greater (NaN included) counts as degenerate.
-    dbl_area.partial_cmp(&(f64::EPSILON * l2max)) != Some(std::cmp::Ordering::Greater)
-        || !l2max.is_finite()
-}
+pub use crate::triangle::is_degenerate_triangle;
 
 impl Mesh {
     /// A mesh from positions and triangles (not validated; see [`crate::validate()`]).

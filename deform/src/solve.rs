@@ -7,9 +7,9 @@
 //! elimination tree) and the numeric factor are computed once; solves for new boundary values
 //! or right-hand sides (any number of columns) only do triangular solves.
 
-use crate::adjacency::UnionFind;
+use crate::union_find::UnionFind;
 use crate::{Error, IndexList, Result};
-use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::cholesky::llt::factor::LltError;
 use faer::linalg::cholesky::llt::factor::LltRegularization;
 use faer::sparse::linalg::cholesky::{
@@ -308,23 +308,63 @@ impl DirichletSolver {
         Ok(())
     }
 
+    /// Workspace for [`Self::solve_into`] with up to `ncols` columns: allocate it once and
+    /// reuse it for every solve (faer style), so that solving allocates nothing. It stays
+    /// valid until [`Self::set_constrained`]; [`Self::update_values`] keeps it valid.
+    pub fn scratch(&self, ncols: usize) -> Result<SolveScratch> {
+        let nf = self.free.len();
+        let len = nf.checked_mul(ncols).ok_or(Error::Overflow {
+            what: "scratch size",
+            index: ncols,
+        })?;
+        let req = self.solve_req(ncols);
+        let mem = MemBuffer::try_new(req).map_err(|_| Error::Solver("out of memory".into()))?;
+        Ok(SolveScratch {
+            y: vec![0.0; len],
+            mem,
+            free: nf,
+            ncols,
+            size: req.size_bytes(),
+            align: req.align_bytes(),
+        })
+    }
+
+    /// faer's workspace requirement of a triangular solve with `ncols` columns.
+    fn solve_req(&self, ncols: usize) -> StackReq {
+        if self.free.is_empty() || ncols == 0 {
+            StackReq::EMPTY
+        } else {
+            let par = self.options.parallelism.to_faer();
+            self.symbolic.solve_in_place_scratch::<f64>(ncols, par)
+        }
+    }
+
     /// Solves with zero `b`: `boundary` holds `ncols` columns of boundary values (column-major,
     /// `constrained().len()` rows each). Returns the full `len() x ncols` solution,
-    /// column-major, equal to `boundary` on the constrained rows.
+    /// column-major, equal to `boundary` on the constrained rows. Allocates the result and a
+    /// [`SolveScratch`]; per-frame callers use [`Self::solve_into`].
     pub fn solve(&self, boundary: &[f64], ncols: usize) -> Result<Vec<f64>> {
         let mut out = vec![0.0; self.n * ncols];
-        self.solve_into(None, boundary, ncols, &mut out)?;
+        let mut scratch = self.scratch(ncols)?;
+        self.solve_into(None, boundary, ncols, &mut out, &mut scratch)?;
         Ok(out)
     }
 
     /// Like [`Self::solve`] with a right-hand side `b` (`len() x ncols`, column-major; only
-    /// its free rows are used), written into `out` (`len() x ncols`).
+    /// its free rows are used), written into `out` (`len() x ncols`), using `scratch` from
+    /// [`Self::scratch`] (with at least `ncols` columns). Allocation-free with
+    /// [`Parallelism::Sequential`]. Gives bit-for-bit the result of [`Self::solve`].
+    ///
+    /// Errors: [`Error::DimensionMismatch`] (buffer sizes, or a scratch too small or made
+    /// for another constrained set), [`Error::NonFinite`] (a boundary value),
+    /// [`Error::NotPositiveDefinite`] (a non-finite solution).
     pub fn solve_into(
         &self,
         rhs: Option<&[f64]>,
         boundary: &[f64],
         ncols: usize,
         out: &mut [f64],
+        scratch: &mut SolveScratch,
     ) -> Result<()> {
         let (n, nc, nf) = (self.n, self.constrained.len(), self.free.len());
         let check = |what, expected, got| {
@@ -343,6 +383,22 @@ impl DirichletSolver {
         if let Some(b) = rhs {
             check("right-hand side", n * ncols, b.len())?;
         }
+        check("free rows of the scratch", nf, scratch.free)?;
+        if ncols > scratch.ncols {
+            return Err(Error::DimensionMismatch {
+                what: "columns of the scratch",
+                expected: ncols,
+                got: scratch.ncols,
+            });
+        }
+        let req = self.solve_req(ncols);
+        if req.size_bytes() > scratch.size || req.align_bytes() > scratch.align {
+            return Err(Error::DimensionMismatch {
+                what: "bytes of the scratch",
+                expected: req.size_bytes(),
+                got: scratch.size,
+            });
+        }
         if let Some(i) = boundary.iter().position(|x| !x.is_finite()) {
             let v = self.constrained[i % nc.max(1)];
             return Err(Error::NonFinite {
@@ -350,7 +406,7 @@ impl DirichletSolver {
             });
         }
         // Reduced right-hand side b_f - Q_fc x_c, column-major nf x ncols.
-        let mut y = vec![0.0; nf * ncols];
+        let y = &mut scratch.y[..nf * ncols];
         for c in 0..ncols {
             let bc = &boundary[c * nc..(c + 1) * nc];
             let yc = &mut y[c * nf..(c + 1) * nf];
@@ -367,15 +423,12 @@ impl DirichletSolver {
         }
         if nf > 0 && ncols > 0 {
             let par = self.options.parallelism.to_faer();
-            let mut mem =
-                MemBuffer::try_new(self.symbolic.solve_in_place_scratch::<f64>(ncols, par))
-                    .map_err(|_| Error::Solver("out of memory".into()))?;
             let llt = LltRef::<usize, f64>::new(&self.symbolic, &self.l_values);
             llt.solve_in_place_with_conj(
                 Conj::No,
-                MatMut::from_column_major_slice_mut(&mut y, nf, ncols),
+                MatMut::from_column_major_slice_mut(y, nf, ncols),
                 par,
-                MemStack::new(&mut mem),
+                MemStack::new(&mut scratch.mem),
             );
         }
         for c in 0..ncols {
@@ -394,6 +447,38 @@ impl DirichletSolver {
             )));
         }
         Ok(())
+    }
+}
+
+/// Workspace of [`DirichletSolver::solve_into`], from [`DirichletSolver::scratch`].
+pub struct SolveScratch {
+    /// The reduced right-hand sides / free unknowns, `free x ncols`.
+    y: Vec<f64>,
+    /// faer's triangular-solve workspace.
+    mem: MemBuffer,
+    /// Free rows of the solver it was made for.
+    free: usize,
+    /// Most columns it holds.
+    ncols: usize,
+    /// Size and alignment of `mem`.
+    size: usize,
+    align: usize,
+}
+
+impl std::fmt::Debug for SolveScratch {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("SolveScratch")
+            .field("free", &self.free)
+            .field("ncols", &self.ncols)
+            .field("bytes", &self.size)
+            .finish()
+    }
+}
+
+impl SolveScratch {
+    /// The most columns one solve may have with this scratch.
+    pub fn columns(&self) -> usize {
+        self.ncols
     }
 }
 

@@ -1,7 +1,14 @@
 //! Mesh validation (with the offending indices) and cleaning of raw scans.
 
+use crate::adjacency;
 use crate::mesh::is_degenerate_triangle;
 use crate::{Error, IndexList, Mesh, Result};
+
+/// The largest coordinate magnitude [`ValidationReport::check_solvable`] accepts: below it
+/// every edge vector (a difference of two positions) is finite. Angles are computed
+/// scale-invariantly, so any scale below it gives the same Laplacian; quantities with units
+/// (masses, mean-value weights) are checked after they are computed.
+pub const MAX_COORDINATE: f64 = 1e300;
 
 /// What [`validate()`] found. Every list holds indices into the input mesh.
 #[derive(Debug, Clone, PartialEq, Eq, Default)]
@@ -24,6 +31,8 @@ pub struct ValidationReport {
     pub unreferenced_vertices: Vec<u32>,
     /// Vertices with a NaN or infinite coordinate.
     pub non_finite_vertices: Vec<u32>,
+    /// Vertices with a finite coordinate beyond [`MAX_COORDINATE`] in magnitude.
+    pub huge_vertices: Vec<u32>,
     /// Number of boundary edges (one incident triangle).
     pub boundary_edges: usize,
     /// The smallest vertex of each connected component of referenced vertices.
@@ -41,11 +50,13 @@ impl ValidationReport {
             && self.non_manifold_vertices.is_empty()
             && self.unreferenced_vertices.is_empty()
             && self.non_finite_vertices.is_empty()
+            && self.huge_vertices.is_empty()
             && self.components.len() == 1
     }
 
     /// The first hard error for Laplacian-based solves: empty mesh, out-of-range indices,
-    /// non-finite coordinates, non-manifold edges or vertices. Degenerate triangles,
+    /// non-finite coordinates, coordinates beyond [`MAX_COORDINATE`], non-manifold edges or
+    /// vertices. Degenerate triangles,
     /// unreferenced vertices and several components are not errors here (the Laplacians skip
     /// degenerate triangles; unconstrained parts are caught by the solver).
     pub fn check_solvable(&self) -> Result<()> {
@@ -64,6 +75,12 @@ impl ValidationReport {
         if !self.non_finite_vertices.is_empty() {
             return Err(Error::NonFinite {
                 vertices: IndexList(self.non_finite_vertices.clone()),
+            });
+        }
+        if !self.huge_vertices.is_empty() {
+            return Err(Error::CoordinateRange {
+                vertices: IndexList(self.huge_vertices.clone()),
+                limit: MAX_COORDINATE,
             });
         }
         if !self.non_manifold_edges.is_empty() || !self.non_manifold_vertices.is_empty() {
@@ -95,13 +112,14 @@ pub fn validate(mesh: &Mesh) -> ValidationReport {
 }
 
 /// The checks of [`ValidationReport::check_solvable`] only (empty mesh, out-of-range indices,
-/// non-finite coordinates, non-manifold edges and vertices), skipping the duplicate-face and
+/// non-finite or huge coordinates, non-manifold edges and vertices), skipping the duplicate-face and
 /// component analyses: the fast path used before building Laplacian systems.
 pub fn check_solvable(mesh: &Mesh) -> Result<()> {
     inspect(mesh, false).check_solvable()
 }
 
-/// Validation; `full = false` skips duplicates and components.
+/// Validation; `full = false` skips duplicates and components. Linear in the mesh size
+/// (plus sorting), whatever the valences.
 fn inspect(mesh: &Mesh, full: bool) -> ValidationReport {
     let n = mesh.positions.len();
     let mut r = ValidationReport {
@@ -109,9 +127,13 @@ fn inspect(mesh: &Mesh, full: bool) -> ValidationReport {
         triangle_count: mesh.triangles.len(),
         ..Default::default()
     };
-    r.non_finite_vertices = (0..n as u32)
-        .filter(|&v| !mesh.positions[v as usize].is_finite())
-        .collect();
+    for (v, p) in mesh.positions.iter().enumerate() {
+        if !p.is_finite() {
+            r.non_finite_vertices.push(v as u32);
+        } else if p.abs().max_element() > MAX_COORDINATE {
+            r.huge_vertices.push(v as u32);
+        }
+    }
     // Triangles usable for topology: in range and with three distinct indices.
     let mut good = Vec::with_capacity(mesh.triangles.len());
     let mut good_ids = Vec::with_capacity(mesh.triangles.len());
@@ -130,88 +152,28 @@ fn inspect(mesh: &Mesh, full: bool) -> ValidationReport {
             good_ids.push(f as u32);
         }
     }
-    let sub = Mesh {
-        positions: Vec::new(),
-        triangles: good,
-    };
     if full {
-        // Duplicates: same vertex set, any order.
-        let mut keys: Vec<([u32; 3], u32)> = sub
-            .triangles
-            .iter()
-            .zip(&good_ids)
-            .map(|(t, &f)| {
-                let mut k = *t;
-                k.sort_unstable();
-                (k, f)
-            })
-            .collect();
-        keys.sort_unstable();
-        for w in keys.windows(2) {
-            if w[0].0 == w[1].0 {
-                // `keys` is sorted by face within equal keys; report against the first occurrence.
-                let first = keys.partition_point(|k| k.0 < w[1].0);
-                r.duplicate_faces.push([w[1].1, keys[first].1]);
-            }
-        }
-        r.duplicate_faces.sort_unstable();
+        r.duplicate_faces = duplicates(&good, &good_ids);
     }
-    // Edges (positions are not needed for topology; pad the vertex count).
-    let sub = Mesh {
-        positions: vec![glam::DVec3::ZERO; n],
-        triangles: sub.triangles,
-    };
-    let edges = sub.edges();
+    let edges = adjacency::edges(&good, n);
     r.boundary_edges = edges.boundary().count();
     r.non_manifold_edges = edges.non_manifold().map(|e| edges.edges[e]).collect();
-    // Non-manifold vertices: the link (opposite edges of incident triangles) must be connected.
-    let vf = sub.vertex_faces();
-    // Reused buffers: link vertices and a tiny union-find over them.
-    let mut link: Vec<u32> = Vec::new();
-    let mut parent: Vec<usize> = Vec::new();
-    for v in 0..n {
-        let faces = vf.row(v);
-        if faces.is_empty() {
-            r.unreferenced_vertices.push(v as u32);
-            continue;
-        }
-        link.clear();
-        parent.clear();
-        let slot = |w: u32, link: &mut Vec<u32>, parent: &mut Vec<usize>| -> usize {
-            match link.iter().position(|&x| x == w) {
-                Some(i) => i,
-                None => {
-                    link.push(w);
-                    parent.push(parent.len());
-                    link.len() - 1
-                }
-            }
-        };
-        let mut merges = 0;
-        for &f in faces {
-            let t = sub.triangles[f as usize];
-            let k = t.iter().position(|&w| w as usize == v).unwrap_or(0);
-            let i = slot(t[(k + 1) % 3], &mut link, &mut parent);
-            let j = slot(t[(k + 2) % 3], &mut link, &mut parent);
-            let (ri, rj) = (root(&mut parent, i), root(&mut parent, j));
-            if ri != rj {
-                parent[ri] = rj;
-                merges += 1;
-            }
-        }
-        // Link components = link vertices - successful merges.
-        if link.len() - merges > 1 {
-            r.non_manifold_vertices.push(v as u32);
+    // A vertex is manifold when its triangles form one edge-connected fan.
+    let fans = adjacency::fan_counts(&good, n, &edges);
+    for (v, &k) in fans.iter().enumerate() {
+        match k {
+            0 => r.unreferenced_vertices.push(v as u32),
+            1 => {}
+            _ => r.non_manifold_vertices.push(v as u32),
         }
     }
     if full {
         // Components among referenced vertices.
-        let comps = sub.components();
+        let comps = adjacency::components(&good, n);
         let mut seen = vec![false; comps.count];
-        let referenced = sub.referenced();
-        for (v, &used) in referenced.iter().enumerate() {
+        for (v, &k) in fans.iter().enumerate() {
             let c = comps.labels[v] as usize;
-            if used && !seen[c] {
+            if k > 0 && !seen[c] {
                 seen[c] = true;
                 r.components.push(v as u32);
             }
@@ -220,13 +182,30 @@ fn inspect(mesh: &Mesh, full: bool) -> ValidationReport {
     r
 }
 
-/// Root of `i` in a small union-find forest (with path halving).
-fn root(parent: &mut [usize], mut i: usize) -> usize {
-    while parent[i] != i {
-        parent[i] = parent[parent[i]];
-        i = parent[i];
+/// `[face, earlier]` pairs of triangles with the same vertex set (any order), sorted.
+fn duplicates(triangles: &[[u32; 3]], ids: &[u32]) -> Vec<[u32; 2]> {
+    let mut keys: Vec<([u32; 3], u32)> = triangles
+        .iter()
+        .zip(ids)
+        .map(|(t, &f)| {
+            let mut k = *t;
+            k.sort_unstable();
+            (k, f)
+        })
+        .collect();
+    keys.sort_unstable();
+    let mut out = Vec::new();
+    let mut first = 0;
+    for i in 1..keys.len() {
+        if keys[i].0 != keys[first].0 {
+            first = i;
+        } else {
+            // Sorted by face within equal keys: report against the first occurrence.
+            out.push([keys[i].1, keys[first].1]);
+        }
     }
-    i
+    out.sort_unstable();
+    out
 }
 
 /// The result of [`clean()`]: the cleaned mesh and the vertex maps.

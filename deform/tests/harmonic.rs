@@ -15,7 +15,12 @@ fn selection(mesh: &str, sel: &str) -> Option<(Mesh, Vec<Vec<u32>>)> {
     let dir = common::data_dir()?.join("meshes/libigl");
     let m = read_mesh(dir.join(mesh)).expect("mesh");
     let s = read_dmat(dir.join(sel)).expect("selection");
-    Some((m, (0..3).map(|g| s.rows_equal_to(g)).collect()))
+    Some((
+        m,
+        (0..3)
+            .map(|g| s.rows_equal_to(g).expect("selection"))
+            .collect(),
+    ))
 }
 
 #[test]
@@ -165,7 +170,9 @@ fn solver_reuse_multi_column_and_parallel() {
     let b = mul(&q2, &f);
     let fb: Vec<f64> = bnd.iter().map(|&v| f[v as usize]).collect();
     let mut out = vec![0.0; 100];
-    s.solve_into(Some(&b), &fb, 1, &mut out).expect("rhs");
+    let mut scratch = s.scratch(1).expect("scratch");
+    s.solve_into(Some(&b), &fb, 1, &mut out, &mut scratch)
+        .expect("rhs");
     assert!(out.iter().zip(&f).all(|(x, y)| (x - y).abs() < 1e-10));
     // A different pattern is refused; a new constrained set refactors.
     let other = cotangent_laplacian(&grid(10, 10, false), Default::default())

@@ -124,10 +124,14 @@ fn dmat_files_ascii_and_binary() {
         }
     }
     let knight = read_dmat(lib.join("decimated-knight-selection.dmat")).expect("knight");
-    let groups: Vec<usize> = (-1..=2).map(|g| knight.rows_equal_to(g).len()).collect();
+    let groups: Vec<usize> = (-1..=2)
+        .map(|g| knight.rows_equal_to(g).expect("one column").len())
+        .collect();
     assert_eq!(groups, vec![429, 21, 27, 25]);
     let max = read_dmat(lib.join("decimated-max-selection.dmat")).expect("max");
-    let groups: Vec<usize> = (-1..=2).map(|g| max.rows_equal_to(g).len()).collect();
+    let groups: Vec<usize> = (-1..=2)
+        .map(|g| max.rows_equal_to(g).expect("one column").len())
+        .collect();
     assert_eq!(groups, vec![2901, 2214, 90, 67]);
 }
 

@@ -3,7 +3,7 @@
 //! The first line holds `cols rows`, then the values in column-major order. A first line of
 //! `0 0` marks a binary file: a second line holds `cols rows`, then raw little-endian `f64`s.
 
-use super::{read_bytes, Ctx};
+use super::{capacity, read_bytes, Ctx};
 use crate::{Error, Result};
 use std::io::Write;
 use std::path::Path;
@@ -39,10 +39,27 @@ impl Dmat {
 
     /// Rows of a one-column selection whose value is `group`, e.g. libigl tutorial selections
     /// (`-1` free, `0, 1, 2..` handle groups). Values are compared after rounding.
-    pub fn rows_equal_to(&self, group: i64) -> Vec<u32> {
-        (0..self.rows as u32)
+    ///
+    /// Errors: [`Error::DimensionMismatch`] unless the matrix has exactly one column (a
+    /// `5x0` matrix, read from `0 5`, is not a selection) holding `rows` values.
+    pub fn rows_equal_to(&self, group: i64) -> Result<Vec<u32>> {
+        if self.cols != 1 {
+            return Err(Error::DimensionMismatch {
+                what: "columns of a selection matrix",
+                expected: 1,
+                got: self.cols,
+            });
+        }
+        if self.data.len() != self.rows || self.rows > u32::MAX as usize {
+            return Err(Error::DimensionMismatch {
+                what: "values of a selection matrix",
+                expected: self.rows,
+                got: self.data.len(),
+            });
+        }
+        Ok((0..self.rows as u32)
             .filter(|&r| self.data[r as usize].round() as i64 == group)
-            .collect()
+            .collect())
     }
 }
 
@@ -64,7 +81,8 @@ fn header(bytes: &[u8], at: usize, ctx: Ctx) -> Result<(usize, usize, usize)> {
     Ok((cols, rows, (end + 1).min(bytes.len())))
 }
 
-/// Parses DMAT bytes (ASCII or binary).
+/// Parses DMAT bytes (ASCII or binary). Every value must be finite; a matrix with zero rows
+/// or columns (e.g. `0 5`) parses, with no values.
 ///
 /// ```
 /// let m = deform::io::parse_dmat(b"2 3\n1 2 3\n4 5 6\n", "m").unwrap();
@@ -91,14 +109,21 @@ pub fn parse_dmat(bytes: &[u8], name: &str) -> Result<Dmat> {
                 body.len()
             )));
         }
-        let data = body
+        let data: Vec<f64> = body
             .chunks_exact(8)
             .map(|c| f64::from_le_bytes([c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]]))
             .collect();
+        if let Some(k) = data.iter().position(|x| !x.is_finite()) {
+            return Err(ctx.err(format!(
+                "binary value {k} (row {}, column {}) is not finite",
+                k % rows.max(1),
+                k / rows.max(1)
+            )));
+        }
         return Ok(Dmat { rows, cols, data });
     }
     let text = std::str::from_utf8(&bytes[next..]).map_err(|_| ctx.err("body is not text"))?;
-    let mut data = Vec::with_capacity(len.min(1 << 26));
+    let mut data = Vec::with_capacity(capacity(len, bytes.len()));
     for (ln, line) in text.lines().enumerate() {
         ctx.line = ln + 2;
         for tok in line.split_ascii_whitespace() {

@@ -1,7 +1,7 @@
 //! INRIA MEDIT meshes (`.mesh`, ASCII): vertices, triangles, tetrahedra.
 
-use super::{read_text, Ctx};
-use crate::{Mesh, Result};
+use super::{capacity, read_text, Ctx};
+use crate::{Error, Mesh, Result};
 use glam::DVec3;
 use std::path::Path;
 
@@ -34,7 +34,9 @@ pub fn read_medit(path: impl AsRef<Path>) -> Result<MeditMesh> {
 
 /// Parses ASCII MEDIT: `MeshVersionFormatted`, `Dimension 3`, then sections `Vertices`,
 /// `Triangles`, `Quadrilaterals` (split into two triangles), `Tetrahedra`, `Edges`, each a
-/// count followed by entries with a trailing reference label; `End` stops.
+/// count followed by entries with a trailing reference label; `End` stops. Coordinates must
+/// be finite and tetrahedra must refer to existing vertices (nothing else checks them);
+/// triangle indices past the last vertex are kept and reported by [`crate::validate()`].
 ///
 /// ```
 /// let t = "MeshVersionFormatted 1\nDimension 3\nVertices\n3\n0 0 0 0\n1 0 0 0\n0 1 0 0\nTriangles\n1\n1 2 3 0\nEnd\n";
@@ -69,7 +71,7 @@ pub fn parse_medit(text: &str, name: &str) -> Result<MeditMesh> {
             }
             "Vertices" => {
                 let n = t.usize("vertex count")?;
-                out.positions.reserve(n.min(1 << 24));
+                out.positions.reserve(capacity(n, text.len()));
                 for _ in 0..n {
                     let x = t.f64("x coordinate")?;
                     let y = t.f64("y coordinate")?;
@@ -109,6 +111,21 @@ pub fn parse_medit(text: &str, name: &str) -> Result<MeditMesh> {
             "End" => break,
             other => return Err(t.ctx.err(format!("unsupported MEDIT keyword {other:?}"))),
         }
+    }
+    let n = out.positions.len();
+    if let Some(k) = out
+        .tetrahedra
+        .iter()
+        .position(|e| e.iter().any(|&v| v as usize >= n))
+    {
+        return Err(Error::Parse {
+            path: name.to_string(),
+            line: 0,
+            message: format!(
+                "tetrahedron {k} refers to vertex {} but there are {n} vertices",
+                out.tetrahedra[k].iter().max().map_or(0, |&v| v as u64 + 1)
+            ),
+        });
     }
     Ok(out)
 }

@@ -65,10 +65,16 @@ impl Ctx<'_> {
         }
     }
 
+    /// A finite number: NaN, infinities and values that overflow (`1e400`) are errors.
     pub(crate) fn f64(&self, tok: Option<&str>, what: &str) -> Result<f64> {
         let tok = tok.ok_or_else(|| self.err(format!("missing {what}")))?;
-        tok.parse::<f64>()
-            .map_err(|_| self.err(format!("bad {what} {tok:?}")))
+        let x = tok
+            .parse::<f64>()
+            .map_err(|_| self.err(format!("bad {what} {tok:?}")))?;
+        if !x.is_finite() {
+            return Err(self.err(format!("non-finite {what} {tok:?}")));
+        }
+        Ok(x)
     }
 
     pub(crate) fn usize(&self, tok: Option<&str>, what: &str) -> Result<usize> {
@@ -91,6 +97,12 @@ impl Ctx<'_> {
         let i = self.usize(tok, what)?;
         u32::try_from(i).map_err(|_| self.err(format!("{what} {i} is too large")))
     }
+}
+
+/// A capacity to reserve for `count` items announced by a file of `len` bytes: never more
+/// items than bytes, so a lying header cannot make us allocate gigabytes up front.
+pub(crate) fn capacity(count: usize, len: usize) -> usize {
+    count.min(len)
 }
 
 /// Appends the fan triangulation of a polygon.

@@ -19,8 +19,8 @@ pub fn read_obj(path: impl AsRef<Path>) -> Result<Mesh> {
 /// Parses OBJ text. Vertices keep their file order (unreferenced ones included); face
 /// corners may be `v`, `v/t`, `v//n` or `v/t/n`, with negative (relative) indices allowed;
 /// polygons become triangle fans. Texture coordinates, normals, groups, materials, lines and
-/// points are ignored. Indices past the last vertex are kept and reported by
-/// [`crate::validate()`].
+/// points are ignored. Coordinates must be finite. Indices past the last vertex are kept and
+/// reported by [`crate::validate()`].
 ///
 /// ```
 /// let m = deform::io::parse_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n", "quad").unwrap();

@@ -1,6 +1,6 @@
 //! Object File Format (`OFF`, also `COFF`/`NOFF` headers; extra per-vertex values ignored).
 
-use super::{push_fan, read_text, Ctx};
+use super::{capacity, push_fan, read_text, Ctx};
 use crate::{Mesh, Result};
 use glam::DVec3;
 use std::path::Path;
@@ -13,7 +13,9 @@ pub fn read_off(path: impl AsRef<Path>) -> Result<Mesh> {
 
 /// Parses OFF text: a header line (`OFF`, possibly followed by the counts), the counts
 /// `V F E`, `V` vertex lines, then `F` face lines `n i_0 .. i_{n-1}` (0-based, polygons are
-/// fan-triangulated, trailing colour values ignored). `#` starts a comment.
+/// fan-triangulated, trailing colour values ignored). `#` starts a comment. Coordinates
+/// must be finite; indices past the last vertex are kept and reported by
+/// [`crate::validate()`].
 ///
 /// ```
 /// let m = deform::io::parse_off("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "tri").unwrap();
@@ -43,7 +45,7 @@ pub fn parse_off(text: &str, name: &str) -> Result<Mesh> {
     };
     let nv = ctx.usize(counts.first().copied(), "vertex count")?;
     let nf = ctx.usize(counts.get(1).copied(), "face count")?;
-    let mut positions = Vec::with_capacity(nv.min(1 << 24));
+    let mut positions = Vec::with_capacity(capacity(nv, text.len()));
     for _ in 0..nv {
         let (ln, l) = lines
             .next()
@@ -55,7 +57,7 @@ pub fn parse_off(text: &str, name: &str) -> Result<Mesh> {
         let z = ctx.f64(t.next(), "z coordinate")?;
         positions.push(DVec3::new(x, y, z));
     }
-    let mut triangles = Vec::with_capacity(nf.min(1 << 24));
+    let mut triangles = Vec::with_capacity(capacity(nf, text.len()));
     let mut poly = Vec::new();
     for _ in 0..nf {
         let (ln, l) = lines

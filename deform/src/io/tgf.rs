@@ -22,6 +22,7 @@ pub fn read_tgf(path: impl AsRef<Path>) -> Result<Skeleton> {
 
 /// Parses TGF: joint lines `index x y z ...` (1-based index, extra columns ignored), a `#`
 /// line, then bone lines `a b ...` (1-based joints), optionally ended by another `#`.
+/// Coordinates must be finite and bones must join existing joints.
 ///
 /// ```
 /// let s = deform::io::parse_tgf("1 0 0 0\n2 0 1 0\n#\n1 2\n#\n", "s").unwrap();
