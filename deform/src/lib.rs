@@ -7,6 +7,13 @@
 //! * [`DirichletSolver`]: prefactored sparse Cholesky (faer) with Dirichlet conditions;
 //! * [`Harmonic`] fields and coordinates.
 //!
+//! Every fallible function returns `Ok` only with finite values. Angles (cotangents, mean-value
+//! tangents, the degenerate-triangle test) are computed scale-invariantly, so a mesh scaled by
+//! `1e-300` or `1e299` has the unit mesh's cotangent Laplacian and fields; [`validate()`]
+//! refuses coordinates beyond [`validate::MAX_COORDINATE`] (where edge vectors would
+//! overflow), and quantities with units (masses, mean-value weights) that leave the `f64`
+//! range are [`Error::Overflow`].
+//!
 //! ```
 //! use deform::{harmonic_field, io, HarmonicOptions};
 //! let off = "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";

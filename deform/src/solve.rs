@@ -7,6 +7,7 @@
 //! elimination tree) and the numeric factor are computed once; solves for new boundary values
 //! or right-hand sides (any number of columns) only do triangular solves.
 
+use crate::laplacian::ensure_finite;
 use crate::union_find::UnionFind;
 use crate::{Error, IndexList, Result};
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
@@ -103,7 +104,8 @@ impl DirichletSolver {
     /// Analyses and factorises `Q_ff` for the given constrained rows (their order is the order
     /// of the boundary values passed to [`Self::solve`]). `q` must be square and symmetric.
     ///
-    /// Errors: [`Error::DimensionMismatch`] (non-square), [`Error::ConstraintOutOfRange`],
+    /// Errors: [`Error::DimensionMismatch`] (non-square), [`Error::Overflow`] (a non-finite
+    /// entry of `q` or of its factor), [`Error::ConstraintOutOfRange`],
     /// [`Error::OverlappingConstraints`] (an index listed twice), [`Error::Unconstrained`]
     /// (see [`SolverOptions::check_components`]), [`Error::NotPositiveDefinite`].
     pub fn new(q: &CsMat<f64>, constrained: &[u32], options: SolverOptions) -> Result<Self> {
@@ -116,6 +118,7 @@ impl DirichletSolver {
             });
         }
         let q = ensure_csr(q);
+        ensure_finite(&q, "system matrix row")?;
         // Classify rows: local index among the free rows or among the constrained ones.
         const FREE: u32 = u32::MAX;
         let mut slot = vec![FREE; n];
@@ -238,7 +241,13 @@ impl DirichletSolver {
             Default::default(),
         );
         match res {
-            Ok(_) => Ok(()),
+            Ok(_) => match self.l_values.iter().position(|x| !x.is_finite()) {
+                Some(index) => Err(Error::Overflow {
+                    what: "Cholesky factor value",
+                    index,
+                }),
+                None => Ok(()),
+            },
             Err(LltError::NonPositivePivot { index }) => {
                 // `index` counts in the fill-reducing order, 1-based in faer's simplicial
                 // factorisation and 0-based in its supernodal one; name the vertex.
@@ -291,6 +300,7 @@ impl DirichletSolver {
         {
             return Err(Error::PatternChanged);
         }
+        ensure_finite(&q, "system matrix row")?;
         let data = q.data();
         for (v, &k) in self.ff_values.iter_mut().zip(&self.ff_src) {
             *v = data[k];

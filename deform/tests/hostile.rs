@@ -239,3 +239,31 @@ fn biharmonic_fill_of_a_huge_polygon_is_refused() {
     // A small fan is fine.
     assert!(harmonic_system(&fan(50), &o2).is_ok());
 }
+
+#[test]
+fn a_non_finite_system_matrix_is_refused() {
+    let q = cotangent_laplacian(&tet(1.0), Default::default())
+        .expect("L")
+        .map(|v| -v);
+    let opts = deform::SolverOptions::default();
+    let mut s = deform::DirichletSolver::new(&q, &[0], opts).expect("solver");
+    let mut bad = q.map(|v| v * 1e308 * 10.0);
+    assert!(matches!(
+        deform::DirichletSolver::new(&bad, &[0], opts),
+        Err(Error::Overflow { .. })
+    ));
+    assert!(matches!(s.update_values(&bad), Err(Error::Overflow { .. })));
+    bad = q.map(|v| v * f64::MAX);
+    // Finite entries whose factor overflows are refused too, never a NaN solution.
+    match deform::DirichletSolver::new(&bad, &[0], opts) {
+        Ok(s) => assert!(s
+            .solve(&[1.0], 1)
+            .expect("finite")
+            .iter()
+            .all(|x| x.is_finite())),
+        Err(e) => assert!(
+            matches!(e, Error::Overflow { .. } | Error::NotPositiveDefinite(_)),
+            "{e}"
+        ),
+    }
+}
