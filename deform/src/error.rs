@@ -182,6 +182,9 @@ pub enum Error {
     /// A faer routine failed (out of memory, index overflow).
     #[error("sparse solver error: {0}")]
     Solver(String),
+    /// Bad keys, handle sets or parameters of a deformer.
+    #[error(transparent)]
+    Keys(#[from] crate::deformer::KeyError),
 }
 
 /// `Result` with [`Error`].

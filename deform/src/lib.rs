@@ -24,18 +24,36 @@
 //! ```
 
 pub mod adjacency;
+pub mod blend;
+pub mod bspline;
+pub mod deformer;
 mod error;
+pub mod fabrik;
+pub mod handles;
 pub mod harmonic;
 pub mod io;
 pub mod laplacian;
 pub mod mass;
 pub mod mesh;
+pub mod render;
+pub mod shapes;
 pub mod solve;
+pub mod spline;
 mod triangle;
 mod union_find;
 pub mod validate;
 
+pub use blend::{BlendMethod, BoundBlend, KeyWeights, PreparedKeys};
+pub use bspline::{
+    bspline_basis, bspline_degree, bspline_motor, fit_bspline, BsplineFit, FitSolver,
+};
+pub use deformer::{Deformer, KeyError, MAX_KEYS};
 pub use error::{Error, IndexList, Result};
+pub use fabrik::{
+    chain_key_motors, chain_parameters, fabrik, ChainDeformer, ChainPose, FabrikOptions,
+    FabrikSolution, FabrikStatus,
+};
+pub use handles::{HandleOptions, MotorHandles};
 pub use harmonic::{
     harmonic_coordinates, harmonic_field, harmonic_system, Harmonic, HarmonicOptions,
     BIHARMONIC_FILL_FLOOR, BIHARMONIC_FILL_PER_NONZERO,
@@ -47,4 +65,5 @@ pub use laplacian::{
 pub use mass::{mass_diagonal, mass_matrix, MassKind};
 pub use mesh::{Aabb, Mesh};
 pub use solve::{DirichletSolver, Parallelism, SolveScratch, SolverOptions};
+pub use spline::{SplineDeformer, SplineOptions, WeightScheme};
 pub use validate::{check_solvable, clean, validate, Cleaned, ValidationReport};

@@ -1,0 +1,291 @@
+//! FABRIK inverse kinematics for one chain (Aristidou and Lasenby 2011), and the first
+//! paper's Fig. 5 pipeline: the joint frames of the solved chain are key motors `Q_i`, a
+//! cubic B-spline is fitted to them (section III.C) and drives a spline-aligned deformation.
+
+use crate::bspline::{fit_bspline, BsplineFit};
+use crate::deformer::{Deformer, KeyError};
+use crate::spline::{SplineDeformer, SplineOptions, WeightScheme};
+use crate::{Mesh, Result};
+use cga::ScaledMotor;
+use glam::{DQuat, DVec3};
+
+/// Stop rule of [`fabrik`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FabrikOptions {
+    /// The end effector is close enough when within this distance of the target.
+    pub tolerance: f64,
+    /// The most forward-and-backward passes.
+    pub max_iterations: usize,
+}
+
+impl Default for FabrikOptions {
+    fn default() -> Self {
+        FabrikOptions {
+            tolerance: 1e-6,
+            max_iterations: 100,
+        }
+    }
+}
+
+/// How a FABRIK solve ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FabrikStatus {
+    /// The end effector is within the tolerance of the target.
+    Reached,
+    /// The target is farther from the root than the chain is long: the chain is stretched
+    /// straight towards it (the closest pose).
+    Unreachable,
+    /// Reachable, but the iteration cap came first.
+    IterationLimit,
+}
+
+/// A solved chain.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FabrikSolution {
+    /// Joint positions, root first (the root does not move).
+    pub joints: Vec<DVec3>,
+    /// How the solve ended.
+    pub status: FabrikStatus,
+    /// Passes made.
+    pub iterations: usize,
+    /// Distance from the end effector to the target.
+    pub distance: f64,
+}
+
+/// Check a chain and return its bone lengths.
+fn bone_lengths(joints: &[DVec3]) -> Result<Vec<f64>> {
+    if joints.len() < 2 {
+        return Err(KeyError::BadSetup(format!(
+            "a chain needs at least 2 joints, got {}",
+            joints.len()
+        ))
+        .into());
+    }
+    if let Some(i) = joints.iter().position(|p| !p.is_finite()) {
+        return Err(KeyError::BadSetup(format!("joint {i} is not finite")).into());
+    }
+    let lengths: Vec<f64> = joints.windows(2).map(|w| w[0].distance(w[1])).collect();
+    if let Some(i) = lengths.iter().position(|&l| l.is_nan() || l <= 0.0 || !l.is_finite()) {
+        return Err(KeyError::BadSetup(format!(
+            "bone {i} (joints {i} and {}) has length {}",
+            i + 1,
+            lengths[i]
+        ))
+        .into());
+    }
+    Ok(lengths)
+}
+
+/// `b` moved to distance `l` from `a` along `b - a` (or along `fallback` when they coincide).
+#[inline]
+fn place(a: DVec3, b: DVec3, l: f64, fallback: DVec3) -> DVec3 {
+    let d = (b - a).try_normalize().unwrap_or(fallback);
+    a + l * d
+}
+
+/// Solve the chain `joints` (root first; its bone lengths are kept) for the end effector to
+/// reach `target`, starting from the given pose (pass the previous solution to warm-start).
+///
+/// # Errors
+/// [`KeyError::BadSetup`] for fewer than 2 joints, a non-finite joint, a zero-length bone, a
+/// non-finite target or a tolerance that is not positive.
+pub fn fabrik(joints: &[DVec3], target: DVec3, options: &FabrikOptions) -> Result<FabrikSolution> {
+    let lengths = bone_lengths(joints)?;
+    if !target.is_finite() {
+        return Err(KeyError::BadSetup("the target is not finite".into()).into());
+    }
+    if options.tolerance.is_nan() || options.tolerance <= 0.0 {
+        return Err(KeyError::BadSetup("the tolerance must be positive".into()).into());
+    }
+    let n = joints.len();
+    let root = joints[0];
+    let mut p = joints.to_vec();
+    let total: f64 = lengths.iter().sum();
+    let fallback = (joints[n - 1] - root).try_normalize().unwrap_or(DVec3::X);
+    if root.distance(target) > total {
+        for i in 0..n - 1 {
+            p[i + 1] = place(p[i], target, lengths[i], fallback);
+        }
+        let distance = p[n - 1].distance(target);
+        return Ok(FabrikSolution {
+            joints: p,
+            status: FabrikStatus::Unreachable,
+            iterations: 0,
+            distance,
+        });
+    }
+    let mut iterations = 0;
+    let mut distance = p[n - 1].distance(target);
+    while distance > options.tolerance && iterations < options.max_iterations {
+        // Forward: the end effector onto the target, back to the root.
+        p[n - 1] = target;
+        for i in (0..n - 1).rev() {
+            p[i] = place(p[i + 1], p[i], lengths[i], -fallback);
+        }
+        // Backward: the root back in place, out to the end effector.
+        p[0] = root;
+        for i in 0..n - 1 {
+            p[i + 1] = place(p[i], p[i + 1], lengths[i], fallback);
+        }
+        iterations += 1;
+        distance = p[n - 1].distance(target);
+    }
+    let status = if distance <= options.tolerance {
+        FabrikStatus::Reached
+    } else {
+        FabrikStatus::IterationLimit
+    };
+    Ok(FabrikSolution {
+        joints: p,
+        status,
+        iterations,
+        distance,
+    })
+}
+
+/// The key motors `Q_i` of a posed chain relative to its rest pose: joint `i`'s frame turns
+/// by the shortest rotation taking its rest bone direction to its posed one (the outgoing
+/// bone; the last joint uses its incoming bone) and moves the rest joint onto the posed one:
+/// `x -> R_i (x - rest_i) + posed_i`.
+///
+/// # Errors
+/// [`KeyError::BadSetup`] when the chains differ in length or have a zero-length bone.
+pub fn chain_key_motors(rest: &[DVec3], posed: &[DVec3]) -> Result<Vec<ScaledMotor>> {
+    bone_lengths(rest)?;
+    bone_lengths(posed)?;
+    if rest.len() != posed.len() {
+        return Err(KeyError::BadSetup(format!(
+            "rest chain has {} joints, posed chain {}",
+            rest.len(),
+            posed.len()
+        ))
+        .into());
+    }
+    let n = rest.len();
+    Ok((0..n)
+        .map(|i| {
+            let b = i.min(n - 2);
+            let from = (rest[b + 1] - rest[b]).normalize();
+            let to = (posed[b + 1] - posed[b]).normalize();
+            let q = DQuat::from_rotation_arc(from, to);
+            ScaledMotor::from_scale_rotation_translation(1.0, q, posed[i] - q * rest[i])
+        })
+        .collect())
+}
+
+/// The spline parameter of each joint: its distance from the root along the rest chain,
+/// divided by the chain's length.
+///
+/// # Errors
+/// As [`chain_key_motors`].
+pub fn chain_parameters(rest: &[DVec3]) -> Result<Vec<f64>> {
+    let lengths = bone_lengths(rest)?;
+    let total: f64 = lengths.iter().sum();
+    let mut acc = 0.0;
+    let mut out = vec![0.0];
+    for l in &lengths {
+        acc += l;
+        out.push((acc / total).min(1.0));
+    }
+    Ok(out)
+}
+
+/// The result of [`ChainDeformer::pose_to_target`].
+#[derive(Clone, Debug)]
+pub struct ChainPose {
+    /// The solved chain.
+    pub solution: FabrikSolution,
+    /// The B-spline fitted to its joint frames (the keys the mesh was posed with).
+    pub fit: BsplineFit,
+}
+
+/// A mesh bound to a kinematic chain (the paper's Fig. 5): moving the chain's end effector
+/// solves the chain by FABRIK, fits a cubic B-spline of `control_count` motors to its joint
+/// frames and poses the mesh by spline-aligned deformation.
+#[derive(Clone, Debug)]
+pub struct ChainDeformer {
+    spline: SplineDeformer,
+    rest: Vec<DVec3>,
+    parameters: Vec<f64>,
+}
+
+impl ChainDeformer {
+    /// Bind `mesh` to the chain `joints` (rest pose, root first): `lambda` is the harmonic
+    /// field from `root_set` (0) to `tip_set` (1), and the mesh is posed by a cubic B-spline
+    /// of `control_count` motors (at most the number of joints).
+    ///
+    /// # Errors
+    /// The errors of [`SplineDeformer::bind`] and [`chain_parameters`];
+    /// [`KeyError::BadSetup`] when `control_count` is below 2 or above the number of joints.
+    pub fn bind(
+        mesh: &Mesh,
+        root_set: &[u32],
+        tip_set: &[u32],
+        joints: &[DVec3],
+        control_count: usize,
+        options: SplineOptions,
+    ) -> Result<Self> {
+        let parameters = chain_parameters(joints)?;
+        if control_count < 2 || control_count > joints.len() {
+            return Err(KeyError::BadSetup(format!(
+                "{control_count} control motors for a chain of {} joints",
+                joints.len()
+            ))
+            .into());
+        }
+        let options = SplineOptions {
+            scheme: WeightScheme::BSpline,
+            ..options
+        };
+        let rest = vec![ScaledMotor::IDENTITY; control_count];
+        let spline = SplineDeformer::bind(mesh, root_set, tip_set, &rest, options)?;
+        Ok(ChainDeformer {
+            spline,
+            rest: joints.to_vec(),
+            parameters,
+        })
+    }
+
+    /// The chain's rest joints.
+    pub fn rest_joints(&self) -> &[DVec3] {
+        &self.rest
+    }
+
+    /// The spline deformer underneath (its `lambda`, its blend).
+    pub fn spline(&self) -> &SplineDeformer {
+        &self.spline
+    }
+
+    /// Move the end effector towards `target` and pose the mesh, in one call: FABRIK from the
+    /// rest chain, joint frames as key motors, B-spline fit, spline-aligned deformation.
+    /// An unreachable target stretches the chain towards it (see [`FabrikStatus`]).
+    ///
+    /// # Errors
+    /// As [`fabrik`], [`fit_bspline`] and [`Deformer::pose`].
+    pub fn pose_to_target(
+        &self,
+        target: DVec3,
+        options: &FabrikOptions,
+        positions: &mut [DVec3],
+    ) -> Result<ChainPose> {
+        let solution = fabrik(&self.rest, target, options)?;
+        let keys = chain_key_motors(&self.rest, &solution.joints)?;
+        let fit = fit_bspline(&keys, &self.parameters, self.spline.key_count())?;
+        self.spline.pose(&fit.controls, positions)?;
+        Ok(ChainPose { solution, fit })
+    }
+}
+
+impl Deformer for ChainDeformer {
+    fn vertex_count(&self) -> usize {
+        self.spline.vertex_count()
+    }
+
+    fn key_count(&self) -> usize {
+        self.spline.key_count()
+    }
+
+    fn pose(&self, keys: &[ScaledMotor], positions: &mut [DVec3]) -> Result<()> {
+        self.spline.pose(keys, positions)
+    }
+}

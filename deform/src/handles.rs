@@ -1,0 +1,117 @@
+//! Motor handles on harmonic fields (first paper, section IV): `n` handle vertex sets `H_j`,
+//! one harmonic field `lambda_j` per handle (1 on `H_j`, 0 on the others: harmonic
+//! coordinates, a partition of unity), and `M_i = exp(sum_j lambda_j^i log R_j)`. Each handle
+//! can rotate, translate and scale; its vertices follow its motor exactly.
+
+use crate::blend::{BlendMethod, BoundBlend, KeyWeights};
+use crate::deformer::{Deformer, KeyError, MAX_KEYS};
+use crate::{Harmonic, HarmonicOptions, LaplacianKind, Mesh, Result};
+use cga::ScaledMotor;
+use glam::DVec3;
+
+/// Options of [`MotorHandles::bind_with`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HandleOptions {
+    /// How the fields are computed (default: the paper's mean-value weights).
+    pub harmonic: HarmonicOptions,
+    /// How the handle motors are blended (default: the paper's log blend).
+    pub method: BlendMethod,
+}
+
+impl Default for HandleOptions {
+    fn default() -> Self {
+        HandleOptions {
+            harmonic: HarmonicOptions {
+                laplacian: LaplacianKind::MeanValue,
+                ..HarmonicOptions::default()
+            },
+            method: BlendMethod::MotorLog,
+        }
+    }
+}
+
+/// A mesh bound to motor handles.
+#[derive(Clone, Debug)]
+pub struct MotorHandles {
+    blend: BoundBlend,
+}
+
+impl MotorHandles {
+    /// Bind with the rest pose at the identity, the log blend and the given field options.
+    ///
+    /// # Errors
+    /// As [`MotorHandles::bind_with`].
+    pub fn bind(mesh: &Mesh, sets: &[&[u32]], harmonic: HarmonicOptions) -> Result<Self> {
+        let rest = vec![ScaledMotor::IDENTITY; sets.len()];
+        Self::bind_with(
+            mesh,
+            sets,
+            &rest,
+            HandleOptions {
+                harmonic,
+                method: BlendMethod::MotorLog,
+            },
+        )
+    }
+
+    /// Bind `mesh` to the handle `sets` with rest motors `rest` (one per set).
+    ///
+    /// # Errors
+    /// [`KeyError::EmptyHandle`], [`KeyError::WrongCount`] (no sets, or `rest` of another
+    /// length), [`KeyError::TooMany`], and the mesh and constraint errors of
+    /// [`Harmonic::new`] (overlapping sets, vertices out of range, a component without
+    /// handles).
+    pub fn bind_with(
+        mesh: &Mesh,
+        sets: &[&[u32]],
+        rest: &[ScaledMotor],
+        options: HandleOptions,
+    ) -> Result<Self> {
+        if sets.is_empty() || rest.len() != sets.len() {
+            return Err(KeyError::WrongCount {
+                what: "motor handles",
+                expected: format!("one rest motor per handle set ({})", sets.len().max(1)),
+                got: rest.len(),
+            }
+            .into());
+        }
+        if sets.len() > MAX_KEYS {
+            return Err(KeyError::TooMany {
+                got: sets.len(),
+                max: MAX_KEYS,
+            }
+            .into());
+        }
+        if let Some(set) = sets.iter().position(|s| s.is_empty()) {
+            return Err(KeyError::EmptyHandle { set }.into());
+        }
+        let coordinates = Harmonic::new(mesh, sets, options.harmonic)?.coordinates()?;
+        let weights = KeyWeights::from_columns(&coordinates)?;
+        let blend = BoundBlend::bind(&mesh.positions, weights, rest, options.method)?;
+        Ok(MotorHandles { blend })
+    }
+
+    /// The harmonic coordinate of handle `j` at vertex `i`.
+    pub fn coordinate(&self, i: usize, j: usize) -> f64 {
+        self.blend.weights().weight(i, j)
+    }
+
+    /// The bound blend (weights, method).
+    pub fn blend(&self) -> &BoundBlend {
+        &self.blend
+    }
+}
+
+impl Deformer for MotorHandles {
+    fn vertex_count(&self) -> usize {
+        self.blend.vertex_count()
+    }
+
+    fn key_count(&self) -> usize {
+        self.blend.key_count()
+    }
+
+    fn pose(&self, keys: &[ScaledMotor], positions: &mut [DVec3]) -> Result<()> {
+        self.blend.pose(keys, positions)
+    }
+}

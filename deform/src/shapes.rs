@@ -1,0 +1,107 @@
+//! Procedural meshes for demos, tests and benches (no files needed): a capped tube (a round
+//! bar) and a subdivided sphere.
+
+use crate::Mesh;
+use glam::DVec3;
+use std::f64::consts::TAU;
+
+/// A tube along `+x` from `x = 0` to `x = length`, of `radius`, with `rings` rings of
+/// `sides` vertices (ring-major: vertex `r * sides + k` is ring `r`, angle `k`), closed by a
+/// fan at each end whose centres are the last two vertices (`x = 0`, then `x = length`).
+/// Outward-facing, watertight. Needs `sides >= 3`, `rings >= 2`.
+///
+/// ```
+/// let bar = deform::shapes::tube(1.0, 10.0, 16, 21);
+/// assert_eq!(bar.vertex_count(), 16 * 21 + 2);
+/// assert!((bar.volume() - std::f64::consts::PI * 10.0).abs() < 0.3);
+/// ```
+pub fn tube(radius: f64, length: f64, sides: usize, rings: usize) -> Mesh {
+    let (sides, rings) = (sides.max(3), rings.max(2));
+    let mut positions = Vec::with_capacity(sides * rings + 2);
+    for r in 0..rings {
+        let x = length * r as f64 / (rings - 1) as f64;
+        for k in 0..sides {
+            let a = TAU * k as f64 / sides as f64;
+            positions.push(DVec3::new(x, radius * a.cos(), radius * a.sin()));
+        }
+    }
+    let start = positions.len() as u32;
+    positions.push(DVec3::ZERO);
+    positions.push(DVec3::new(length, 0.0, 0.0));
+    let v = |r: usize, k: usize| (r * sides + k % sides) as u32;
+    let mut triangles = Vec::with_capacity(2 * sides * rings);
+    for r in 0..rings - 1 {
+        for k in 0..sides {
+            triangles.push([v(r, k), v(r + 1, k), v(r + 1, k + 1)]);
+            triangles.push([v(r, k), v(r + 1, k + 1), v(r, k + 1)]);
+        }
+    }
+    for k in 0..sides {
+        triangles.push([start, v(0, k), v(0, k + 1)]);
+        triangles.push([start + 1, v(rings - 1, k + 1), v(rings - 1, k)]);
+    }
+    Mesh::new(positions, triangles)
+}
+
+/// The vertices of ring `r` of a [`tube`] with `sides` sides.
+pub fn tube_ring(sides: usize, r: usize) -> Vec<u32> {
+    (r * sides..(r + 1) * sides).map(|i| i as u32).collect()
+}
+
+/// A sphere of `radius` about the origin: an icosahedron subdivided `levels` times (each
+/// level splits every triangle in four), vertices projected onto the sphere.
+///
+/// ```
+/// let s = deform::shapes::icosphere(1.0, 2);
+/// assert_eq!((s.vertex_count(), s.triangle_count()), (162, 320));
+/// ```
+pub fn icosphere(radius: f64, levels: usize) -> Mesh {
+    let t = (1.0 + 5f64.sqrt()) / 2.0;
+    let positions = [
+        (-1.0, t, 0.0),
+        (1.0, t, 0.0),
+        (-1.0, -t, 0.0),
+        (1.0, -t, 0.0),
+        (0.0, -1.0, t),
+        (0.0, 1.0, t),
+        (0.0, -1.0, -t),
+        (0.0, 1.0, -t),
+        (t, 0.0, -1.0),
+        (t, 0.0, 1.0),
+        (-t, 0.0, -1.0),
+        (-t, 0.0, 1.0),
+    ]
+    .iter()
+    .map(|&(x, y, z)| DVec3::new(x, y, z))
+    .collect();
+    let triangles = vec![
+        [0, 11, 5],
+        [0, 5, 1],
+        [0, 1, 7],
+        [0, 7, 10],
+        [0, 10, 11],
+        [1, 5, 9],
+        [5, 11, 4],
+        [11, 10, 2],
+        [10, 7, 6],
+        [7, 1, 8],
+        [3, 9, 4],
+        [3, 4, 2],
+        [3, 2, 6],
+        [3, 6, 8],
+        [3, 8, 9],
+        [4, 9, 5],
+        [2, 4, 11],
+        [6, 2, 10],
+        [8, 6, 7],
+        [9, 8, 1],
+    ];
+    let mut mesh = Mesh::new(positions, triangles);
+    for _ in 0..levels {
+        mesh = mesh.subdivide_midpoint();
+    }
+    for p in &mut mesh.positions {
+        *p = radius * p.normalize();
+    }
+    mesh
+}
