@@ -65,7 +65,10 @@ fn bone_lengths(joints: &[DVec3]) -> Result<Vec<f64>> {
         return Err(KeyError::BadSetup(format!("joint {i} is not finite")).into());
     }
     let lengths: Vec<f64> = joints.windows(2).map(|w| w[0].distance(w[1])).collect();
-    if let Some(i) = lengths.iter().position(|&l| l.is_nan() || l <= 0.0 || !l.is_finite()) {
+    if let Some(i) = lengths
+        .iter()
+        .position(|&l| l.is_nan() || l <= 0.0 || !l.is_finite())
+    {
         return Err(KeyError::BadSetup(format!(
             "bone {i} (joints {i} and {}) has length {}",
             i + 1,

@@ -31,6 +31,7 @@ mod error;
 pub mod fabrik;
 pub mod handles;
 pub mod harmonic;
+pub mod input;
 pub mod io;
 pub mod laplacian;
 pub mod mass;

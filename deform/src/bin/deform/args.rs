@@ -1,0 +1,174 @@
+//! Command-line arguments (clap). Every subcommand shares the motor JSON format, the
+//! selection format, `-o`, `--png`, `--json` and `--quiet`.
+
+use clap::{Args, Parser, Subcommand, ValueEnum};
+use std::path::PathBuf;
+
+/// Mesh deformation with conformal geometric algebra motors.
+#[derive(Parser, Debug)]
+#[command(name = "deform", version, about, long_about = None)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Bend, twist and stretch procedural meshes with every scheme, fit a spline to a FABRIK
+    /// chain, move motor handles; write OBJ files, PNG previews and a contact sheet, and
+    /// print a table of bind and pose times.
+    Demo(DemoArgs),
+    /// Spline-aligned deformation: group 0 of the selection is H_1 (lambda = 0), the highest
+    /// group H_n (lambda = 1); keys are posed relative to the rest pose (rest keys are the
+    /// identity unless --rest-keys is given).
+    Spline(SplineArgs),
+    /// Motor handles: one harmonic field per selection group, one motor per group.
+    Handles(HandlesArgs),
+    /// Inverse kinematics driving a spline: a chain of joints (JSON array of [x, y, z],
+    /// root first; default: a straight chain of --joints joints from the centroid of group 0
+    /// to the centroid of the highest group) is solved by FABRIK for its end effector to reach
+    /// --target; its joint frames are fitted by a cubic B-spline of --controls motors, which
+    /// deforms the mesh (the first paper's Fig. 5). An unreachable target stretches the chain
+    /// towards it and says so.
+    Fabrik(FabrikArgs),
+}
+
+/// Options every command that writes files shares.
+#[derive(Args, Debug, Clone)]
+pub struct OutputArgs {
+    /// The deformed mesh (OBJ; the input's vertex order and count are kept).
+    #[arg(short = 'o', long = "output")]
+    pub output: PathBuf,
+    /// A PNG preview: the rest mesh beside the deformed one.
+    #[arg(long)]
+    pub png: Option<PathBuf>,
+    /// Print timings and counts as one JSON object on stdout.
+    #[arg(long)]
+    pub json: bool,
+    /// Print nothing but errors.
+    #[arg(long, short)]
+    pub quiet: bool,
+}
+
+#[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
+pub enum SchemeArg {
+    Linear,
+    Quadratic,
+    Bezier,
+    Bspline,
+}
+
+#[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
+pub enum LaplacianArg {
+    MeanValue,
+    Cotangent,
+}
+
+#[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
+pub enum BlendArg {
+    MotorLog,
+    MotorLinear,
+    DualQuaternion,
+    Matrix,
+}
+
+#[derive(Args, Debug)]
+pub struct DemoArgs {
+    /// Where the OBJ files and PNG previews go.
+    #[arg(long, default_value = "deform-demo")]
+    pub out: PathBuf,
+    /// Print nothing but errors.
+    #[arg(long, short)]
+    pub quiet: bool,
+    /// Print the table as JSON.
+    #[arg(long)]
+    pub json: bool,
+}
+
+#[derive(Args, Debug)]
+pub struct SplineArgs {
+    /// The mesh (OBJ, OFF or MEDIT).
+    pub mesh: PathBuf,
+    /// Handle groups: a libigl DMAT (-1 free, k >= 0 group) or JSON {"k": [vertices]}.
+    #[arg(long)]
+    pub select: PathBuf,
+    /// The key motors: a JSON array of motors.
+    #[arg(long)]
+    pub keys: PathBuf,
+    /// The rest key motors (default: the identity for every key).
+    #[arg(long)]
+    pub rest_keys: Option<PathBuf>,
+    /// The basis functions.
+    #[arg(long, value_enum, default_value = "bspline")]
+    pub scheme: SchemeArg,
+    /// The Laplacian of the harmonic field lambda.
+    #[arg(long, value_enum, default_value = "mean-value")]
+    pub laplacian: LaplacianArg,
+    /// How the keys are blended.
+    #[arg(long, value_enum, default_value = "motor-log")]
+    pub blend: BlendArg,
+    #[command(flatten)]
+    pub out: OutputArgs,
+}
+
+#[derive(Args, Debug)]
+pub struct HandlesArgs {
+    /// The mesh (OBJ, OFF or MEDIT).
+    pub mesh: PathBuf,
+    /// Handle groups: a libigl DMAT (-1 free, k >= 0 group) or JSON {"k": [vertices]}.
+    #[arg(long)]
+    pub select: PathBuf,
+    /// Per-group motors: JSON {"k": motor, "*": motor for the rest}.
+    #[arg(long)]
+    pub motors: PathBuf,
+    /// The Laplacian of the harmonic fields.
+    #[arg(long, value_enum, default_value = "mean-value")]
+    pub laplacian: LaplacianArg,
+    /// How the handle motors are blended.
+    #[arg(long, value_enum, default_value = "motor-log")]
+    pub blend: BlendArg,
+    #[command(flatten)]
+    pub out: OutputArgs,
+}
+
+#[derive(Args, Debug)]
+pub struct FabrikArgs {
+    /// The mesh (OBJ, OFF or MEDIT).
+    pub mesh: PathBuf,
+    /// Handle groups: group 0 is the chain's root end (lambda = 0), the highest group its tip
+    /// end (lambda = 1).
+    #[arg(long)]
+    pub select: PathBuf,
+    /// Where the end effector should go: X,Y,Z.
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub target: [f64; 3],
+    /// The chain's rest joints: a JSON array of [x, y, z], root first.
+    #[arg(long)]
+    pub chain: Option<PathBuf>,
+    /// Joints of the default straight chain.
+    #[arg(long, default_value_t = 6)]
+    pub joints: usize,
+    /// Control motors of the fitted B-spline (at most the number of joints).
+    #[arg(long, default_value_t = 4)]
+    pub controls: usize,
+    /// FABRIK tolerance (distance of the end effector to the target).
+    #[arg(long, default_value_t = 1e-6)]
+    pub tolerance: f64,
+    /// FABRIK iteration cap.
+    #[arg(long, default_value_t = 100)]
+    pub iterations: usize,
+    #[command(flatten)]
+    pub out: OutputArgs,
+}
+
+/// `X,Y,Z` as three finite numbers.
+fn parse_vec3(s: &str) -> Result<[f64; 3], String> {
+    let v: Vec<f64> = s
+        .split(',')
+        .map(|x| x.trim().parse::<f64>().map_err(|e| format!("{x:?}: {e}")))
+        .collect::<Result<_, _>>()?;
+    match v.as_slice() {
+        [x, y, z] if v.iter().all(|c| c.is_finite()) => Ok([*x, *y, *z]),
+        _ => Err(format!("expected three finite numbers X,Y,Z, got {s:?}")),
+    }
+}

@@ -1,0 +1,40 @@
+//! The `deform` program: the motor deformers of the CGA papers on procedural meshes (`demo`)
+//! and on any mesh file (`spline`, `handles`, `fabrik`), with OBJ output, PNG previews and
+//! timings. Exit code 0 on success, 2 on any error (bad arguments, unreadable or invalid
+//! input, a failed write), with a message that says what and where.
+
+mod args;
+mod commands;
+mod demo;
+mod output;
+mod preview;
+
+use clap::Parser;
+use std::process::ExitCode;
+
+fn main() -> ExitCode {
+    let cli = match args::Cli::try_parse() {
+        Ok(c) => c,
+        Err(e) => {
+            let _ = e.print();
+            return if e.use_stderr() {
+                ExitCode::from(2)
+            } else {
+                ExitCode::SUCCESS
+            };
+        }
+    };
+    let result = match cli.command {
+        args::Command::Demo(a) => demo::run(&a),
+        args::Command::Spline(a) => commands::spline(&a),
+        args::Command::Handles(a) => commands::handles(&a),
+        args::Command::Fabrik(a) => commands::fabrik(&a),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::from(2)
+        }
+    }
+}

@@ -1,0 +1,123 @@
+//! Reading inputs and writing outputs safely: an output path that names an input is refused,
+//! and every file is written to a temporary file beside it and renamed, so a failure never
+//! leaves a half-written file.
+
+use anyhow::{bail, Context, Result};
+use deform::input::{parse_selection_json, selection_from_dmat, Selection};
+use deform::Mesh;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// The canonical form of a path that may not exist yet (its parent canonicalised).
+fn canonical(p: &Path) -> PathBuf {
+    if let Ok(c) = p.canonicalize() {
+        return c;
+    }
+    let parent = p
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    match (parent.canonicalize(), p.file_name()) {
+        (Ok(d), Some(f)) => d.join(f),
+        _ => p.to_path_buf(),
+    }
+}
+
+/// Refuse outputs that are inputs (or each other).
+pub fn check_outputs(inputs: &[&Path], outputs: &[&Path]) -> Result<()> {
+    let ins: Vec<PathBuf> = inputs.iter().map(|p| canonical(p)).collect();
+    let mut seen: Vec<PathBuf> = Vec::new();
+    for o in outputs {
+        let c = canonical(o);
+        if ins.contains(&c) {
+            bail!("{}: refusing to overwrite an input file", o.display());
+        }
+        if seen.contains(&c) {
+            bail!("{}: named as two outputs", o.display());
+        }
+        seen.push(c);
+    }
+    Ok(())
+}
+
+/// Write a file atomically: `write` fills a temporary file in the same folder, which is then
+/// renamed over `path`.
+pub fn write_atomic(path: &Path, write: impl FnOnce(&mut dyn Write) -> Result<()>) -> Result<()> {
+    let dir = path
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let name = path
+        .file_name()
+        .with_context(|| format!("{}: not a file name", path.display()))?;
+    let tmp = dir.join(format!(
+        ".{}.tmp-{}",
+        name.to_string_lossy(),
+        std::process::id()
+    ));
+    let result = (|| -> Result<()> {
+        let file = std::fs::File::create(&tmp)
+            .with_context(|| format!("{}: cannot create", tmp.display()))?;
+        let mut w = std::io::BufWriter::new(file);
+        write(&mut w)?;
+        let file = w.into_inner().map_err(|e| e.into_error())?;
+        file.sync_all()?;
+        std::fs::rename(&tmp, path).with_context(|| format!("{}: cannot write", path.display()))?;
+        Ok(())
+    })();
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result.with_context(|| format!("writing {}", path.display()))
+}
+
+/// Write a mesh as OBJ (the vertex order and count as given).
+pub fn write_obj(path: &Path, mesh: &Mesh) -> Result<()> {
+    write_atomic(path, |w| {
+        deform::io::write_obj_to(mesh, w)?;
+        Ok(())
+    })
+}
+
+/// Write an image as PNG.
+pub fn write_png(path: &Path, image: &deform::render::Image) -> Result<()> {
+    write_atomic(path, |w| {
+        image.write_png_to(w)?;
+        Ok(())
+    })
+}
+
+/// Read a mesh, validated for deformation.
+pub fn read_mesh(path: &Path) -> Result<Mesh> {
+    let mesh = deform::io::read_mesh(path)?;
+    deform::check_solvable(&mesh)
+        .with_context(|| format!("{}: not a usable mesh", path.display()))?;
+    Ok(mesh)
+}
+
+/// Read a selection: `.dmat` (libigl) or `.json`.
+pub fn read_selection(path: &Path, vertex_count: usize) -> Result<Selection> {
+    let name = path.display().to_string();
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    let sel = match ext.as_deref() {
+        Some("dmat") => {
+            let m = deform::io::read_dmat(path)?;
+            selection_from_dmat(&m, vertex_count, &name)?
+        }
+        Some("json") => {
+            let text =
+                std::fs::read_to_string(path).with_context(|| format!("{name}: cannot read"))?;
+            parse_selection_json(&text, vertex_count, &name)?
+        }
+        _ => bail!("{name}: a selection is a .dmat (libigl) or .json file"),
+    };
+    Ok(sel)
+}
+
+/// Read a text file.
+pub fn read_text(path: &Path) -> Result<String> {
+    std::fs::read_to_string(path).with_context(|| format!("{}: cannot read", path.display()))
+}

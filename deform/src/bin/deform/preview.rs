@@ -1,0 +1,59 @@
+//! PNG previews: the rest mesh beside the deformed one, seen by one camera that frames both,
+//! the deformed mesh coloured by a per-vertex scalar.
+
+use anyhow::Result;
+use deform::render::{render_with_camera, Camera, Coloring, Image, RenderOptions};
+use deform::{Aabb, Mesh};
+
+const BACKGROUND: [u8; 3] = [235, 235, 235];
+
+/// The box holding both meshes.
+fn union(a: &Aabb, b: &Aabb) -> Aabb {
+    Aabb {
+        min: a.min.min(b.min),
+        max: a.max.max(b.max),
+    }
+}
+
+/// One camera for both meshes, looking from `yaw`, `pitch`.
+fn camera(rest: &Mesh, posed: &Mesh, yaw: f64, pitch: f64) -> Result<Camera> {
+    let (Some(a), Some(b)) = (rest.bounding_box(), posed.bounding_box()) else {
+        anyhow::bail!("cannot preview an empty mesh");
+    };
+    let options = RenderOptions {
+        yaw_degrees: yaw,
+        pitch_degrees: pitch,
+        ..RenderOptions::default()
+    };
+    Ok(options.camera(&union(&a, &b)))
+}
+
+/// The rest mesh (plain) beside the posed mesh coloured by `scalar`.
+pub fn before_after(
+    rest: &Mesh,
+    posed: &Mesh,
+    scalar: &[f64],
+    yaw: f64,
+    pitch: f64,
+) -> Result<Image> {
+    let cam = camera(rest, posed, yaw, pitch)?;
+    let a = render_with_camera(rest, Coloring::default(), &cam, BACKGROUND)?;
+    let b = render_with_camera(posed, Coloring::scalar(scalar), &cam, BACKGROUND)?;
+    Ok(Image::contact_sheet(&[a, b], 2, BACKGROUND))
+}
+
+/// The posed mesh alone, coloured by `scalar`, framed with the rest mesh.
+pub fn posed(rest: &Mesh, posed: &Mesh, scalar: &[f64], yaw: f64, pitch: f64) -> Result<Image> {
+    let cam = camera(rest, posed, yaw, pitch)?;
+    Ok(render_with_camera(
+        posed,
+        Coloring::scalar(scalar),
+        &cam,
+        BACKGROUND,
+    )?)
+}
+
+/// A grid of images.
+pub fn sheet(images: &[Image], columns: usize) -> Image {
+    Image::contact_sheet(images, columns, BACKGROUND)
+}
