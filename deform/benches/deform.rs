@@ -7,25 +7,13 @@
 //! `CARGO_TARGET_DIR=/work/target-deform cargo bench -p deform --bench deform`
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use deform::{cotangent_laplacian, harmonic_field, Harmonic, HarmonicOptions, Mesh};
+use deform::{cotangent_laplacian, harmonic_field, Harmonic, HarmonicOptions};
 use std::hint::black_box;
-use std::path::PathBuf;
 use std::time::Duration;
 
-fn armadillo() -> Option<Mesh> {
-    let dir = std::env::var_os("CGA_DATA_DIR")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../shared/data"));
-    let path = dir.join("meshes/large/armadillo-50k.obj");
-    if !path.is_file() {
-        if std::env::var("CI").as_deref() == Ok("true") {
-            panic!("{} is missing (CI=true)", path.display());
-        }
-        eprintln!("skipped: {} not found (set CGA_DATA_DIR)", path.display());
-        return None;
-    }
-    Some(deform::io::read_mesh(&path).expect("armadillo-50k loads"))
-}
+mod scenes;
+
+use scenes::armadillo;
 
 fn benches(c: &mut Criterion) {
     let Some(mesh) = armadillo() else {

@@ -232,7 +232,8 @@ impl PreparedKeys {
             BlendMethod::MotorLog => {
                 let g = Bivector::weighted_sum(self.logs[first..].iter().copied(), w);
                 if self.scaled {
-                    g.exp_scaled().transform_point(p)
+                    let (m, s) = g.exp_similarity();
+                    m.transform_point(s * p)
                 } else {
                     g.exp_motor().transform_point(p)
                 }

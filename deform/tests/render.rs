@@ -559,17 +559,13 @@ fn huge_triangles_are_clipped_to_the_image() {
 }
 
 #[test]
-fn fifty_thousand_triangles_render_quickly() {
+fn fifty_thousand_triangles_render() {
+    // Speed is measured by the criterion bench, not here; this checks a dense mesh draws.
     let mesh = uv_sphere(125, 200);
     assert_eq!(mesh.triangles.len(), 50_000);
     let o = RenderOptions::default();
-    let start = std::time::Instant::now();
     let image = render(&mesh, Coloring::default(), &o).unwrap();
-    let elapsed = start.elapsed();
-    println!("50k triangles at 320x240: {elapsed:?}");
     assert!(!drawn(&image).is_empty());
-    // Loose: debug-ish test profile on a shared machine (release is far faster).
-    assert!(elapsed.as_secs_f64() < 2.0, "{elapsed:?}");
 }
 
 #[test]

@@ -75,7 +75,7 @@ pub fn selection_from_dmat(
     }
     let mut groups: Vec<Vec<u32>> = Vec::new();
     for (v, &x) in m.data.iter().enumerate() {
-        if x.fract() != 0.0 || x < -1.0 || x > 1e6 {
+        if x.fract() != 0.0 || !(-1.0..=1e6).contains(&x) {
             return Err(InputError::new(
                 name,
                 format!("vertex {v}"),
