@@ -13,7 +13,9 @@ use std::f64::consts::TAU;
 /// ```
 /// let bar = deform::shapes::tube(1.0, 10.0, 16, 21);
 /// assert_eq!(bar.vertex_count(), 16 * 21 + 2);
-/// assert!((bar.volume() - std::f64::consts::PI * 10.0).abs() < 0.3);
+/// // The volume of a prism over the inscribed 16-gon: outward-facing and closed.
+/// let area = 8.0 * (std::f64::consts::TAU / 16.0).sin();
+/// assert!((bar.volume() - 10.0 * area).abs() < 1e-9);
 /// ```
 pub fn tube(radius: f64, length: f64, sides: usize, rings: usize) -> Mesh {
     let (sides, rings) = (sides.max(3), rings.max(2));
@@ -32,13 +34,13 @@ pub fn tube(radius: f64, length: f64, sides: usize, rings: usize) -> Mesh {
     let mut triangles = Vec::with_capacity(2 * sides * rings);
     for r in 0..rings - 1 {
         for k in 0..sides {
-            triangles.push([v(r, k), v(r + 1, k), v(r + 1, k + 1)]);
-            triangles.push([v(r, k), v(r + 1, k + 1), v(r, k + 1)]);
+            triangles.push([v(r, k), v(r + 1, k + 1), v(r + 1, k)]);
+            triangles.push([v(r, k), v(r, k + 1), v(r + 1, k + 1)]);
         }
     }
     for k in 0..sides {
-        triangles.push([start, v(0, k), v(0, k + 1)]);
-        triangles.push([start + 1, v(rings - 1, k + 1), v(rings - 1, k)]);
+        triangles.push([start, v(0, k + 1), v(0, k)]);
+        triangles.push([start + 1, v(rings - 1, k), v(rings - 1, k + 1)]);
     }
     Mesh::new(positions, triangles)
 }

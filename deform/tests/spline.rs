@@ -467,3 +467,24 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn a_component_without_handles_is_a_typed_error() {
+    // Two separate bars; the handles are both on the first one.
+    let a = bar();
+    let mut b = bar();
+    let n = a.vertex_count() as u32;
+    let mut positions = a.positions.clone();
+    positions.extend(b.positions.iter().map(|p| *p + DVec3::new(0.0, 5.0, 0.0)));
+    let mut triangles = a.triangles.clone();
+    triangles.extend(b.triangles.drain(..).map(|t| t.map(|v| v + n)));
+    let two = deform::Mesh::new(positions, triangles);
+    let e = SplineDeformer::bind(
+        &two,
+        &tube_ring(SIDES, 0),
+        &tube_ring(SIDES, RINGS - 1),
+        &[ScaledMotor::IDENTITY; 2],
+        SplineOptions::default(),
+    );
+    assert!(matches!(e, Err(Error::Unconstrained { .. })), "{e:?}");
+}
