@@ -141,23 +141,31 @@ impl Bivector {
     /// closed form: a unit scaled motor `T R D`. The `eo1, eo2, eo3` parts are ignored.
     #[must_use]
     pub fn exp_scaled(self) -> ScaledMotor {
-        let (m, d) = self.exp_parts();
-        m * Dilator::new(d.cosh_half, d.sinh_half)
+        let (qr, t, d) = self.exp_parts();
+        let qd = Quat::from_vec4((0.5 * t).extend(0.0)) * qr;
+        Motor::from_quats(qr, qd) * Dilator::new(d.cosh_half, d.sinh_half)
     }
 
-    /// [`Bivector::exp_scaled`] as its parts: the rigid motor `T R` and the scale `d` of `D`,
-    /// so that `exp(B)` maps `x` to `(T R)(d x)`. Cheaper to apply to many points than the
-    /// scaled motor itself (a rigid sandwich and a product instead of a 12-coefficient
-    /// sandwich and a division).
-    #[must_use]
-    pub fn exp_similarity(self) -> (Motor, S) {
-        let (m, d) = self.exp_parts();
-        (m, d.scale)
-    }
-
-    /// The closed form behind [`Bivector::exp_scaled`]: one `sin_cos` and one exponential.
+    /// [`Bivector::exp_scaled`] in quaternion form: the same motion as a [`Similarity`]
+    /// (`x -> d R x + t`), without building the versor. The cheapest way to apply `exp(B)`
+    /// to a point when `B` changes from point to point (blends, skinning); for rigid
+    /// generators it is [`Bivector::exp_motor`]'s motion.
     #[inline]
-    fn exp_parts(self) -> (Motor, DilationParts) {
+    #[must_use]
+    pub fn exp_similarity(self) -> Similarity {
+        let (rotation, translation, d) = self.exp_parts();
+        Similarity {
+            scale: d.scale,
+            log_scale: 2.0 * self.eoi,
+            rotation,
+            translation,
+        }
+    }
+
+    /// The closed form behind [`Bivector::exp_scaled`]: one `sin_cos` and at most one
+    /// exponential. Returns the rotation, the translation and the dilation.
+    #[inline]
+    fn exp_parts(self) -> (Quat, V3, DilationParts) {
         let u = self.half_rotation();
         let v = -2.0 * V3::new(self.e1i, self.e2i, self.e3i);
         let l = self.eoi;
@@ -168,7 +176,9 @@ impl Bivector {
         let sc = sinc(phi);
         let qr = Quat::from_xyzw(sc * u.x, sc * u.y, sc * u.z, c);
         // e = exp(l) and em = exp(l) - 1, each to full relative precision from one call.
-        let (e, em) = if l.abs() < 0.5 {
+        let (e, em) = if l == 0.0 {
+            (1.0, 0.0)
+        } else if l.abs() < 0.5 {
             let em = l.exp_m1();
             (1.0 + em, em)
         } else {
@@ -198,14 +208,13 @@ impl Bivector {
             0.0
         };
         let t = zr * v + (k * u.dot(v)) * u + zi_phi * u.cross(v);
-        let qd = Quat::from_vec4((0.5 * t).extend(0.0)) * qr;
         // sinh l = (em + em / e) / 2, cosh l = 1 + em^2 / (2 e): exact for small l.
         let parts = DilationParts {
             sinh_half: 0.5 * (em + em / e),
             cosh_half: 1.0 + 0.5 * em * em / e,
             scale: eg,
         };
-        (Motor::from_quats(qr, qd), parts)
+        (qr, t, parts)
     }
 
     /// Checked [`Bivector::exp_scaled`].

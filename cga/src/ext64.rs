@@ -40,6 +40,6 @@ mod quat_map;
 #[path = "rotor.rs"]
 mod rotor;
 #[path = "scaled.rs"]
-mod scaled;
+pub(crate) mod scaled;
 #[path = "validity.rs"]
 mod validity;

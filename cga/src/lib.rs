@@ -126,6 +126,7 @@ pub mod f64 {
     include!(concat!(env!("OUT_DIR"), "/cga_f64.rs"));
     pub use crate::ext64::dual_quat::DualQuat;
     pub use crate::ext64::objects::{Circle, FlatPoint, Line, Plane, PointPair, Sphere};
+    pub use crate::ext64::scaled::Similarity;
 }
 
 /// The generated G(4,1) types with `f32` coefficients, plus the hand-written objects and
@@ -134,12 +135,13 @@ pub mod f32 {
     include!(concat!(env!("OUT_DIR"), "/cga_f32.rs"));
     pub use crate::ext32::dual_quat::DualQuat;
     pub use crate::ext32::objects::{Circle, FlatPoint, Line, Plane, PointPair, Sphere};
+    pub use crate::ext32::scaled::Similarity;
 }
 
 pub use crate::f64::{
     Bivector, Circle, Dilator, DualQuat, Even, FlatPoint, Line, Motor, MotorPointMatrix, Mv, Odd,
-    Plane, Point, PointPair, Pseudoscalar, Quadvector, Rotor, Sandwich, ScaledMotor, Sphere,
-    Translator, Trivector, Vector,
+    Plane, Point, PointPair, Pseudoscalar, Quadvector, Rotor, Sandwich, ScaledMotor, Similarity,
+    Sphere, Translator, Trivector, Vector,
 };
 
 /// Hand-written extensions (f64), compiled from the same files as [`ext32`].

@@ -59,14 +59,29 @@ impl Dilator {
     }
 }
 
-/// The parts of a scaled motor: `x -> scale * (rotation * x) + translation`.
+/// The action of a scaled motor in quaternion form: `x -> scale * (rotation * x) +
+/// translation` (the same map as the sandwich `S up(x) ~S`, down-projected). What
+/// [`ScaledMotor::to_similarity`] and [`Bivector::exp_similarity`] return, for applying one
+/// motion to many points at the cost of a quaternion rotation.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Similarity {
+pub struct Similarity {
+    /// The uniform scale `d > 0`.
     pub scale: S,
     /// `ln(scale)`.
     pub log_scale: S,
+    /// The rotation, a unit quaternion.
     pub rotation: Quat,
+    /// The translation, applied last.
     pub translation: V3,
+}
+
+impl Similarity {
+    /// `scale * (rotation * x) + translation`.
+    #[inline]
+    #[must_use]
+    pub fn transform_point(&self, x: V3) -> V3 {
+        self.rotation * (self.scale * x) + self.translation
+    }
 }
 
 impl ScaledMotor {
@@ -111,6 +126,12 @@ impl ScaledMotor {
 
     /// The decomposition into scale, rotation and translation, for a (multiple of a) scaled
     /// motor. The overall sign of the versor is irrelevant.
+    #[must_use]
+    pub fn to_similarity(self) -> Similarity {
+        self.similarity()
+    }
+
+    /// See [`ScaledMotor::to_similarity`].
     pub(crate) fn similarity(self) -> Similarity {
         let a2 = self.s * self.s + self.e12 * self.e12 + self.e13 * self.e13 + self.e23 * self.e23;
         // k^2 cosh*sinh (g/2)

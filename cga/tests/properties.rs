@@ -554,3 +554,22 @@ fn f32_twins() {
     let p = cga::f32::Plane::through_points(Vec3::ZERO, Vec3::X, Vec3::Y).unwrap();
     assert!((p.signed_distance(Vec3::Z) - 1.0).abs() < 1e-6);
 }
+
+proptest! {
+    /// The quaternion form of `exp(B)` moves points as the scaled motor's sandwich does, and
+    /// `ScaledMotor::to_similarity` inverts the composition.
+    #[test]
+    fn exp_similarity_is_the_action_of_exp_scaled(axis in unit_axis(), angle in -3.0..3.0f64, v in v3(), l in -1.5..1.5f64, x in v3()) {
+        let mut b = Bivector::rotation_generator(axis, angle) + Bivector::translation_generator(v);
+        b.eoi = l;
+        let s = b.exp_scaled();
+        let sim = b.exp_similarity();
+        prop_assert!((sim.transform_point(x) - s.transform_point(x)).length() < 1e-12 * (1.0 + x.length()) * (1.0 + v.length()));
+        prop_assert!((sim.scale - (2.0 * l).exp()).abs() < 1e-13 * sim.scale);
+        let back = s.to_similarity();
+        prop_assert!((back.transform_point(x) - sim.transform_point(x)).length() < 1e-11 * (1.0 + x.length()) * (1.0 + v.length()));
+        b.eoi = 0.0;
+        let m = b.exp_motor();
+        prop_assert!((b.exp_similarity().transform_point(x) - m.transform_point(x)).length() < 1e-12 * (1.0 + x.length()) * (1.0 + v.length()));
+    }
+}

@@ -37,6 +37,10 @@ fn report(name: &str, mesh: &Mesh) {
     let handles = scenes::bind_handles(mesh);
     let keys = scenes::keys(mesh, 4);
     let mut out = vec![DVec3::ZERO; n];
+    // Warm up (page in the output, wake the thread pool) before measuring.
+    for _ in 0..20 {
+        spline.pose(&keys, &mut out).expect("pose");
+    }
     let pose_spline = median_ms(31, || spline.pose(&keys, &mut out).expect("pose"));
     let pose_handles = median_ms(31, || handles.pose(&keys, &mut out).expect("pose"));
     println!(

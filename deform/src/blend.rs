@@ -230,13 +230,10 @@ impl PreparedKeys {
     pub fn transform(&self, first: usize, w: &[f64], p: DVec3) -> DVec3 {
         match self.method {
             BlendMethod::MotorLog => {
+                // exp of the blended generator, applied in its quaternion form (the motor's
+                // action `M X ~M` without building M).
                 let g = Bivector::weighted_sum(self.logs[first..].iter().copied(), w);
-                if self.scaled {
-                    let (m, s) = g.exp_similarity();
-                    m.transform_point(s * p)
-                } else {
-                    g.exp_motor().transform_point(p)
-                }
+                g.exp_similarity().transform_point(p)
             }
             BlendMethod::MotorLinear => {
                 let m = Motor::blend_linear(&self.motors[first..first + w.len()], w);
