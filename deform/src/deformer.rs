@@ -104,6 +104,30 @@ pub enum KeyError {
     BadSetup(String),
 }
 
+/// `impl Deformer for $t` by delegating to its [`crate::BoundBlend`] field `$field`.
+macro_rules! deformer_via_blend {
+    ($t:ty, $field:ident) => {
+        impl $crate::deformer::Deformer for $t {
+            fn vertex_count(&self) -> usize {
+                self.$field.vertex_count()
+            }
+
+            fn key_count(&self) -> usize {
+                self.$field.key_count()
+            }
+
+            fn pose(
+                &self,
+                keys: &[cga::ScaledMotor],
+                positions: &mut [glam::DVec3],
+            ) -> $crate::Result<()> {
+                self.$field.pose(keys, positions)
+            }
+        }
+    };
+}
+pub(crate) use deformer_via_blend;
+
 /// Check a key count against what a deformer takes.
 pub(crate) fn check_key_count(
     what: &'static str,

@@ -3,7 +3,7 @@
 //! cubic B-spline is fitted to them (section III.C) and drives a spline-aligned deformation.
 
 use crate::bspline::{fit_bspline, BsplineFit};
-use crate::deformer::{Deformer, KeyError};
+use crate::deformer::{deformer_via_blend, Deformer, KeyError};
 use crate::spline::{SplineDeformer, SplineOptions, WeightScheme};
 use crate::{Mesh, Result};
 use cga::ScaledMotor;
@@ -279,16 +279,4 @@ impl ChainDeformer {
     }
 }
 
-impl Deformer for ChainDeformer {
-    fn vertex_count(&self) -> usize {
-        self.spline.vertex_count()
-    }
-
-    fn key_count(&self) -> usize {
-        self.spline.key_count()
-    }
-
-    fn pose(&self, keys: &[ScaledMotor], positions: &mut [DVec3]) -> Result<()> {
-        self.spline.pose(keys, positions)
-    }
-}
+deformer_via_blend!(ChainDeformer, spline);

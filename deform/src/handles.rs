@@ -4,10 +4,9 @@
 //! can rotate, translate and scale; its vertices follow its motor exactly.
 
 use crate::blend::{BlendMethod, BoundBlend, KeyWeights};
-use crate::deformer::{Deformer, KeyError, MAX_KEYS};
+use crate::deformer::{deformer_via_blend, KeyError, MAX_KEYS};
 use crate::{Harmonic, HarmonicOptions, LaplacianKind, Mesh, Result};
 use cga::ScaledMotor;
-use glam::DVec3;
 
 /// Options of [`MotorHandles::bind_with`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -102,16 +101,4 @@ impl MotorHandles {
     }
 }
 
-impl Deformer for MotorHandles {
-    fn vertex_count(&self) -> usize {
-        self.blend.vertex_count()
-    }
-
-    fn key_count(&self) -> usize {
-        self.blend.key_count()
-    }
-
-    fn pose(&self, keys: &[ScaledMotor], positions: &mut [DVec3]) -> Result<()> {
-        self.blend.pose(keys, positions)
-    }
-}
+deformer_via_blend!(MotorHandles, blend);

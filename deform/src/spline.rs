@@ -11,7 +11,7 @@
 
 use crate::blend::{BlendMethod, BoundBlend, KeyWeights};
 use crate::bspline::{bspline_basis, bspline_degree};
-use crate::deformer::{Deformer, KeyError, MAX_KEYS};
+use crate::deformer::{deformer_via_blend, KeyError, MAX_KEYS};
 use crate::{Harmonic, HarmonicOptions, LaplacianKind, Mesh, Result};
 use cga::ScaledMotor;
 use glam::DVec3;
@@ -257,16 +257,4 @@ impl SplineDeformer {
     }
 }
 
-impl Deformer for SplineDeformer {
-    fn vertex_count(&self) -> usize {
-        self.blend.vertex_count()
-    }
-
-    fn key_count(&self) -> usize {
-        self.blend.key_count()
-    }
-
-    fn pose(&self, keys: &[ScaledMotor], positions: &mut [DVec3]) -> Result<()> {
-        self.blend.pose(keys, positions)
-    }
-}
+deformer_via_blend!(SplineDeformer, blend);

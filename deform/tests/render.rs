@@ -1,7 +1,6 @@
 //! The PNG preview renderer: determinism, silhouettes against projected bounds, fill rule,
 //! z-buffer, colormap, contact sheets, PNG round trip and bad input.
 
-use std::collections::HashMap;
 use std::f64::consts::PI;
 use std::io::Cursor;
 
@@ -15,69 +14,13 @@ use glam::DVec3;
 const BG: [u8; 3] = [235, 235, 235];
 const RED: [u8; 3] = [220, 60, 40];
 
-/// An icosphere of radius `r` centred at `c`: an icosahedron subdivided `level` times, with
-/// new vertices pushed onto the sphere.
+/// An icosphere of radius `r` centred at `c` (the library's, moved).
 fn icosphere(level: u32, r: f64, c: DVec3) -> Mesh {
-    let t = (1.0 + 5f64.sqrt()) / 2.0;
-    let mut p: Vec<DVec3> = [
-        (-1.0, t, 0.0),
-        (1.0, t, 0.0),
-        (-1.0, -t, 0.0),
-        (1.0, -t, 0.0),
-        (0.0, -1.0, t),
-        (0.0, 1.0, t),
-        (0.0, -1.0, -t),
-        (0.0, 1.0, -t),
-        (t, 0.0, -1.0),
-        (t, 0.0, 1.0),
-        (-t, 0.0, -1.0),
-        (-t, 0.0, 1.0),
-    ]
-    .iter()
-    .map(|&(x, y, z)| DVec3::new(x, y, z).normalize())
-    .collect();
-    let mut tris: Vec<[u32; 3]> = vec![
-        [0, 11, 5],
-        [0, 5, 1],
-        [0, 1, 7],
-        [0, 7, 10],
-        [0, 10, 11],
-        [1, 5, 9],
-        [5, 11, 4],
-        [11, 10, 2],
-        [10, 7, 6],
-        [7, 1, 8],
-        [3, 9, 4],
-        [3, 4, 2],
-        [3, 2, 6],
-        [3, 6, 8],
-        [3, 8, 9],
-        [4, 9, 5],
-        [2, 4, 11],
-        [6, 2, 10],
-        [8, 6, 7],
-        [9, 8, 1],
-    ];
-    for _ in 0..level {
-        let mut mid: HashMap<(u32, u32), u32> = HashMap::new();
-        let mut midpoint = |a: u32, b: u32, p: &mut Vec<DVec3>| {
-            *mid.entry((a.min(b), a.max(b))).or_insert_with(|| {
-                p.push((p[a as usize] + p[b as usize]).normalize());
-                p.len() as u32 - 1
-            })
-        };
-        let mut next = Vec::with_capacity(4 * tris.len());
-        for &[a, b, c] in &tris {
-            let (ab, bc, ca) = (
-                midpoint(a, b, &mut p),
-                midpoint(b, c, &mut p),
-                midpoint(c, a, &mut p),
-            );
-            next.extend([[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]]);
-        }
-        tris = next;
+    let mut m = deform::shapes::icosphere(r, level as usize);
+    for p in &mut m.positions {
+        *p += c;
     }
-    Mesh::new(p.into_iter().map(|q| c + r * q).collect(), tris)
+    m
 }
 
 /// A UV sphere with `stacks * slices * 2` triangles (less the poles' degenerate ones).

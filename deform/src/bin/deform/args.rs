@@ -72,6 +72,27 @@ pub enum BlendArg {
     Matrix,
 }
 
+/// The mesh and its handle groups, read by every subcommand.
+#[derive(Args, Debug)]
+pub struct MeshInput {
+    /// The mesh (OBJ, OFF or MEDIT).
+    pub mesh: PathBuf,
+    /// Handle groups: a libigl DMAT (-1 free, k >= 0 group) or JSON {"k": [vertices]}.
+    #[arg(long)]
+    pub select: PathBuf,
+}
+
+/// How weights are computed and motors blended.
+#[derive(Args, Debug)]
+pub struct BlendingArgs {
+    /// The Laplacian of the harmonic fields.
+    #[arg(long, value_enum, default_value = "mean-value")]
+    pub laplacian: LaplacianArg,
+    /// How the key motors are blended.
+    #[arg(long, value_enum, default_value = "motor-log")]
+    pub blend: BlendArg,
+}
+
 #[derive(Args, Debug)]
 pub struct DemoArgs {
     /// Where the OBJ files and PNG previews go.
@@ -87,11 +108,8 @@ pub struct DemoArgs {
 
 #[derive(Args, Debug)]
 pub struct SplineArgs {
-    /// The mesh (OBJ, OFF or MEDIT).
-    pub mesh: PathBuf,
-    /// Handle groups: a libigl DMAT (-1 free, k >= 0 group) or JSON {"k": [vertices]}.
-    #[arg(long)]
-    pub select: PathBuf,
+    #[command(flatten)]
+    pub input: MeshInput,
     /// The key motors: a JSON array of motors.
     #[arg(long)]
     pub keys: PathBuf,
@@ -101,44 +119,31 @@ pub struct SplineArgs {
     /// The basis functions.
     #[arg(long, value_enum, default_value = "bspline")]
     pub scheme: SchemeArg,
-    /// The Laplacian of the harmonic field lambda.
-    #[arg(long, value_enum, default_value = "mean-value")]
-    pub laplacian: LaplacianArg,
-    /// How the keys are blended.
-    #[arg(long, value_enum, default_value = "motor-log")]
-    pub blend: BlendArg,
+    #[command(flatten)]
+    pub blending: BlendingArgs,
     #[command(flatten)]
     pub out: OutputArgs,
 }
 
 #[derive(Args, Debug)]
 pub struct HandlesArgs {
-    /// The mesh (OBJ, OFF or MEDIT).
-    pub mesh: PathBuf,
-    /// Handle groups: a libigl DMAT (-1 free, k >= 0 group) or JSON {"k": [vertices]}.
-    #[arg(long)]
-    pub select: PathBuf,
+    #[command(flatten)]
+    pub input: MeshInput,
     /// Per-group motors: JSON {"k": motor, "*": motor for the rest}.
     #[arg(long)]
     pub motors: PathBuf,
-    /// The Laplacian of the harmonic fields.
-    #[arg(long, value_enum, default_value = "mean-value")]
-    pub laplacian: LaplacianArg,
-    /// How the handle motors are blended.
-    #[arg(long, value_enum, default_value = "motor-log")]
-    pub blend: BlendArg,
+    #[command(flatten)]
+    pub blending: BlendingArgs,
     #[command(flatten)]
     pub out: OutputArgs,
 }
 
 #[derive(Args, Debug)]
 pub struct FabrikArgs {
-    /// The mesh (OBJ, OFF or MEDIT).
-    pub mesh: PathBuf,
-    /// Handle groups: group 0 is the chain's root end (lambda = 0), the highest group its tip
-    /// end (lambda = 1).
-    #[arg(long)]
-    pub select: PathBuf,
+    /// (Group 0 of the selection is the chain's root end, lambda = 0; the highest group its
+    /// tip end, lambda = 1.)
+    #[command(flatten)]
+    pub input: MeshInput,
     /// Where the end effector should go: X,Y,Z.
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
     pub target: [f64; 3],

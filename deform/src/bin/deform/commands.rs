@@ -1,7 +1,7 @@
 //! The `spline`, `handles` and `fabrik` subcommands: read, bind, pose, write, report.
 
 use crate::args::{
-    BlendArg, FabrikArgs, HandlesArgs, LaplacianArg, OutputArgs, SchemeArg, SplineArgs,
+    BlendArg, FabrikArgs, HandlesArgs, LaplacianArg, MeshInput, OutputArgs, SchemeArg, SplineArgs,
 };
 use crate::output::{check_outputs, read_mesh, read_selection, read_text, write_obj, write_png};
 use crate::preview;
@@ -133,12 +133,8 @@ fn finish(
 }
 
 /// Read the mesh and selection, refusing outputs that are inputs.
-fn read_inputs(
-    mesh: &Path,
-    select: &Path,
-    extra: &[&Path],
-    out: &OutputArgs,
-) -> Result<(Mesh, Selection)> {
+fn read_inputs(input: &MeshInput, extra: &[&Path], out: &OutputArgs) -> Result<(Mesh, Selection)> {
+    let (mesh, select) = (input.mesh.as_path(), input.select.as_path());
     let mut inputs = vec![mesh, select];
     inputs.extend_from_slice(extra);
     let mut outputs = vec![out.output.as_path()];
@@ -171,8 +167,8 @@ pub fn spline(a: &SplineArgs) -> Result<()> {
     if let Some(r) = &a.rest_keys {
         extra.push(r.as_path());
     }
-    let (mesh, sel) = read_inputs(&a.mesh, &a.select, &extra, &a.out)?;
-    let (first, last) = ends(&sel, &a.select)?;
+    let (mesh, sel) = read_inputs(&a.input, &extra, &a.out)?;
+    let (first, last) = ends(&sel, &a.input.select)?;
     let name = a.keys.display().to_string();
     let keys = parse_key_list(&read_text(&a.keys)?, &name)?;
     let rest = match &a.rest_keys {
@@ -184,8 +180,8 @@ pub fn spline(a: &SplineArgs) -> Result<()> {
     }
     let options = SplineOptions {
         scheme: scheme(a.scheme),
-        harmonic: harmonic(a.laplacian),
-        method: blend(a.blend),
+        harmonic: harmonic(a.blending.laplacian),
+        method: blend(a.blending.blend),
     };
     let t = Instant::now();
     let d = with_progress(
@@ -194,7 +190,7 @@ pub fn spline(a: &SplineArgs) -> Result<()> {
         a.out.quiet,
         || SplineDeformer::bind(&mesh, &first, &last, &rest, options),
     )
-    .with_context(|| format!("{}: cannot bind", a.mesh.display()))?;
+    .with_context(|| format!("{}: cannot bind", a.input.mesh.display()))?;
     let bind_ms = t.elapsed().as_secs_f64() * 1e3;
     let mut posed = vec![DVec3::ZERO; mesh.vertex_count()];
     let pose_ms =
@@ -210,12 +206,12 @@ pub fn spline(a: &SplineArgs) -> Result<()> {
 }
 
 pub fn handles(a: &HandlesArgs) -> Result<()> {
-    let (mesh, sel) = read_inputs(&a.mesh, &a.select, &[a.motors.as_path()], &a.out)?;
+    let (mesh, sel) = read_inputs(&a.input, &[a.motors.as_path()], &a.out)?;
     let name = a.motors.display().to_string();
     let motors = parse_group_motors(&read_text(&a.motors)?, &name, sel.groups.len())?;
     let options = HandleOptions {
-        harmonic: harmonic(a.laplacian),
-        method: blend(a.blend),
+        harmonic: harmonic(a.blending.laplacian),
+        method: blend(a.blending.blend),
     };
     let rest = vec![cga::ScaledMotor::IDENTITY; sel.groups.len()];
     let t = Instant::now();
@@ -225,7 +221,7 @@ pub fn handles(a: &HandlesArgs) -> Result<()> {
         a.out.quiet,
         || MotorHandles::bind_with(&mesh, &sel.sets(), &rest, options),
     )
-    .with_context(|| format!("{}: cannot bind", a.mesh.display()))?;
+    .with_context(|| format!("{}: cannot bind", a.input.mesh.display()))?;
     let bind_ms = t.elapsed().as_secs_f64() * 1e3;
     let mut posed = vec![DVec3::ZERO; mesh.vertex_count()];
     let pose_ms = time_pose(&d, &motors, &mut posed)?;
@@ -254,8 +250,8 @@ pub fn straight_chain(mesh: &Mesh, a: &[u32], b: &[u32], n: usize) -> Vec<DVec3>
 
 pub fn fabrik(a: &FabrikArgs) -> Result<()> {
     let extra: Vec<&Path> = a.chain.iter().map(|p| p.as_path()).collect();
-    let (mesh, sel) = read_inputs(&a.mesh, &a.select, &extra, &a.out)?;
-    let (first, last) = ends(&sel, &a.select)?;
+    let (mesh, sel) = read_inputs(&a.input, &extra, &a.out)?;
+    let (first, last) = ends(&sel, &a.input.select)?;
     let joints: Vec<DVec3> = match &a.chain {
         Some(path) => {
             let text = read_text(path)?;
@@ -290,7 +286,7 @@ pub fn fabrik(a: &FabrikArgs) -> Result<()> {
             )
         },
     )
-    .with_context(|| format!("{}: cannot bind", a.mesh.display()))?;
+    .with_context(|| format!("{}: cannot bind", a.input.mesh.display()))?;
     let bind_ms = t.elapsed().as_secs_f64() * 1e3;
     let options = FabrikOptions {
         tolerance: a.tolerance,
