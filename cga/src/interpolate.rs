@@ -76,11 +76,16 @@ impl Bivector {
 
 impl Motor {
     /// `sum_i w_i M_i` with every `M_i` brought into the hemisphere of the first motor (the
-    /// one loop behind both linear blends).
+    /// one loop behind the linear blends).
     fn hemisphere_sum(motors: impl IntoIterator<Item = Motor>, weights: &[S]) -> Motor {
+        Self::hemisphere_sum_pairs(motors.into_iter().zip(weights.iter().copied()))
+    }
+
+    /// [`Motor::hemisphere_sum`] over `(motor, weight)` pairs.
+    fn hemisphere_sum_pairs(pairs: impl IntoIterator<Item = (Motor, S)>) -> Motor {
         let mut first = None;
         let mut acc = Motor::default();
-        for (m, &w) in motors.into_iter().zip(weights) {
+        for (m, w) in pairs {
             let r = m.real_quat();
             let r0 = *first.get_or_insert(r);
             let w = if r.dot(r0) < 0.0 { -w } else { w };
@@ -94,7 +99,14 @@ impl Motor {
     /// gives the identity (see [`Motor::try_blend_linear`]).
     #[must_use]
     pub fn blend_linear(motors: &[Motor], weights: &[S]) -> Motor {
-        let acc = Self::hemisphere_sum(motors.iter().copied(), weights);
+        Self::blend_linear_pairs(motors.iter().copied().zip(weights.iter().copied()))
+    }
+
+    /// [`Motor::blend_linear`] over `(motor, weight)` pairs (for gathering the motors of a
+    /// blend from a larger table without copying them into a slice).
+    #[must_use]
+    pub fn blend_linear_pairs(pairs: impl IntoIterator<Item = (Motor, S)>) -> Motor {
+        let acc = Self::hemisphere_sum_pairs(pairs);
         if !(acc.norm_squared() > S::MIN_POSITIVE) {
             return Motor::IDENTITY;
         }

@@ -18,13 +18,15 @@
 //! * [`BlendMethod::Matrix`]: `sum_j w_ij A_j` over 3x4 affine matrices (linear blend
 //!   skinning), the baseline that collapses under large rotations.
 //!
-//! The keys are prepared once per pose ([`PreparedKeys`], on the stack: no allocation).
+//! The keys are prepared once per pose into buffers the bound deformer keeps
+//! ([`PreparedKeys`]), so posing does not allocate.
 
 use crate::deformer::{check_key_count, check_positions, KeyError, MAX_KEYS};
 use crate::Result;
 use cga::{Bivector, Motor, ScaledMotor};
 use glam::{DAffine3, DMat3, DQuat, DVec3};
 use rayon::prelude::*;
+use std::sync::Mutex;
 
 /// How the per-vertex transform is blended from the keys.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -60,14 +62,47 @@ impl BlendMethod {
     }
 }
 
-/// Per-vertex weights over a contiguous run of keys: vertex `i` blends keys
-/// `first(i) .. first(i) + width` with weights `row(i)`.
+/// Per-vertex weights over keys: vertex `i` blends `width` keys with weights `row(i)`, either
+/// a contiguous run `first(i) .. first(i) + width` (splines, dense handle coordinates) or an
+/// explicit list of key indices per vertex (lattice blocks of a B-spline FFD, the few largest
+/// coordinates of a cage).
 #[derive(Clone, Debug, PartialEq)]
 pub struct KeyWeights {
     key_count: usize,
     width: usize,
     first: Vec<u32>,
+    /// `width` key indices per vertex, when the keys are not a contiguous run.
+    keys: Option<Vec<u32>>,
     weights: Vec<f64>,
+}
+
+/// The weights of one vertex.
+#[derive(Clone, Copy, Debug)]
+pub struct Row<'a> {
+    first: usize,
+    keys: Option<&'a [u32]>,
+    /// The weights, one per key of the row.
+    pub weights: &'a [f64],
+}
+
+impl Row<'_> {
+    /// The key of the row's `j`-th weight.
+    #[inline]
+    pub fn key(&self, j: usize) -> usize {
+        match self.keys {
+            Some(k) => k[j] as usize,
+            None => self.first + j,
+        }
+    }
+
+    /// `(key, weight)` pairs.
+    #[inline]
+    pub fn pairs(&self) -> impl Iterator<Item = (usize, f64)> + '_ {
+        self.weights
+            .iter()
+            .enumerate()
+            .map(|(j, &w)| (self.key(j), w))
+    }
 }
 
 impl KeyWeights {
@@ -77,20 +112,6 @@ impl KeyWeights {
     /// [`crate::Error::DimensionMismatch`] for inconsistent lengths, [`KeyError::TooMany`],
     /// [`crate::Error::InvalidArgument`] for a run past the last key or a non-finite weight.
     pub fn new(key_count: usize, width: usize, first: Vec<u32>, weights: Vec<f64>) -> Result<Self> {
-        if key_count > MAX_KEYS {
-            return Err(KeyError::TooMany {
-                got: key_count,
-                max: MAX_KEYS,
-            }
-            .into());
-        }
-        if weights.len() != first.len() * width {
-            return Err(crate::Error::DimensionMismatch {
-                what: "key weights",
-                expected: first.len() * width,
-                got: weights.len(),
-            });
-        }
         if let Some(v) = first.iter().position(|&f| f as usize + width > key_count) {
             return Err(crate::Error::InvalidArgument(format!(
                 "vertex {v}: key run {}..{} past the {key_count} keys",
@@ -98,18 +119,73 @@ impl KeyWeights {
                 first[v] as usize + width
             )));
         }
-        if let Some(k) = weights.iter().position(|w| !w.is_finite()) {
-            return Err(crate::Error::InvalidArgument(format!(
-                "vertex {}: non-finite weight",
-                k / width.max(1)
-            )));
-        }
-        Ok(KeyWeights {
+        Self::checked(KeyWeights {
             key_count,
             width,
             first,
+            keys: None,
             weights,
         })
+    }
+
+    /// Rows of `width` `(key, weight)` pairs with explicit keys: `keys` and `weights` are
+    /// vertex-major, `width` per vertex.
+    ///
+    /// # Errors
+    /// As [`KeyWeights::new`]; a key index past the last key is
+    /// [`crate::Error::InvalidArgument`].
+    pub fn gathered(
+        key_count: usize,
+        width: usize,
+        keys: Vec<u32>,
+        weights: Vec<f64>,
+    ) -> Result<Self> {
+        if keys.len() != weights.len() {
+            return Err(crate::Error::DimensionMismatch {
+                what: "key indices",
+                expected: weights.len(),
+                got: keys.len(),
+            });
+        }
+        if let Some(k) = keys.iter().position(|&k| k as usize >= key_count) {
+            return Err(crate::Error::InvalidArgument(format!(
+                "vertex {}: key {} past the {key_count} keys",
+                k / width.max(1),
+                keys[k]
+            )));
+        }
+        let n = weights.len().checked_div(width).unwrap_or(0);
+        Self::checked(KeyWeights {
+            key_count,
+            width,
+            first: vec![0; n],
+            keys: Some(keys),
+            weights,
+        })
+    }
+
+    fn checked(w: KeyWeights) -> Result<Self> {
+        if w.key_count > MAX_KEYS {
+            return Err(KeyError::TooMany {
+                got: w.key_count,
+                max: MAX_KEYS,
+            }
+            .into());
+        }
+        if w.weights.len() != w.first.len() * w.width {
+            return Err(crate::Error::DimensionMismatch {
+                what: "key weights",
+                expected: w.first.len() * w.width,
+                got: w.weights.len(),
+            });
+        }
+        if let Some(k) = w.weights.iter().position(|x| !x.is_finite()) {
+            return Err(crate::Error::InvalidArgument(format!(
+                "vertex {}: non-finite weight",
+                k / w.width.max(1)
+            )));
+        }
+        Ok(w)
     }
 
     /// Dense rows: `columns[j][i]` is the weight of key `j` at vertex `i`.
@@ -145,45 +221,58 @@ impl KeyWeights {
         self.key_count
     }
 
-    /// The first key and the weights of vertex `i`.
+    /// The weights of vertex `i`.
     #[inline]
-    pub fn row(&self, i: usize) -> (usize, &[f64]) {
-        (
-            self.first[i] as usize,
-            &self.weights[i * self.width..(i + 1) * self.width],
-        )
+    pub fn row(&self, i: usize) -> Row<'_> {
+        let range = i * self.width..(i + 1) * self.width;
+        Row {
+            first: self.first[i] as usize,
+            keys: self.keys.as_ref().map(|k| &k[range.clone()]),
+            weights: &self.weights[range],
+        }
     }
 
-    /// The dense weight of key `j` at vertex `i`.
+    /// The weight of key `j` at vertex `i` (0 when the row does not hold it).
     pub fn weight(&self, i: usize, j: usize) -> f64 {
-        let (f, w) = self.row(i);
-        if j >= f && j < f + self.width {
-            w[j - f]
-        } else {
-            0.0
-        }
+        self.row(i)
+            .pairs()
+            .filter(|&(k, _)| k == j)
+            .map(|(_, w)| w)
+            .sum()
     }
 }
 
-/// The keys in the form one blend method needs, prepared once per pose on the stack.
+/// The keys in the form one blend method needs. Reused from pose to pose (its buffers keep
+/// their capacity), so posing does not allocate.
+#[derive(Clone, Debug, Default)]
 pub struct PreparedKeys {
     method: BlendMethod,
     /// Whether any key scales (otherwise the cheaper rigid paths are taken).
     scaled: bool,
-    logs: [Bivector; MAX_KEYS],
-    motors: [Motor; MAX_KEYS],
-    log_scales: [f64; MAX_KEYS],
-    quats: [(DQuat, DQuat); MAX_KEYS],
-    affines: [DAffine3; MAX_KEYS],
+    logs: Vec<Bivector>,
+    motors: Vec<Motor>,
+    log_scales: Vec<f64>,
+    quats: Vec<(DQuat, DQuat)>,
+    affines: Vec<DAffine3>,
 }
 
 impl PreparedKeys {
-    /// Check the keys and prepare them for `method`.
+    /// Check the keys and prepare them for `method` (allocates; see [`PreparedKeys::prepare`]).
+    ///
+    /// # Errors
+    /// As [`PreparedKeys::prepare`].
+    pub fn new(keys: &[ScaledMotor], method: BlendMethod) -> Result<Self> {
+        let mut p = PreparedKeys::default();
+        p.prepare(keys, method)?;
+        Ok(p)
+    }
+
+    /// Check the keys and prepare them for `method`, reusing this value's buffers.
     ///
     /// # Errors
     /// [`KeyError::TooMany`], or [`KeyError::Invalid`] naming the first key that is not a
     /// finite scaled motor.
-    pub fn new(keys: &[ScaledMotor], method: BlendMethod) -> Result<Self> {
+    pub fn prepare(&mut self, keys: &[ScaledMotor], method: BlendMethod) -> Result<()> {
         if keys.len() > MAX_KEYS {
             return Err(KeyError::TooMany {
                 got: keys.len(),
@@ -191,33 +280,34 @@ impl PreparedKeys {
             }
             .into());
         }
-        let mut p = PreparedKeys {
-            method,
-            scaled: false,
-            logs: [Bivector::default(); MAX_KEYS],
-            motors: [Motor::IDENTITY; MAX_KEYS],
-            log_scales: [0.0; MAX_KEYS],
-            quats: [(DQuat::IDENTITY, DQuat::from_xyzw(0.0, 0.0, 0.0, 0.0)); MAX_KEYS],
-            affines: [DAffine3::IDENTITY; MAX_KEYS],
-        };
+        self.method = method;
+        self.scaled = false;
+        self.logs.clear();
+        self.log_scales.clear();
+        self.motors.clear();
+        self.quats.clear();
+        self.affines.clear();
         for (j, k) in keys.iter().enumerate() {
             let log = k
                 .try_log()
                 .map_err(|source| KeyError::Invalid { index: j, source })?;
-            p.logs[j] = log;
-            p.log_scales[j] = 2.0 * log.eoi;
-            p.scaled |= log.eoi != 0.0;
+            self.logs.push(log);
+            self.log_scales.push(2.0 * log.eoi);
+            self.scaled |= log.eoi != 0.0;
             if method != BlendMethod::MotorLog {
                 let (s, q, t) = k.to_scale_rotation_translation();
                 let q = q.normalize();
-                let rigid = Motor::from_rotation_translation(q, t);
-                p.motors[j] = rigid;
+                self.motors.push(Motor::from_rotation_translation(q, t));
                 let d = DQuat::from_vec4((0.5 * t).extend(0.0)) * q;
-                p.quats[j] = (q, d);
-                p.affines[j] = DAffine3::from_scale_rotation_translation(DVec3::splat(s), q, t);
+                self.quats.push((q, d));
+                self.affines.push(DAffine3::from_scale_rotation_translation(
+                    DVec3::splat(s),
+                    q,
+                    t,
+                ));
             }
         }
-        Ok(p)
+        Ok(())
     }
 
     /// The blend method.
@@ -225,72 +315,79 @@ impl PreparedKeys {
         self.method
     }
 
-    /// Apply the blend of keys `first ..` with weights `w` to the point `p`.
+    /// Apply the blend of the row's keys to the point `p`.
     #[inline]
-    pub fn transform(&self, first: usize, w: &[f64], p: DVec3) -> DVec3 {
+    pub fn transform(&self, row: Row, p: DVec3) -> DVec3 {
         match self.method {
             BlendMethod::MotorLog => {
                 // exp of the blended generator, applied in its quaternion form (the motor's
                 // action `M X ~M` without building M).
-                let g = Bivector::weighted_sum(self.logs[first..].iter().copied(), w);
-                g.exp_similarity().transform_point(p)
+                self.log_blend(row).exp_similarity().transform_point(p)
             }
             BlendMethod::MotorLinear => {
-                let m = Motor::blend_linear(&self.motors[first..first + w.len()], w);
-                m.transform_point(self.scale_of(first, w) * p)
+                let m = Motor::blend_linear_pairs(row.pairs().map(|(k, w)| (self.motors[k], w)));
+                m.transform_point(self.scale_of(row) * p)
             }
             BlendMethod::DualQuaternion => {
-                let (q, t) = self.dual_quaternion_blend(first, w);
-                q * (self.scale_of(first, w) * p) + t
+                let (q, t) = self.dual_quaternion_blend(row);
+                q * (self.scale_of(row) * p) + t
             }
-            BlendMethod::Matrix => self.affine_blend(first, w).transform_point3(p),
+            BlendMethod::Matrix => self.affine_blend(row).transform_point3(p),
         }
     }
 
-    /// The blended transform of keys `first ..` with weights `w` as an affine map (for the
-    /// bind, which applies its inverse).
-    pub fn affine(&self, first: usize, w: &[f64]) -> DAffine3 {
-        match self.method {
+    /// The blended transform of the row's keys as an affine map (for the bind, which applies
+    /// its inverse).
+    pub fn affine(&self, row: Row) -> DAffine3 {
+        let (s, q, t) = match self.method {
             BlendMethod::MotorLog => {
-                let g = Bivector::weighted_sum(self.logs[first..].iter().copied(), w);
-                let (s, q, t) = g.exp_scaled().to_scale_rotation_translation();
-                DAffine3::from_scale_rotation_translation(DVec3::splat(s), q.normalize(), t)
+                let sim = self.log_blend(row).exp_similarity();
+                (sim.scale, sim.rotation, sim.translation)
             }
             BlendMethod::MotorLinear => {
-                let m = Motor::blend_linear(&self.motors[first..first + w.len()], w);
+                let m = Motor::blend_linear_pairs(row.pairs().map(|(k, w)| (self.motors[k], w)));
                 let (q, t) = m.to_rotation_translation();
-                let s = self.scale_of(first, w);
-                DAffine3::from_scale_rotation_translation(DVec3::splat(s), q.normalize(), t)
+                (self.scale_of(row), q.normalize(), t)
             }
             BlendMethod::DualQuaternion => {
-                let (q, t) = self.dual_quaternion_blend(first, w);
-                let s = self.scale_of(first, w);
-                DAffine3::from_scale_rotation_translation(DVec3::splat(s), q, t)
+                let (q, t) = self.dual_quaternion_blend(row);
+                (self.scale_of(row), q, t)
             }
-            BlendMethod::Matrix => self.affine_blend(first, w),
+            BlendMethod::Matrix => return self.affine_blend(row),
+        };
+        DAffine3::from_scale_rotation_translation(DVec3::splat(s), q, t)
+    }
+
+    /// `sum w log R` over the row.
+    #[inline]
+    fn log_blend(&self, row: Row) -> Bivector {
+        match row.keys {
+            None => Bivector::weighted_sum(self.logs[row.first..].iter().copied(), row.weights),
+            Some(k) => {
+                Bivector::weighted_sum(k.iter().map(|&k| self.logs[k as usize]), row.weights)
+            }
         }
     }
 
     /// `exp(sum w ln s)`: the geometric blend of the key scales.
     #[inline]
-    fn scale_of(&self, first: usize, w: &[f64]) -> f64 {
+    fn scale_of(&self, row: Row) -> f64 {
         if !self.scaled {
             return 1.0;
         }
-        let l: f64 = w
-            .iter()
-            .zip(&self.log_scales[first..])
-            .map(|(w, l)| w * l)
-            .sum();
-        l.exp()
+        row.pairs()
+            .map(|(k, w)| w * self.log_scales[k])
+            .sum::<f64>()
+            .exp()
     }
 
     /// Kavan's dual-quaternion linear blend: `(rotation, translation)`.
     #[inline]
-    fn dual_quaternion_blend(&self, first: usize, w: &[f64]) -> (DQuat, DVec3) {
-        let q0 = self.quats[first].0;
+    fn dual_quaternion_blend(&self, row: Row) -> (DQuat, DVec3) {
+        let q0 = self.quats[row.key(0)].0;
         let (mut r, mut d) = (r0(), r0());
-        for (&(q, dq), &wk) in self.quats[first..].iter().zip(w) {
+        for (k, wk) in row.pairs() {
+            let (q, dq) = self.quats[k];
             let wk = if q.dot(q0) < 0.0 { -wk } else { wk };
             r += q * wk;
             d += dq * wk;
@@ -303,10 +400,11 @@ impl PreparedKeys {
 
     /// `sum w A`.
     #[inline]
-    fn affine_blend(&self, first: usize, w: &[f64]) -> DAffine3 {
+    fn affine_blend(&self, row: Row) -> DAffine3 {
         let mut m = DMat3::ZERO;
         let mut t = DVec3::ZERO;
-        for (a, &wk) in self.affines[first..].iter().zip(w) {
+        for (k, wk) in row.pairs() {
+            let a = &self.affines[k];
             m += a.matrix3 * wk;
             t += a.translation * wk;
         }
@@ -325,12 +423,25 @@ const PARALLEL_MIN: usize = 2048;
 
 /// A mesh bound to key weights: the rest points in the frame of their rest transform, ready to
 /// be posed by any keys. The shared core of the spline and handle deformers.
-#[derive(Clone, Debug)]
+#[derive(Debug)]
 pub struct BoundBlend {
     weights: KeyWeights,
     /// `p'_i = M_i^-1 p_i`, with `M_i` the blend of the rest keys.
     local: Vec<DVec3>,
     method: BlendMethod,
+    /// The keys of the last pose, their buffers reused by the next.
+    prepared: Mutex<PreparedKeys>,
+}
+
+impl Clone for BoundBlend {
+    fn clone(&self) -> Self {
+        BoundBlend {
+            weights: self.weights.clone(),
+            local: self.local.clone(),
+            method: self.method,
+            prepared: Mutex::new(PreparedKeys::default()),
+        }
+    }
 }
 
 impl BoundBlend {
@@ -353,11 +464,7 @@ impl BoundBlend {
         let local: Vec<DVec3> = positions
             .par_iter()
             .enumerate()
-            .map(|(i, &p)| {
-                let (f, w) = weights.row(i);
-                let a = keys.affine(f, w);
-                a.inverse().transform_point3(p)
-            })
+            .map(|(i, &p)| keys.affine(weights.row(i)).inverse().transform_point3(p))
             .collect();
         if let Some(i) = local.iter().position(|p| !p.is_finite()) {
             return Err(crate::Error::InvalidArgument(format!(
@@ -368,6 +475,7 @@ impl BoundBlend {
             weights,
             local,
             method,
+            prepared: Mutex::new(keys),
         })
     }
 
@@ -398,10 +506,12 @@ impl BoundBlend {
     pub fn pose(&self, keys: &[ScaledMotor], out: &mut [DVec3]) -> Result<()> {
         check_key_count("this deformer", self.key_count(), keys.len())?;
         check_positions(self.vertex_count(), out.len())?;
-        let prepared = PreparedKeys::new(keys, self.method)?;
+        // A pose that panicked elsewhere leaves only stale keys behind: they are re-prepared.
+        let mut prepared = self.prepared.lock().unwrap_or_else(|e| e.into_inner());
+        prepared.prepare(keys, self.method)?;
+        let prepared = &*prepared;
         let one = |(i, o): (usize, &mut DVec3)| {
-            let (f, w) = self.weights.row(i);
-            *o = prepared.transform(f, w, self.local[i]);
+            *o = prepared.transform(self.weights.row(i), self.local[i]);
         };
         if out.len() < PARALLEL_MIN {
             out.iter_mut().enumerate().for_each(one);

@@ -34,9 +34,9 @@
 use cga::{CgaError, ScaledMotor};
 use glam::DVec3;
 
-/// The most keys one deformer takes: posing keeps the per-key data on the stack, so that it
-/// does not allocate.
-pub const MAX_KEYS: usize = 64;
+/// The most keys one deformer takes (a sanity limit on key lists and lattices; per-key data
+/// lives in buffers the bound deformer reuses from pose to pose).
+pub const MAX_KEYS: usize = 1 << 16;
 
 /// A deformer after `bind`: poses its mesh from a list of keys.
 pub trait Deformer {

@@ -1,0 +1,77 @@
+//! Key weights over contiguous runs and over gathered key lists pose the same.
+
+use cga::ScaledMotor;
+use deform::{BlendMethod, BoundBlend, Deformer, KeyWeights, MotorHandles};
+use glam::{DQuat, DVec3};
+
+#[test]
+fn gathered_rows_pose_like_contiguous_rows() {
+    let positions: Vec<DVec3> = (0..20)
+        .map(|i| DVec3::new(i as f64 * 0.3, (i % 3) as f64, 1.0))
+        .collect();
+    let n = positions.len();
+    // Keys 1..4 contiguous, versus the same keys listed backwards (weights reversed too).
+    let mut w = Vec::new();
+    for i in 0..n {
+        let t = i as f64 / (n - 1) as f64;
+        w.extend([(1.0 - t) * 0.5, 0.5, t * 0.5]);
+    }
+    let contiguous = KeyWeights::new(5, 3, vec![1; n], w.clone()).unwrap();
+    let mut keys = Vec::new();
+    let mut rw = Vec::new();
+    for row in w.chunks(3) {
+        keys.extend([3u32, 2, 1]);
+        rw.extend([row[2], row[1], row[0]]);
+    }
+    let gathered = KeyWeights::gathered(5, 3, keys, rw).unwrap();
+    for i in 0..n {
+        for j in 0..5 {
+            assert_eq!(contiguous.weight(i, j), gathered.weight(i, j));
+        }
+    }
+    let motors: Vec<ScaledMotor> = (0..5)
+        .map(|j| {
+            ScaledMotor::from_scale_rotation_translation(
+                1.0 + 0.1 * j as f64,
+                DQuat::from_rotation_z(0.3 * j as f64),
+                DVec3::X * j as f64,
+            )
+        })
+        .collect();
+    for method in BlendMethod::ALL {
+        let rest = [ScaledMotor::IDENTITY; 5];
+        let a = BoundBlend::bind(&positions, contiguous.clone(), &rest, method).unwrap();
+        let b = BoundBlend::bind(&positions, gathered.clone(), &rest, method).unwrap();
+        let (mut pa, mut pb) = (vec![DVec3::ZERO; n], vec![DVec3::ZERO; n]);
+        a.pose(&motors, &mut pa).unwrap();
+        b.pose(&motors, &mut pb).unwrap();
+        for (x, y) in pa.iter().zip(&pb) {
+            assert!(x.distance(*y) < 1e-12, "{method:?}");
+        }
+        // Posing twice reuses the prepared keys: same result.
+        a.pose(&motors, &mut pb).unwrap();
+        assert_eq!(pa, pb);
+    }
+    assert!(KeyWeights::gathered(5, 3, vec![5, 0, 0], vec![1.0, 0.0, 0.0]).is_err());
+    assert!(KeyWeights::gathered(5, 3, vec![0, 0], vec![1.0, 0.0, 0.0]).is_err());
+    assert!(KeyWeights::new(5, 3, vec![3], vec![1.0, 0.0, 0.0]).is_err());
+    assert!(KeyWeights::new(5, 3, vec![0], vec![f64::NAN, 0.0, 0.0]).is_err());
+}
+
+#[test]
+fn a_cloned_deformer_poses_the_same() {
+    let mesh = deform::shapes::icosphere(1.0, 2);
+    let h = MotorHandles::bind(&mesh, &[&[0], &[3]], Default::default()).unwrap();
+    let c = h.clone();
+    let keys = [
+        ScaledMotor::IDENTITY,
+        ScaledMotor::from_scale_rotation_translation(1.2, DQuat::IDENTITY, DVec3::Y),
+    ];
+    let (mut a, mut b) = (
+        vec![DVec3::ZERO; mesh.vertex_count()],
+        vec![DVec3::ZERO; mesh.vertex_count()],
+    );
+    h.pose(&keys, &mut a).unwrap();
+    c.pose(&keys, &mut b).unwrap();
+    assert_eq!(a, b);
+}
