@@ -103,6 +103,25 @@ impl Row<'_> {
             .enumerate()
             .map(|(j, &w)| (self.key(j), w))
     }
+
+    /// Fold `f(acc, key, weight)` over the row, with one loop per storage kind (the kind is
+    /// matched once, not per element).
+    #[inline(always)]
+    pub fn fold<A>(&self, init: A, mut f: impl FnMut(A, usize, f64) -> A) -> A {
+        match self.keys {
+            None => {
+                let first = self.first;
+                self.weights
+                    .iter()
+                    .enumerate()
+                    .fold(init, |a, (j, &w)| f(a, first + j, w))
+            }
+            Some(k) => k
+                .iter()
+                .zip(self.weights)
+                .fold(init, |a, (&k, &w)| f(a, k as usize, w)),
+        }
+    }
 }
 
 impl KeyWeights {
@@ -324,10 +343,9 @@ impl PreparedKeys {
                 // action `M X ~M` without building M).
                 self.log_blend(row).exp_similarity().transform_point(p)
             }
-            BlendMethod::MotorLinear => {
-                let m = Motor::blend_linear_pairs(row.pairs().map(|(k, w)| (self.motors[k], w)));
-                m.transform_point(self.scale_of(row) * p)
-            }
+            BlendMethod::MotorLinear => self
+                .linear_blend(row)
+                .transform_point(self.scale_of(row) * p),
             BlendMethod::DualQuaternion => {
                 let (q, t) = self.dual_quaternion_blend(row);
                 q * (self.scale_of(row) * p) + t
@@ -345,8 +363,7 @@ impl PreparedKeys {
                 (sim.scale, sim.rotation, sim.translation)
             }
             BlendMethod::MotorLinear => {
-                let m = Motor::blend_linear_pairs(row.pairs().map(|(k, w)| (self.motors[k], w)));
-                let (q, t) = m.to_rotation_translation();
+                let (q, t) = self.linear_blend(row).to_rotation_translation();
                 (self.scale_of(row), q.normalize(), t)
             }
             BlendMethod::DualQuaternion => {
@@ -369,29 +386,37 @@ impl PreparedKeys {
         }
     }
 
+    /// `normalise(sum w R)` over the row, in the hemisphere of its first key.
+    #[inline]
+    fn linear_blend(&self, row: Row) -> Motor {
+        match row.keys {
+            None => Motor::blend_linear(&self.motors[row.first..], row.weights),
+            Some(k) => Motor::blend_linear_pairs(
+                k.iter()
+                    .zip(row.weights)
+                    .map(|(&k, &w)| (self.motors[k as usize], w)),
+            ),
+        }
+    }
+
     /// `exp(sum w ln s)`: the geometric blend of the key scales.
     #[inline]
     fn scale_of(&self, row: Row) -> f64 {
         if !self.scaled {
             return 1.0;
         }
-        row.pairs()
-            .map(|(k, w)| w * self.log_scales[k])
-            .sum::<f64>()
-            .exp()
+        row.fold(0.0, |a, k, w| a + w * self.log_scales[k]).exp()
     }
 
     /// Kavan's dual-quaternion linear blend: `(rotation, translation)`.
     #[inline]
     fn dual_quaternion_blend(&self, row: Row) -> (DQuat, DVec3) {
         let q0 = self.quats[row.key(0)].0;
-        let (mut r, mut d) = (r0(), r0());
-        for (k, wk) in row.pairs() {
+        let (r, d) = row.fold((r0(), r0()), |(r, d), k, wk| {
             let (q, dq) = self.quats[k];
             let wk = if q.dot(q0) < 0.0 { -wk } else { wk };
-            r += q * wk;
-            d += dq * wk;
-        }
+            (r + q * wk, d + dq * wk)
+        });
         let n = r.length();
         let (r, d) = (r * (1.0 / n), d * (1.0 / n));
         let t = d * r.conjugate();
@@ -401,13 +426,10 @@ impl PreparedKeys {
     /// `sum w A`.
     #[inline]
     fn affine_blend(&self, row: Row) -> DAffine3 {
-        let mut m = DMat3::ZERO;
-        let mut t = DVec3::ZERO;
-        for (k, wk) in row.pairs() {
+        let (m, t) = row.fold((DMat3::ZERO, DVec3::ZERO), |(m, t), k, wk| {
             let a = &self.affines[k];
-            m += a.matrix3 * wk;
-            t += a.translation * wk;
-        }
+            (m + a.matrix3 * wk, t + a.translation * wk)
+        });
         DAffine3::from_mat3_translation(m, t)
     }
 }
