@@ -185,6 +185,12 @@ pub enum Error {
     /// Bad keys, handle sets or parameters of a deformer.
     #[error(transparent)]
     Keys(#[from] crate::deformer::KeyError),
+    /// A bad FFD lattice, or a vertex outside it.
+    #[error(transparent)]
+    Ffd(#[from] crate::ffd::FfdError),
+    /// A bad cage, or one that does not enclose the model.
+    #[error(transparent)]
+    Cage(#[from] crate::cage::CageError),
 }
 
 /// `Result` with [`Error`].

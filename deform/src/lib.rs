@@ -26,9 +26,12 @@
 pub mod adjacency;
 pub mod blend;
 pub mod bspline;
+pub mod cage;
+pub mod control;
 pub mod deformer;
 mod error;
 pub mod fabrik;
+pub mod ffd;
 pub mod handles;
 pub mod harmonic;
 pub mod input;

@@ -1,0 +1,84 @@
+//! Cage validation: a cage must be a closed, edge-manifold triangle mesh with finite
+//! coordinates and no degenerate (zero-area) faces.
+
+use super::CageError;
+use crate::{IndexList, Mesh, Result};
+use std::collections::HashMap;
+
+/// Faces whose area is below this fraction of the squared bounding-box diagonal are
+/// degenerate.
+pub const DEGENERATE_AREA: f64 = 1e-14;
+
+/// Check that `cage` can carry coordinates: at least 4 vertices and 4 faces, finite
+/// coordinates, face indices in range, every edge shared by exactly two faces (closed,
+/// edge-manifold), no face of (numerically) zero area.
+///
+/// # Errors
+/// The [`CageError`] naming the offending vertices or faces.
+pub fn check_cage(cage: &Mesh) -> Result<()> {
+    let n = cage.vertex_count();
+    if n < 4 || cage.triangle_count() < 4 {
+        return Err(CageError::TooSmall {
+            vertices: n,
+            faces: cage.triangle_count(),
+        }
+        .into());
+    }
+    let bad: Vec<u32> = (0..n as u32)
+        .filter(|&i| !cage.positions[i as usize].is_finite())
+        .collect();
+    if !bad.is_empty() {
+        return Err(CageError::NonFinite {
+            vertices: bad.into(),
+        }
+        .into());
+    }
+    let bad: Vec<u32> = (0..cage.triangle_count() as u32)
+        .filter(|&f| {
+            let t = cage.triangles[f as usize];
+            t.iter().any(|&v| v as usize >= n) || t[0] == t[1] || t[1] == t[2] || t[0] == t[2]
+        })
+        .collect();
+    if !bad.is_empty() {
+        return Err(CageError::BadFaces { faces: bad.into() }.into());
+    }
+    let mut edges: HashMap<(u32, u32), u32> = HashMap::new();
+    for t in &cage.triangles {
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            *edges.entry((a.min(b), a.max(b))).or_default() += 1;
+        }
+    }
+    let pick = |pred: &dyn Fn(u32) -> bool| -> IndexList {
+        let mut v: Vec<u32> = edges
+            .iter()
+            .filter(|(_, &c)| pred(c))
+            .flat_map(|(&(a, b), _)| [a, b])
+            .collect();
+        v.sort_unstable();
+        v.dedup();
+        v.into()
+    };
+    let open = pick(&|c| c == 1);
+    if !open.0.is_empty() {
+        return Err(CageError::Open { vertices: open }.into());
+    }
+    let shared = pick(&|c| c > 2);
+    if !shared.0.is_empty() {
+        return Err(CageError::NonManifold { vertices: shared }.into());
+    }
+    let diag = cage.bounding_box().map_or(0.0, |b| b.diagonal());
+    let floor = DEGENERATE_AREA * diag * diag;
+    let bad: Vec<u32> = (0..cage.triangle_count())
+        .filter(|&f| {
+            let [a, b, c] = cage.corners(f);
+            let area = 0.5 * (b - a).cross(c - a).length();
+            !(area > floor)
+        })
+        .map(|f| f as u32)
+        .collect();
+    if !bad.is_empty() {
+        return Err(CageError::Degenerate { faces: bad.into() }.into());
+    }
+    Ok(())
+}

@@ -1,0 +1,279 @@
+//! Harmonic coordinates (Joshi, Meyer, DeRose, Green and Sanocki 2007): one harmonic function
+//! per cage vertex inside the cage, equal on the cage surface to that vertex's piecewise-linear
+//! hat function, solved on a voxel grid and looked up trilinearly at the model's vertices.
+//!
+//! The grid covers the cage's box (plus a margin) with cubic cells, `resolution` nodes along
+//! its longest side. Nodes within `sqrt(3)` cells of the cage surface are boundary nodes, set
+//! to the hat functions at their closest point on the cage (so every cell around a point inside
+//! the cage has only boundary or interior corners); nodes reached from the grid's border
+//! without crossing that band are outside; the rest are interior, where the 7-point Laplace
+//! equation is solved for every cage vertex at once with one sparse Cholesky factorisation
+//! ([`crate::DirichletSolver`]). The discrete maximum principle keeps the coordinates in
+//! `[0, 1]`; rounding residues are clamped and each row renormalised to sum to one.
+
+use super::CageError;
+use crate::{DirichletSolver, Mesh, Result, SolverOptions};
+use glam::DVec3;
+use rayon::prelude::*;
+use sprs::TriMat;
+
+/// The grid of [`harmonic_cage_coordinates`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct HarmonicGrid {
+    /// Nodes along the longest side of the cage's box (default 64).
+    pub resolution: usize,
+}
+
+impl Default for HarmonicGrid {
+    fn default() -> Self {
+        HarmonicGrid { resolution: 64 }
+    }
+}
+
+/// Node classes.
+const OUTSIDE: u8 = 0;
+const INTERIOR: u8 = 1;
+const BOUNDARY: u8 = 2;
+
+/// Harmonic coordinates of `points` (inside `cage`, checked closed) on `grid`: vertex-major,
+/// `cage.vertex_count()` per point, each in `[0, 1]`, each row summing to one.
+///
+/// # Errors
+/// [`CageError::Grid`] for a resolution below 8 or above 512, or a point outside the grid;
+/// solver errors (out of memory).
+pub fn harmonic_cage_coordinates(
+    cage: &Mesh,
+    points: &[DVec3],
+    grid: HarmonicGrid,
+) -> Result<Vec<f64>> {
+    if !(8..=512).contains(&grid.resolution) {
+        return Err(
+            CageError::Grid(format!("resolution {} outside 8 ..= 512", grid.resolution)).into(),
+        );
+    }
+    let m = cage.vertex_count();
+    let b = cage
+        .bounding_box()
+        .ok_or_else(|| CageError::Grid("empty cage".into()))?;
+    let h = b.size().max_element() / (grid.resolution - 1) as f64;
+    let margin = 3;
+    let origin = b.min - DVec3::splat(margin as f64 * h);
+    let dims: [usize; 3] =
+        std::array::from_fn(|a| (b.size()[a] / h).ceil() as usize + 1 + 2 * margin);
+    let node = |x: usize, y: usize, z: usize| x + dims[0] * (y + dims[1] * z);
+    let total = dims[0] * dims[1] * dims[2];
+    let at = |i: usize| {
+        let (x, y, z) = (
+            i % dims[0],
+            (i / dims[0]) % dims[1],
+            i / (dims[0] * dims[1]),
+        );
+        origin + h * DVec3::new(x as f64, y as f64, z as f64)
+    };
+
+    // Boundary band: closest cage point within sqrt(3) h; store (distance, face, barycentric).
+    let band = 3f64.sqrt() * h;
+    let mut closest: Vec<(f64, u32, DVec3)> = vec![(f64::INFINITY, 0, DVec3::ZERO); total];
+    for f in 0..cage.triangle_count() {
+        let c = cage.corners(f);
+        let lo = c[0].min(c[1]).min(c[2]) - DVec3::splat(band);
+        let hi = c[0].max(c[1]).max(c[2]) + DVec3::splat(band);
+        let r0: [usize; 3] =
+            std::array::from_fn(|a| (((lo[a] - origin[a]) / h).floor().max(0.0)) as usize);
+        let r1: [usize; 3] =
+            std::array::from_fn(|a| ((((hi[a] - origin[a]) / h).ceil()) as usize).min(dims[a] - 1));
+        for z in r0[2]..=r1[2] {
+            for y in r0[1]..=r1[1] {
+                for x in r0[0]..=r1[0] {
+                    let i = node(x, y, z);
+                    let (q, bary) = closest_on_triangle(at(i), c);
+                    let d = q.distance(at(i));
+                    if d <= band && d < closest[i].0 {
+                        closest[i] = (d, f as u32, bary);
+                    }
+                }
+            }
+        }
+    }
+    let mut class: Vec<u8> = closest
+        .iter()
+        .map(|c| if c.0.is_finite() { BOUNDARY } else { INTERIOR })
+        .collect();
+    // Flood the outside from the grid's corner (the margin is outside the band).
+    let mut stack = vec![0usize];
+    class[0] = OUTSIDE;
+    while let Some(i) = stack.pop() {
+        let (x, y, z) = (
+            i % dims[0],
+            (i / dims[0]) % dims[1],
+            i / (dims[0] * dims[1]),
+        );
+        let mut visit = |j: usize| {
+            if class[j] == INTERIOR {
+                class[j] = OUTSIDE;
+                stack.push(j);
+            }
+        };
+        if x > 0 {
+            visit(i - 1);
+        }
+        if x + 1 < dims[0] {
+            visit(i + 1);
+        }
+        if y > 0 {
+            visit(i - dims[0]);
+        }
+        if y + 1 < dims[1] {
+            visit(i + dims[0]);
+        }
+        if z > 0 {
+            visit(i - dims[0] * dims[1]);
+        }
+        if z + 1 < dims[2] {
+            visit(i + dims[0] * dims[1]);
+        }
+    }
+
+    // Active nodes (interior and boundary) get compact indices.
+    let mut compact = vec![u32::MAX; total];
+    let mut active = Vec::new();
+    for i in 0..total {
+        if class[i] != OUTSIDE {
+            compact[i] = active.len() as u32;
+            active.push(i);
+        }
+    }
+    let n = active.len();
+    let mut q = TriMat::new((n, n));
+    let mut constrained = Vec::new();
+    for (k, &i) in active.iter().enumerate() {
+        if class[i] == BOUNDARY {
+            constrained.push(k as u32);
+            continue;
+        }
+        let steps = [1, dims[0], dims[0] * dims[1]];
+        let mut degree = 0.0;
+        for s in steps {
+            for j in [i - s, i + s] {
+                let c = compact[j];
+                if c != u32::MAX {
+                    degree += 1.0;
+                    q.add_triplet(k, c as usize, -1.0);
+                    if class[j] == BOUNDARY {
+                        q.add_triplet(c as usize, k, -1.0);
+                    }
+                }
+            }
+        }
+        q.add_triplet(k, k, degree);
+    }
+    // Boundary rows: keep Q symmetric (their own diagonal is irrelevant to the free solve).
+    for &k in &constrained {
+        q.add_triplet(k as usize, k as usize, 1.0);
+    }
+    let q = q.to_csr::<usize>();
+    let solver = DirichletSolver::new(
+        &q,
+        &constrained,
+        SolverOptions {
+            check_components: false,
+            ..SolverOptions::default()
+        },
+    )?;
+    let nc = constrained.len();
+    let mut boundary = vec![0.0; nc * m];
+    for (r, &k) in constrained.iter().enumerate() {
+        let (_, f, bary) = closest[active[k as usize]];
+        let t = cage.triangles[f as usize];
+        for c in 0..3 {
+            boundary[t[c] as usize * nc + r] += bary[c];
+        }
+    }
+    let field = solver.solve(&boundary, m)?;
+
+    // Trilinear lookup.
+    let mut out = vec![0.0; points.len() * m];
+    let failed = out
+        .par_chunks_mut(m)
+        .zip(points.par_iter())
+        .enumerate()
+        .filter_map(|(i, (row, &p))| {
+            let s = (p - origin) / h;
+            let c = s.floor();
+            if !s.is_finite() || c.min_element() < 0.0 {
+                return Some(i);
+            }
+            let base: [usize; 3] = std::array::from_fn(|a| c[a] as usize);
+            if (0..3).any(|a| base[a] + 1 >= dims[a]) {
+                return Some(i);
+            }
+            let f = s - c;
+            for corner in 0..8 {
+                let o = [corner & 1, (corner >> 1) & 1, corner >> 2];
+                let g = compact[node(base[0] + o[0], base[1] + o[1], base[2] + o[2])];
+                if g == u32::MAX {
+                    return Some(i);
+                }
+                let wt = (0..3)
+                    .map(|a| if o[a] == 1 { f[a] } else { 1.0 - f[a] })
+                    .product::<f64>();
+                for (j, r) in row.iter_mut().enumerate() {
+                    *r += wt * field[j * n + g as usize];
+                }
+            }
+            row.iter_mut().for_each(|x| *x = x.clamp(0.0, 1.0));
+            let sum: f64 = row.iter().sum();
+            if !(sum > 0.0) {
+                return Some(i);
+            }
+            row.iter_mut().for_each(|x| *x /= sum);
+            None
+        })
+        .min();
+    match failed {
+        Some(i) => Err(CageError::Grid(format!(
+            "vertex {i} lies in a grid cell outside the cage's interior"
+        ))
+        .into()),
+        None => Ok(out),
+    }
+}
+
+/// The closest point on triangle `t` to `p` and its barycentric coordinates (Ericson,
+/// Real-Time Collision Detection, 5.1.5).
+fn closest_on_triangle(p: DVec3, t: [DVec3; 3]) -> (DVec3, DVec3) {
+    let [a, b, c] = t;
+    let (ab, ac, ap) = (b - a, c - a, p - a);
+    let (d1, d2) = (ab.dot(ap), ac.dot(ap));
+    if d1 <= 0.0 && d2 <= 0.0 {
+        return (a, DVec3::X);
+    }
+    let bp = p - b;
+    let (d3, d4) = (ab.dot(bp), ac.dot(bp));
+    if d3 >= 0.0 && d4 <= d3 {
+        return (b, DVec3::Y);
+    }
+    let vc = d1 * d4 - d3 * d2;
+    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+        let v = d1 / (d1 - d3);
+        return (a + v * ab, DVec3::new(1.0 - v, v, 0.0));
+    }
+    let cp = p - c;
+    let (d5, d6) = (ab.dot(cp), ac.dot(cp));
+    if d6 >= 0.0 && d5 <= d6 {
+        return (c, DVec3::Z);
+    }
+    let vb = d5 * d2 - d1 * d6;
+    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+        let w = d2 / (d2 - d6);
+        return (a + w * ac, DVec3::new(1.0 - w, 0.0, w));
+    }
+    let va = d3 * d6 - d5 * d4;
+    if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
+        let w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+        return (b + w * (c - b), DVec3::new(0.0, 1.0 - w, w));
+    }
+    let denom = 1.0 / (va + vb + vc);
+    let (v, w) = (vb * denom, vc * denom);
+    (a + ab * v + ac * w, DVec3::new(1.0 - v - w, v, w))
+}

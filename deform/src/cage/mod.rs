@@ -1,0 +1,186 @@
+//! Cage coordinates (first paper, section VI): every model vertex is a combination of the
+//! vertices `P_j` of a closed cage around it, `p_i = sum_j lambda_j^i P_j`, with generalised
+//! barycentric coordinates `lambda_j^i`:
+//!
+//! * mean value coordinates ([`mvc`], Ju, Schaefer and Warren 2005), closed form;
+//! * harmonic coordinates ([`harmonic`], Joshi et al. 2007): one Laplace solve per cage vertex
+//!   on a voxel grid inside the cage, looked up trilinearly at the model's vertices.
+//!
+//! Posed positionally (each cage vertex moved by its motor, `P_j = R_j(P_j^rest)`) or
+//! motor-valued (`M_i = exp(sum_j lambda_j^i log R_j)`), so cage vertices can rotate as well as
+//! move (Fig. 8). Binding checks the cage ([`check_cage`]) and that it encloses the model
+//! ([`check_encloses`]).
+//!
+//! ```
+//! use deform::cage::{CageDeformer, CageOptions};
+//! use deform::{shapes, Deformer};
+//! let cage = shapes::icosphere(2.0, 1);
+//! let model = shapes::icosphere(1.0, 1);
+//! let d = CageDeformer::bind(&model, &cage, CageOptions::default()).unwrap();
+//! let keys = vec![cga::ScaledMotor::IDENTITY; cage.vertex_count()];
+//! let mut out = vec![glam::DVec3::ZERO; model.vertex_count()];
+//! d.pose(&keys, &mut out).unwrap();
+//! assert!(out.iter().zip(&model.positions).all(|(a, b)| a.distance(*b) < 1e-12));
+//! ```
+
+mod check;
+mod containment;
+pub mod harmonic;
+pub mod mvc;
+
+pub use check::{check_cage, DEGENERATE_AREA};
+pub use containment::{check_encloses, orientation, winding_number, winding_numbers, ENCLOSED};
+pub use harmonic::{harmonic_cage_coordinates, HarmonicGrid};
+pub use mvc::mean_value_coordinates;
+
+use crate::blend::KeyWeights;
+use crate::control::{ControlBinding, ControlForm};
+use crate::{Deformer, IndexList, Mesh, Result};
+use glam::DVec3;
+
+/// What is wrong with a cage.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum CageError {
+    /// Too few vertices or faces to enclose anything.
+    #[error("the cage has {vertices} vertices and {faces} faces: at least 4 of each")]
+    TooSmall {
+        /// Vertices.
+        vertices: usize,
+        /// Faces.
+        faces: usize,
+    },
+    /// Cage vertices that are not finite.
+    #[error("cage vertices {vertices} are not finite")]
+    NonFinite {
+        /// The vertices.
+        vertices: IndexList,
+    },
+    /// Faces with an index out of range or a repeated corner.
+    #[error("cage faces {faces} have out-of-range or repeated corners")]
+    BadFaces {
+        /// The faces.
+        faces: IndexList,
+    },
+    /// Edges on one face only: the cage has holes.
+    #[error("the cage is open: boundary edges at vertices {vertices}")]
+    Open {
+        /// Endpoints of boundary edges.
+        vertices: IndexList,
+    },
+    /// Edges shared by more than two faces.
+    #[error("the cage is not manifold: edges shared by 3 or more faces at vertices {vertices}")]
+    NonManifold {
+        /// Endpoints of those edges.
+        vertices: IndexList,
+    },
+    /// Faces of (numerically) zero area.
+    #[error("degenerate (zero-area) cage faces {faces}")]
+    Degenerate {
+        /// The faces.
+        faces: IndexList,
+    },
+    /// Model vertices outside the cage.
+    #[error("the cage does not enclose the model: {count} vertices outside (winding number down to {lowest:.3}), e.g. {vertices}")]
+    NotEnclosing {
+        /// How many.
+        count: usize,
+        /// The vertices.
+        vertices: IndexList,
+        /// The lowest winding number among them.
+        lowest: f64,
+    },
+    /// A point whose coordinates could not be normalised.
+    #[error("vertex {index}: the cage coordinates do not normalise")]
+    Coordinates {
+        /// The vertex.
+        index: usize,
+    },
+    /// A harmonic-coordinate grid that cannot be built.
+    #[error("harmonic grid: {0}")]
+    Grid(String),
+}
+
+/// Which coordinates bind the model to the cage.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum CageCoordinates {
+    /// Mean value coordinates (the default).
+    #[default]
+    MeanValue,
+    /// Harmonic coordinates on a voxel grid.
+    Harmonic(HarmonicGrid),
+}
+
+/// Options of [`CageDeformer::bind`].
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CageOptions {
+    /// Which coordinates.
+    pub coordinates: CageCoordinates,
+    /// Positional or motor-valued (default: the motor log blend).
+    pub form: ControlForm,
+}
+
+/// A model bound to a cage: one key per cage vertex.
+#[derive(Clone, Debug)]
+pub struct CageDeformer {
+    cage: Mesh,
+    binding: ControlBinding,
+}
+
+impl CageDeformer {
+    /// Check `cage`, check that it encloses `model`, compute the coordinates and bind.
+    ///
+    /// # Errors
+    /// The [`CageError`]s (wrapped in [`crate::Error::Cage`]).
+    pub fn bind(model: &Mesh, cage: &Mesh, options: CageOptions) -> Result<Self> {
+        check_cage(cage)?;
+        check_encloses(cage, &model.positions)?;
+        let m = cage.vertex_count();
+        let n = model.vertex_count();
+        let weights = match options.coordinates {
+            CageCoordinates::MeanValue => mean_value_coordinates(cage, &model.positions)?,
+            CageCoordinates::Harmonic(grid) => {
+                harmonic_cage_coordinates(cage, &model.positions, grid)?
+            }
+        };
+        let weights = KeyWeights::new(m, m, vec![0; n], weights)?;
+        let binding = ControlBinding::bind(
+            &model.positions,
+            cage.positions.clone(),
+            weights,
+            options.form,
+        )?;
+        Ok(CageDeformer {
+            cage: cage.clone(),
+            binding,
+        })
+    }
+
+    /// The rest cage.
+    pub fn cage(&self) -> &Mesh {
+        &self.cage
+    }
+
+    /// The coordinate of cage vertex `j` at model vertex `i`.
+    pub fn coordinate(&self, i: usize, j: usize) -> f64 {
+        self.binding.weights().row(i).weights[j]
+    }
+
+    /// The binding (weights, positional posing by cage points).
+    pub fn binding(&self) -> &ControlBinding {
+        &self.binding
+    }
+}
+
+impl Deformer for CageDeformer {
+    fn vertex_count(&self) -> usize {
+        self.binding.vertex_count()
+    }
+
+    fn key_count(&self) -> usize {
+        self.binding.key_count()
+    }
+
+    fn pose(&self, keys: &[cga::ScaledMotor], positions: &mut [DVec3]) -> Result<()> {
+        self.binding.pose(keys, positions)
+    }
+}

@@ -1,0 +1,139 @@
+//! Mean value coordinates for closed triangle cages (Ju, Schaefer and Warren 2005), in the
+//! closed form of their paper's pseudo-code: for a point `x` and cage vertices `p_j` at
+//! distances `d_j` in unit directions `u_j`, each face contributes through the angles
+//! `theta_i` its edges subtend at `x`. Special cases, as in CGAL's `Mean_value_coordinates_3`
+//! and delfem2:
+//!
+//! * `x` at a cage vertex (closer than [`NEAR_VERTEX`] times the cage diagonal): the
+//!   coordinate of that vertex is 1, the others 0;
+//! * `x` on a face (`pi - h` below [`NEAR_FACE`] and closer to its plane than [`NEAR_VERTEX`]
+//!   times the cage diagonal): the face's 2-D barycentric coordinates
+//!   (`sin theta_i d_{i-1} d_{i+1}`), the others 0 (this also covers the edges);
+//! * `x` in the plane of a face but outside it: the face contributes nothing.
+//!
+//! Coordinates are a partition of unity and reproduce affine maps of the cage (linear
+//! precision); inside a non-convex cage some may be negative.
+
+use super::CageError;
+use crate::{Mesh, Result};
+use glam::DVec3;
+use rayon::prelude::*;
+use std::f64::consts::PI;
+
+/// Relative distance below which a point is at a cage vertex.
+pub const NEAR_VERTEX: f64 = 1e-12;
+/// Angular gap `pi - h` below which a point may be on a face (it then is when its distance to
+/// the face's plane is below [`NEAR_VERTEX`] times the cage diagonal). The gap is of second
+/// order in the distance, so it alone would snap points up to `1e-4` cage diagonals away.
+pub const NEAR_FACE: f64 = 1e-8;
+/// `|det(u_1, u_2, u_3)|` below which a point is in the plane of a face.
+const COPLANAR: f64 = 1e-14;
+
+/// The mean value coordinates of every point in `points` with respect to `cage` (closed,
+/// checked by [`super::check_cage`]): vertex-major, `cage.vertex_count()` per point.
+///
+/// # Errors
+/// [`CageError::Coordinates`] naming a point whose weights do not normalise (the weights sum
+/// to zero or overflow: a point far outside a degenerate cage).
+pub fn mean_value_coordinates(cage: &Mesh, points: &[DVec3]) -> Result<Vec<f64>> {
+    let m = cage.vertex_count();
+    let scale = cage.bounding_box().map_or(1.0, |b| b.diagonal());
+    let mut out = vec![0.0; points.len() * m];
+    let failed = out
+        .par_chunks_mut(m.max(1))
+        .with_min_len(64)
+        .zip(points.par_iter())
+        .enumerate()
+        .map_init(
+            || (vec![0.0; m], vec![DVec3::ZERO; m]),
+            |(d, u), (i, (w, &x))| (!point_coordinates(cage, scale, x, d, u, w)).then_some(i),
+        )
+        .flatten()
+        .min();
+    match failed {
+        Some(index) => Err(CageError::Coordinates { index }.into()),
+        None => Ok(out),
+    }
+}
+
+/// The coordinates of one point into `w` (length `m`), with scratch `d`, `u`. Returns whether
+/// they normalised.
+fn point_coordinates(
+    cage: &Mesh,
+    scale: f64,
+    x: DVec3,
+    d: &mut [f64],
+    u: &mut [DVec3],
+    w: &mut [f64],
+) -> bool {
+    w.fill(0.0);
+    for (j, &p) in cage.positions.iter().enumerate() {
+        let r = p - x;
+        d[j] = r.length();
+        if d[j] <= NEAR_VERTEX * scale {
+            w[j] = 1.0;
+            return true;
+        }
+        u[j] = r / d[j];
+    }
+    for t in &cage.triangles {
+        let v = [t[0] as usize, t[1] as usize, t[2] as usize];
+        let mut theta = [0.0; 3];
+        for i in 0..3 {
+            let l = (u[v[(i + 1) % 3]] - u[v[(i + 2) % 3]]).length();
+            theta[i] = 2.0 * (0.5 * l).min(1.0).asin();
+        }
+        let h = 0.5 * (theta[0] + theta[1] + theta[2]);
+        if PI - h < NEAR_FACE && on_plane(cage, t, x, scale) {
+            // On the face: 2-D barycentric coordinates.
+            w.fill(0.0);
+            let mut sum = 0.0;
+            for i in 0..3 {
+                let b = theta[i].sin() * d[v[(i + 2) % 3]] * d[v[(i + 1) % 3]];
+                w[v[i]] = b;
+                sum += b;
+            }
+            if !(sum > 0.0) {
+                return false;
+            }
+            w.iter_mut().for_each(|x| *x /= sum);
+            return true;
+        }
+        let det = u[v[0]].dot(u[v[1]].cross(u[v[2]]));
+        if det.abs() < COPLANAR {
+            continue; // in the face's plane, outside the face
+        }
+        let sign = det.signum();
+        let sin_t = [theta[0].sin(), theta[1].sin(), theta[2].sin()];
+        let mut c = [0.0; 3];
+        let mut s = [0.0; 3];
+        for i in 0..3 {
+            let (i1, i2) = ((i + 1) % 3, (i + 2) % 3);
+            c[i] = (2.0 * h.sin() * (h - theta[i]).sin() / (sin_t[i1] * sin_t[i2]) - 1.0)
+                .clamp(-1.0, 1.0);
+            s[i] = sign * (1.0 - c[i] * c[i]).sqrt();
+        }
+        if s.iter().any(|s| s.abs() <= COPLANAR) {
+            continue;
+        }
+        for i in 0..3 {
+            let (i1, i2) = ((i + 1) % 3, (i + 2) % 3);
+            let num = theta[i] - c[i1] * theta[i2] - c[i2] * theta[i1];
+            w[v[i]] += num / (d[v[i]] * sin_t[i1] * s[i2]);
+        }
+    }
+    let sum: f64 = w.iter().sum();
+    if !(sum.is_finite() && sum.abs() > 0.0) {
+        return false;
+    }
+    let inv = 1.0 / sum;
+    w.iter_mut().for_each(|x| *x *= inv);
+    w.iter().all(|x| x.is_finite())
+}
+
+/// Whether `x` lies in the plane of face `t` (relative to `scale`).
+fn on_plane(cage: &Mesh, t: &[u32; 3], x: DVec3, scale: f64) -> bool {
+    let [a, b, c] = t.map(|v| cage.positions[v as usize]);
+    let n = (b - a).cross(c - a).normalize_or_zero();
+    (x - a).dot(n).abs() <= NEAR_VERTEX * scale
+}

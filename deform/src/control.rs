@@ -1,0 +1,197 @@
+//! A mesh bound to weighted control points (an FFD lattice, a cage), posed in either form:
+//!
+//! * positional (the classic FFD and cage deformers): `p_i = sum_j w_ij P_j`, with each
+//!   control point moved by its key motor, `P_j = R_j(P_j^rest)`, or given directly
+//!   ([`ControlBinding::pose_points`]);
+//! * motor-valued (first paper, equations (7)-(8) and section VI):
+//!   `M_i = exp(sum_j w_ij log R_j)` applied to the vertex, through [`BoundBlend`].
+//!
+//! Both are allocation-free and parallel over the vertices.
+
+use crate::blend::{BlendMethod, BoundBlend, KeyWeights};
+use crate::deformer::{check_key_count, check_positions, KeyError};
+use crate::Result;
+use cga::ScaledMotor;
+use glam::DVec3;
+use rayon::prelude::*;
+use std::sync::Mutex;
+
+/// Vertices below which posing stays on one thread.
+const PARALLEL_MIN: usize = 2048;
+
+/// How control keys deform the mesh.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ControlForm {
+    /// `p = sum w P_j` with `P_j` the control points moved by their motors (classic).
+    Positional,
+    /// The blend of the control motors applied to the vertex (the paper's motor form).
+    Motor(BlendMethod),
+}
+
+impl Default for ControlForm {
+    fn default() -> Self {
+        ControlForm::Motor(BlendMethod::MotorLog)
+    }
+}
+
+impl ControlForm {
+    /// `positional` or the blend method's name.
+    pub fn name(self) -> &'static str {
+        match self {
+            ControlForm::Positional => "positional",
+            ControlForm::Motor(m) => m.name(),
+        }
+    }
+}
+
+#[derive(Debug)]
+enum Inner {
+    Positional {
+        weights: KeyWeights,
+        /// The moved control points of the last pose (reused, so posing does not allocate).
+        moved: Mutex<Vec<DVec3>>,
+    },
+    Motor(BoundBlend),
+}
+
+/// A mesh bound to control points with per-vertex weights.
+#[derive(Debug)]
+pub struct ControlBinding {
+    rest: Vec<DVec3>,
+    vertices: usize,
+    form: ControlForm,
+    inner: Inner,
+}
+
+impl Clone for ControlBinding {
+    fn clone(&self) -> Self {
+        let inner = match &self.inner {
+            Inner::Positional { weights, .. } => Inner::Positional {
+                weights: weights.clone(),
+                moved: Mutex::new(Vec::new()),
+            },
+            Inner::Motor(b) => Inner::Motor(b.clone()),
+        };
+        ControlBinding {
+            rest: self.rest.clone(),
+            vertices: self.vertices,
+            form: self.form,
+            inner,
+        }
+    }
+}
+
+impl ControlBinding {
+    /// Bind `positions` to the control points `rest` (one weight column per point) in `form`;
+    /// rest motors are the identity.
+    ///
+    /// # Errors
+    /// [`crate::Error::DimensionMismatch`] when the weights do not match the positions or the
+    /// control points, and the errors of [`BoundBlend::bind`].
+    pub fn bind(
+        positions: &[DVec3],
+        rest: Vec<DVec3>,
+        weights: KeyWeights,
+        form: ControlForm,
+    ) -> Result<Self> {
+        check_positions(weights.vertex_count(), positions.len())?;
+        check_key_count("the control points", weights.key_count(), rest.len())?;
+        let inner = match form {
+            ControlForm::Positional => Inner::Positional {
+                weights,
+                moved: Mutex::new(Vec::with_capacity(rest.len())),
+            },
+            ControlForm::Motor(method) => {
+                let identity = vec![ScaledMotor::IDENTITY; rest.len()];
+                Inner::Motor(BoundBlend::bind(positions, weights, &identity, method)?)
+            }
+        };
+        Ok(ControlBinding {
+            rest,
+            vertices: positions.len(),
+            form,
+            inner,
+        })
+    }
+
+    /// The rest control points.
+    pub fn rest_points(&self) -> &[DVec3] {
+        &self.rest
+    }
+
+    /// The form.
+    pub fn form(&self) -> ControlForm {
+        self.form
+    }
+
+    /// The weights.
+    pub fn weights(&self) -> &KeyWeights {
+        match &self.inner {
+            Inner::Positional { weights, .. } => weights,
+            Inner::Motor(b) => b.weights(),
+        }
+    }
+
+    /// The positional form with control points given directly: `p_i = sum_j w_ij P_j`
+    /// (whatever the bound form).
+    ///
+    /// # Errors
+    /// [`crate::Error::DimensionMismatch`] for slices of the wrong length,
+    /// [`crate::Error::InvalidArgument`] for a control point that is not finite.
+    pub fn pose_points(&self, control: &[DVec3], out: &mut [DVec3]) -> Result<()> {
+        check_key_count("the control points", self.rest.len(), control.len())?;
+        check_positions(self.vertices, out.len())?;
+        if let Some(j) = control.iter().position(|p| !p.is_finite()) {
+            return Err(crate::Error::InvalidArgument(format!(
+                "control point {j} is not finite"
+            )));
+        }
+        let weights = self.weights();
+        let one = |(i, o): (usize, &mut DVec3)| {
+            *o = weights
+                .row(i)
+                .fold(DVec3::ZERO, |a, k, w| a + w * control[k]);
+        };
+        if out.len() < PARALLEL_MIN {
+            out.iter_mut().enumerate().for_each(one);
+        } else {
+            out.par_iter_mut()
+                .enumerate()
+                .with_min_len(1024)
+                .for_each(one);
+        }
+        Ok(())
+    }
+}
+
+impl crate::Deformer for ControlBinding {
+    fn vertex_count(&self) -> usize {
+        self.vertices
+    }
+
+    fn key_count(&self) -> usize {
+        self.rest.len()
+    }
+
+    fn pose(&self, keys: &[ScaledMotor], positions: &mut [DVec3]) -> Result<()> {
+        match &self.inner {
+            Inner::Motor(b) => b.pose(keys, positions),
+            Inner::Positional { moved, .. } => {
+                check_key_count("this deformer", self.rest.len(), keys.len())?;
+                check_positions(self.vertices, positions.len())?;
+                for (index, k) in keys.iter().enumerate() {
+                    k.try_log()
+                        .map_err(|source| KeyError::Invalid { index, source })?;
+                }
+                let mut moved = moved.lock().unwrap_or_else(|e| e.into_inner());
+                moved.clear();
+                moved.extend(
+                    keys.iter()
+                        .zip(&self.rest)
+                        .map(|(k, &p)| k.transform_point(p)),
+                );
+                self.pose_points(&moved, positions)
+            }
+        }
+    }
+}

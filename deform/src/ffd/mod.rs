@@ -1,0 +1,137 @@
+//! Free-form deformation (first paper, section V): a lattice of control points over the mesh,
+//! in the classic positional form of Sederberg and Parry (equation (6),
+//! `p_i = sum B_u B_v B_k P_uvk`) and the motor form (equations (7)-(8): every control point
+//! carries a motor, `M_i = exp(sum w_uvk^i log R_uvk)`), which bends and twists where moving
+//! control points alone shears and collapses (Fig. 7).
+//!
+//! Keys are one motor per control point, index `u + L * (v + M * w)`; in the positional form
+//! each control point moves by its motor.
+//!
+//! ```
+//! use deform::ffd::{Ffd, FfdOptions};
+//! use deform::{shapes, Deformer};
+//! use cga::ScaledMotor;
+//! let bar = shapes::tube(1.0, 4.0, 8, 5);
+//! let ffd = Ffd::bind(&bar, [2, 2, 2], None, FfdOptions::default()).unwrap();
+//! let mut out = vec![glam::DVec3::ZERO; bar.vertex_count()];
+//! ffd.pose(&vec![ScaledMotor::IDENTITY; 8], &mut out).unwrap();
+//! assert!(out.iter().zip(&bar.positions).all(|(a, b)| a.distance(*b) < 1e-12));
+//! ```
+
+mod lattice;
+
+pub use lattice::{bernstein, Lattice, LatticeBasis, OUTSIDE_TOLERANCE};
+
+use crate::control::{ControlBinding, ControlForm};
+use crate::{Mesh, Result};
+use glam::DVec3;
+
+/// What is wrong with a lattice or the mesh inside it.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum FfdError {
+    /// An axis with fewer than 2 control points, or too many points in all.
+    #[error("lattice {dims:?}: every axis needs at least 2 control points (at most {max} in all)", max = crate::MAX_KEYS)]
+    Dims {
+        /// Control points per axis.
+        dims: [usize; 3],
+    },
+    /// The box has no extent (or is not finite) along an axis.
+    #[error("lattice box has zero extent along axis {axis} ({min} .. {max}); give a box")]
+    ZeroExtent {
+        /// 0, 1 or 2.
+        axis: usize,
+        /// Lower bound.
+        min: f64,
+        /// Upper bound.
+        max: f64,
+    },
+    /// A B-spline degree outside 1..=3.
+    #[error("B-spline lattice degree {0}: 1, 2 or 3 are supported")]
+    Degree(usize),
+    /// A mesh vertex outside the lattice's box.
+    #[error("vertex {vertex} at {position:?} lies outside the lattice box")]
+    Outside {
+        /// The vertex.
+        vertex: usize,
+        /// Its position.
+        position: [f64; 3],
+    },
+}
+
+/// Options of [`Ffd::bind`].
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct FfdOptions {
+    /// Bernstein (default) or B-spline basis.
+    pub basis: LatticeBasis,
+    /// Positional or motor form (default: the motor log blend).
+    pub form: ControlForm,
+}
+
+/// A mesh bound to a lattice.
+#[derive(Clone, Debug)]
+pub struct Ffd {
+    lattice: Lattice,
+    binding: ControlBinding,
+}
+
+impl Ffd {
+    /// Bind `mesh` to a lattice of `dims` control points over `bounds` (default: the mesh's
+    /// bounding box).
+    ///
+    /// # Errors
+    /// The [`FfdError`]s of [`Lattice::new`] and [`Lattice::local`] (wrapped in
+    /// [`crate::Error::Ffd`]), [`crate::Error::EmptyMesh`] for a mesh without vertices.
+    pub fn bind(
+        mesh: &Mesh,
+        dims: [usize; 3],
+        bounds: Option<(DVec3, DVec3)>,
+        options: FfdOptions,
+    ) -> Result<Self> {
+        let (min, max) = match bounds {
+            Some(b) => b,
+            None => {
+                let b = mesh.bounding_box().ok_or(crate::Error::EmptyMesh {
+                    vertices: 0,
+                    triangles: mesh.triangle_count(),
+                })?;
+                (b.min, b.max)
+            }
+        };
+        let lattice = Lattice::new(dims, min, max, options.basis)?;
+        Self::bind_lattice(&mesh.positions, lattice, options.form)
+    }
+
+    /// Bind `positions` to `lattice` in `form`.
+    ///
+    /// # Errors
+    /// [`FfdError::Outside`] for a vertex outside the lattice.
+    pub fn bind_lattice(positions: &[DVec3], lattice: Lattice, form: ControlForm) -> Result<Self> {
+        let weights = lattice.weights(positions)?;
+        let binding = ControlBinding::bind(positions, lattice.rest_points(), weights, form)?;
+        Ok(Ffd { lattice, binding })
+    }
+
+    /// The lattice.
+    pub fn lattice(&self) -> &Lattice {
+        &self.lattice
+    }
+
+    /// The binding (weights, rest points, positional posing by points).
+    pub fn binding(&self) -> &ControlBinding {
+        &self.binding
+    }
+}
+
+impl crate::Deformer for Ffd {
+    fn vertex_count(&self) -> usize {
+        self.binding.vertex_count()
+    }
+
+    fn key_count(&self) -> usize {
+        self.binding.key_count()
+    }
+
+    fn pose(&self, keys: &[cga::ScaledMotor], positions: &mut [DVec3]) -> Result<()> {
+        self.binding.pose(keys, positions)
+    }
+}
