@@ -31,6 +31,14 @@ pub enum Command {
     /// deforms the mesh (the first paper's Fig. 5). An unreachable target stretches the chain
     /// towards it and says so.
     Fabrik(FabrikArgs),
+    /// Free-form deformation: a lattice of L x M x N control points over the mesh's box (or
+    /// --box), one motor per control point (index u + L*(v + M*w), "*" the rest); motor FFD
+    /// (the paper's equations (7)-(8)) or classic positional FFD (--positional).
+    Ffd(FfdArgs),
+    /// Cage deformation: mean value or harmonic coordinates of the mesh in a closed cage, one
+    /// motor per cage vertex ("*" the rest); motor-valued or positional (--positional). A cage
+    /// that does not enclose the mesh is an error (exit code 2).
+    Cage(CageArgs),
 }
 
 /// Options every command that writes files shares.
@@ -175,5 +183,94 @@ fn parse_vec3(s: &str) -> Result<[f64; 3], String> {
     match v.as_slice() {
         [x, y, z] if v.iter().all(|c| c.is_finite()) => Ok([*x, *y, *z]),
         _ => Err(format!("expected three finite numbers X,Y,Z, got {s:?}")),
+    }
+}
+
+#[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
+pub enum CoordsArg {
+    Mvc,
+    Harmonic,
+}
+
+/// Positional or motor-valued posing of control points.
+#[derive(Args, Debug)]
+pub struct FormArgs {
+    /// Classic positional form: each control point moves by its motor, vertices follow the
+    /// weighted sum of the points.
+    #[arg(long)]
+    pub positional: bool,
+    /// How the motors are blended in the motor form.
+    #[arg(long, value_enum, default_value = "motor-log")]
+    pub blend: BlendArg,
+}
+
+#[derive(Args, Debug)]
+pub struct FfdArgs {
+    /// The mesh (OBJ, OFF or MEDIT).
+    pub mesh: PathBuf,
+    /// Control points per axis: LxMxN (each at least 2).
+    #[arg(long, value_parser = parse_dims)]
+    pub lattice: [usize; 3],
+    /// Clamped uniform B-spline basis of this degree (1 to 3) instead of Bernstein
+    /// polynomials of degree L-1, M-1, N-1.
+    #[arg(long)]
+    pub degree: Option<usize>,
+    /// The lattice box MINX,MINY,MINZ,MAXX,MAXY,MAXZ (default: the mesh's bounding box).
+    #[arg(long = "box", value_parser = parse_box, allow_hyphen_values = true)]
+    pub bounds: Option<[f64; 6]>,
+    /// Per-control-point motors: JSON {"index": motor, "*": motor for the rest}.
+    #[arg(long)]
+    pub motors: PathBuf,
+    #[command(flatten)]
+    pub form: FormArgs,
+    #[command(flatten)]
+    pub out: OutputArgs,
+}
+
+#[derive(Args, Debug)]
+pub struct CageArgs {
+    /// The mesh (OBJ, OFF or MEDIT).
+    pub mesh: PathBuf,
+    /// The closed triangle cage around it.
+    #[arg(long)]
+    pub cage: PathBuf,
+    /// Mean value or harmonic coordinates.
+    #[arg(long, value_enum, default_value = "mvc")]
+    pub coords: CoordsArg,
+    /// Grid nodes along the cage's longest side (harmonic coordinates).
+    #[arg(long, default_value_t = 64)]
+    pub grid: usize,
+    /// Per-cage-vertex motors: JSON {"index": motor, "*": motor for the rest}.
+    #[arg(long)]
+    pub motors: PathBuf,
+    #[command(flatten)]
+    pub form: FormArgs,
+    #[command(flatten)]
+    pub out: OutputArgs,
+}
+
+/// `LxMxN` as three counts.
+fn parse_dims(s: &str) -> Result<[usize; 3], String> {
+    let v: Vec<usize> = s
+        .split(['x', 'X'])
+        .map(|x| x.trim().parse::<usize>().map_err(|e| format!("{x:?}: {e}")))
+        .collect::<Result<_, _>>()?;
+    match v.as_slice() {
+        [l, m, n] => Ok([*l, *m, *n]),
+        _ => Err(format!("expected LxMxN, got {s:?}")),
+    }
+}
+
+/// Six finite numbers, the minimum corner before the maximum.
+fn parse_box(s: &str) -> Result<[f64; 6], String> {
+    let v: Vec<f64> = s
+        .split(',')
+        .map(|x| x.trim().parse::<f64>().map_err(|e| format!("{x:?}: {e}")))
+        .collect::<Result<_, _>>()?;
+    match <[f64; 6]>::try_from(v.as_slice()) {
+        Ok(b) if b.iter().all(|c| c.is_finite()) => Ok(b),
+        _ => Err(format!(
+            "expected six finite numbers MINX,MINY,MINZ,MAXX,MAXY,MAXZ, got {s:?}"
+        )),
     }
 }

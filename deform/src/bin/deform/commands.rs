@@ -110,7 +110,7 @@ impl Report {
 }
 
 /// Write the posed mesh and its preview.
-fn finish(
+pub(crate) fn finish(
     mesh: &Mesh,
     posed: Vec<DVec3>,
     scalar: &[f64],

@@ -6,6 +6,7 @@
 mod args;
 mod commands;
 mod demo;
+mod lattice_cmds;
 mod output;
 mod preview;
 
@@ -29,6 +30,8 @@ fn main() -> ExitCode {
         args::Command::Spline(a) => commands::spline(&a),
         args::Command::Handles(a) => commands::handles(&a),
         args::Command::Fabrik(a) => commands::fabrik(&a),
+        args::Command::Ffd(a) => lattice_cmds::ffd(&a),
+        args::Command::Cage(a) => lattice_cmds::cage(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

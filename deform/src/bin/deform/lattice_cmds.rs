@@ -1,0 +1,127 @@
+//! The `ffd` and `cage` subcommands: read, bind, pose (both forms timed), write, report.
+
+use crate::args::{CageArgs, CoordsArg, FfdArgs, FormArgs, OutputArgs};
+use crate::commands::{blend, finish, time_pose, with_progress, Report};
+use crate::output::{check_outputs, read_mesh, read_text};
+use anyhow::{Context, Result};
+use deform::cage::{CageCoordinates, CageDeformer, CageOptions, HarmonicGrid};
+use deform::control::ControlForm;
+use deform::ffd::{Ffd, FfdOptions, LatticeBasis};
+use deform::input::parse_group_motors;
+use deform::{Deformer, Mesh};
+use glam::DVec3;
+use std::path::Path;
+use std::time::Instant;
+
+fn form(f: &FormArgs) -> ControlForm {
+    if f.positional {
+        ControlForm::Positional
+    } else {
+        ControlForm::Motor(blend(f.blend))
+    }
+}
+
+/// Refuse outputs that are inputs, then read the mesh.
+fn read_checked(mesh: &Path, extra: &[&Path], out: &OutputArgs) -> Result<Mesh> {
+    let mut inputs = vec![mesh];
+    inputs.extend_from_slice(extra);
+    let mut outputs = vec![out.output.as_path()];
+    if let Some(p) = &out.png {
+        outputs.push(p.as_path());
+    }
+    check_outputs(&inputs, &outputs)?;
+    read_mesh(mesh)
+}
+
+/// Pose, time, report and write.
+fn pose_and_finish(
+    d: &dyn Deformer,
+    mesh: &Mesh,
+    motors: &[cga::ScaledMotor],
+    out: &OutputArgs,
+    mut report: Report,
+) -> Result<()> {
+    let mut posed = vec![DVec3::ZERO; mesh.vertex_count()];
+    let pose_ms = time_pose(d, motors, &mut posed).context("cannot pose")?;
+    report.add("pose_ms", pose_ms);
+    let moved: Vec<f64> = posed
+        .iter()
+        .zip(&mesh.positions)
+        .map(|(a, b)| a.distance(*b))
+        .collect();
+    finish(mesh, posed, &moved, out, &mut report)
+}
+
+pub fn ffd(a: &FfdArgs) -> Result<()> {
+    let mesh = read_checked(&a.mesh, &[a.motors.as_path()], &a.out)?;
+    let count: usize = a.lattice.iter().product();
+    let name = a.motors.display().to_string();
+    let motors = parse_group_motors(&read_text(&a.motors)?, &name, count)?;
+    let options = FfdOptions {
+        basis: a
+            .degree
+            .map_or(LatticeBasis::Bernstein, LatticeBasis::BSpline),
+        form: form(&a.form),
+    };
+    let bounds = a
+        .bounds
+        .map(|b| (DVec3::new(b[0], b[1], b[2]), DVec3::new(b[3], b[4], b[5])));
+    let t = Instant::now();
+    let d = Ffd::bind(&mesh, a.lattice, bounds, options)
+        .with_context(|| format!("{}: cannot bind to the lattice", a.mesh.display()))?;
+    let mut report = Report::new("ffd", &mesh);
+    report.add("bind_ms", t.elapsed().as_secs_f64() * 1e3);
+    report.add(
+        "lattice",
+        format!("{}x{}x{}", a.lattice[0], a.lattice[1], a.lattice[2]),
+    );
+    report.add(
+        "basis",
+        match options.basis {
+            LatticeBasis::Bernstein => "bernstein".to_string(),
+            LatticeBasis::BSpline(p) => format!("bspline-{p}"),
+        },
+    );
+    report.add("form", options.form.name());
+    pose_and_finish(&d, &mesh, &motors, &a.out, report)
+}
+
+pub fn cage(a: &CageArgs) -> Result<()> {
+    let mesh = read_checked(&a.mesh, &[a.cage.as_path(), a.motors.as_path()], &a.out)?;
+    let cage = read_mesh(&a.cage)?;
+    let name = a.motors.display().to_string();
+    let motors = parse_group_motors(&read_text(&a.motors)?, &name, cage.vertex_count())?;
+    let options = CageOptions {
+        coordinates: match a.coords {
+            CoordsArg::Mvc => CageCoordinates::MeanValue,
+            CoordsArg::Harmonic => CageCoordinates::Harmonic(HarmonicGrid { resolution: a.grid }),
+        },
+        form: form(&a.form),
+    };
+    let t = Instant::now();
+    let d = with_progress(
+        "binding (cage coordinates)",
+        mesh.vertex_count() * cage.vertex_count() / 20,
+        a.out.quiet,
+        || CageDeformer::bind(&mesh, &cage, options),
+    )
+    .with_context(|| {
+        format!(
+            "{}: cannot bind to the cage {}",
+            a.mesh.display(),
+            a.cage.display()
+        )
+    })?;
+    let mut report = Report::new("cage", &mesh);
+    report.add("bind_ms", t.elapsed().as_secs_f64() * 1e3);
+    report.add("cage_vertices", cage.vertex_count());
+    report.add(
+        "coords",
+        match a.coords {
+            CoordsArg::Mvc => "mvc",
+            CoordsArg::Harmonic => "harmonic",
+        },
+    );
+    report.add("form", options.form.name());
+    pose_and_finish(&d, &mesh, &motors, &a.out, report)
+}
