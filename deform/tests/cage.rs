@@ -262,3 +262,17 @@ fn bad_cages_and_keys_are_typed_errors() {
         ));
     }
 }
+
+#[test]
+fn winding_numbers_from_the_coordinates_match_the_direct_ones() {
+    let cage = dented_cage();
+    let mut points = model().positions;
+    points.extend([DVec3::splat(5.0), DVec3::new(0.0, 0.0, -3.0)]);
+    let (_, w) = deform::cage::coordinates_and_winding(&cage, &points).unwrap();
+    for (i, &p) in points.iter().enumerate() {
+        let direct = deform::cage::winding_number(&cage, p);
+        assert!((w[i] - direct).abs() < 1e-9, "point {i}: {} vs {direct}", w[i]);
+        let inside = i < points.len() - 2;
+        assert!((direct - if inside { 1.0 } else { 0.0 }).abs() < 1e-9);
+    }
+}

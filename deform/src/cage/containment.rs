@@ -52,9 +52,15 @@ pub fn orientation(cage: &Mesh) -> f64 {
 /// # Errors
 /// [`CageError::NotEnclosing`] naming the points outside.
 pub fn check_encloses(cage: &Mesh, points: &[DVec3]) -> Result<()> {
-    let sign = orientation(cage);
-    let w = winding_numbers(cage, points);
-    let outside: Vec<u32> = (0..points.len())
+    check_winding(orientation(cage), &winding_numbers(cage, points))
+}
+
+/// Check winding numbers `w` (of a cage of orientation `sign`) against [`ENCLOSED`].
+///
+/// # Errors
+/// [`CageError::NotEnclosing`] naming the points outside.
+pub fn check_winding(sign: f64, w: &[f64]) -> Result<()> {
+    let outside: Vec<u32> = (0..w.len())
         .filter(|&i| !(sign * w[i] >= ENCLOSED))
         .map(|i| i as u32)
         .collect();

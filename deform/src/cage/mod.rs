@@ -29,9 +29,11 @@ pub mod harmonic;
 pub mod mvc;
 
 pub use check::{check_cage, DEGENERATE_AREA};
-pub use containment::{check_encloses, orientation, winding_number, winding_numbers, ENCLOSED};
+pub use containment::{
+    check_encloses, check_winding, orientation, winding_number, winding_numbers, ENCLOSED,
+};
 pub use harmonic::{harmonic_cage_coordinates, HarmonicGrid};
-pub use mvc::mean_value_coordinates;
+pub use mvc::{coordinates_and_winding, mean_value_coordinates};
 
 use crate::blend::KeyWeights;
 use crate::control::{ControlBinding, ControlForm};
@@ -133,12 +135,24 @@ impl CageDeformer {
     /// The [`CageError`]s (wrapped in [`crate::Error::Cage`]).
     pub fn bind(model: &Mesh, cage: &Mesh, options: CageOptions) -> Result<Self> {
         check_cage(cage)?;
-        check_encloses(cage, &model.positions)?;
         let m = cage.vertex_count();
         let n = model.vertex_count();
         let weights = match options.coordinates {
-            CageCoordinates::MeanValue => mean_value_coordinates(cage, &model.positions)?,
+            CageCoordinates::MeanValue => {
+                // The winding numbers come with the coordinates, from the same unit vectors.
+                let (w, winding) = match coordinates_and_winding(cage, &model.positions) {
+                    Ok(x) => x,
+                    Err(e) => {
+                        // A point outside is the likelier cause: report it as such.
+                        check_encloses(cage, &model.positions)?;
+                        return Err(e);
+                    }
+                };
+                check_winding(orientation(cage), &winding)?;
+                w
+            }
             CageCoordinates::Harmonic(grid) => {
+                check_encloses(cage, &model.positions)?;
                 harmonic_cage_coordinates(cage, &model.positions, grid)?
             }
         };

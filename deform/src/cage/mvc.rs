@@ -36,28 +36,44 @@ const COPLANAR: f64 = 1e-14;
 /// [`CageError::Coordinates`] naming a point whose weights do not normalise (the weights sum
 /// to zero or overflow: a point far outside a degenerate cage).
 pub fn mean_value_coordinates(cage: &Mesh, points: &[DVec3]) -> Result<Vec<f64>> {
+    Ok(coordinates_and_winding(cage, points)?.0)
+}
+
+/// [`mean_value_coordinates`] and, from the same unit vectors, the winding number of the cage
+/// at every point (1/2 for a point at a cage vertex or on a face), so that containment costs
+/// almost nothing more.
+///
+/// # Errors
+/// As [`mean_value_coordinates`].
+pub fn coordinates_and_winding(cage: &Mesh, points: &[DVec3]) -> Result<(Vec<f64>, Vec<f64>)> {
     let m = cage.vertex_count();
     let scale = cage.bounding_box().map_or(1.0, |b| b.diagonal());
     let mut out = vec![0.0; points.len() * m];
+    let mut winding = vec![0.0; points.len()];
     let failed = out
         .par_chunks_mut(m.max(1))
         .with_min_len(64)
+        .zip(winding.par_iter_mut())
         .zip(points.par_iter())
         .enumerate()
         .map_init(
             || (vec![0.0; m], vec![DVec3::ZERO; m]),
-            |(d, u), (i, (w, &x))| (!point_coordinates(cage, scale, x, d, u, w)).then_some(i),
+            |(d, u), (i, ((w, wn), &x))| {
+                let (ok, n) = point_coordinates(cage, scale, x, d, u, w);
+                *wn = n;
+                (!ok).then_some(i)
+            },
         )
         .flatten()
         .min();
     match failed {
         Some(index) => Err(CageError::Coordinates { index }.into()),
-        None => Ok(out),
+        None => Ok((out, winding)),
     }
 }
 
 /// The coordinates of one point into `w` (length `m`), with scratch `d`, `u`. Returns whether
-/// they normalised.
+/// they normalised, and the winding number.
 fn point_coordinates(
     cage: &Mesh,
     scale: f64,
@@ -65,14 +81,15 @@ fn point_coordinates(
     d: &mut [f64],
     u: &mut [DVec3],
     w: &mut [f64],
-) -> bool {
+) -> (bool, f64) {
     w.fill(0.0);
+    let mut solid = 0.0;
     for (j, &p) in cage.positions.iter().enumerate() {
         let r = p - x;
         d[j] = r.length();
         if d[j] <= NEAR_VERTEX * scale {
             w[j] = 1.0;
-            return true;
+            return (true, 0.5);
         }
         u[j] = r / d[j];
     }
@@ -94,12 +111,15 @@ fn point_coordinates(
                 sum += b;
             }
             if !(sum > 0.0) {
-                return false;
+                return (false, 0.5);
             }
             w.iter_mut().for_each(|x| *x /= sum);
-            return true;
+            return (true, 0.5);
         }
         let det = u[v[0]].dot(u[v[1]].cross(u[v[2]]));
+        // Van Oosterom-Strackee: the face's signed solid angle at x.
+        let (a, b, c) = (u[v[0]], u[v[1]], u[v[2]]);
+        solid += 2.0 * det.atan2(1.0 + a.dot(b) + b.dot(c) + c.dot(a));
         if det.abs() < COPLANAR {
             continue; // in the face's plane, outside the face
         }
@@ -122,13 +142,14 @@ fn point_coordinates(
             w[v[i]] += num / (d[v[i]] * sin_t[i1] * s[i2]);
         }
     }
+    let winding = solid / (4.0 * PI);
     let sum: f64 = w.iter().sum();
     if !(sum.is_finite() && sum.abs() > 0.0) {
-        return false;
+        return (false, winding);
     }
     let inv = 1.0 / sum;
     w.iter_mut().for_each(|x| *x *= inv);
-    w.iter().all(|x| x.is_finite())
+    (w.iter().all(|x| x.is_finite()), winding)
 }
 
 /// Whether `x` lies in the plane of face `t` (relative to `scale`).
