@@ -185,6 +185,9 @@ pub enum Error {
     /// Bad keys, handle sets or parameters of a deformer.
     #[error(transparent)]
     Keys(#[from] crate::deformer::KeyError),
+    /// Constraint sets ARAP cannot work with.
+    #[error(transparent)]
+    Arap(#[from] crate::arap::ArapError),
     /// A bad FFD lattice, or a vertex outside it.
     #[error(transparent)]
     Ffd(#[from] crate::ffd::FfdError),

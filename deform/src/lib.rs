@@ -24,6 +24,7 @@
 //! ```
 
 pub mod adjacency;
+pub mod arap;
 pub mod blend;
 pub mod bspline;
 pub mod cage;
