@@ -158,7 +158,16 @@ fn a_rigid_motion_of_the_whole_cage_moves_the_model_rigidly() {
     ];
     for coordinates in coordinates {
         for form in FORMS {
-            let d = CageDeformer::bind(&m, &cage, CageOptions { coordinates, form }).unwrap();
+            let d = CageDeformer::bind(
+                &m,
+                &cage,
+                CageOptions {
+                    coordinates,
+                    form,
+                    ..CageOptions::default()
+                },
+            )
+            .unwrap();
             // The rest reconstruction: the model itself, except for positional harmonic
             // coordinates, whose linear precision is that of the grid.
             let mut rest = vec![DVec3::ZERO; m.vertex_count()];
@@ -187,9 +196,16 @@ fn the_shared_model_cage_pairs_bind_and_the_partial_cage_is_refused() {
         ("armadillo-dense.obj", "armadillo-cage-robust-6.obj"),
         ("bar.OBJ", "bar_cage.OBJ"),
         ("cactus-dense.obj", "cactus_cage.obj"),
+        ("hand_bones.obj", "hand_bones_cage_coarse.obj"),
     ] {
         let (model, cage) = (read(model), read(cage));
-        let d = CageDeformer::bind(&model, &cage, CageOptions::default()).unwrap();
+        let options = CageOptions {
+            // The cactus cage's faces cross (37 pairs, for example faces 11 and 95): refused unless
+            // allowed.
+            allow_self_intersecting: true,
+            ..CageOptions::default()
+        };
+        let d = CageDeformer::bind(&model, &cage, options).unwrap();
         let mut out = vec![DVec3::ZERO; model.vertex_count()];
         d.pose(&vec![ScaledMotor::IDENTITY; cage.vertex_count()], &mut out)
             .unwrap();
@@ -197,6 +213,10 @@ fn the_shared_model_cage_pairs_bind_and_the_partial_cage_is_refused() {
             .iter()
             .zip(&model.positions)
             .all(|(a, b)| a.distance(*b) < 1e-9));
+    }
+    match check_cage(&read("cactus_cage.obj")) {
+        Err(Error::Cage(CageError::SelfIntersecting { faces })) => assert!(!faces.0.is_empty()),
+        other => panic!("expected SelfIntersecting, got {other:?}"),
     }
     let partial = read("bar_cage_partial.OBJ");
     check_cage(&partial).unwrap();
@@ -271,8 +291,24 @@ fn winding_numbers_from_the_coordinates_match_the_direct_ones() {
     let (_, w) = deform::cage::coordinates_and_winding(&cage, &points).unwrap();
     for (i, &p) in points.iter().enumerate() {
         let direct = deform::cage::winding_number(&cage, p);
-        assert!((w[i] - direct).abs() < 1e-9, "point {i}: {} vs {direct}", w[i]);
+        assert!(
+            (w[i] - direct).abs() < 1e-9,
+            "point {i}: {} vs {direct}",
+            w[i]
+        );
         let inside = i < points.len() - 2;
         assert!((direct - if inside { 1.0 } else { 0.0 }).abs() < 1e-9);
     }
+}
+
+#[test]
+fn a_self_intersecting_cage_is_refused() {
+    // Push one vertex of a box cage through the opposite face.
+    let mut cage = box_cage(DVec3::splat(-2.0), DVec3::splat(2.0));
+    cage.positions[7] = DVec3::new(-3.0, -1.0, -1.5);
+    match check_cage(&cage) {
+        Err(Error::Cage(CageError::SelfIntersecting { faces })) => assert!(!faces.0.is_empty()),
+        other => panic!("expected SelfIntersecting, got {other:?}"),
+    }
+    assert!(deform::cage::intersect::self_intersections(&dented_cage(), 10).is_empty());
 }

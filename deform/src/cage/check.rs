@@ -11,11 +11,20 @@ pub const DEGENERATE_AREA: f64 = 1e-14;
 
 /// Check that `cage` can carry coordinates: at least 4 vertices and 4 faces, finite
 /// coordinates, face indices in range, every edge shared by exactly two faces (closed,
-/// edge-manifold), no face of (numerically) zero area.
+/// edge-manifold), no face of (numerically) zero area, no faces crossing each other
+/// ([`super::intersect::self_intersections`]).
 ///
 /// # Errors
 /// The [`CageError`] naming the offending vertices or faces.
 pub fn check_cage(cage: &Mesh) -> Result<()> {
+    check_cage_with(cage, false)
+}
+
+/// [`check_cage`], skipping the self-intersection test when `allow_self_intersecting`.
+///
+/// # Errors
+/// As [`check_cage`].
+pub fn check_cage_with(cage: &Mesh, allow_self_intersecting: bool) -> Result<()> {
     let n = cage.vertex_count();
     if n < 4 || cage.triangle_count() < 4 {
         return Err(CageError::TooSmall {
@@ -73,12 +82,23 @@ pub fn check_cage(cage: &Mesh) -> Result<()> {
         .filter(|&f| {
             let [a, b, c] = cage.corners(f);
             let area = 0.5 * (b - a).cross(c - a).length();
-            !(area > floor)
+            area.is_nan() || area <= floor
         })
         .map(|f| f as u32)
         .collect();
     if !bad.is_empty() {
         return Err(CageError::Degenerate { faces: bad.into() }.into());
+    }
+    if allow_self_intersecting {
+        return Ok(());
+    }
+    let crossing = super::intersect::self_intersections(cage, 5);
+    if !crossing.is_empty() {
+        let faces: Vec<u32> = crossing.iter().flatten().copied().collect();
+        return Err(CageError::SelfIntersecting {
+            faces: faces.into(),
+        }
+        .into());
     }
     Ok(())
 }

@@ -61,7 +61,7 @@ pub fn check_encloses(cage: &Mesh, points: &[DVec3]) -> Result<()> {
 /// [`CageError::NotEnclosing`] naming the points outside.
 pub fn check_winding(sign: f64, w: &[f64]) -> Result<()> {
     let outside: Vec<u32> = (0..w.len())
-        .filter(|&i| !(sign * w[i] >= ENCLOSED))
+        .filter(|&i| (sign * w[i]).is_nan() || sign * w[i] < ENCLOSED)
         .map(|i| i as u32)
         .collect();
     if outside.is_empty() {

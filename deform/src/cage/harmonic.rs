@@ -223,7 +223,7 @@ pub fn harmonic_cage_coordinates(
             }
             row.iter_mut().for_each(|x| *x = x.clamp(0.0, 1.0));
             let sum: f64 = row.iter().sum();
-            if !(sum > 0.0) {
+            if sum.is_nan() || sum <= 0.0 {
                 return Some(i);
             }
             row.iter_mut().for_each(|x| *x /= sum);

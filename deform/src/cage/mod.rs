@@ -26,9 +26,10 @@
 mod check;
 mod containment;
 pub mod harmonic;
+pub mod intersect;
 pub mod mvc;
 
-pub use check::{check_cage, DEGENERATE_AREA};
+pub use check::{check_cage, check_cage_with, DEGENERATE_AREA};
 pub use containment::{
     check_encloses, check_winding, orientation, winding_number, winding_numbers, ENCLOSED,
 };
@@ -75,6 +76,12 @@ pub enum CageError {
         /// Endpoints of those edges.
         vertices: IndexList,
     },
+    /// Faces that cross each other.
+    #[error("the cage intersects itself: faces {faces} cross")]
+    SelfIntersecting {
+        /// The faces of the first crossing pairs.
+        faces: IndexList,
+    },
     /// Faces of (numerically) zero area.
     #[error("degenerate (zero-area) cage faces {faces}")]
     Degenerate {
@@ -119,6 +126,9 @@ pub struct CageOptions {
     pub coordinates: CageCoordinates,
     /// Positional or motor-valued (default: the motor log blend).
     pub form: ControlForm,
+    /// Accept a cage whose faces cross (mean value coordinates are still defined; harmonic
+    /// ones see the union of its inside). Default `false`: refused.
+    pub allow_self_intersecting: bool,
 }
 
 /// A model bound to a cage: one key per cage vertex.
@@ -134,7 +144,7 @@ impl CageDeformer {
     /// # Errors
     /// The [`CageError`]s (wrapped in [`crate::Error::Cage`]).
     pub fn bind(model: &Mesh, cage: &Mesh, options: CageOptions) -> Result<Self> {
-        check_cage(cage)?;
+        check_cage_with(cage, options.allow_self_intersecting)?;
         let m = cage.vertex_count();
         let n = model.vertex_count();
         let weights = match options.coordinates {

@@ -110,7 +110,7 @@ fn point_coordinates(
                 w[v[i]] = b;
                 sum += b;
             }
-            if !(sum > 0.0) {
+            if sum.is_nan() || sum <= 0.0 {
                 return (false, 0.5);
             }
             w.iter_mut().for_each(|x| *x /= sum);

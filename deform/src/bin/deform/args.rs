@@ -240,6 +240,9 @@ pub struct CageArgs {
     /// Grid nodes along the cage's longest side (harmonic coordinates).
     #[arg(long, default_value_t = 64)]
     pub grid: usize,
+    /// Accept a cage whose faces cross each other (refused by default).
+    #[arg(long)]
+    pub allow_self_intersecting: bool,
     /// Per-cage-vertex motors: JSON {"index": motor, "*": motor for the rest}.
     #[arg(long)]
     pub motors: PathBuf,

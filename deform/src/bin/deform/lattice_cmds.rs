@@ -97,6 +97,7 @@ pub fn cage(a: &CageArgs) -> Result<()> {
             CoordsArg::Harmonic => CageCoordinates::Harmonic(HarmonicGrid { resolution: a.grid }),
         },
         form: form(&a.form),
+        allow_self_intersecting: a.allow_self_intersecting,
     };
     let t = Instant::now();
     let d = with_progress(
