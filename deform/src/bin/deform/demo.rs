@@ -196,6 +196,19 @@ pub fn run(a: &DemoArgs) -> Result<()> {
         pose_ms,
     });
 
+    // FFD twists (motor vs positional lattice) and a bar bent by motors on its cage's
+    // vertices (lattice_demo.rs).
+    for s in crate::lattice_demo::scenes(LENGTH)? {
+        save(s.name, &s.rest, s.posed, &s.scalar)?;
+        rows.push(Row {
+            name: s.name,
+            method: s.method,
+            vertices: s.rest.vertex_count(),
+            bind_ms: s.bind_ms,
+            pose_ms: s.pose_ms,
+        });
+    }
+
     // Motor handles on a sphere: the bottom cap stays, the top cap lifts and grows, a side
     // cap turns.
     let ball = icosphere(1.0, 4);

@@ -7,6 +7,7 @@ mod args;
 mod commands;
 mod demo;
 mod lattice_cmds;
+mod lattice_demo;
 mod output;
 mod preview;
 

@@ -1,0 +1,124 @@
+//! The demo's FFD and cage scenes (first paper, Figs. 7 and 8): a bar twisted half a turn by
+//! two lattice layers, motor FFD beside positional FFD with the same lattice points; a bar in
+//! a tube-shaped cage bent a quarter turn by motors on the cage vertices that turn each ring
+//! about a common axis (motor-valued mean value coordinates).
+
+use crate::commands::time_pose;
+use anyhow::Result;
+use cga::ScaledMotor;
+use deform::cage::{CageDeformer, CageOptions};
+use deform::control::ControlForm;
+use deform::ffd::{Ffd, FfdOptions};
+use deform::shapes::tube;
+use deform::{BlendMethod, Deformer, Mesh};
+use glam::{DQuat, DVec3};
+use std::time::Instant;
+
+/// One scene's meshes and times.
+pub struct LatticeScene {
+    pub name: &'static str,
+    pub method: String,
+    pub rest: Mesh,
+    pub posed: Vec<DVec3>,
+    pub scalar: Vec<f64>,
+    pub bind_ms: f64,
+    pub pose_ms: f64,
+}
+
+fn rotation_about(center: DVec3, q: DQuat) -> ScaledMotor {
+    ScaledMotor::from_scale_rotation_translation(1.0, q, center - q * center)
+}
+
+fn moved(rest: &Mesh, posed: &[DVec3]) -> Vec<f64> {
+    posed
+        .iter()
+        .zip(&rest.positions)
+        .map(|(p, q)| p.distance(*q))
+        .collect()
+}
+
+fn run(
+    name: &'static str,
+    method: String,
+    rest: &Mesh,
+    bind: impl FnOnce() -> deform::Result<Box<dyn Deformer>>,
+    keys: &[ScaledMotor],
+) -> Result<LatticeScene> {
+    let t = Instant::now();
+    let d = bind()?;
+    let bind_ms = t.elapsed().as_secs_f64() * 1e3;
+    let mut posed = vec![DVec3::ZERO; rest.vertex_count()];
+    let pose_ms = time_pose(d.as_ref(), keys, &mut posed)?;
+    Ok(LatticeScene {
+        name,
+        method,
+        scalar: moved(rest, &posed),
+        rest: rest.clone(),
+        posed,
+        bind_ms,
+        pose_ms,
+    })
+}
+
+/// The FFD twists and the cage bend.
+pub fn scenes(length: f64) -> Result<Vec<LatticeScene>> {
+    let mut out = Vec::new();
+    // FFD: a 2x2x2 lattice whose u = 0 layer turns -90 degrees and u = 1 layer +90 degrees
+    // about the bar's axis.
+    let bar = tube(1.0, length, 4, 41);
+    let bounds = (DVec3::new(0.0, -1.0, -1.0), DVec3::new(length, 1.0, 1.0));
+    let keys: Vec<ScaledMotor> = (0..8)
+        .map(|k| {
+            let a = if k % 2 == 0 { -90f64 } else { 90.0 };
+            rotation_about(DVec3::ZERO, DQuat::from_rotation_x(a.to_radians()))
+        })
+        .collect();
+    for (name, form) in [
+        ("ffd-twist-motor", ControlForm::Motor(BlendMethod::MotorLog)),
+        ("ffd-twist-points", ControlForm::Positional),
+    ] {
+        let options = FfdOptions {
+            form,
+            ..FfdOptions::default()
+        };
+        out.push(run(
+            name,
+            format!("FFD 2x2x2 Bernstein / {}", form.name()),
+            &bar,
+            || Ok(Box::new(Ffd::bind(&bar, [2, 2, 2], Some(bounds), options)?)),
+            &keys,
+        )?);
+    }
+    // Cage: a square tube cage of 6 rings around a round bar; the vertices at x turn about
+    // the axis through (0, r, 0) along z by 90 degrees * x / length (an arc of radius r).
+    let bar = tube(1.0, length, 16, 41);
+    let theta = std::f64::consts::FRAC_PI_2;
+    let center = DVec3::new(0.0, length / theta, 0.0);
+    let cage = {
+        let mut c = tube(1.6, length + 2.0, 4, 6);
+        c.positions.iter_mut().for_each(|p| p.x -= 1.0);
+        c
+    };
+    let keys: Vec<ScaledMotor> = cage
+        .positions
+        .iter()
+        .map(|&p| {
+            let s = (p.x / length).clamp(0.0, 1.0);
+            rotation_about(center, DQuat::from_rotation_z(theta * s))
+        })
+        .collect();
+    out.push(run(
+        "cage-bend-motor",
+        format!("MVC cage ({} vertices) / motor-log", cage.vertex_count()),
+        &bar,
+        || {
+            Ok(Box::new(CageDeformer::bind(
+                &bar,
+                &cage,
+                CageOptions::default(),
+            )?))
+        },
+        &keys,
+    )?);
+    Ok(out)
+}
