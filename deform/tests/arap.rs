@@ -123,10 +123,9 @@ fn rigid_motion_of_every_handle_moves_the_mesh_rigidly() {
         let report = arap
             .pose(
                 &Targets::Motors(&[m; 3]),
-                Stop::RelativeChange {
-                    tolerance: 1e-12,
-                    max_iterations: 500,
-                },
+                // ARAP converges linearly; the energy, quadratic in the error, stops
+                // resolving progress long before the positions do, so run a fixed count.
+                Stop::Iterations(300),
                 &mut p,
             )
             .expect("pose");

@@ -144,10 +144,22 @@ fn det3(s: &[f64; 9]) -> f64 {
         + s[2] * (s[3] * s[7] - s[4] * s[6])
 }
 
-/// `det(P)` from the first row of its adjugate.
+/// `det(M)` through the 2x2 minors of its first two and last two rows.
 #[inline]
-fn det4(p: &[[f64; 4]; 4], adj: &[[f64; 4]; 4]) -> f64 {
-    (0..4).map(|k| p[0][k] * adj[k][0]).sum()
+fn det4(m: &[[f64; 4]; 4]) -> f64 {
+    let s0 = m[0][0] * m[1][1] - m[1][0] * m[0][1];
+    let s1 = m[0][0] * m[1][2] - m[1][0] * m[0][2];
+    let s2 = m[0][0] * m[1][3] - m[1][0] * m[0][3];
+    let s3 = m[0][1] * m[1][2] - m[1][1] * m[0][2];
+    let s4 = m[0][1] * m[1][3] - m[1][1] * m[0][3];
+    let s5 = m[0][2] * m[1][3] - m[1][2] * m[0][3];
+    let c5 = m[2][2] * m[3][3] - m[3][2] * m[2][3];
+    let c4 = m[2][1] * m[3][3] - m[3][1] * m[2][3];
+    let c3 = m[2][1] * m[3][2] - m[3][1] * m[2][2];
+    let c2 = m[2][0] * m[3][3] - m[3][0] * m[2][3];
+    let c1 = m[2][0] * m[3][2] - m[3][0] * m[2][2];
+    let c0 = m[2][0] * m[3][1] - m[3][0] * m[2][1];
+    s0 * c5 - s1 * c4 + s2 * c3 + s3 * c2 - s4 * c1 + s5 * c0
 }
 
 /// The quaternion `(w; x, y, z)` as a glam quaternion.
@@ -156,21 +168,24 @@ fn quat(v: [f64; 4]) -> DQuat {
     DQuat::from_xyzw(v[1], v[2], v[3], v[0])
 }
 
-/// The rotor (unit quaternion) maximising `tr(R S)`; see the [module docs](self).
-/// `bound` is an upper bound of the largest eigenvalue of `P` (callers pass
-/// `(sum |w| |e|^2 + sum |w| |e'|^2) / 2`; it is tightened here to `sqrt(3) |S|_F`), `warm`
-/// the previous rotor. A zero covariance gives `warm` back.
-pub(crate) fn fit_rotor(s: &[f64; 9], bound: f64, warm: DQuat) -> DQuat {
+/// The rotor (as a unit quaternion) maximising `tr(R S)` for the row-major covariance
+/// `s[3 r + c] = sum_j w_j e_j[r] e'_j[c]`: the paper's local step (see the
+/// [module docs](self)). `bound` is an upper bound of `max_R tr(R S)`, such as
+/// `(sum |w| |e|^2 + sum |w| |e'|^2) / 2` (tight for near-rigid cells, so Newton's method
+/// takes two or three steps), or `f64::INFINITY` (`sqrt(3) |S|_F` is used when smaller);
+/// `warm` is the previous rotor (the result has its sign). A zero or non-finite covariance
+/// gives `warm`.
+pub fn fit_rotor(s: &[f64; 9], bound: f64, warm: DQuat) -> DQuat {
     let norm2: f64 = s.iter().map(|x| x * x).sum();
     let mut lambda = bound.min((3.0 * norm2).sqrt());
-    if !(lambda > 0.0) || !lambda.is_finite() {
+    if !(lambda > 0.0) || !lambda.is_finite() || !norm2.is_finite() {
         return warm;
     }
     let p = horn_matrix(s);
     // Characteristic polynomial of the traceless P: x^4 + c2 x^2 + c1 x + c0.
     let c2 = -2.0 * norm2;
     let c1 = -8.0 * det3(s);
-    let c0 = det4(&p, &adjugate(&p));
+    let c0 = det4(&p);
     let scale = lambda;
     for _ in 0..64 {
         let l2 = lambda * lambda;
@@ -233,9 +248,10 @@ fn eigen_fallback(p: &[[f64; 4]; 4], warm: DQuat) -> DQuat {
     }
 }
 
-/// The rotation maximising `tr(R S)` by the 3x3 SVD with the reflection fix (see the
-/// [module docs](self)). A zero or non-finite covariance gives the identity.
-pub(crate) fn fit_svd(s: &[f64; 9]) -> DMat3 {
+/// The rotation maximising `tr(R S)` (row-major covariance as in [`fit_rotor`]) by the 3x3
+/// SVD with the reflection fix (see the [module docs](self)). A zero or non-finite
+/// covariance gives the identity.
+pub fn fit_svd(s: &[f64; 9]) -> DMat3 {
     if s.iter().all(|&x| x == 0.0) || !s.iter().all(|x| x.is_finite()) {
         return DMat3::IDENTITY;
     }
@@ -335,7 +351,7 @@ mod tests {
         let mut seed = 7;
         let m: [[f64; 4]; 4] = std::array::from_fn(|_| std::array::from_fn(|_| rng(&mut seed)));
         let a = adjugate(&m);
-        let det = det4(&m, &a);
+        let det = det4(&m);
         for (r, row) in a.iter().enumerate() {
             for c in 0..4 {
                 let x: f64 = row.iter().zip(m.iter()).map(|(a, mk)| a * mk[c]).sum();

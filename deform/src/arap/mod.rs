@@ -49,7 +49,7 @@ mod local;
 mod rhs;
 mod system;
 
-pub use local::LocalStep;
+pub use local::{fit_rotor, fit_svd, LocalStep};
 
 use crate::deformer::{check_key_count, check_positions, Deformer, KeyError};
 use crate::{CotangentOptions, Error, IndexList, Mesh, Result, SolveScratch, SolverOptions};
@@ -184,7 +184,6 @@ struct Workspace {
     rots: Vec<DMat3>,
     cov: Vec<Covariance>,
     tri_cov: Vec<Covariance>,
-    tri_rot: Vec<DMat3>,
     b: Vec<DVec3>,
     rhs: Vec<f64>,
     sol: Vec<f64>,
@@ -234,7 +233,6 @@ impl Arap {
             rots: vec![DMat3::IDENTITY; n],
             cov: vec![Covariance::default(); n],
             tri_cov: vec![Covariance::default(); triangles],
-            tri_rot: vec![DMat3::IDENTITY; triangles],
             b: vec![DVec3::ZERO; n],
             rhs: vec![0.0; 3 * n],
             sol: vec![0.0; 3 * n],
@@ -440,7 +438,7 @@ impl Arap {
                 &mut w.quats,
                 &mut w.rots,
             );
-            rhs::right_hand_side(&s.cells, &w.rots, &mut w.tri_rot, &mut w.b);
+            rhs::right_hand_side(&s.gather, &w.rots, &mut w.b);
             for (i, b) in w.b.iter().enumerate() {
                 w.rhs[i] = b.x;
                 w.rhs[n + i] = b.y;

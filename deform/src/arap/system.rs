@@ -1,6 +1,7 @@
 //! Bind-time work: the cells' weights and rest edges, the constrained vertex list, and the
 //! prefactored system `-L p' = b` (equation (13), a Poisson equation with Dirichlet rows).
 
+use super::rhs::Gather;
 use super::{ArapEnergy, ArapError, ArapOptions};
 use crate::laplacian::assemble;
 use crate::triangle::Frame;
@@ -23,8 +24,6 @@ pub(crate) struct Spokes {
     pub w: Vec<f64>,
     /// `w_ij (p_i - p_j)` at rest.
     pub we: Vec<DVec3>,
-    /// `sum_j w_ij (p_i - p_j) / 2` per vertex (the `R_i` part of the right-hand side).
-    pub g: Vec<DVec3>,
 }
 
 /// Spokes-and-rims data: per-triangle weights and edges, and the triangles around each vertex.
@@ -40,8 +39,6 @@ pub(crate) struct Rims {
     pub ptr: Vec<usize>,
     /// The triangle of each incidence.
     pub inc: Vec<u32>,
-    /// `sum over the two edges (i, j) of the triangle: c (p_i - p_j)` at rest.
-    pub f: Vec<DVec3>,
 }
 
 /// The cells' data for the chosen energy.
@@ -56,6 +53,8 @@ pub(crate) enum Cells {
 pub(crate) struct System {
     pub rest: Vec<DVec3>,
     pub cells: Cells,
+    /// The right-hand side's rest vectors.
+    pub gather: Gather,
     /// `sum |w| |e|^2` per cell (the rest part of the eigenvalue bound).
     pub b_abs: Vec<f64>,
     /// `sum w |e|^2` per cell (the rest part of the energy).
@@ -184,11 +183,10 @@ impl System {
         let (constrained, starts) = constraints(n, fixed, handles)?;
         check_free_vertices(mesh, &constrained)?;
         let p = &mesh.positions;
-        let (cells, laplacian, b, b_abs) = match options.energy {
+        let (cells, gather, laplacian, b, b_abs) = match options.energy {
             ArapEnergy::Spokes => {
                 let l = cotangent_laplacian(mesh, options.cotangent)?;
                 let (mut ptr, mut col, mut w, mut we) = (vec![0], vec![], vec![], vec![]);
-                let mut g = vec![DVec3::ZERO; n];
                 let (mut b, mut b_abs) = (vec![0.0; n], vec![0.0; n]);
                 for (i, row) in l.outer_iterator().enumerate() {
                     for (j, &wij) in row.iter() {
@@ -199,14 +197,14 @@ impl System {
                         col.push(j as u32);
                         w.push(wij);
                         we.push(wij * e);
-                        g[i] += 0.5 * wij * e;
                         b[i] += wij * e.length_squared();
                         b_abs[i] += wij.abs() * e.length_squared();
                     }
                     ptr.push(col.len());
                 }
-                let cells = Cells::Spokes(Spokes { ptr, col, w, we, g });
-                (cells, l, b, b_abs)
+                let gather = Gather::spokes(&ptr, &col, &we);
+                let cells = Cells::Spokes(Spokes { ptr, col, w, we });
+                (cells, gather, l, b, b_abs)
             }
             ArapEnergy::SpokesAndRims => {
                 let c = triangle_weights(mesh, options)?;
@@ -235,7 +233,7 @@ impl System {
                 }
                 let ptr = count.clone();
                 let mut inc = vec![0u32; ptr[n]];
-                let mut f = vec![DVec3::ZERO; ptr[n]];
+                let mut f = vec![[DVec3::ZERO; 3]; tris.len()];
                 let (mut b, mut b_abs) = (vec![0.0; n], vec![0.0; n]);
                 for (ti, t) in tris.iter().enumerate() {
                     for m in 0..3 {
@@ -245,20 +243,20 @@ impl System {
                         inc[slot] = ti as u32;
                         // Edge opposite corner m+1 joins m+2 and m: its e is p_m - p_{m+2};
                         // edge opposite m+2 joins m and m+1: its e is p_{m+1} - p_m.
-                        f[slot] = ce[ti][(m + 1) % 3] - ce[ti][(m + 2) % 3];
+                        f[ti][m] = ce[ti][(m + 1) % 3] - ce[ti][(m + 2) % 3];
                         b[v] += tb[ti].0;
                         b_abs[v] += tb[ti].1;
                     }
                 }
+                let gather = Gather::rims(&l, &tris, &f)?;
                 let cells = Cells::Rims(Rims {
                     tris,
                     c,
                     ce,
                     ptr,
                     inc,
-                    f,
                 });
-                (cells, l, b, b_abs)
+                (cells, gather, l, b, b_abs)
             }
         };
         let mut q = laplacian;
@@ -267,6 +265,7 @@ impl System {
         Ok(System {
             rest: p.clone(),
             cells,
+            gather,
             b_abs,
             b,
             constrained,

@@ -39,6 +39,10 @@ pub enum Command {
     /// motor per cage vertex ("*" the rest); motor-valued or positional (--positional). A cage
     /// that does not enclose the mesh is an error (exit code 2).
     Cage(CageArgs),
+    /// As-rigid-as-possible deformation (the paper's rotors): selection groups with a motor
+    /// in --motors are handles moved rigidly by it, the other groups stay fixed; iterates
+    /// from the rest pose and prints the energy after each iteration.
+    Arap(crate::arap_cmd::ArapArgs),
 }
 
 /// Options every command that writes files shares.

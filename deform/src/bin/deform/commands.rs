@@ -133,7 +133,11 @@ pub(crate) fn finish(
 }
 
 /// Read the mesh and selection, refusing outputs that are inputs.
-fn read_inputs(input: &MeshInput, extra: &[&Path], out: &OutputArgs) -> Result<(Mesh, Selection)> {
+pub(crate) fn read_inputs(
+    input: &MeshInput,
+    extra: &[&Path],
+    out: &OutputArgs,
+) -> Result<(Mesh, Selection)> {
     let (mesh, select) = (input.mesh.as_path(), input.select.as_path());
     let mut inputs = vec![mesh, select];
     inputs.extend_from_slice(extra);

@@ -3,6 +3,7 @@
 //! timings. Exit code 0 on success, 2 on any error (bad arguments, unreadable or invalid
 //! input, a failed write), with a message that says what and where.
 
+mod arap_cmd;
 mod args;
 mod commands;
 mod demo;
@@ -33,6 +34,7 @@ fn main() -> ExitCode {
         args::Command::Fabrik(a) => commands::fabrik(&a),
         args::Command::Ffd(a) => lattice_cmds::ffd(&a),
         args::Command::Cage(a) => lattice_cmds::cage(&a),
+        args::Command::Arap(a) => arap_cmd::arap(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

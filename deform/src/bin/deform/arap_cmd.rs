@@ -1,0 +1,166 @@
+//! `deform arap`: as-rigid-as-possible deformation (first paper, section VII). Selection
+//! groups with a motor in the motors file are handles moved rigidly by it; every other
+//! selected group stays fixed; iterations start from the rest pose and the energy is printed
+//! after each one.
+
+use crate::args::{MeshInput, OutputArgs};
+use crate::commands::{finish, read_inputs, with_progress, Report};
+use crate::output::read_text;
+use anyhow::{bail, Context, Result};
+use clap::{Args, ValueEnum};
+use deform::arap::{Arap, ArapEnergy, ArapOptions, LocalStep, Stop, Targets};
+use deform::input::parse_group_motors;
+use std::path::PathBuf;
+use std::time::Instant;
+
+/// Iteration cap of `--tolerance`.
+const MAX_ITERATIONS: usize = 1000;
+
+#[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
+pub enum EnergyArg {
+    SpokesAndRims,
+    Spokes,
+}
+
+#[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
+pub enum LocalStepArg {
+    Rotor,
+    Svd,
+}
+
+#[derive(Args, Debug)]
+pub struct ArapArgs {
+    /// (Selection groups: libigl convention, -1 free, k = group k.)
+    #[command(flatten)]
+    pub input: MeshInput,
+    /// Per-group motors: JSON {"k": motor, "*": motor for every group not listed}. Groups
+    /// with a motor are handles moved rigidly by it; the other groups stay fixed.
+    #[arg(long)]
+    pub motors: PathBuf,
+    /// The rigidity energy: libigl's default, or Sorkine and Alexa's (the paper's).
+    #[arg(long, value_enum, default_value = "spokes-and-rims")]
+    pub energy: EnergyArg,
+    /// Iterations from the rest pose.
+    #[arg(long, conflicts_with = "tolerance")]
+    pub iterations: Option<usize>,
+    /// Iterate until the energy's relative change is at most this (at most 1000 iterations).
+    #[arg(long)]
+    pub tolerance: Option<f64>,
+    /// The local rotation fit: the paper's rotor (Horn's 4x4 matrix) or the 3x3 SVD.
+    #[arg(long, value_enum, default_value = "rotor")]
+    pub local_step: LocalStepArg,
+    #[command(flatten)]
+    pub out: OutputArgs,
+}
+
+/// The groups the motors file names (all of them when it has `"*"`).
+fn moved_groups(text: &str, name: &str, groups: usize) -> Result<Vec<bool>> {
+    let object: serde_json::Map<String, serde_json::Value> = serde_json::from_str(text)
+        .with_context(|| format!("{name}: expected an object from group numbers to motors"))?;
+    if object.contains_key("*") {
+        return Ok(vec![true; groups]);
+    }
+    let mut moved = vec![false; groups];
+    for key in object.keys() {
+        // parse_group_motors has checked every key.
+        if let Ok(g) = key.parse::<usize>() {
+            if g < groups {
+                moved[g] = true;
+            }
+        }
+    }
+    Ok(moved)
+}
+
+pub fn arap(a: &ArapArgs) -> Result<()> {
+    let (mesh, sel) = read_inputs(&a.input, &[a.motors.as_path()], &a.out)?;
+    let name = a.motors.display().to_string();
+    let text = read_text(&a.motors)?;
+    let motors = parse_group_motors(&text, &name, sel.groups.len())?;
+    let moved = moved_groups(&text, &name, sel.groups.len())?;
+    let stop = match (a.iterations, a.tolerance) {
+        (_, Some(t)) if !(t.is_finite() && t >= 0.0) => {
+            bail!("--tolerance must be a finite number >= 0, got {t}")
+        }
+        (_, Some(t)) => Stop::RelativeChange {
+            tolerance: t,
+            max_iterations: MAX_ITERATIONS,
+        },
+        (Some(0), None) => bail!("--iterations must be at least 1"),
+        (Some(n), None) => Stop::Iterations(n),
+        (None, None) => Stop::Iterations(10),
+    };
+    let mut fixed = Vec::new();
+    let mut handles: Vec<&[u32]> = Vec::new();
+    let mut keys = Vec::new();
+    for (g, vertices) in sel.groups.iter().enumerate() {
+        if moved[g] {
+            handles.push(vertices);
+            keys.push(motors[g]);
+        } else {
+            fixed.extend_from_slice(vertices);
+        }
+    }
+    let options = ArapOptions {
+        energy: match a.energy {
+            EnergyArg::SpokesAndRims => ArapEnergy::SpokesAndRims,
+            EnergyArg::Spokes => ArapEnergy::Spokes,
+        },
+        local_step: match a.local_step {
+            LocalStepArg::Rotor => LocalStep::Rotor,
+            LocalStepArg::Svd => LocalStep::Svd,
+        },
+        ..ArapOptions::default()
+    };
+    let t = Instant::now();
+    let arap = with_progress(
+        "binding (ARAP system)",
+        mesh.vertex_count(),
+        a.out.quiet,
+        || Arap::bind(&mesh, &fixed, &handles, options),
+    )
+    .with_context(|| format!("{}: cannot bind", a.input.mesh.display()))?;
+    let bind_ms = t.elapsed().as_secs_f64() * 1e3;
+    let mut posed = mesh.positions.clone();
+    let chatty = !a.out.quiet && !a.out.json;
+    let mut energies = Vec::new();
+    let t = Instant::now();
+    let converged = arap
+        .pose_with(&Targets::Motors(&keys), stop, &mut posed, |k, e| {
+            if chatty {
+                println!("iteration {k:>4}: energy {e:.9e}");
+            }
+            energies.push(e);
+        })
+        .with_context(|| format!("{name}: cannot pose"))?;
+    let pose_ms = t.elapsed().as_secs_f64() * 1e3;
+    let mut report = Report::new("arap", &mesh);
+    report.add("energy_kind", options.energy.name());
+    report.add(
+        "local_step",
+        match options.local_step {
+            LocalStep::Rotor => "rotor",
+            LocalStep::Svd => "svd",
+        },
+    );
+    report.add("fixed", fixed.len());
+    report.add("handles", handles.len());
+    report.add("iterations", energies.len());
+    if let Stop::RelativeChange { .. } = stop {
+        report.add("converged", converged);
+    }
+    if let Some(e) = energies.last() {
+        report.add("energy", *e);
+    }
+    if a.out.json {
+        report.add("energies", energies.clone());
+    }
+    report.add("bind_ms", bind_ms);
+    report.add("pose_ms", pose_ms);
+    let moved: Vec<f64> = posed
+        .iter()
+        .zip(&mesh.positions)
+        .map(|(p, q)| p.distance(*q))
+        .collect();
+    finish(&mesh, posed, &moved, &a.out, &mut report)
+}
