@@ -95,10 +95,15 @@ fn point_coordinates(
     }
     for t in &cage.triangles {
         let v = [t[0] as usize, t[1] as usize, t[2] as usize];
+        // theta = 2 asin(l / 2), so sin theta = l sqrt(1 - l^2 / 4), cos theta = 1 - l^2 / 2.
         let mut theta = [0.0; 3];
+        let mut sin_t = [0.0; 3];
+        let mut cos_t = [0.0; 3];
         for i in 0..3 {
-            let l = (u[v[(i + 1) % 3]] - u[v[(i + 2) % 3]]).length();
-            theta[i] = 2.0 * (0.5 * l).min(1.0).asin();
+            let l = (u[v[(i + 1) % 3]] - u[v[(i + 2) % 3]]).length().min(2.0);
+            theta[i] = 2.0 * (0.5 * l).asin();
+            sin_t[i] = l * (1.0 - 0.25 * l * l).max(0.0).sqrt();
+            cos_t[i] = 1.0 - 0.5 * l * l;
         }
         let h = 0.5 * (theta[0] + theta[1] + theta[2]);
         if PI - h < NEAR_FACE && on_plane(cage, t, x, scale) {
@@ -106,7 +111,7 @@ fn point_coordinates(
             w.fill(0.0);
             let mut sum = 0.0;
             for i in 0..3 {
-                let b = theta[i].sin() * d[v[(i + 2) % 3]] * d[v[(i + 1) % 3]];
+                let b = sin_t[i] * d[v[(i + 2) % 3]] * d[v[(i + 1) % 3]];
                 w[v[i]] = b;
                 sum += b;
             }
@@ -124,12 +129,14 @@ fn point_coordinates(
             continue; // in the face's plane, outside the face
         }
         let sign = det.signum();
-        let sin_t = [theta[0].sin(), theta[1].sin(), theta[2].sin()];
+        let (sin_h, cos_h) = h.sin_cos();
         let mut c = [0.0; 3];
         let mut s = [0.0; 3];
         for i in 0..3 {
             let (i1, i2) = ((i + 1) % 3, (i + 2) % 3);
-            c[i] = (2.0 * h.sin() * (h - theta[i]).sin() / (sin_t[i1] * sin_t[i2]) - 1.0)
+            // sin(h - theta_i) = sin h cos theta_i - cos h sin theta_i
+            let sin_h_t = sin_h * cos_t[i] - cos_h * sin_t[i];
+            c[i] = (2.0 * sin_h * sin_h_t / (sin_t[i1] * sin_t[i2]) - 1.0)
                 .clamp(-1.0, 1.0);
             s[i] = sign * (1.0 - c[i] * c[i]).sqrt();
         }
