@@ -50,6 +50,7 @@ pub fn coordinates_and_winding(cage: &Mesh, points: &[DVec3]) -> Result<(Vec<f64
     let scale = cage.bounding_box().map_or(1.0, |b| b.diagonal());
     let mut out = vec![0.0; points.len() * m];
     let mut winding = vec![0.0; points.len()];
+    let edges = Edges::new(cage);
     let failed = out
         .par_chunks_mut(m.max(1))
         .with_min_len(64)
@@ -57,9 +58,13 @@ pub fn coordinates_and_winding(cage: &Mesh, points: &[DVec3]) -> Result<(Vec<f64
         .zip(points.par_iter())
         .enumerate()
         .map_init(
-            || (vec![0.0; m], vec![DVec3::ZERO; m]),
-            |(d, u), (i, ((w, wn), &x))| {
-                let (ok, n) = point_coordinates(cage, scale, x, d, u, w);
+            || Scratch {
+                d: vec![0.0; m],
+                u: vec![DVec3::ZERO; m],
+                angles: vec![[0.0; 3]; edges.ends.len()],
+            },
+            |scratch, (i, ((w, wn), &x))| {
+                let (ok, n) = point_coordinates(cage, &edges, scale, x, scratch, w);
                 *wn = n;
                 (!ok).then_some(i)
             },
@@ -72,16 +77,52 @@ pub fn coordinates_and_winding(cage: &Mesh, points: &[DVec3]) -> Result<(Vec<f64
     }
 }
 
-/// The coordinates of one point into `w` (length `m`), with scratch `d`, `u`. Returns whether
-/// they normalised, and the winding number.
+/// The cage's edges, each once, and the edge opposite each corner of each face.
+struct Edges {
+    ends: Vec<[u32; 2]>,
+    opposite: Vec<[u32; 3]>,
+}
+
+impl Edges {
+    fn new(cage: &Mesh) -> Edges {
+        let mut index = std::collections::HashMap::new();
+        let mut ends = Vec::new();
+        let opposite = cage
+            .triangles
+            .iter()
+            .map(|t| {
+                std::array::from_fn(|i| {
+                    let (a, b) = (t[(i + 1) % 3], t[(i + 2) % 3]);
+                    *index.entry((a.min(b), a.max(b))).or_insert_with(|| {
+                        ends.push([a, b]);
+                        ends.len() as u32 - 1
+                    })
+                })
+            })
+            .collect();
+        Edges { ends, opposite }
+    }
+}
+
+/// Per-thread scratch: distances and unit vectors to the cage vertices, and per edge the angle
+/// it subtends with its sine and cosine.
+struct Scratch {
+    d: Vec<f64>,
+    u: Vec<DVec3>,
+    angles: Vec<[f64; 3]>,
+}
+
+/// The coordinates of one point into `w` (length `m`). Returns whether they normalised, and
+/// the winding number.
 fn point_coordinates(
     cage: &Mesh,
+    edges: &Edges,
     scale: f64,
     x: DVec3,
-    d: &mut [f64],
-    u: &mut [DVec3],
+    scratch: &mut Scratch,
     w: &mut [f64],
 ) -> (bool, f64) {
+    let Scratch { d, u, angles } = scratch;
     w.fill(0.0);
     let mut solid = 0.0;
     for (j, &p) in cage.positions.iter().enumerate() {
@@ -93,18 +134,22 @@ fn point_coordinates(
         }
         u[j] = r / d[j];
     }
-    for t in &cage.triangles {
+    // theta = 2 asin(l / 2) for the chord l between unit vectors, so
+    // sin theta = l sqrt(1 - l^2 / 4) and cos theta = 1 - l^2 / 2.
+    for (e, &[a, b]) in edges.ends.iter().enumerate() {
+        let l = (u[a as usize] - u[b as usize]).length().min(2.0);
+        angles[e] = [
+            2.0 * (0.5 * l).asin(),
+            l * (1.0 - 0.25 * l * l).max(0.0).sqrt(),
+            1.0 - 0.5 * l * l,
+        ];
+    }
+    for (t, opposite) in cage.triangles.iter().zip(&edges.opposite) {
         let v = [t[0] as usize, t[1] as usize, t[2] as usize];
-        // theta = 2 asin(l / 2), so sin theta = l sqrt(1 - l^2 / 4), cos theta = 1 - l^2 / 2.
-        let mut theta = [0.0; 3];
-        let mut sin_t = [0.0; 3];
-        let mut cos_t = [0.0; 3];
-        for i in 0..3 {
-            let l = (u[v[(i + 1) % 3]] - u[v[(i + 2) % 3]]).length().min(2.0);
-            theta[i] = 2.0 * (0.5 * l).asin();
-            sin_t[i] = l * (1.0 - 0.25 * l * l).max(0.0).sqrt();
-            cos_t[i] = 1.0 - 0.5 * l * l;
-        }
+        let [a0, a1, a2] = opposite.map(|e| angles[e as usize]);
+        let theta = [a0[0], a1[0], a2[0]];
+        let sin_t = [a0[1], a1[1], a2[1]];
+        let cos_t = [a0[2], a1[2], a2[2]];
         let h = 0.5 * (theta[0] + theta[1] + theta[2]);
         if PI - h < NEAR_FACE && on_plane(cage, t, x, scale) {
             // On the face: 2-D barycentric coordinates.
@@ -122,9 +167,9 @@ fn point_coordinates(
             return (true, 0.5);
         }
         let det = u[v[0]].dot(u[v[1]].cross(u[v[2]]));
-        // Van Oosterom-Strackee: the face's signed solid angle at x.
-        let (a, b, c) = (u[v[0]], u[v[1]], u[v[2]]);
-        solid += 2.0 * det.atan2(1.0 + a.dot(b) + b.dot(c) + c.dot(a));
+        // Van Oosterom-Strackee: the face's signed solid angle at x (u_i . u_j is the cosine
+        // of the angle opposite corner k).
+        solid += 2.0 * det.atan2(1.0 + cos_t[0] + cos_t[1] + cos_t[2]);
         if det.abs() < COPLANAR {
             continue; // in the face's plane, outside the face
         }
@@ -136,8 +181,7 @@ fn point_coordinates(
             let (i1, i2) = ((i + 1) % 3, (i + 2) % 3);
             // sin(h - theta_i) = sin h cos theta_i - cos h sin theta_i
             let sin_h_t = sin_h * cos_t[i] - cos_h * sin_t[i];
-            c[i] = (2.0 * sin_h * sin_h_t / (sin_t[i1] * sin_t[i2]) - 1.0)
-                .clamp(-1.0, 1.0);
+            c[i] = (2.0 * sin_h * sin_h_t / (sin_t[i1] * sin_t[i2]) - 1.0).clamp(-1.0, 1.0);
             s[i] = sign * (1.0 - c[i] * c[i]).sqrt();
         }
         if s.iter().any(|s| s.abs() <= COPLANAR) {
