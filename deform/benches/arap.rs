@@ -1,12 +1,12 @@
-//! criterion benches of ARAP (issue 11) on libigl's armadillo (43,243 vertices) and
-//! armadillo-50k (49,999), with the bottom 5% of the box in y fixed and the top 5% a handle
-//! moved by a motor: precomputation (weights, cells, constrained system, faer Cholesky), one
-//! and five iterations of a pose warm-started from a deformed pose (spokes and rims, rotor
-//! local step; a pose of `k` iterations does `k` local steps, right-hand sides and solves and
-//! `k + 1` covariance passes, the last one for the reported energy), and the rotor and SVD
-//! rotation fits per cell on covariances of that pose. Targets: one iteration <= 20 ms on
-//! armadillo.obj and <= 25 ms on armadillo-50k, precomputation <= 300 ms, the rotor fit no
-//! slower than the SVD fit.
+//! criterion benches of ARAP (issue 11) on libigl's armadillo (43,243 vertices),
+//! armadillo-50k (49,999) and its midpoint subdivision (199,990), with the bottom 5% of the
+//! box in y fixed and the top 5% a handle moved by a motor: precomputation (weights, cells,
+//! constrained system, faer Cholesky), one and five iterations of a pose warm-started from a
+//! deformed pose (spokes and rims, rotor local step; a pose of `k` iterations does `k` local
+//! steps, right-hand sides and solves and `k + 1` covariance passes, the last one for the
+//! reported energy), and the rotor and SVD rotation fits per cell on covariances of that
+//! pose. Targets: one iteration <= 20 ms on armadillo.obj and <= 25 ms on armadillo-50k,
+//! precomputation <= 300 ms, the rotor fit no slower than the SVD fit.
 //!
 //! `cargo bench -p deform --bench arap`
 
@@ -75,11 +75,17 @@ fn covariances(mesh: &Mesh, p: &[DVec3]) -> Vec<([f64; 9], f64)> {
 }
 
 fn benches(c: &mut Criterion) {
-    for (name, rel) in [
-        ("armadillo-43k", "libigl/armadillo.obj"),
-        ("armadillo-50k", "large/armadillo-50k.obj"),
+    for (name, rel, subdivide) in [
+        ("armadillo-43k", "libigl/armadillo.obj", false),
+        ("armadillo-50k", "large/armadillo-50k.obj", false),
+        ("armadillo-200k", "large/armadillo-50k.obj", true),
     ] {
         let Some(mesh) = mesh(rel) else { continue };
+        let mesh = if subdivide {
+            mesh.subdivide_midpoint()
+        } else {
+            mesh
+        };
         let n = mesh.vertex_count();
         let (fixed, handle) = sets(&mesh);
         let keys = [key(&mesh)];

@@ -94,6 +94,7 @@ fn demo_writes_meshes_previews_and_a_table() {
         "twist-matrix",
         "fabrik-chain",
         "handles-sphere",
+        "arap-beam",
     ] {
         let m = read_obj(&format!("{out}/{name}.obj"));
         assert!(m.vertex_count() > 100);

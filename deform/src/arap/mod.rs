@@ -273,6 +273,9 @@ impl Arap {
     }
 
     /// The vertices of handle group `g`.
+    ///
+    /// # Panics
+    /// When `g >= handle_count()`.
     pub fn handle(&self, g: usize) -> &[u32] {
         &self.system.constrained[self.system.starts[g]..self.system.starts[g + 1]]
     }
