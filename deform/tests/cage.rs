@@ -312,3 +312,25 @@ fn a_self_intersecting_cage_is_refused() {
     }
     assert!(deform::cage::intersect::self_intersections(&dented_cage(), 10).is_empty());
 }
+
+#[test]
+fn a_model_vertex_that_is_not_finite_is_a_typed_error() {
+    let mut m = model();
+    m.positions[5] = DVec3::new(f64::NAN, 0.0, 0.0);
+    let cage = dented_cage();
+    for coordinates in [
+        CageCoordinates::MeanValue,
+        CageCoordinates::Harmonic(HarmonicGrid { resolution: 16 }),
+    ] {
+        let options = CageOptions {
+            coordinates,
+            ..CageOptions::default()
+        };
+        match CageDeformer::bind(&m, &cage, options) {
+            Err(Error::Cage(CageError::NotEnclosing { vertices, .. })) => {
+                assert_eq!(vertices.0, vec![5])
+            }
+            other => panic!("{coordinates:?}: expected NotEnclosing, got {other:?}"),
+        }
+    }
+}

@@ -227,3 +227,14 @@ fn positional_ffd_by_points_matches_the_lattice_moved_by_motors() {
         .zip(&mesh.positions)
         .any(|(p, q)| p.distance(*q) > 0.1));
 }
+
+#[test]
+fn a_vertex_that_is_not_finite_is_a_typed_error() {
+    let mut mesh = bar();
+    mesh.positions[3].y = f64::INFINITY;
+    let box_ = Some((DVec3::splat(-2.0), DVec3::splat(12.0)));
+    match Ffd::bind(&mesh, [2, 2, 2], box_, FfdOptions::default()) {
+        Err(Error::Ffd(FfdError::Outside { vertex: 3, .. })) => {}
+        other => panic!("expected Outside at vertex 3, got {other:?}"),
+    }
+}
