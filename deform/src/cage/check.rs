@@ -92,11 +92,11 @@ pub fn check_cage_with(cage: &Mesh, allow_self_intersecting: bool) -> Result<()>
     if allow_self_intersecting {
         return Ok(());
     }
-    let crossing = super::intersect::self_intersections(cage, 5);
-    if !crossing.is_empty() {
-        let faces: Vec<u32> = crossing.iter().flatten().copied().collect();
+    let crossing = super::intersect::self_intersections(cage, usize::MAX);
+    if let Some(&first) = crossing.first() {
         return Err(CageError::SelfIntersecting {
-            faces: faces.into(),
+            pairs: crossing.len(),
+            first,
         }
         .into());
     }

@@ -77,10 +77,12 @@ pub enum CageError {
         vertices: IndexList,
     },
     /// Faces that cross each other.
-    #[error("the cage intersects itself: faces {faces} cross")]
+    #[error("the cage intersects itself: {pairs} pairs of faces cross, e.g. faces {} and {}", first[0], first[1])]
     SelfIntersecting {
-        /// The faces of the first crossing pairs.
-        faces: IndexList,
+        /// How many pairs cross.
+        pairs: usize,
+        /// The lowest crossing pair.
+        first: [u32; 2],
     },
     /// Faces of (numerically) zero area.
     #[error("degenerate (zero-area) cage faces {faces}")]

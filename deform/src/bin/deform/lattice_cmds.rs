@@ -106,12 +106,20 @@ pub fn cage(a: &CageArgs) -> Result<()> {
         a.out.quiet,
         || CageDeformer::bind(&mesh, &cage, options),
     )
-    .with_context(|| {
-        format!(
-            "{}: cannot bind to the cage {}",
+    .map_err(|e| {
+        let hint = if matches!(
+            e,
+            deform::Error::Cage(deform::cage::CageError::SelfIntersecting { .. })
+        ) {
+            " (--allow-self-intersecting accepts it)"
+        } else {
+            ""
+        };
+        anyhow::Error::new(e).context(format!(
+            "{}: cannot bind to the cage {}{hint}",
             a.mesh.display(),
             a.cage.display()
-        )
+        ))
     })?;
     let mut report = Report::new("cage", &mesh);
     report.add("bind_ms", t.elapsed().as_secs_f64() * 1e3);
