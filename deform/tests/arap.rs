@@ -442,3 +442,92 @@ fn degenerate_triangles_follow_the_foundation_policy() {
         Err(Error::DegenerateTriangles { .. })
     ));
 }
+
+/// `deform arap` end to end on a bar: group 0 fixed (no motor), group 1 moved by its motor;
+/// energies printed per iteration; bad input exits with code 2.
+#[test]
+fn the_arap_command_moves_the_motor_groups_and_fixes_the_others() {
+    let dir = std::env::temp_dir().join(format!("deform-arap-cli-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("dir");
+    let (mesh, left, _, right) = bar();
+    deform::io::write_obj(&mesh, dir.join("bar.obj")).expect("obj");
+    std::fs::write(
+        dir.join("sel.json"),
+        format!("{{\"0\": {left:?}, \"1\": {right:?}}}"),
+    )
+    .expect("sel");
+    std::fs::write(
+        dir.join("motors.json"),
+        r#"{"1": {"rotate": {"axis": [0, 0, 1], "degrees": 40, "center": [8, 0, 0]}, "translate": [0, 1, 0]}}"#,
+    )
+    .expect("motors");
+    let p = |f: &str| dir.join(f).display().to_string();
+    let run = |extra: &[&str]| {
+        let mut args = vec![
+            "arap".to_string(),
+            p("bar.obj"),
+            "--select".into(),
+            p("sel.json"),
+            "--motors".into(),
+            p("motors.json"),
+        ];
+        args.extend(extra.iter().map(|s| s.to_string()));
+        std::process::Command::new(env!("CARGO_BIN_EXE_deform"))
+            .args(&args)
+            .output()
+            .expect("run deform")
+    };
+    let out = p("out.obj");
+    let o = run(&["--iterations", "4", "-o", &out, "--json"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("json");
+    assert_eq!(v["energies"].as_array().expect("energies").len(), 4);
+    assert_eq!(
+        (v["fixed"].as_u64(), v["handles"].as_u64()),
+        (Some(12), Some(1))
+    );
+    let posed = deform::io::read_mesh(std::path::Path::new(&out)).expect("output");
+    assert_eq!(posed.vertex_count(), mesh.vertex_count());
+    for &v in &left {
+        assert!(posed.positions[v as usize].distance(mesh.positions[v as usize]) < 1e-9);
+    }
+    let key = ScaledMotor::from_scale_rotation_translation(
+        1.0,
+        DQuat::from_rotation_z(40f64.to_radians()),
+        DVec3::new(8.0, 0.0, 0.0)
+            - DQuat::from_rotation_z(40f64.to_radians()) * DVec3::new(8.0, 0.0, 0.0)
+            + DVec3::Y,
+    );
+    for &v in &right {
+        let want = key.transform_point(mesh.positions[v as usize]);
+        assert!(posed.positions[v as usize].distance(want) < 1e-6);
+    }
+    // Plain output prints one energy line per iteration.
+    let o = run(&[
+        "--tolerance",
+        "1e-4",
+        "--energy",
+        "spokes",
+        "--local-step",
+        "svd",
+        "-o",
+        &out,
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("iteration    2: energy"));
+    // Bad input: both stop rules, a motor for a group that does not exist, zero iterations.
+    for bad in [
+        vec!["--iterations", "3", "--tolerance", "1e-3", "-o", &out],
+        vec!["--iterations", "0", "-o", &out],
+        vec!["--tolerance", "-1", "-o", &out],
+    ] {
+        let o = run(&bad);
+        assert_eq!(o.status.code(), Some(2), "{bad:?}");
+    }
+    std::fs::write(dir.join("motors.json"), r#"{"7": {}}"#).expect("motors");
+    let o = run(&["-o", &out]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("group"));
+    let _ = std::fs::remove_dir_all(&dir);
+}
