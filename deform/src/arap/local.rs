@@ -169,12 +169,14 @@ fn quat(v: [f64; 4]) -> DQuat {
 }
 
 /// The rotor (as a unit quaternion) maximising `tr(R S)` for the row-major covariance
-/// `s[3 r + c] = sum_j w_j e_j[r] e'_j[c]`: the paper's local step (see the
-/// [module docs](self)). `bound` is an upper bound of `max_R tr(R S)`, such as
-/// `(sum |w| |e|^2 + sum |w| |e'|^2) / 2` (tight for near-rigid cells, so Newton's method
-/// takes two or three steps), or `f64::INFINITY` (`sqrt(3) |S|_F` is used when smaller);
-/// `warm` is the previous rotor (the result has its sign). A zero or non-finite covariance
-/// gives `warm`.
+/// `s[3 r + c] = sum_j w_j e_j[r] e'_j[c]`: the paper's local step, the top eigenvector of
+/// Horn's 4x4 matrix `P` (equation (12)), its eigenvalue by Newton's method on `P`'s
+/// characteristic polynomial from `bound` downwards, the vector as `adj(P - lambda I) warm`
+/// (a symmetric eigen-solver when the top eigenvalue is nearly double). `bound` is an upper
+/// bound of `max_R tr(R S)`, such as `(sum |w| |e|^2 + sum |w| |e'|^2) / 2` (tight for
+/// near-rigid cells, so Newton's method takes two or three steps), or `f64::INFINITY`
+/// (`sqrt(3) |S|_F` is used when smaller); `warm` is the previous rotor (the result has its
+/// sign). A zero or non-finite covariance gives `warm`.
 pub fn fit_rotor(s: &[f64; 9], bound: f64, warm: DQuat) -> DQuat {
     let norm2: f64 = s.iter().map(|x| x * x).sum();
     let mut lambda = bound.min((3.0 * norm2).sqrt());
@@ -249,8 +251,9 @@ fn eigen_fallback(p: &[[f64; 4]; 4], warm: DQuat) -> DQuat {
 }
 
 /// The rotation maximising `tr(R S)` (row-major covariance as in [`fit_rotor`]) by the 3x3
-/// SVD with the reflection fix (see the [module docs](self)). A zero or non-finite
-/// covariance gives the identity.
+/// SVD `S = U Sigma V^T`: `R = V U^T`, with the column of `U` of the smallest singular value
+/// negated when `det(V U^T) < 0` (the reflection fix). A zero or non-finite covariance gives
+/// the identity.
 pub fn fit_svd(s: &[f64; 9]) -> DMat3 {
     if s.iter().all(|&x| x == 0.0) || !s.iter().all(|x| x.is_finite()) {
         return DMat3::IDENTITY;
