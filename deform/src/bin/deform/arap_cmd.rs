@@ -40,7 +40,7 @@ pub struct ArapArgs {
     /// The rigidity energy: libigl's default, or Sorkine and Alexa's (the paper's).
     #[arg(long, value_enum, default_value = "spokes-and-rims")]
     pub energy: EnergyArg,
-    /// Iterations from the rest pose.
+    /// Iterations from the rest pose (10 unless --tolerance is given).
     #[arg(long, conflicts_with = "tolerance")]
     pub iterations: Option<usize>,
     /// Iterate until the energy's relative change is at most this (at most 1000 iterations).
