@@ -272,12 +272,10 @@ impl Arap {
         self.system.starts.len() - 1
     }
 
-    /// The vertices of handle group `g`.
-    ///
-    /// # Panics
-    /// When `g >= handle_count()`.
-    pub fn handle(&self, g: usize) -> &[u32] {
-        &self.system.constrained[self.system.starts[g]..self.system.starts[g + 1]]
+    /// The vertices of handle group `g` (`None` when `g >= handle_count()`).
+    pub fn handle(&self, g: usize) -> Option<&[u32]> {
+        let (a, b) = (*self.system.starts.get(g)?, *self.system.starts.get(g + 1)?);
+        self.system.constrained.get(a..b)
     }
 
     /// The rotation of every cell used by the last iteration of the last pose, as rotors
