@@ -16,24 +16,9 @@ use deform::arap::{fit_rotor, fit_svd, Arap, ArapOptions, Stop, Targets};
 use deform::Mesh;
 use glam::{DQuat, DVec3};
 use std::hint::black_box;
-use std::path::PathBuf;
 use std::time::Duration;
 
-/// A mesh of the data set, `None` (skipped) when absent, a panic under `CI=true`.
-fn mesh(rel: &str) -> Option<Mesh> {
-    let dir = std::env::var_os("CGA_DATA_DIR")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../shared/data"));
-    let path = dir.join("meshes").join(rel);
-    if !path.is_file() {
-        if std::env::var("CI").as_deref() == Ok("true") {
-            panic!("{} is missing (CI=true)", path.display());
-        }
-        eprintln!("skipped: {} not found (set CGA_DATA_DIR)", path.display());
-        return None;
-    }
-    Some(deform::io::read_mesh(&path).expect("mesh loads"))
-}
+mod scenes;
 
 /// Fixed bottom, handle top.
 fn sets(mesh: &Mesh) -> (Vec<u32>, Vec<u32>) {
@@ -80,7 +65,9 @@ fn benches(c: &mut Criterion) {
         ("armadillo-50k", "large/armadillo-50k.obj", false),
         ("armadillo-200k", "large/armadillo-50k.obj", true),
     ] {
-        let Some(mesh) = mesh(rel) else { continue };
+        let Some(mesh) = scenes::mesh(rel) else {
+            continue;
+        };
         let mesh = if subdivide {
             mesh.subdivide_midpoint()
         } else {

@@ -16,22 +16,13 @@ use deform::ffd::{Ffd, FfdOptions};
 use deform::{BlendMethod, Deformer, Mesh};
 use glam::{DQuat, DVec3};
 use std::hint::black_box;
-use std::path::PathBuf;
 use std::time::Duration;
 
-fn read(name: &str) -> Option<Mesh> {
-    let dir = std::env::var_os("CGA_DATA_DIR")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../shared/data"));
-    let path = dir.join("meshes/cages").join(name);
-    if !path.is_file() {
-        if std::env::var("CI").as_deref() == Ok("true") {
-            panic!("{} is missing (CI=true)", path.display());
-        }
-        eprintln!("skipped: {} not found (set CGA_DATA_DIR)", path.display());
-        return None;
-    }
-    Some(deform::io::read_mesh(&path).expect("mesh loads"))
+mod scenes;
+
+/// A mesh of the data set (see `scenes::mesh`).
+fn read(rel: &str) -> Option<Mesh> {
+    scenes::mesh(&format!("cages/{rel}"))
 }
 
 /// One motor per key: rotations of up to 30 degrees about the box centre and a small lift,

@@ -12,13 +12,13 @@ use deform::{
 use glam::{DQuat, DVec3};
 use std::path::PathBuf;
 
-/// armadillo-50k from `$CGA_DATA_DIR` (else `../shared/data`); `None` when absent (a panic
-/// under `CI=true`).
-pub fn armadillo() -> Option<Mesh> {
+/// A mesh of the data set, e.g. `mesh("large/armadillo-50k.obj")`, from `$CGA_DATA_DIR/meshes`
+/// (else `../shared/data/meshes`); `None` when absent (a panic under `CI=true`).
+pub fn mesh(rel: &str) -> Option<Mesh> {
     let dir = std::env::var_os("CGA_DATA_DIR")
         .map(PathBuf::from)
         .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../shared/data"));
-    let path = dir.join("meshes/large/armadillo-50k.obj");
+    let path = dir.join("meshes").join(rel);
     if !path.is_file() {
         if std::env::var("CI").as_deref() == Ok("true") {
             panic!("{} is missing (CI=true)", path.display());
@@ -26,7 +26,12 @@ pub fn armadillo() -> Option<Mesh> {
         eprintln!("skipped: {} not found (set CGA_DATA_DIR)", path.display());
         return None;
     }
-    Some(deform::io::read_mesh(&path).expect("armadillo-50k loads"))
+    Some(deform::io::read_mesh(&path).expect("mesh loads"))
+}
+
+/// armadillo-50k (see [`mesh`]).
+pub fn armadillo() -> Option<Mesh> {
+    mesh("large/armadillo-50k.obj")
 }
 
 /// The spline's end sets: the lowest and highest 5% of the box in y.

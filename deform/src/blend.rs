@@ -443,6 +443,21 @@ fn r0() -> DQuat {
 /// Vertices below which posing stays on one thread (the split costs more than it saves).
 const PARALLEL_MIN: usize = 2048;
 
+/// `out[i] = f(i)` for every vertex, in parallel (rayon) when there are enough of them: the
+/// one per-vertex loop of every pose.
+#[inline]
+pub(crate) fn for_each_vertex(out: &mut [DVec3], f: impl Fn(usize) -> DVec3 + Sync) {
+    let one = |(i, o): (usize, &mut DVec3)| *o = f(i);
+    if out.len() < PARALLEL_MIN {
+        out.iter_mut().enumerate().for_each(one);
+    } else {
+        out.par_iter_mut()
+            .enumerate()
+            .with_min_len(1024)
+            .for_each(one);
+    }
+}
+
 /// A mesh bound to key weights: the rest points in the frame of their rest transform, ready to
 /// be posed by any keys. The shared core of the spline and handle deformers.
 #[derive(Debug)]
@@ -532,17 +547,9 @@ impl BoundBlend {
         let mut prepared = self.prepared.lock().unwrap_or_else(|e| e.into_inner());
         prepared.prepare(keys, self.method)?;
         let prepared = &*prepared;
-        let one = |(i, o): (usize, &mut DVec3)| {
-            *o = prepared.transform(self.weights.row(i), self.local[i]);
-        };
-        if out.len() < PARALLEL_MIN {
-            out.iter_mut().enumerate().for_each(one);
-        } else {
-            out.par_iter_mut()
-                .enumerate()
-                .with_min_len(1024)
-                .for_each(one);
-        }
+        for_each_vertex(out, |i| {
+            prepared.transform(self.weights.row(i), self.local[i])
+        });
         Ok(())
     }
 }

@@ -18,7 +18,7 @@ pub fn bspline_degree(n: usize) -> usize {
 
 /// Knot `k` of the clamped uniform knot vector of degree `p` over `n` control points.
 #[inline]
-fn knot(k: usize, n: usize, p: usize) -> f64 {
+pub(crate) fn knot(k: usize, n: usize, p: usize) -> f64 {
     if k <= p {
         0.0
     } else if k >= n {

@@ -13,11 +13,7 @@ use crate::deformer::{check_key_count, check_positions, KeyError};
 use crate::Result;
 use cga::ScaledMotor;
 use glam::DVec3;
-use rayon::prelude::*;
 use std::sync::Mutex;
-
-/// Vertices below which posing stays on one thread.
-const PARALLEL_MIN: usize = 2048;
 
 /// How control keys deform the mesh.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -147,19 +143,11 @@ impl ControlBinding {
             )));
         }
         let weights = self.weights();
-        let one = |(i, o): (usize, &mut DVec3)| {
-            *o = weights
+        crate::blend::for_each_vertex(out, |i| {
+            weights
                 .row(i)
-                .fold(DVec3::ZERO, |a, k, w| a + w * control[k]);
-        };
-        if out.len() < PARALLEL_MIN {
-            out.iter_mut().enumerate().for_each(one);
-        } else {
-            out.par_iter_mut()
-                .enumerate()
-                .with_min_len(1024)
-                .for_each(one);
-        }
+                .fold(DVec3::ZERO, |a, k, w| a + w * control[k])
+        });
         Ok(())
     }
 }

@@ -206,15 +206,7 @@ pub fn bernstein(n: usize, t: f64, out: &mut [f64]) {
 /// The Greville abscissae of the clamped uniform knot vector of degree `p` over `n` control
 /// points: the averages of `p` consecutive interior knots (`k / (n - 1)` for `p = n - 1`).
 fn greville(n: usize, p: usize) -> Vec<f64> {
-    let knot = |k: usize| -> f64 {
-        if k <= p {
-            0.0
-        } else if k >= n {
-            1.0
-        } else {
-            (k - p) as f64 / (n - p) as f64
-        }
-    };
+    let knot = |k: usize| crate::bspline::knot(k, n, p);
     (0..n)
         .map(|j| (1..=p).map(|k| knot(j + k)).sum::<f64>() / p as f64)
         .collect()
