@@ -1,7 +1,7 @@
 //! The `deform` program: the motor deformers of the CGA papers on procedural meshes (`demo`)
-//! and on any mesh file (`spline`, `handles`, `fabrik`, `arap`, `ffd`, `cage`), with OBJ output, PNG previews and
-//! timings. Exit code 0 on success, 2 on any error (bad arguments, unreadable or invalid
-//! input, a failed write), with a message that says what and where.
+//! and on any mesh file (`spline`, `handles`, `fabrik`, `arap`, `ffd`, `cage`), with OBJ output,
+//! PNG previews and timings. Exit code 0 on success, 2 on any error (bad arguments, unreadable
+//! or invalid input, a failed write), with a message that says what and where.
 
 mod arap_cmd;
 mod args;
