@@ -94,9 +94,10 @@ pub(crate) fn horn_matrix(s: &[f64; 9]) -> [[f64; 4]; 4] {
     ]
 }
 
-/// The adjugate of a 4x4 matrix (`adj(M) M = det(M) I`), through its 2x2 minors.
+/// The 2x2 minors of a 4x4 matrix's first two rows (`s`) and last two rows (`c`), the
+/// shared part of [`adjugate`] and [`det4`].
 #[inline]
-pub(crate) fn adjugate(m: &[[f64; 4]; 4]) -> [[f64; 4]; 4] {
+fn minors(m: &[[f64; 4]; 4]) -> ([f64; 6], [f64; 6]) {
     let s0 = m[0][0] * m[1][1] - m[1][0] * m[0][1];
     let s1 = m[0][0] * m[1][2] - m[1][0] * m[0][2];
     let s2 = m[0][0] * m[1][3] - m[1][0] * m[0][3];
@@ -109,6 +110,13 @@ pub(crate) fn adjugate(m: &[[f64; 4]; 4]) -> [[f64; 4]; 4] {
     let c2 = m[2][0] * m[3][3] - m[3][0] * m[2][3];
     let c1 = m[2][0] * m[3][2] - m[3][0] * m[2][2];
     let c0 = m[2][0] * m[3][1] - m[3][0] * m[2][1];
+    ([s0, s1, s2, s3, s4, s5], [c0, c1, c2, c3, c4, c5])
+}
+
+/// The adjugate of a 4x4 matrix (`adj(M) M = det(M) I`), through its 2x2 minors.
+#[inline]
+pub(crate) fn adjugate(m: &[[f64; 4]; 4]) -> [[f64; 4]; 4] {
+    let ([s0, s1, s2, s3, s4, s5], [c0, c1, c2, c3, c4, c5]) = minors(m);
     [
         [
             m[1][1] * c5 - m[1][2] * c4 + m[1][3] * c3,
@@ -147,18 +155,7 @@ fn det3(s: &[f64; 9]) -> f64 {
 /// `det(M)` through the 2x2 minors of its first two and last two rows.
 #[inline]
 fn det4(m: &[[f64; 4]; 4]) -> f64 {
-    let s0 = m[0][0] * m[1][1] - m[1][0] * m[0][1];
-    let s1 = m[0][0] * m[1][2] - m[1][0] * m[0][2];
-    let s2 = m[0][0] * m[1][3] - m[1][0] * m[0][3];
-    let s3 = m[0][1] * m[1][2] - m[1][1] * m[0][2];
-    let s4 = m[0][1] * m[1][3] - m[1][1] * m[0][3];
-    let s5 = m[0][2] * m[1][3] - m[1][2] * m[0][3];
-    let c5 = m[2][2] * m[3][3] - m[3][2] * m[2][3];
-    let c4 = m[2][1] * m[3][3] - m[3][1] * m[2][3];
-    let c3 = m[2][1] * m[3][2] - m[3][1] * m[2][2];
-    let c2 = m[2][0] * m[3][3] - m[3][0] * m[2][3];
-    let c1 = m[2][0] * m[3][2] - m[3][0] * m[2][2];
-    let c0 = m[2][0] * m[3][1] - m[3][0] * m[2][1];
+    let ([s0, s1, s2, s3, s4, s5], [c0, c1, c2, c3, c4, c5]) = minors(m);
     s0 * c5 - s1 * c4 + s2 * c3 + s3 * c2 - s4 * c1 + s5 * c0
 }
 

@@ -227,19 +227,30 @@ pub fn handles(a: &HandlesArgs) -> Result<()> {
     )
     .with_context(|| format!("{}: cannot bind", a.input.mesh.display()))?;
     let bind_ms = t.elapsed().as_secs_f64() * 1e3;
-    let mut posed = vec![DVec3::ZERO; mesh.vertex_count()];
-    let pose_ms = time_pose(&d, &motors, &mut posed)?;
     let mut report = Report::new("handles", &mesh);
     report.add("handles", sel.groups.len());
     report.add("blend", options.method.name());
     report.add("bind_ms", bind_ms);
+    pose_and_finish(&d, &mesh, &motors, &a.out, report)
+}
+
+/// Pose, time, report and write, the preview coloured by displacement.
+pub(crate) fn pose_and_finish(
+    d: &dyn Deformer,
+    mesh: &Mesh,
+    motors: &[cga::ScaledMotor],
+    out: &OutputArgs,
+    mut report: Report,
+) -> Result<()> {
+    let mut posed = vec![DVec3::ZERO; mesh.vertex_count()];
+    let pose_ms = time_pose(d, motors, &mut posed).context("cannot pose")?;
     report.add("pose_ms", pose_ms);
     let moved: Vec<f64> = posed
         .iter()
         .zip(&mesh.positions)
         .map(|(a, b)| a.distance(*b))
         .collect();
-    finish(&mesh, posed, &moved, &a.out, &mut report)
+    finish(mesh, posed, &moved, out, &mut report)
 }
 
 /// A straight chain of `n` joints from the centroid of `a` to the centroid of `b`.

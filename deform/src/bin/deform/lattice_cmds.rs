@@ -1,14 +1,14 @@
 //! The `ffd` and `cage` subcommands: read, bind, pose (both forms timed), write, report.
 
 use crate::args::{CageArgs, CoordsArg, FfdArgs, FormArgs, OutputArgs};
-use crate::commands::{blend, finish, time_pose, with_progress, Report};
+use crate::commands::{blend, pose_and_finish, with_progress, Report};
 use crate::output::{check_outputs, read_mesh, read_text};
 use anyhow::{Context, Result};
 use deform::cage::{CageCoordinates, CageDeformer, CageOptions, HarmonicGrid};
 use deform::control::ControlForm;
 use deform::ffd::{Ffd, FfdOptions, LatticeBasis};
 use deform::input::parse_group_motors;
-use deform::{Deformer, Mesh};
+use deform::Mesh;
 use glam::DVec3;
 use std::path::Path;
 use std::time::Instant;
@@ -31,25 +31,6 @@ fn read_checked(mesh: &Path, extra: &[&Path], out: &OutputArgs) -> Result<Mesh> 
     }
     check_outputs(&inputs, &outputs)?;
     read_mesh(mesh)
-}
-
-/// Pose, time, report and write.
-fn pose_and_finish(
-    d: &dyn Deformer,
-    mesh: &Mesh,
-    motors: &[cga::ScaledMotor],
-    out: &OutputArgs,
-    mut report: Report,
-) -> Result<()> {
-    let mut posed = vec![DVec3::ZERO; mesh.vertex_count()];
-    let pose_ms = time_pose(d, motors, &mut posed).context("cannot pose")?;
-    report.add("pose_ms", pose_ms);
-    let moved: Vec<f64> = posed
-        .iter()
-        .zip(&mesh.positions)
-        .map(|(a, b)| a.distance(*b))
-        .collect();
-    finish(mesh, posed, &moved, out, &mut report)
 }
 
 pub fn ffd(a: &FfdArgs) -> Result<()> {
