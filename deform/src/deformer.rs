@@ -104,7 +104,8 @@ pub enum KeyError {
     BadSetup(String),
 }
 
-/// `impl Deformer for $t` by delegating to its [`crate::BoundBlend`] field `$field`.
+/// `impl Deformer for $t` by delegating to its field `$field` (a [`crate::BoundBlend`], or any
+/// bound form with the same `vertex_count`, `key_count` and `pose`).
 macro_rules! deformer_via_blend {
     ($t:ty, $field:ident) => {
         impl $crate::deformer::Deformer for $t {

@@ -38,8 +38,7 @@ pub use mvc::{coordinates_and_winding, mean_value_coordinates};
 
 use crate::blend::KeyWeights;
 use crate::control::{ControlBinding, ControlForm};
-use crate::{Deformer, IndexList, Mesh, Result};
-use glam::DVec3;
+use crate::{IndexList, Mesh, Result};
 
 /// What is wrong with a cage.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -197,16 +196,4 @@ impl CageDeformer {
     }
 }
 
-impl Deformer for CageDeformer {
-    fn vertex_count(&self) -> usize {
-        self.binding.vertex_count()
-    }
-
-    fn key_count(&self) -> usize {
-        self.binding.key_count()
-    }
-
-    fn pose(&self, keys: &[cga::ScaledMotor], positions: &mut [DVec3]) -> Result<()> {
-        self.binding.pose(keys, positions)
-    }
-}
+crate::deformer::deformer_via_blend!(CageDeformer, binding);

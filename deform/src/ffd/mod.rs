@@ -122,16 +122,4 @@ impl Ffd {
     }
 }
 
-impl crate::Deformer for Ffd {
-    fn vertex_count(&self) -> usize {
-        self.binding.vertex_count()
-    }
-
-    fn key_count(&self) -> usize {
-        self.binding.key_count()
-    }
-
-    fn pose(&self, keys: &[cga::ScaledMotor], positions: &mut [DVec3]) -> Result<()> {
-        self.binding.pose(keys, positions)
-    }
-}
+crate::deformer::deformer_via_blend!(Ffd, binding);
