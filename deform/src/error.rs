@@ -194,6 +194,9 @@ pub enum Error {
     /// A bad cage, or one that does not enclose the model.
     #[error(transparent)]
     Cage(#[from] crate::cage::CageError),
+    /// A bad rig file, rig or animation request.
+    #[error(transparent)]
+    Skin(#[from] crate::skinning::SkinError),
 }
 
 /// `Result` with [`Error`].

@@ -42,6 +42,7 @@ pub mod mass;
 pub mod mesh;
 pub mod render;
 pub mod shapes;
+pub mod skinning;
 pub mod solve;
 pub mod spline;
 mod triangle;

@@ -82,6 +82,9 @@ pub enum BlendArg {
     MotorLinear,
     DualQuaternion,
     Matrix,
+    MatrixF32,
+    Conformal,
+    ConformalProjected,
 }
 
 /// The mesh and its handle groups, read by every subcommand.

@@ -41,6 +41,9 @@ pub fn blend(b: BlendArg) -> BlendMethod {
         BlendArg::MotorLinear => BlendMethod::MotorLinear,
         BlendArg::DualQuaternion => BlendMethod::DualQuaternion,
         BlendArg::Matrix => BlendMethod::Matrix,
+        BlendArg::MatrixF32 => BlendMethod::MatrixF32,
+        BlendArg::Conformal => BlendMethod::Conformal,
+        BlendArg::ConformalProjected => BlendMethod::ConformalProjected,
     }
 }
 

@@ -1,7 +1,7 @@
 //! Per-vertex blending of key motors, the core every motor deformer poses with.
 //!
 //! Each vertex `i` has weights `w_ij` over a contiguous run of keys ([`KeyWeights`]); its
-//! transform is a blend of the keys `R_j`, by one of four methods ([`BlendMethod`]):
+//! transform is a blend of the keys `R_j`, by one of these methods ([`BlendMethod`]):
 //!
 //! * [`BlendMethod::MotorLog`] (the papers' equation (1)): `M_i = exp(sum_j w_ij log R_j)`.
 //!   Principal logarithms, so the sign of a key is irrelevant and every key is in effect in
@@ -16,15 +16,21 @@
 //! * [`BlendMethod::DualQuaternion`]: Kavan's dual-quaternion linear blending on glam
 //!   quaternion pairs, the same hemisphere rule, a baseline.
 //! * [`BlendMethod::Matrix`]: `sum_j w_ij A_j` over 3x4 affine matrices (linear blend
-//!   skinning), the baseline that collapses under large rotations.
+//!   skinning), the baseline that collapses under large rotations;
+//!   [`BlendMethod::MatrixF32`] the same in single precision (glam SIMD).
+//! * [`BlendMethod::Conformal`] and [`BlendMethod::ConformalProjected`]: the second paper's
+//!   equation (17), `sum_j w_ij R_j up(x) ~R_j` down-projected after or before the sum.
 //!
 //! The keys are prepared once per pose into buffers the bound deformer keeps
 //! ([`PreparedKeys`]), so posing does not allocate.
 
+mod keys;
+
 use crate::deformer::{check_key_count, check_positions, KeyError, MAX_KEYS};
+pub use keys::{ConformalKey, PreparedKeys};
 use crate::Result;
-use cga::{Bivector, Motor, ScaledMotor};
-use glam::{DAffine3, DMat3, DQuat, DVec3};
+use cga::ScaledMotor;
+use glam::DVec3;
 use rayon::prelude::*;
 use std::sync::Mutex;
 
@@ -38,17 +44,29 @@ pub enum BlendMethod {
     MotorLinear,
     /// Dual-quaternion linear blending on glam quaternions (baseline).
     DualQuaternion,
-    /// Linear blending of affine matrices (baseline).
+    /// Linear blending of affine matrices (baseline; linear blend skinning).
     Matrix,
+    /// [`BlendMethod::Matrix`] in single precision (glam's SIMD `Affine3A`), the GPU
+    /// skinning path.
+    MatrixF32,
+    /// The second paper's equation (17), adding the conformal points first:
+    /// `down(sum w M up(x) ~M)`. For rigid keys the same as [`BlendMethod::Matrix`]; with
+    /// dilations each key counts with its weight times its point's `eo` coefficient.
+    Conformal,
+    /// Equation (17), down-projecting each term first: `sum w down(M up(x) ~M)`.
+    ConformalProjected,
 }
 
 impl BlendMethod {
     /// Every method, for tables and benches.
-    pub const ALL: [BlendMethod; 4] = [
+    pub const ALL: [BlendMethod; 7] = [
         BlendMethod::MotorLog,
         BlendMethod::MotorLinear,
         BlendMethod::DualQuaternion,
         BlendMethod::Matrix,
+        BlendMethod::MatrixF32,
+        BlendMethod::Conformal,
+        BlendMethod::ConformalProjected,
     ];
 
     /// A short name (`motor-log`, `motor-linear`, `dual-quaternion`, `matrix`).
@@ -58,6 +76,9 @@ impl BlendMethod {
             BlendMethod::MotorLinear => "motor-linear",
             BlendMethod::DualQuaternion => "dual-quaternion",
             BlendMethod::Matrix => "matrix",
+            BlendMethod::MatrixF32 => "matrix-f32",
+            BlendMethod::Conformal => "conformal",
+            BlendMethod::ConformalProjected => "conformal-projected",
         }
     }
 }
@@ -259,185 +280,6 @@ impl KeyWeights {
             .map(|(_, w)| w)
             .sum()
     }
-}
-
-/// The keys in the form one blend method needs. Reused from pose to pose (its buffers keep
-/// their capacity), so posing does not allocate.
-#[derive(Clone, Debug, Default)]
-pub struct PreparedKeys {
-    method: BlendMethod,
-    /// Whether any key scales (otherwise the cheaper rigid paths are taken).
-    scaled: bool,
-    logs: Vec<Bivector>,
-    motors: Vec<Motor>,
-    log_scales: Vec<f64>,
-    quats: Vec<(DQuat, DQuat)>,
-    affines: Vec<DAffine3>,
-}
-
-impl PreparedKeys {
-    /// Check the keys and prepare them for `method` (allocates; see [`PreparedKeys::prepare`]).
-    ///
-    /// # Errors
-    /// As [`PreparedKeys::prepare`].
-    pub fn new(keys: &[ScaledMotor], method: BlendMethod) -> Result<Self> {
-        let mut p = PreparedKeys::default();
-        p.prepare(keys, method)?;
-        Ok(p)
-    }
-
-    /// Check the keys and prepare them for `method`, reusing this value's buffers.
-    ///
-    /// # Errors
-    /// [`KeyError::TooMany`], or [`KeyError::Invalid`] naming the first key that is not a
-    /// finite scaled motor.
-    pub fn prepare(&mut self, keys: &[ScaledMotor], method: BlendMethod) -> Result<()> {
-        if keys.len() > MAX_KEYS {
-            return Err(KeyError::TooMany {
-                got: keys.len(),
-                max: MAX_KEYS,
-            }
-            .into());
-        }
-        self.method = method;
-        self.scaled = false;
-        self.logs.clear();
-        self.log_scales.clear();
-        self.motors.clear();
-        self.quats.clear();
-        self.affines.clear();
-        for (j, k) in keys.iter().enumerate() {
-            let log = k
-                .try_log()
-                .map_err(|source| KeyError::Invalid { index: j, source })?;
-            self.logs.push(log);
-            self.log_scales.push(2.0 * log.eoi);
-            self.scaled |= log.eoi != 0.0;
-            if method != BlendMethod::MotorLog {
-                let (s, q, t) = k.to_scale_rotation_translation();
-                let q = q.normalize();
-                self.motors.push(Motor::from_rotation_translation(q, t));
-                let d = DQuat::from_vec4((0.5 * t).extend(0.0)) * q;
-                self.quats.push((q, d));
-                self.affines.push(DAffine3::from_scale_rotation_translation(
-                    DVec3::splat(s),
-                    q,
-                    t,
-                ));
-            }
-        }
-        Ok(())
-    }
-
-    /// The blend method.
-    pub fn method(&self) -> BlendMethod {
-        self.method
-    }
-
-    /// Apply the blend of the row's keys to the point `p`.
-    #[inline]
-    pub fn transform(&self, row: Row, p: DVec3) -> DVec3 {
-        match self.method {
-            BlendMethod::MotorLog => {
-                // exp of the blended generator, applied in its quaternion form (the motor's
-                // action `M X ~M` without building M).
-                self.log_blend(row).exp_similarity().transform_point(p)
-            }
-            BlendMethod::MotorLinear => self
-                .linear_blend(row)
-                .transform_point(self.scale_of(row) * p),
-            BlendMethod::DualQuaternion => {
-                let (q, t) = self.dual_quaternion_blend(row);
-                q * (self.scale_of(row) * p) + t
-            }
-            BlendMethod::Matrix => self.affine_blend(row).transform_point3(p),
-        }
-    }
-
-    /// The blended transform of the row's keys as an affine map (for the bind, which applies
-    /// its inverse).
-    pub fn affine(&self, row: Row) -> DAffine3 {
-        let (s, q, t) = match self.method {
-            BlendMethod::MotorLog => {
-                let sim = self.log_blend(row).exp_similarity();
-                (sim.scale, sim.rotation, sim.translation)
-            }
-            BlendMethod::MotorLinear => {
-                let (q, t) = self.linear_blend(row).to_rotation_translation();
-                (self.scale_of(row), q.normalize(), t)
-            }
-            BlendMethod::DualQuaternion => {
-                let (q, t) = self.dual_quaternion_blend(row);
-                (self.scale_of(row), q, t)
-            }
-            BlendMethod::Matrix => return self.affine_blend(row),
-        };
-        DAffine3::from_scale_rotation_translation(DVec3::splat(s), q, t)
-    }
-
-    /// `sum w log R` over the row.
-    #[inline]
-    fn log_blend(&self, row: Row) -> Bivector {
-        match row.keys {
-            None => Bivector::weighted_sum(self.logs[row.first..].iter().copied(), row.weights),
-            Some(k) => {
-                Bivector::weighted_sum(k.iter().map(|&k| self.logs[k as usize]), row.weights)
-            }
-        }
-    }
-
-    /// `normalise(sum w R)` over the row, in the hemisphere of its first key.
-    #[inline]
-    fn linear_blend(&self, row: Row) -> Motor {
-        match row.keys {
-            None => Motor::blend_linear(&self.motors[row.first..], row.weights),
-            Some(k) => Motor::blend_linear_pairs(
-                k.iter()
-                    .zip(row.weights)
-                    .map(|(&k, &w)| (self.motors[k as usize], w)),
-            ),
-        }
-    }
-
-    /// `exp(sum w ln s)`: the geometric blend of the key scales.
-    #[inline]
-    fn scale_of(&self, row: Row) -> f64 {
-        if !self.scaled {
-            return 1.0;
-        }
-        row.fold(0.0, |a, k, w| a + w * self.log_scales[k]).exp()
-    }
-
-    /// Kavan's dual-quaternion linear blend: `(rotation, translation)`.
-    #[inline]
-    fn dual_quaternion_blend(&self, row: Row) -> (DQuat, DVec3) {
-        let q0 = self.quats[row.key(0)].0;
-        let (r, d) = row.fold((r0(), r0()), |(r, d), k, wk| {
-            let (q, dq) = self.quats[k];
-            let wk = if q.dot(q0) < 0.0 { -wk } else { wk };
-            (r + q * wk, d + dq * wk)
-        });
-        let n = r.length();
-        let (r, d) = (r * (1.0 / n), d * (1.0 / n));
-        let t = d * r.conjugate();
-        (r, 2.0 * DVec3::new(t.x, t.y, t.z))
-    }
-
-    /// `sum w A`.
-    #[inline]
-    fn affine_blend(&self, row: Row) -> DAffine3 {
-        let (m, t) = row.fold((DMat3::ZERO, DVec3::ZERO), |(m, t), k, wk| {
-            let a = &self.affines[k];
-            (m + a.matrix3 * wk, t + a.translation * wk)
-        });
-        DAffine3::from_mat3_translation(m, t)
-    }
-}
-
-/// The zero quaternion.
-#[inline]
-fn r0() -> DQuat {
-    DQuat::from_xyzw(0.0, 0.0, 0.0, 0.0)
 }
 
 /// Vertices below which posing stays on one thread (the split costs more than it saves).

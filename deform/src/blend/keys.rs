@@ -1,0 +1,318 @@
+//! The keys of one pose, prepared in the form a blend method needs.
+
+use super::{BlendMethod, Row};
+use crate::deformer::{KeyError, MAX_KEYS};
+use crate::Result;
+use cga::{Bivector, Motor, ScaledMotor};
+use glam::{Affine3A, DAffine3, DMat3, DQuat, DVec3, Vec3A};
+
+/// The keys in the form one blend method needs. Reused from pose to pose (its buffers keep
+/// their capacity), so posing does not allocate.
+#[derive(Clone, Debug, Default)]
+pub struct PreparedKeys {
+    method: BlendMethod,
+    /// Whether any key scales (otherwise the cheaper rigid paths are taken).
+    scaled: bool,
+    logs: Vec<Bivector>,
+    motors: Vec<Motor>,
+    log_scales: Vec<f64>,
+    quats: Vec<(DQuat, DQuat)>,
+    affines: Vec<DAffine3>,
+    affines_f32: Vec<Affine3A>,
+    /// Equation (17): per key the rows `e1, e2, e3` (columns `e1, e2, e3, 1`) of the point
+    /// matrix of `M X ~M`, and its constant `eo` coefficient.
+    conformal: Vec<ConformalKey>,
+}
+
+/// The part of a scaled motor's point matrix ([`ScaledMotor::point_matrix`]) that
+/// down-projection needs: `X' = M up(x) ~M` has `e1, e2, e3` coefficients `rows * (x, 1)` and
+/// `eo` coefficient `eo` (independent of `x`), and `down(X') = rows * (x, 1) / eo`.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ConformalKey {
+    /// Rows `e1, e2, e3`; columns `e1, e2, e3, 1`.
+    pub rows: [[f64; 4]; 3],
+    /// The `eo` coefficient.
+    pub eo: f64,
+}
+
+impl ConformalKey {
+    /// From the generated point matrix of `m` (rows `eo, e1, e2, e3, ei`; columns
+    /// `e1, e2, e3, ei, 1`). The `e1..e3` rows have no `ei` column and the `eo` row only a
+    /// constant: the sandwich of a similarity keeps points finite.
+    pub fn new(m: &ScaledMotor) -> ConformalKey {
+        let p = m.point_matrix().m;
+        debug_assert!((1..4).all(|r| p[r][3] == 0.0) && p[0][..4].iter().all(|&x| x == 0.0));
+        let row = |r: usize| [p[r][0], p[r][1], p[r][2], p[r][4]];
+        ConformalKey {
+            rows: [row(1), row(2), row(3)],
+            eo: p[0][4],
+        }
+    }
+
+    /// `w * self + acc`.
+    #[inline(always)]
+    fn mul_add(&self, w: f64, acc: ConformalKey) -> ConformalKey {
+        let r = |i: usize| {
+            let (a, b) = (self.rows[i], acc.rows[i]);
+            [b[0] + w * a[0], b[1] + w * a[1], b[2] + w * a[2], b[3] + w * a[3]]
+        };
+        ConformalKey {
+            rows: [r(0), r(1), r(2)],
+            eo: acc.eo + w * self.eo,
+        }
+    }
+
+    /// The `e1, e2, e3` coefficients of the image of `up(p)`.
+    #[inline(always)]
+    fn euclidean(&self, p: DVec3) -> DVec3 {
+        let r = |i: usize| {
+            let a = self.rows[i];
+            a[0] * p.x + a[1] * p.y + a[2] * p.z + a[3]
+        };
+        DVec3::new(r(0), r(1), r(2))
+    }
+
+    /// `down(M up(p) ~M)`.
+    #[inline(always)]
+    pub fn transform_point(&self, p: DVec3) -> DVec3 {
+        self.euclidean(p) / self.eo
+    }
+
+    /// The affine map `p -> down(...)`.
+    fn affine(&self) -> DAffine3 {
+        let s = 1.0 / self.eo;
+        let c = |j: usize| DVec3::new(self.rows[0][j], self.rows[1][j], self.rows[2][j]) * s;
+        DAffine3::from_cols(c(0), c(1), c(2), c(3))
+    }
+}
+
+impl PreparedKeys {
+    /// Check the keys and prepare them for `method` (allocates; see [`PreparedKeys::prepare`]).
+    ///
+    /// # Errors
+    /// As [`PreparedKeys::prepare`].
+    pub fn new(keys: &[ScaledMotor], method: BlendMethod) -> Result<Self> {
+        let mut p = PreparedKeys::default();
+        p.prepare(keys, method)?;
+        Ok(p)
+    }
+
+    /// Check the keys and prepare them for `method`, reusing this value's buffers.
+    ///
+    /// # Errors
+    /// [`KeyError::TooMany`], or [`KeyError::Invalid`] naming the first key that is not a
+    /// finite scaled motor.
+    pub fn prepare(&mut self, keys: &[ScaledMotor], method: BlendMethod) -> Result<()> {
+        if keys.len() > MAX_KEYS {
+            return Err(KeyError::TooMany {
+                got: keys.len(),
+                max: MAX_KEYS,
+            }
+            .into());
+        }
+        self.method = method;
+        self.scaled = false;
+        self.logs.clear();
+        self.log_scales.clear();
+        self.motors.clear();
+        self.quats.clear();
+        self.affines.clear();
+        self.affines_f32.clear();
+        self.conformal.clear();
+        for (j, k) in keys.iter().enumerate() {
+            let log = k
+                .try_log()
+                .map_err(|source| KeyError::Invalid { index: j, source })?;
+            self.logs.push(log);
+            self.log_scales.push(2.0 * log.eoi);
+            self.scaled |= log.eoi != 0.0;
+            match method {
+                BlendMethod::Conformal | BlendMethod::ConformalProjected => {
+                    self.conformal.push(ConformalKey::new(k));
+                    continue;
+                }
+                BlendMethod::MatrixF32 => {
+                    let (s, q, t) = k.to_scale_rotation_translation();
+                    self.affines_f32.push(Affine3A::from_scale_rotation_translation(
+                        glam::Vec3::splat(s as f32),
+                        q.normalize().as_quat(),
+                        t.as_vec3(),
+                    ));
+                    continue;
+                }
+                _ => {}
+            }
+            if method != BlendMethod::MotorLog {
+                let (s, q, t) = k.to_scale_rotation_translation();
+                let q = q.normalize();
+                self.motors.push(Motor::from_rotation_translation(q, t));
+                let d = DQuat::from_vec4((0.5 * t).extend(0.0)) * q;
+                self.quats.push((q, d));
+                self.affines.push(DAffine3::from_scale_rotation_translation(
+                    DVec3::splat(s),
+                    q,
+                    t,
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// The blend method.
+    pub fn method(&self) -> BlendMethod {
+        self.method
+    }
+
+    /// Apply the blend of the row's keys to the point `p`.
+    #[inline]
+    pub fn transform(&self, row: Row, p: DVec3) -> DVec3 {
+        match self.method {
+            BlendMethod::MotorLog => {
+                // exp of the blended generator, applied in its quaternion form (the motor's
+                // action `M X ~M` without building M).
+                self.log_blend(row).exp_similarity().transform_point(p)
+            }
+            BlendMethod::MotorLinear => self
+                .linear_blend(row)
+                .transform_point(self.scale_of(row) * p),
+            BlendMethod::DualQuaternion => {
+                let (q, t) = self.dual_quaternion_blend(row);
+                q * (self.scale_of(row) * p) + t
+            }
+            BlendMethod::Matrix => self.affine_blend(row).transform_point3(p),
+            BlendMethod::MatrixF32 => self.transform_f32(row, p.as_vec3a()).as_dvec3(),
+            BlendMethod::Conformal => self.conformal_blend(row).transform_point(p),
+            BlendMethod::ConformalProjected => row.fold(DVec3::ZERO, |acc, k, w| {
+                acc + w * self.conformal[k].transform_point(p)
+            }),
+        }
+    }
+
+    /// [`BlendMethod::MatrixF32`] in single precision: `sum w A` applied to `p`.
+    #[inline]
+    pub fn transform_f32(&self, row: Row, p: Vec3A) -> Vec3A {
+        let a = row.fold(Affine3A::ZERO, |acc, k, w| {
+            let a = &self.affines_f32[k];
+            let w = w as f32;
+            Affine3A {
+                matrix3: acc.matrix3 + a.matrix3 * w,
+                translation: acc.translation + a.translation * w,
+            }
+        });
+        a.transform_point3a(p)
+    }
+
+    /// Equation (17), adding first: `sum w (M up(x) ~M)` is linear in the point matrices,
+    /// so they are blended and applied once.
+    #[inline]
+    fn conformal_blend(&self, row: Row) -> ConformalKey {
+        row.fold(ConformalKey::default(), |acc, k, w| {
+            self.conformal[k].mul_add(w, acc)
+        })
+    }
+
+    /// The blended transform of the row's keys as an affine map (for the bind, which applies
+    /// its inverse).
+    pub fn affine(&self, row: Row) -> DAffine3 {
+        let (s, q, t) = match self.method {
+            BlendMethod::MotorLog => {
+                let sim = self.log_blend(row).exp_similarity();
+                (sim.scale, sim.rotation, sim.translation)
+            }
+            BlendMethod::MotorLinear => {
+                let (q, t) = self.linear_blend(row).to_rotation_translation();
+                (self.scale_of(row), q.normalize(), t)
+            }
+            BlendMethod::DualQuaternion => {
+                let (q, t) = self.dual_quaternion_blend(row);
+                (self.scale_of(row), q, t)
+            }
+            BlendMethod::Matrix => return self.affine_blend(row),
+            BlendMethod::MatrixF32 => {
+                let a = row.fold(DAffine3::ZERO, |acc, k, w| {
+                    let a = &self.affines_f32[k];
+                    DAffine3 {
+                        matrix3: acc.matrix3 + a.matrix3.as_dmat3() * w,
+                        translation: acc.translation + a.translation.as_dvec3() * w,
+                    }
+                });
+                return a;
+            }
+            BlendMethod::Conformal => return self.conformal_blend(row).affine(),
+            BlendMethod::ConformalProjected => {
+                return row.fold(DAffine3::ZERO, |acc, k, w| {
+                    let a = self.conformal[k].affine();
+                    DAffine3 {
+                        matrix3: acc.matrix3 + a.matrix3 * w,
+                        translation: acc.translation + a.translation * w,
+                    }
+                })
+            }
+        };
+        DAffine3::from_scale_rotation_translation(DVec3::splat(s), q, t)
+    }
+
+    /// `sum w log R` over the row.
+    #[inline]
+    fn log_blend(&self, row: Row) -> Bivector {
+        match row.keys {
+            None => Bivector::weighted_sum(self.logs[row.first..].iter().copied(), row.weights),
+            Some(k) => {
+                Bivector::weighted_sum(k.iter().map(|&k| self.logs[k as usize]), row.weights)
+            }
+        }
+    }
+
+    /// `normalise(sum w R)` over the row, in the hemisphere of its first key.
+    #[inline]
+    fn linear_blend(&self, row: Row) -> Motor {
+        match row.keys {
+            None => Motor::blend_linear(&self.motors[row.first..], row.weights),
+            Some(k) => Motor::blend_linear_pairs(
+                k.iter()
+                    .zip(row.weights)
+                    .map(|(&k, &w)| (self.motors[k as usize], w)),
+            ),
+        }
+    }
+
+    /// `exp(sum w ln s)`: the geometric blend of the key scales.
+    #[inline]
+    fn scale_of(&self, row: Row) -> f64 {
+        if !self.scaled {
+            return 1.0;
+        }
+        row.fold(0.0, |a, k, w| a + w * self.log_scales[k]).exp()
+    }
+
+    /// Kavan's dual-quaternion linear blend: `(rotation, translation)`.
+    #[inline]
+    fn dual_quaternion_blend(&self, row: Row) -> (DQuat, DVec3) {
+        let q0 = self.quats[row.key(0)].0;
+        let (r, d) = row.fold((r0(), r0()), |(r, d), k, wk| {
+            let (q, dq) = self.quats[k];
+            let wk = if q.dot(q0) < 0.0 { -wk } else { wk };
+            (r + q * wk, d + dq * wk)
+        });
+        let n = r.length();
+        let (r, d) = (r * (1.0 / n), d * (1.0 / n));
+        let t = d * r.conjugate();
+        (r, 2.0 * DVec3::new(t.x, t.y, t.z))
+    }
+
+    /// `sum w A`.
+    #[inline]
+    fn affine_blend(&self, row: Row) -> DAffine3 {
+        let (m, t) = row.fold((DMat3::ZERO, DVec3::ZERO), |(m, t), k, wk| {
+            let a = &self.affines[k];
+            (m + a.matrix3 * wk, t + a.translation * wk)
+        });
+        DAffine3::from_mat3_translation(m, t)
+    }
+}
+
+/// The zero quaternion.
+#[inline]
+fn r0() -> DQuat {
+    DQuat::from_xyzw(0.0, 0.0, 0.0, 0.0)
+}

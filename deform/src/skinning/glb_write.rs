@@ -1,0 +1,287 @@
+//! Rigs out: binary glTF 2.0 (`.glb`) with the mesh, the skin (joints, inverse bind
+//! matrices), the node hierarchy and the animations, so any viewer shows and re-animates it.
+
+use super::animation::{Interpolation, Property};
+use super::rig::{Rig, Trs};
+use crate::Result;
+use serde_json::{json, Value};
+use std::path::Path;
+
+/// What [`glb_bytes`] writes besides the rig itself.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct GlbOptions {
+    /// Node transforms to write instead of the rest transforms (a posed or edited rig: see
+    /// [`super::RigPose::locals`]); one per node.
+    pub node_transforms: Option<Vec<Trs>>,
+    /// Leave the animations out.
+    pub without_animations: bool,
+}
+
+/// Write [`glb_bytes`] to `path` atomically (a temporary file renamed over the target).
+///
+/// # Errors
+/// [`crate::Error::Io`]; [`crate::Error::InvalidArgument`] as [`glb_bytes`].
+pub fn write_glb(rig: &Rig, options: &GlbOptions, path: impl AsRef<Path>) -> Result<()> {
+    let path = path.as_ref();
+    let bytes = glb_bytes(rig, options)?;
+    let tmp = path.with_extension("glb.partial");
+    let io = |source| crate::Error::Io {
+        path: path.to_path_buf(),
+        source,
+    };
+    std::fs::write(&tmp, bytes).map_err(io)?;
+    std::fs::rename(&tmp, path).map_err(io)
+}
+
+/// Binary buffer under construction: 4-byte aligned views.
+#[derive(Default)]
+struct Bin {
+    data: Vec<u8>,
+    views: Vec<Value>,
+    accessors: Vec<Value>,
+}
+
+impl Bin {
+    /// Append `bytes` as a new buffer view (with `target` when given) and an accessor over it.
+    fn push(&mut self, bytes: &[u8], target: Option<u32>, accessor: Value) -> usize {
+        while self.data.len() % 4 != 0 {
+            self.data.push(0);
+        }
+        let mut view = json!({"buffer": 0, "byteOffset": self.data.len(), "byteLength": bytes.len()});
+        if let Some(t) = target {
+            view["target"] = json!(t);
+        }
+        self.data.extend_from_slice(bytes);
+        self.views.push(view);
+        let mut a = accessor;
+        a["bufferView"] = json!(self.views.len() - 1);
+        self.accessors.push(a);
+        self.accessors.len() - 1
+    }
+
+    /// `f32` elements of `dim` components (with min/max when `bounds`).
+    fn floats(&mut self, v: &[f32], dim: usize, kind: &str, target: Option<u32>, bounds: bool) -> usize {
+        let bytes: Vec<u8> = v.iter().flat_map(|x| x.to_le_bytes()).collect();
+        let mut a = json!({"componentType": 5126, "count": v.len() / dim, "type": kind});
+        if bounds {
+            let mut lo = vec![f32::INFINITY; dim];
+            let mut hi = vec![f32::NEG_INFINITY; dim];
+            for e in v.chunks_exact(dim) {
+                for c in 0..dim {
+                    lo[c] = lo[c].min(e[c]);
+                    hi[c] = hi[c].max(e[c]);
+                }
+            }
+            a["min"] = json!(lo);
+            a["max"] = json!(hi);
+        }
+        self.push(&bytes, target, a)
+    }
+}
+
+/// Per vertex, at most 8 `(joint, weight)` influences: duplicates merged, zero weights
+/// dropped, the largest kept and renormalised (glTF viewers read 4 or 8).
+fn compact_influences(rig: &Rig) -> (usize, Vec<[u16; 8]>, Vec<[f32; 8]>) {
+    let n = rig.mesh.vertex_count();
+    let mut rows = Vec::with_capacity(n);
+    let mut width = 4;
+    for v in 0..n {
+        let mut list: Vec<(u32, f64)> = Vec::new();
+        for (j, w) in rig.influences.row(v).filter(|&(_, w)| w > 0.0) {
+            match list.iter_mut().find(|e| e.0 == j) {
+                Some(e) => e.1 += w,
+                None => list.push((j, w)),
+            }
+        }
+        list.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
+        list.truncate(8);
+        width = width.max(if list.len() > 4 { 8 } else { 4 });
+        rows.push(list);
+    }
+    let mut joints = Vec::with_capacity(n);
+    let mut weights = Vec::with_capacity(n);
+    for list in rows {
+        let sum: f64 = list.iter().map(|e| e.1).sum();
+        let mut j = [0u16; 8];
+        let mut w = [0f32; 8];
+        for (k, &(jj, ww)) in list.iter().enumerate() {
+            j[k] = jj as u16;
+            w[k] = (ww / sum) as f32;
+        }
+        if list.is_empty() {
+            w[0] = 1.0;
+        }
+        joints.push(j);
+        weights.push(w);
+    }
+    (width, joints, weights)
+}
+
+/// The rig as binary glTF: one mesh (every primitive of [`Rig::primitives`]), one skin, the
+/// nodes (a new root node instances the skinned mesh), the animations, and a scene.
+/// Positions, matrices and keys are written in single precision, as glTF stores them. Up to 8
+/// influences per vertex are kept (the largest, renormalised).
+///
+/// # Errors
+/// [`crate::Error::InvalidArgument`] for more than 65536 joints or `node_transforms` of the
+/// wrong length.
+pub fn glb_bytes(rig: &Rig, options: &GlbOptions) -> Result<Vec<u8>> {
+    if rig.joints.len() > u16::MAX as usize + 1 {
+        return Err(crate::Error::InvalidArgument(format!(
+            "{} joints: glTF joint indices are 16-bit here",
+            rig.joints.len()
+        )));
+    }
+    let locals: Vec<Trs> = match &options.node_transforms {
+        Some(t) if t.len() != rig.nodes.len() => {
+            return Err(crate::Error::InvalidArgument(format!(
+                "{} node transforms for {} nodes",
+                t.len(),
+                rig.nodes.len()
+            )))
+        }
+        Some(t) => t.clone(),
+        None => rig.nodes.iter().map(|n| n.rest).collect(),
+    };
+    let mut bin = Bin::default();
+    let (width, joints, weights) = compact_influences(rig);
+    let mut primitives = Vec::new();
+    for p in &rig.primitives {
+        let range = p.vertex_offset..p.vertex_offset + p.vertex_count;
+        let pos: Vec<f32> = rig.mesh.positions[range.clone()]
+            .iter()
+            .flat_map(|x| x.as_vec3().to_array())
+            .collect();
+        let position = bin.floats(&pos, 3, "VEC3", Some(34962), true);
+        let idx: Vec<u8> = rig.mesh.triangles[p.triangle_offset..p.triangle_offset + p.triangle_count]
+            .iter()
+            .flatten()
+            .flat_map(|&i| (i - p.vertex_offset as u32).to_le_bytes())
+            .collect();
+        let indices = bin.push(
+            &idx,
+            Some(34963),
+            json!({"componentType": 5125, "count": 3 * p.triangle_count, "type": "SCALAR"}),
+        );
+        let mut attributes = json!({"POSITION": position});
+        for set in 0..width / 4 {
+            let j: Vec<u8> = joints[range.clone()]
+                .iter()
+                .flat_map(|r| r[4 * set..4 * set + 4].iter().flat_map(|x| x.to_le_bytes()))
+                .collect();
+            let w: Vec<f32> = weights[range.clone()]
+                .iter()
+                .flat_map(|r| r[4 * set..4 * set + 4].to_vec())
+                .collect();
+            attributes[format!("JOINTS_{set}")] = json!(bin.push(
+                &j,
+                Some(34962),
+                json!({"componentType": 5123, "count": p.vertex_count, "type": "VEC4"})
+            ));
+            attributes[format!("WEIGHTS_{set}")] = json!(bin.floats(&w, 4, "VEC4", Some(34962), false));
+        }
+        primitives.push(json!({"attributes": attributes, "indices": indices, "mode": 4}));
+    }
+    let ibm: Vec<f32> = rig
+        .inverse_bind
+        .iter()
+        .flat_map(|m| m.as_mat4().to_cols_array())
+        .collect();
+    let ibm = bin.floats(&ibm, 16, "MAT4", None, false);
+    let mut nodes: Vec<Value> = rig
+        .nodes
+        .iter()
+        .zip(&locals)
+        .map(|(n, t)| {
+            json!({
+                "name": n.name,
+                "translation": t.translation.as_vec3().to_array(),
+                "rotation": t.rotation.normalize().as_quat().to_array(),
+                "scale": t.scale.as_vec3().to_array(),
+            })
+        })
+        .collect();
+    for (i, n) in rig.nodes.iter().enumerate() {
+        if let Some(p) = n.parent {
+            let list = nodes[p]
+                .as_object_mut()
+                .expect("a node object")
+                .entry("children")
+                .or_insert_with(|| json!([]));
+            list.as_array_mut().expect("an array").push(json!(i));
+        }
+    }
+    let mesh_node = nodes.len();
+    nodes.push(json!({"name": "skinned mesh", "mesh": 0, "skin": 0}));
+    let roots: Vec<usize> = (0..rig.nodes.len())
+        .filter(|&i| rig.nodes[i].parent.is_none())
+        .chain([mesh_node])
+        .collect();
+    let animations = if options.without_animations {
+        Vec::new()
+    } else {
+        rig.animations
+            .iter()
+            .map(|a| {
+                let mut samplers = Vec::new();
+                let mut channels = Vec::new();
+                for c in &a.channels {
+                    let times: Vec<f32> = c.times.iter().map(|&t| t as f32).collect();
+                    let input = bin.floats(&times, 1, "SCALAR", None, true);
+                    let (dim, kind, path) = match c.property {
+                        Property::Translation => (3, "VEC3", "translation"),
+                        Property::Rotation => (4, "VEC4", "rotation"),
+                        Property::Scale => (3, "VEC3", "scale"),
+                    };
+                    let values: Vec<f32> = c
+                        .values
+                        .iter()
+                        .flat_map(|v| v.as_vec4().to_array()[..dim].to_vec())
+                        .collect();
+                    let output = bin.floats(&values, dim, kind, None, false);
+                    let interpolation = match c.interpolation {
+                        Interpolation::Linear => "LINEAR",
+                        Interpolation::Step => "STEP",
+                        Interpolation::CubicSpline => "CUBICSPLINE",
+                    };
+                    channels.push(json!({"sampler": samplers.len(), "target": {"node": c.node, "path": path}}));
+                    samplers.push(json!({"input": input, "output": output, "interpolation": interpolation}));
+                }
+                json!({"name": a.name, "channels": channels, "samplers": samplers})
+            })
+            .collect()
+    };
+    while bin.data.len() % 4 != 0 {
+        bin.data.push(0);
+    }
+    let mut doc = json!({
+        "asset": {"version": "2.0", "generator": "deform (cga mesh deformers)"},
+        "scene": 0,
+        "scenes": [{"nodes": roots}],
+        "nodes": nodes,
+        "meshes": [{"name": "skin", "primitives": primitives}],
+        "skins": [{"joints": rig.joints, "inverseBindMatrices": ibm}],
+        "buffers": [{"byteLength": bin.data.len()}],
+        "bufferViews": bin.views,
+        "accessors": bin.accessors,
+    });
+    if !animations.is_empty() {
+        doc["animations"] = json!(animations);
+    }
+    let mut text = serde_json::to_vec(&doc).map_err(|e| crate::Error::InvalidArgument(e.to_string()))?;
+    while text.len() % 4 != 0 {
+        text.push(b' ');
+    }
+    let total = 12 + 8 + text.len() + 8 + bin.data.len();
+    let mut out = Vec::with_capacity(total);
+    out.extend_from_slice(b"glTF");
+    out.extend_from_slice(&2u32.to_le_bytes());
+    out.extend_from_slice(&(total as u32).to_le_bytes());
+    out.extend_from_slice(&(text.len() as u32).to_le_bytes());
+    out.extend_from_slice(b"JSON");
+    out.extend_from_slice(&text);
+    out.extend_from_slice(&(bin.data.len() as u32).to_le_bytes());
+    out.extend_from_slice(b"BIN\0");
+    out.extend_from_slice(&bin.data);
+    Ok(out)
+}

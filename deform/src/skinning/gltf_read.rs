@@ -1,0 +1,373 @@
+//! glTF 2.0 rigs in (`.gltf` with embedded or external buffers, `.glb`).
+
+use super::accessor::Buffers;
+use super::animation::{Animation, Channel, Interpolation, Property};
+use super::rig::{Influences, LoadReport, PrimitiveInfo, Rig, RigNode, Trs};
+use super::SkinError;
+use crate::Mesh;
+use glam::{DMat4, DQuat, DVec3, DVec4};
+use std::path::Path;
+
+/// Read a glTF 2.0 rig (`.gltf` or `.glb`); see [`parse_gltf`].
+///
+/// # Errors
+/// [`crate::Error::Io`] when the file cannot be read, and the errors of [`parse_gltf`].
+pub fn read_gltf(path: impl AsRef<Path>) -> crate::Result<Rig> {
+    let path = path.as_ref();
+    let bytes = std::fs::read(path).map_err(|source| crate::Error::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    Ok(parse_gltf(
+        &bytes,
+        &path.display().to_string(),
+        path.parent(),
+    )?)
+}
+
+/// Parse a glTF 2.0 rig from its bytes (`.gltf` JSON or `.glb`); `base` is the folder that
+/// external buffer files are relative to.
+///
+/// What is read: the node hierarchy (matrices or TRS), the first skin used by a mesh and every
+/// triangle primitive of the nodes using it (in order of mesh, primitive, node; vertex index =
+/// POSITION accessor index), `JOINTS_0`/`WEIGHTS_0` and a second set `JOINTS_1`/`WEIGHTS_1`
+/// where present, inverse bind matrices (identity when absent, as the specification says),
+/// and every animation's translation, rotation and scale channels with `LINEAR`, `STEP` and
+/// `CUBICSPLINE` samplers.
+///
+/// Handled and reported in [`Rig::report`]: weights not summing to 1 (normalised; an all-zero
+/// vertex is bound to its first joint), morph targets and morph-weight channels (ignored:
+/// unsupported), meshes without a skin or with another skin, non-triangle primitives
+/// (skipped). Typed errors: a truncated or corrupt file, accessors reaching past their
+/// buffers, sparse accessors, joint indices past the skin, negative or non-finite weights,
+/// non-finite or non-decomposable transforms, keyframe times that do not increase,
+/// non-finite keyframes.
+///
+/// # Errors
+/// [`SkinError`] as above.
+pub fn parse_gltf(bytes: &[u8], name: &str, base: Option<&Path>) -> Result<Rig, SkinError> {
+    let gltf = gltf::Gltf::from_slice(bytes).map_err(|e| SkinError::Gltf {
+        name: name.to_string(),
+        message: e.to_string(),
+    })?;
+    let buffers = Buffers::load(&gltf.document, gltf.blob.as_deref(), base, name)?;
+    let doc = &gltf.document;
+    let mut report = LoadReport::default();
+    let nodes = read_nodes(doc)?;
+    let (skin, instances) = skinned_primitives(doc, &mut report, name)?;
+    let joints: Vec<usize> = skin.joints().map(|n| n.index()).collect();
+    let inverse_bind = match skin.inverse_bind_matrices() {
+        None => vec![DMat4::IDENTITY; joints.len()],
+        Some(a) => {
+            let (v, dim) = buffers.read(&a, name)?;
+            if dim != 16 || v.len() < 16 * joints.len() {
+                return Err(SkinError::Data {
+                    name: name.to_string(),
+                    message: format!(
+                        "inverse bind matrices: {} values of width {dim} for {} joints",
+                        v.len(),
+                        joints.len()
+                    ),
+                });
+            }
+            v.chunks_exact(16)
+                .take(joints.len())
+                .map(DMat4::from_cols_slice)
+                .collect()
+        }
+    };
+    let mut mesh = Mesh::new(Vec::new(), Vec::new());
+    let mut influences = Influences::default();
+    let mut primitives = Vec::new();
+    for (mesh_index, prim_index, node) in instances {
+        let m = doc.meshes().nth(mesh_index).expect("index from the document");
+        let p = m.primitives().nth(prim_index).expect("index from the document");
+        let info = read_primitive(&p, &buffers, name, &mut mesh, &mut influences)?;
+        primitives.push(PrimitiveInfo {
+            node,
+            mesh: mesh_index,
+            primitive: prim_index,
+            ..info
+        });
+        if p.morph_targets().next().is_some() {
+            report.notes.push(format!(
+                "mesh {mesh_index} primitive {prim_index}: morph targets ignored (unsupported)"
+            ));
+        }
+    }
+    let animations = read_animations(doc, &buffers, name, &mut report)?;
+    Rig::new(
+        nodes,
+        joints,
+        inverse_bind,
+        mesh,
+        influences,
+        primitives,
+        animations,
+        report,
+    )
+}
+
+/// Every node with its parent and rest transform.
+fn read_nodes(doc: &gltf::Document) -> Result<Vec<RigNode>, SkinError> {
+    let mut nodes = Vec::new();
+    for n in doc.nodes() {
+        let what = format!("node {}", n.index());
+        let rest = match n.transform() {
+            gltf::scene::Transform::Matrix { matrix } => {
+                let m = DMat4::from_cols_array_2d(&matrix.map(|c| c.map(f64::from)));
+                Trs::from_matrix(&m, &what)?
+            }
+            gltf::scene::Transform::Decomposed {
+                translation,
+                rotation,
+                scale,
+            } => {
+                let trs = Trs {
+                    translation: DVec3::from(translation.map(f64::from)),
+                    rotation: DQuat::from_array(rotation.map(f64::from)),
+                    scale: DVec3::from(scale.map(f64::from)),
+                };
+                let q = trs.rotation.length();
+                if !trs.translation.is_finite() || !trs.scale.is_finite() || !(q > 1e-12) {
+                    return Err(SkinError::BadTransform {
+                        what,
+                        message: "non-finite or zero TRS".into(),
+                    });
+                }
+                Trs {
+                    rotation: trs.rotation / q,
+                    ..trs
+                }
+            }
+        };
+        nodes.push(RigNode {
+            name: n.name().map_or_else(|| what.clone(), str::to_string),
+            parent: None,
+            rest,
+        });
+    }
+    for n in doc.nodes() {
+        for c in n.children() {
+            let child = &mut nodes[c.index()];
+            if child.parent.is_some_and(|p| p != n.index()) {
+                return Err(SkinError::BadTransform {
+                    what: format!("node {}", c.index()),
+                    message: "has more than one parent".into(),
+                });
+            }
+            child.parent = Some(n.index());
+        }
+    }
+    Ok(nodes)
+}
+
+/// The first skin used by a mesh, and the `(mesh, primitive, node)` triangle primitives using
+/// it in document order.
+fn skinned_primitives<'a>(
+    doc: &'a gltf::Document,
+    report: &mut LoadReport,
+    name: &str,
+) -> Result<(gltf::Skin<'a>, Vec<(usize, usize, usize)>), SkinError> {
+    let mut uses: Vec<(usize, usize, usize, usize)> = Vec::new();
+    for n in doc.nodes() {
+        let Some(m) = n.mesh() else { continue };
+        let Some(s) = n.skin() else {
+            report
+                .notes
+                .push(format!("node {}: mesh {} has no skin (ignored)", n.index(), m.index()));
+            continue;
+        };
+        for p in m.primitives() {
+            if p.mode() != gltf::mesh::Mode::Triangles {
+                report.notes.push(format!(
+                    "mesh {} primitive {}: mode {:?} is not triangles (skipped)",
+                    m.index(),
+                    p.index(),
+                    p.mode()
+                ));
+                continue;
+            }
+            uses.push((m.index(), p.index(), n.index(), s.index()));
+        }
+    }
+    uses.sort_unstable();
+    let Some(&(_, _, _, skin)) = uses.iter().min_by_key(|u| u.3) else {
+        return Err(SkinError::NoSkin(format!("{name}: no skinned triangle mesh")));
+    };
+    let skin = doc.skins().nth(skin).expect("index from the document");
+    let others = uses.iter().filter(|u| u.3 != skin.index()).count();
+    if others > 0 {
+        report.notes.push(format!(
+            "{others} primitive(s) use another skin than skin {} (ignored: one skin per rig)",
+            skin.index()
+        ));
+    }
+    let list = uses
+        .into_iter()
+        .filter(|u| u.3 == skin.index())
+        .map(|(m, p, n, _)| (m, p, n))
+        .collect();
+    Ok((skin, list))
+}
+
+/// Append one primitive's positions, triangles and influences.
+fn read_primitive(
+    p: &gltf::Primitive,
+    buffers: &Buffers,
+    name: &str,
+    mesh: &mut Mesh,
+    influences: &mut Influences,
+) -> Result<PrimitiveInfo, SkinError> {
+    let data = |message: String| SkinError::Data {
+        name: name.to_string(),
+        message,
+    };
+    let pos = p
+        .get(&gltf::Semantic::Positions)
+        .ok_or_else(|| data(format!("primitive {}: no POSITION", p.index())))?;
+    let (v, dim) = buffers.read(&pos, name)?;
+    if dim != 3 {
+        return Err(data("POSITION is not VEC3".into()));
+    }
+    let offset = mesh.positions.len();
+    let count = v.len() / 3;
+    let positions: Vec<DVec3> = v.chunks_exact(3).map(DVec3::from_slice).collect();
+    if let Some(i) = positions.iter().position(|x| !x.is_finite()) {
+        return Err(data(format!("vertex {}: position is not finite", offset + i)));
+    }
+    let indices: Vec<u32> = match p.indices() {
+        Some(a) => buffers.read(&a, name)?.0.iter().map(|&x| x as u32).collect(),
+        None => (0..count as u32).collect(),
+    };
+    if indices.len() % 3 != 0 {
+        return Err(data(format!("{} indices: not whole triangles", indices.len())));
+    }
+    if let Some(&i) = indices.iter().find(|&&i| i as usize >= count) {
+        return Err(data(format!("index {i} past the primitive's {count} vertices")));
+    }
+    let triangle_offset = mesh.triangles.len();
+    mesh.positions.extend(positions);
+    mesh.triangles.extend(
+        indices
+            .chunks_exact(3)
+            .map(|t| [t[0] + offset as u32, t[1] + offset as u32, t[2] + offset as u32]),
+    );
+    let sets: Vec<(Vec<f64>, Vec<f64>)> = (0..2)
+        .map_while(|s| {
+            let j = p.get(&gltf::Semantic::Joints(s))?;
+            let w = p.get(&gltf::Semantic::Weights(s))?;
+            Some((j, w))
+        })
+        .map(|(j, w)| Ok((buffers.read(&j, name)?.0, buffers.read(&w, name)?.0)))
+        .collect::<Result<_, SkinError>>()?;
+    if sets.is_empty() {
+        return Err(SkinError::NoSkin(format!(
+            "{name}: primitive {} has no JOINTS_0/WEIGHTS_0",
+            p.index()
+        )));
+    }
+    let width = 4 * sets.len();
+    if influences.width != 0 && influences.width != width {
+        // Primitives with one and two sets: widen to 8, padding with zero weights.
+        return Err(SkinError::Unsupported {
+            name: name.to_string(),
+            message: "primitives with different numbers of joint sets".into(),
+        });
+    }
+    influences.width = width;
+    for (j, w) in &sets {
+        if j.len() != 4 * count || w.len() != 4 * count {
+            return Err(data("JOINTS/WEIGHTS are not VEC4 per vertex".into()));
+        }
+    }
+    for v in 0..count {
+        for (j, w) in &sets {
+            for k in 0..4 {
+                let (joint, weight) = (j[4 * v + k], w[4 * v + k]);
+                // A zero weight's joint does not matter: keep it in range.
+                influences
+                    .joints
+                    .push(if weight == 0.0 { 0 } else { joint as u32 });
+                influences.weights.push(weight);
+            }
+        }
+    }
+    Ok(PrimitiveInfo {
+        node: 0,
+        mesh: 0,
+        primitive: 0,
+        vertex_offset: offset,
+        vertex_count: count,
+        triangle_offset,
+        triangle_count: indices.len() / 3,
+    })
+}
+
+/// Every animation's node channels.
+fn read_animations(
+    doc: &gltf::Document,
+    buffers: &Buffers,
+    name: &str,
+    report: &mut LoadReport,
+) -> Result<Vec<Animation>, SkinError> {
+    let mut out = Vec::new();
+    for a in doc.animations() {
+        let aname = a
+            .name()
+            .map_or_else(|| format!("animation {}", a.index()), str::to_string);
+        let mut channels = Vec::new();
+        for (ci, c) in a.channels().enumerate() {
+            let what = format!("animation {aname:?} channel {ci}");
+            let property = match c.target().property() {
+                gltf::animation::Property::Translation => Property::Translation,
+                gltf::animation::Property::Rotation => Property::Rotation,
+                gltf::animation::Property::Scale => Property::Scale,
+                gltf::animation::Property::MorphTargetWeights => {
+                    report
+                        .notes
+                        .push(format!("{what}: morph target weights ignored (unsupported)"));
+                    continue;
+                }
+            };
+            let s = c.sampler();
+            let interpolation = match s.interpolation() {
+                gltf::animation::Interpolation::Linear => Interpolation::Linear,
+                gltf::animation::Interpolation::Step => Interpolation::Step,
+                gltf::animation::Interpolation::CubicSpline => Interpolation::CubicSpline,
+            };
+            let (times, _) = buffers.read(&s.input(), name)?;
+            let (v, dim) = buffers.read(&s.output(), name)?;
+            let want = if property == Property::Rotation { 4 } else { 3 };
+            if dim != want {
+                return Err(SkinError::BadTransform {
+                    what,
+                    message: format!("values of width {dim}, expected {want}"),
+                });
+            }
+            let values = v
+                .chunks_exact(dim)
+                .map(|c| {
+                    if dim == 4 {
+                        DVec4::from_slice(c)
+                    } else {
+                        DVec3::from_slice(c).extend(0.0)
+                    }
+                })
+                .collect();
+            channels.push(Channel::new(
+                c.target().node().index(),
+                property,
+                interpolation,
+                times,
+                values,
+                &what,
+            )?);
+        }
+        out.push(Animation {
+            name: aname,
+            channels,
+        });
+    }
+    Ok(out)
+}

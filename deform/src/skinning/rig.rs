@@ -1,0 +1,397 @@
+//! The rig: node hierarchy, skin, rest mesh with influences, animations.
+
+use super::{Animation, SkinError};
+use crate::Mesh;
+use cga::ScaledMotor;
+use glam::{DMat4, DQuat, DVec3};
+
+/// Relative tolerance within which a scale counts as uniform (a similarity).
+pub(crate) const UNIFORM_SCALE_TOLERANCE: f64 = 1e-4;
+
+/// Weights down to this (negative) value are rounding noise of a weight solver and read as 0.
+pub(crate) const NEGATIVE_WEIGHT_TOLERANCE: f64 = -1e-6;
+
+/// A node's local transform: `T * R * S` applied to a point (glTF's order).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Trs {
+    /// Translation.
+    pub translation: DVec3,
+    /// Rotation (unit quaternion).
+    pub rotation: DQuat,
+    /// Scale per axis.
+    pub scale: DVec3,
+}
+
+impl Default for Trs {
+    fn default() -> Self {
+        Trs::IDENTITY
+    }
+}
+
+impl Trs {
+    /// The identity.
+    pub const IDENTITY: Trs = Trs {
+        translation: DVec3::ZERO,
+        rotation: DQuat::IDENTITY,
+        scale: DVec3::ONE,
+    };
+
+    /// The matrix `T R S`.
+    pub fn matrix(&self) -> DMat4 {
+        DMat4::from_scale_rotation_translation(self.scale, self.rotation, self.translation)
+    }
+
+    /// Decompose a matrix into `T R S`.
+    ///
+    /// # Errors
+    /// [`SkinError::BadTransform`] for a non-finite matrix, one with a zero scale, or one that
+    /// is not `T R S` (shear, projection): glTF requires node matrices to be decomposable.
+    pub fn from_matrix(m: &DMat4, what: &str) -> Result<Trs, SkinError> {
+        let bad = |message: &str| SkinError::BadTransform {
+            what: what.to_string(),
+            message: message.to_string(),
+        };
+        if !m.is_finite() {
+            return Err(bad("not finite"));
+        }
+        let (scale, rotation, translation) = m.to_scale_rotation_translation();
+        let trs = Trs {
+            translation,
+            rotation: rotation.normalize(),
+            scale,
+        };
+        let norm = m.abs().to_cols_array().iter().fold(0.0f64, |a, &b| a.max(b));
+        let back = trs.matrix();
+        let err = (back - *m)
+            .abs()
+            .to_cols_array()
+            .iter()
+            .fold(0.0f64, |a, &b| a.max(b));
+        if scale.min_element().abs() <= f64::MIN_POSITIVE || !trs.rotation.is_finite() {
+            return Err(bad("singular (zero scale)"));
+        }
+        if err > 1e-6 * norm.max(1.0) {
+            return Err(bad("not a translation * rotation * scale (shear or projection)"));
+        }
+        Ok(trs)
+    }
+
+    /// The uniform scale (their geometric mean), when the three scales agree within a
+    /// relative 1e-4 (single-precision files carry noise of about 1e-6).
+    pub fn uniform_scale(&self) -> Option<f64> {
+        let s = self.scale;
+        let m = s.abs().max_element();
+        (s.min_element() > 0.0 && m - s.min_element() <= UNIFORM_SCALE_TOLERANCE * m)
+            .then(|| (s.x * s.y * s.z).cbrt())
+    }
+
+    /// The transform as a scaled motor `T R D`.
+    ///
+    /// # Errors
+    /// [`SkinError::NotSimilarity`] for a non-uniform or negative scale.
+    pub fn motor(&self, what: &str) -> Result<ScaledMotor, SkinError> {
+        let s = self.uniform_scale().ok_or_else(|| SkinError::NotSimilarity {
+            what: what.to_string(),
+            message: format!("scale {:?}", self.scale),
+        })?;
+        ScaledMotor::try_from_scale_rotation_translation(s, self.rotation, self.translation).map_err(
+            |e| SkinError::NotSimilarity {
+                what: what.to_string(),
+                message: e.to_string(),
+            },
+        )
+    }
+}
+
+/// One node of the hierarchy.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RigNode {
+    /// Its name (`node N` when the file gives none).
+    pub name: String,
+    /// Its parent.
+    pub parent: Option<usize>,
+    /// Its rest (unanimated) local transform.
+    pub rest: Trs,
+}
+
+/// Per-vertex joint influences: `width` (joint, weight) pairs per vertex, joints indexing the
+/// skin's joint list. Weights are non-negative and sum to 1 ([`Rig::new`] reads weights in
+/// `[-1e-6, 0)` as 0 and normalises).
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct Influences {
+    /// Pairs per vertex (4, or 8 with a second joint/weight set).
+    pub width: usize,
+    /// Joint indices, vertex-major.
+    pub joints: Vec<u32>,
+    /// Weights, vertex-major.
+    pub weights: Vec<f64>,
+}
+
+impl Influences {
+    /// Number of vertices.
+    pub fn vertex_count(&self) -> usize {
+        self.weights.len().checked_div(self.width).unwrap_or(0)
+    }
+
+    /// Normalise every vertex's weights to sum 1 (an all-zero vertex gets weight 1 on its first
+    /// joint, as three.js does); returns how many vertices were off by more than `1e-5`.
+    pub(crate) fn normalise(&mut self) -> usize {
+        let mut changed = 0;
+        let w = self.width.max(1);
+        for row in self.weights.chunks_mut(w) {
+            let sum: f64 = row.iter().sum();
+            if (sum - 1.0).abs() > 1e-5 {
+                changed += 1;
+            }
+            if sum > 0.0 {
+                row.iter_mut().for_each(|x| *x /= sum);
+            } else {
+                row.iter_mut().for_each(|x| *x = 0.0);
+                row[0] = 1.0;
+            }
+        }
+        changed
+    }
+
+    /// The `(joint, weight)` pairs of vertex `v`.
+    pub fn row(&self, v: usize) -> impl Iterator<Item = (u32, f64)> + '_ {
+        let r = v * self.width..(v + 1) * self.width;
+        self.joints[r.clone()]
+            .iter()
+            .copied()
+            .zip(self.weights[r].iter().copied())
+    }
+}
+
+/// Where a glTF primitive's vertices sit in the rig's concatenated mesh.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct PrimitiveInfo {
+    /// The node instancing the mesh.
+    pub node: usize,
+    /// The glTF mesh.
+    pub mesh: usize,
+    /// The primitive within the mesh.
+    pub primitive: usize,
+    /// First vertex in [`Rig::mesh`].
+    pub vertex_offset: usize,
+    /// Number of vertices.
+    pub vertex_count: usize,
+    /// First triangle in [`Rig::mesh`].
+    pub triangle_offset: usize,
+    /// Number of triangles.
+    pub triangle_count: usize,
+}
+
+/// What the loader changed or ignored.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct LoadReport {
+    /// Vertices whose weights did not sum to 1 (within 1e-5) and were normalised.
+    pub renormalised_vertices: usize,
+    /// Things read but not used (morph targets, unskinned meshes, other skins...).
+    pub notes: Vec<String>,
+}
+
+/// A skinned, animated model.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Rig {
+    /// Every node (joints and their ancestors included).
+    pub nodes: Vec<RigNode>,
+    /// Nodes ordered parents first.
+    pub(crate) order: Vec<usize>,
+    /// Nodes some joint depends on (the joints and their ancestors): those need motors.
+    pub(crate) motor_nodes: Vec<bool>,
+    /// The inverse bind matrices as motors `B_n`, or why one is not a similarity.
+    pub(crate) inverse_bind_motors: Vec<Result<ScaledMotor, SkinError>>,
+    /// The skin's joints, as node indices; influences index this list.
+    pub joints: Vec<usize>,
+    /// One inverse bind matrix per joint (identity where the file gives none).
+    pub inverse_bind: Vec<DMat4>,
+    /// The rest (bind-space) mesh: every skinned primitive, concatenated.
+    pub mesh: Mesh,
+    /// Per-vertex influences.
+    pub influences: Influences,
+    /// The glTF primitives behind [`Rig::mesh`] (one entry for libigl rigs).
+    pub primitives: Vec<PrimitiveInfo>,
+    /// Animations.
+    pub animations: Vec<Animation>,
+    /// What the loader changed or ignored.
+    pub report: LoadReport,
+}
+
+impl Rig {
+    /// Assemble a rig, checking the hierarchy (no cycles, parents in range), the joint
+    /// indices of the influences and every transform; normalises the weights.
+    ///
+    /// # Errors
+    /// [`SkinError`] naming the offending node, joint or vertex.
+    #[allow(clippy::too_many_arguments)]
+    pub fn new(
+        nodes: Vec<RigNode>,
+        joints: Vec<usize>,
+        inverse_bind: Vec<DMat4>,
+        mesh: Mesh,
+        mut influences: Influences,
+        primitives: Vec<PrimitiveInfo>,
+        animations: Vec<Animation>,
+        mut report: LoadReport,
+    ) -> Result<Rig, SkinError> {
+        let order = hierarchy_order(&nodes)?;
+        if joints.is_empty() {
+            return Err(SkinError::NoSkin("the skin has no joints".into()));
+        }
+        if let Some(&j) = joints.iter().find(|&&j| j >= nodes.len()) {
+            return Err(SkinError::NoJoint(format!("node {j} (past the last node)")));
+        }
+        if inverse_bind.len() != joints.len() {
+            return Err(SkinError::BadTransform {
+                what: "inverse bind matrices".into(),
+                message: format!("{} for {} joints", inverse_bind.len(), joints.len()),
+            });
+        }
+        if let Some(j) = inverse_bind.iter().position(|m| !m.is_finite()) {
+            return Err(SkinError::BadTransform {
+                what: format!("inverse bind matrix of joint {j}"),
+                message: "not finite".into(),
+            });
+        }
+        if influences.vertex_count() != mesh.vertex_count() {
+            return Err(SkinError::NoSkin(format!(
+                "{} vertices but influences for {}",
+                mesh.vertex_count(),
+                influences.vertex_count()
+            )));
+        }
+        for (k, (&j, w)) in influences
+            .joints
+            .iter()
+            .zip(&mut influences.weights)
+            .enumerate()
+        {
+            let vertex = k / influences.width.max(1);
+            if *w < 0.0 && *w >= NEGATIVE_WEIGHT_TOLERANCE {
+                *w = 0.0;
+            }
+            let w = *w;
+            if !(w.is_finite() && w >= 0.0) {
+                return Err(SkinError::BadWeight { vertex, weight: w });
+            }
+            if j as usize >= joints.len() {
+                return Err(SkinError::JointOutOfRange {
+                    vertex,
+                    joint: j,
+                    joints: joints.len(),
+                });
+            }
+        }
+        report.renormalised_vertices += influences.normalise();
+        for a in &animations {
+            if let Some(c) = a.channels.iter().find(|c| c.node >= nodes.len()) {
+                return Err(SkinError::BadTransform {
+                    what: format!("animation {:?}", a.name),
+                    message: format!("a channel targets node {}, past the last node", c.node),
+                });
+            }
+        }
+        let mut motor_nodes = vec![false; nodes.len()];
+        for &j in &joints {
+            let mut at = Some(j);
+            while let Some(i) = at.filter(|&i| !motor_nodes[i]) {
+                motor_nodes[i] = true;
+                at = nodes[i].parent;
+            }
+        }
+        let inverse_bind_motors = inverse_bind
+            .iter()
+            .enumerate()
+            .map(|(k, m)| {
+                let what = format!("inverse bind matrix of joint {k}");
+                Trs::from_matrix(m, &what)?.motor(&what)
+            })
+            .collect();
+        Ok(Rig {
+            nodes,
+            order,
+            motor_nodes,
+            inverse_bind_motors,
+            joints,
+            inverse_bind,
+            mesh,
+            influences,
+            primitives,
+            animations,
+            report,
+        })
+    }
+
+    /// The index of an animation given by name or by index.
+    ///
+    /// # Errors
+    /// [`SkinError::NoAnimation`].
+    pub fn animation_index(&self, name_or_index: &str) -> Result<usize, SkinError> {
+        if let Some(i) = self.animations.iter().position(|a| a.name == name_or_index) {
+            return Ok(i);
+        }
+        match name_or_index.parse::<usize>() {
+            Ok(i) if i < self.animations.len() => Ok(i),
+            _ => Err(SkinError::NoAnimation(format!(
+                "{name_or_index:?} (have: {})",
+                self.animations
+                    .iter()
+                    .enumerate()
+                    .map(|(i, a)| format!("{i} {:?}", a.name))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ))),
+        }
+    }
+
+    /// The skin joint (index into [`Rig::joints`]) given by node name or joint index.
+    ///
+    /// # Errors
+    /// [`SkinError::NoJoint`].
+    pub fn joint_index(&self, name_or_index: &str) -> Result<usize, SkinError> {
+        if let Some(j) = self
+            .joints
+            .iter()
+            .position(|&n| self.nodes[n].name == name_or_index)
+        {
+            return Ok(j);
+        }
+        match name_or_index.parse::<usize>() {
+            Ok(j) if j < self.joints.len() => Ok(j),
+            _ => Err(SkinError::NoJoint(format!("{name_or_index:?}"))),
+        }
+    }
+}
+
+/// Nodes ordered parents first.
+fn hierarchy_order(nodes: &[RigNode]) -> Result<Vec<usize>, SkinError> {
+    let n = nodes.len();
+    let mut children = vec![Vec::new(); n];
+    let mut roots = Vec::new();
+    for (i, node) in nodes.iter().enumerate() {
+        match node.parent {
+            Some(p) if p >= n => {
+                return Err(SkinError::BadTransform {
+                    what: format!("node {i}"),
+                    message: format!("parent {p} past the last node"),
+                })
+            }
+            Some(p) => children[p].push(i),
+            None => roots.push(i),
+        }
+    }
+    let mut order = Vec::with_capacity(n);
+    let mut stack = roots;
+    while let Some(i) = stack.pop() {
+        order.push(i);
+        stack.extend(children[i].iter().rev());
+    }
+    if order.len() != n {
+        return Err(SkinError::BadTransform {
+            what: "node hierarchy".into(),
+            message: "has a cycle".into(),
+        });
+    }
+    Ok(order)
+}

@@ -1,0 +1,70 @@
+//! The skinning deformer: a rig's rest mesh and influences bound once, posed by the skin
+//! motors of any frame with any backend.
+
+use super::{Influences, Rig};
+use crate::blend::{BlendMethod, BoundBlend, KeyWeights};
+use crate::deformer::deformer_via_blend;
+use crate::Result;
+use cga::ScaledMotor;
+use glam::DVec3;
+
+/// A skinned mesh bound to its joints: `pose(skin_motors, out)` gives
+/// `p_m = blend_n(w_mn, M_n B_n)(c_m)` with the blend of the chosen [`BlendMethod`]:
+///
+/// | backend | method |
+/// |---|---|
+/// | matrix LBS, f64 / f32 (glam) | [`BlendMethod::Matrix`] / [`BlendMethod::MatrixF32`] |
+/// | dual-quaternion skinning (Kavan; hemisphere of the first influence) | [`BlendMethod::DualQuaternion`] |
+/// | equation (17), add then down-project | [`BlendMethod::Conformal`] |
+/// | equation (17), down-project each term then add | [`BlendMethod::ConformalProjected`] |
+/// | motor blending (normalised weighted motor sum, scale blended geometrically) | [`BlendMethod::MotorLinear`] |
+/// | log blending `exp(sum w log M)` | [`BlendMethod::MotorLog`] |
+///
+/// The keys are the skin motors of a [`super::RigPose`] ([`super::RigPose::skin_motors`]),
+/// one per joint, in the order of [`Rig::joints`]. Influence rows keep the file's order, so
+/// the dual-quaternion hemisphere reference is each vertex's first influence.
+#[derive(Clone, Debug)]
+pub struct Skinning {
+    blend: BoundBlend,
+}
+
+impl Skinning {
+    /// Bind the rig's rest mesh and influences.
+    ///
+    /// # Errors
+    /// As [`Skinning::bind_influences`].
+    pub fn bind(rig: &Rig, method: BlendMethod) -> Result<Self> {
+        Self::bind_influences(&rig.mesh.positions, &rig.influences, rig.joints.len(), method)
+    }
+
+    /// Bind rest positions with per-vertex influences over `joint_count` joints.
+    ///
+    /// # Errors
+    /// [`crate::Error::DimensionMismatch`] when the influences do not match the positions,
+    /// [`crate::Error::InvalidArgument`] for a joint index past `joint_count` or a non-finite
+    /// weight, [`crate::KeyError::TooMany`] for too many joints.
+    pub fn bind_influences(
+        positions: &[DVec3],
+        influences: &Influences,
+        joint_count: usize,
+        method: BlendMethod,
+    ) -> Result<Self> {
+        let weights = KeyWeights::gathered(
+            joint_count,
+            influences.width,
+            influences.joints.clone(),
+            influences.weights.clone(),
+        )?;
+        let rest = vec![ScaledMotor::IDENTITY; joint_count];
+        Ok(Skinning {
+            blend: BoundBlend::bind(positions, weights, &rest, method)?,
+        })
+    }
+
+    /// The bound blend (weights, method).
+    pub fn blend(&self) -> &BoundBlend {
+        &self.blend
+    }
+}
+
+deformer_via_blend!(Skinning, blend);
