@@ -12,6 +12,13 @@ use deform::skinning::{
 use deform::{BlendMethod, Deformer};
 use glam::{DQuat, DVec3};
 
+/// Where tests write glTF files; `.ci/run` checks each with the Khronos validator.
+fn gltf_out() -> std::path::PathBuf {
+    let d = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../target/gltf-out");
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
 fn gltf(name: &str) -> Option<Rig> {
     let path = data_dir()?.join("gltf").join(name);
     Some(read_gltf(&path).unwrap_or_else(|e| panic!("{name}: {e}")))
@@ -288,6 +295,7 @@ fn glb_round_trip() {
     }
     for (name, rig) in &rigs {
         let bytes = glb_bytes(rig, &GlbOptions::default()).unwrap();
+        std::fs::write(gltf_out().join(format!("{name}.glb")), &bytes).unwrap();
         let back = parse_gltf(&bytes, name, None).unwrap();
         assert_eq!(back.animations.len(), rig.animations.len());
         assert_eq!(back.mesh.triangles, rig.mesh.triangles);

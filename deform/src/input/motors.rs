@@ -101,6 +101,15 @@ fn motor_of(
     spec.to_motor().map_err(|m| InputError::new(name, item, m))
 }
 
+/// One motor: a JSON object (as in the module doc).
+///
+/// # Errors
+/// [`InputError`] for JSON of the wrong shape or a motor that cannot be built.
+pub fn parse_motor(text: &str, name: &str) -> Result<ScaledMotor, InputError> {
+    let value = parse_value(text, name)?;
+    motor_of(&value, name, "motor".to_string())
+}
+
 /// A key list: a JSON array of motors.
 ///
 /// # Errors

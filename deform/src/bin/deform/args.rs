@@ -43,6 +43,11 @@ pub enum Command {
     /// in --motors are handles moved rigidly by it, the other groups stay fixed; iterates
     /// from the rest pose and prints the energy after each iteration.
     Arap(crate::arap_cmd::ArapArgs),
+    /// Skinning: pose a rigged model (glTF, or a mesh with --skeleton TGF and --weights DMAT)
+    /// at --time of --animation, with joint edits, by any --backend; write OBJ (world space by
+    /// the glTF skinning formula, one vertex per glTF vertex, primitives concatenated in
+    /// document order), an OBJ sequence (--range, --in-betweens) or the whole rig as .glb.
+    Skin(crate::skin_cmd::SkinArgs),
 }
 
 /// Options every command that writes files shares.

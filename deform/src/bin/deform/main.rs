@@ -1,5 +1,5 @@
 //! The `deform` program: the motor deformers of the CGA papers on procedural meshes (`demo`)
-//! and on any mesh file (`spline`, `handles`, `fabrik`, `arap`, `ffd`, `cage`), with OBJ output,
+//! and on any mesh file (`spline`, `handles`, `fabrik`, `arap`, `ffd`, `cage`, `skin`), with OBJ output,
 //! PNG previews and timings. Exit code 0 on success, 2 on any error (bad arguments, unreadable
 //! or invalid input, a failed write), with a message that says what and where.
 
@@ -11,6 +11,7 @@ mod lattice_cmds;
 mod lattice_demo;
 mod output;
 mod preview;
+mod skin_cmd;
 
 use clap::Parser;
 use std::process::ExitCode;
@@ -35,6 +36,7 @@ fn main() -> ExitCode {
         args::Command::Ffd(a) => lattice_cmds::ffd(&a),
         args::Command::Cage(a) => lattice_cmds::cage(&a),
         args::Command::Arap(a) => arap_cmd::arap(&a),
+        args::Command::Skin(a) => skin_cmd::skin(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -1,0 +1,259 @@
+//! `deform skin`: pose a rigged model (glTF, or OBJ + TGF + DMAT weights) at a time of one of
+//! its animations, with joint edits, by any skinning backend; write OBJ (one file, or a
+//! sequence for a time range or generated in-betweens) or the whole rig as `.glb`.
+
+use crate::args::OutputArgs;
+use crate::commands::{time_pose, Report};
+use crate::output::{check_outputs, read_text, write_obj, write_png};
+use crate::preview;
+use anyhow::{bail, Context, Result};
+use clap::{Args, ValueEnum};
+use deform::input::parse_motor;
+use deform::skinning::{
+    in_betweens, libigl_rig, read_gltf, write_glb, GlbOptions, JointEdit, Rig, Skinning,
+};
+use deform::{BlendMethod, Mesh};
+use glam::DVec3;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Skinning backends by their usual names.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Backend {
+    /// Matrix linear blend skinning (f64).
+    Lbs,
+    /// Matrix linear blend skinning in single precision (glam SIMD).
+    LbsF32,
+    /// Dual-quaternion skinning (Kavan).
+    Dqs,
+    /// The paper's equation (17), adding conformal points then down-projecting.
+    Cga,
+    /// Equation (17), down-projecting each term then adding.
+    CgaProjected,
+    /// Motor blending: the normalised weighted motor sum, scale blended geometrically.
+    Motor,
+    /// Log blending of the skin motors, exp(sum w log M).
+    MotorLog,
+}
+
+impl Backend {
+    pub fn method(self) -> BlendMethod {
+        match self {
+            Backend::Lbs => BlendMethod::Matrix,
+            Backend::LbsF32 => BlendMethod::MatrixF32,
+            Backend::Dqs => BlendMethod::DualQuaternion,
+            Backend::Cga => BlendMethod::Conformal,
+            Backend::CgaProjected => BlendMethod::ConformalProjected,
+            Backend::Motor => BlendMethod::MotorLinear,
+            Backend::MotorLog => BlendMethod::MotorLog,
+        }
+    }
+}
+
+#[derive(Args, Debug)]
+pub struct SkinArgs {
+    /// The rigged model: glTF 2.0 (.gltf, .glb), or a mesh (OBJ, OFF) with --skeleton and
+    /// --weights.
+    pub model: PathBuf,
+    /// libigl skeleton (TGF) of a mesh model.
+    #[arg(long, requires = "weights")]
+    pub skeleton: Option<PathBuf>,
+    /// libigl weights (DMAT, vertices x bones) of a mesh model.
+    #[arg(long, requires = "skeleton")]
+    pub weights: Option<PathBuf>,
+    /// The animation, by name or index (default: none, the rest pose).
+    #[arg(long)]
+    pub animation: Option<String>,
+    /// Time in seconds (clamped to the animation's keys).
+    #[arg(long, default_value_t = 0.0)]
+    pub time: f64,
+    /// A time range T0:T1:N: N frames written as OUT_0000.obj, OUT_0001.obj, ...
+    #[arg(long, value_parser = parse_range, conflicts_with = "time")]
+    pub range: Option<(f64, f64, usize)>,
+    /// The skinning backend.
+    #[arg(long, value_enum, default_value_t = Backend::Cga)]
+    pub backend: Backend,
+    /// A joint edit JOINT=MOTOR.json (joint name or skin joint index; the motor acts in the
+    /// joint's own frame: rotate or dilate about its pivot, translate along its axes).
+    #[arg(long = "edit", value_parser = parse_edit)]
+    pub edits: Vec<(String, PathBuf)>,
+    /// Generate N in-between frames from the unedited pose to the edited one (linear
+    /// blending), written as an OBJ sequence.
+    #[arg(long)]
+    pub in_betweens: Option<usize>,
+    #[command(flatten)]
+    pub out: OutputArgs,
+}
+
+fn parse_range(s: &str) -> Result<(f64, f64, usize), String> {
+    let p: Vec<&str> = s.split(':').collect();
+    let bad = || format!("{s:?}: expected T0:T1:N");
+    if p.len() != 3 {
+        return Err(bad());
+    }
+    let t0: f64 = p[0].parse().map_err(|_| bad())?;
+    let t1: f64 = p[1].parse().map_err(|_| bad())?;
+    let n: usize = p[2].parse().map_err(|_| bad())?;
+    if !(t0.is_finite() && t1.is_finite()) || n == 0 || n > 100_000 {
+        return Err(format!("{s:?}: times must be finite and N in 1..=100000"));
+    }
+    Ok((t0, t1, n))
+}
+
+fn parse_edit(s: &str) -> Result<(String, PathBuf), String> {
+    let (j, m) = s
+        .split_once('=')
+        .ok_or_else(|| format!("{s:?}: expected JOINT=MOTOR.json"))?;
+    Ok((j.to_string(), PathBuf::from(m)))
+}
+
+/// Read the rig: glTF by extension, else a libigl mesh with skeleton and weights.
+fn read_rig(a: &SkinArgs) -> Result<Rig> {
+    let ext = a
+        .model
+        .extension()
+        .and_then(|e| e.to_str())
+        .unwrap_or("")
+        .to_ascii_lowercase();
+    if ext == "gltf" || ext == "glb" {
+        return Ok(read_gltf(&a.model)?);
+    }
+    let (Some(s), Some(w)) = (&a.skeleton, &a.weights) else {
+        bail!(
+            "{}: a mesh model needs --skeleton and --weights (or give a .gltf/.glb)",
+            a.model.display()
+        );
+    };
+    let mesh = crate::output::read_mesh(&a.model)?;
+    let skeleton = deform::io::read_tgf(s)?;
+    let weights = deform::io::read_dmat(w)?;
+    libigl_rig(mesh, &skeleton, &weights)
+        .with_context(|| format!("{}: cannot rig", a.model.display()))
+}
+
+/// `OUT.obj` -> `OUT_0003.obj`.
+fn numbered(path: &Path, k: usize) -> PathBuf {
+    let stem = path.file_stem().map_or("frame".into(), |s| s.to_string_lossy().to_string());
+    path.with_file_name(format!("{stem}_{k:04}.obj"))
+}
+
+pub fn skin(a: &SkinArgs) -> Result<()> {
+    let mut inputs: Vec<&Path> = vec![a.model.as_path()];
+    inputs.extend(a.skeleton.as_deref());
+    inputs.extend(a.weights.as_deref());
+    inputs.extend(a.edits.iter().map(|(_, p)| p.as_path()));
+    let mut outputs = vec![a.out.output.as_path()];
+    outputs.extend(a.out.png.as_deref());
+    check_outputs(&inputs, &outputs)?;
+    let glb = a
+        .out
+        .output
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("glb"));
+    let t = Instant::now();
+    let rig = read_rig(a)?;
+    let load_ms = t.elapsed().as_secs_f64() * 1e3;
+    let animation = a
+        .animation
+        .as_deref()
+        .map(|n| rig.animation_index(n))
+        .transpose()?;
+    let mut edits = Vec::new();
+    for (joint, path) in &a.edits {
+        let j = rig.joint_index(joint)?;
+        let motor = parse_motor(&read_text(path)?, &path.display().to_string())?;
+        edits.push(JointEdit { joint: j, motor });
+    }
+    let method = a.backend.method();
+    let t = Instant::now();
+    let bound = Skinning::bind(&rig, method)?;
+    let bind_ms = t.elapsed().as_secs_f64() * 1e3;
+    let mut report = Report::new("skin", &rig.mesh);
+    report.add("backend", method.name());
+    report.add("joints", rig.joints.len());
+    report.add("animations", rig.animations.len());
+    report.add("renormalised_vertices", rig.report.renormalised_vertices);
+    for note in &rig.report.notes {
+        report.add("note", note.as_str());
+    }
+    report.add("load_ms", load_ms);
+    report.add("bind_ms", bind_ms);
+    // The frames: (time, edits) pairs.
+    let frames: Vec<(f64, Vec<JointEdit>)> = match (a.range, a.in_betweens) {
+        (Some(_), Some(_)) => bail!("--range and --in-betweens cannot be combined"),
+        (Some((t0, t1, n)), None) => (0..n)
+            .map(|k| {
+                let s = if n == 1 { 0.0 } else { k as f64 / (n - 1) as f64 };
+                (t0 + (t1 - t0) * s, edits.clone())
+            })
+            .collect(),
+        (None, Some(n)) => {
+            let steps: Vec<Vec<JointEdit>> = edits
+                .iter()
+                .map(|e| {
+                    in_betweens(e.motor, n.max(1))
+                        .into_iter()
+                        .map(|m| JointEdit { joint: e.joint, motor: m })
+                        .collect()
+                })
+                .collect();
+            (0..n.max(1))
+                .map(|k| (a.time, steps.iter().map(|s| s[k]).collect()))
+                .collect()
+        }
+        (None, None) => vec![(a.time, edits.clone())],
+    };
+    let mut posed = vec![DVec3::ZERO; rig.mesh.vertex_count()];
+    let mut pose_ms = 0.0;
+    let sequence = frames.len() > 1;
+    if glb && sequence {
+        bail!("a frame sequence is written as OBJ files, not .glb");
+    }
+    for (k, (time, frame_edits)) in frames.iter().enumerate() {
+        let pose = rig.pose(animation, *time, frame_edits)?;
+        let motors = pose.skin_motors()?;
+        pose_ms += time_pose(&bound, motors, &mut posed)?;
+        if let Some(i) = posed.iter().position(|p| !p.is_finite()) {
+            bail!("vertex {i}: skinning produced a non-finite position");
+        }
+        if !glb {
+            let path = if sequence { numbered(&a.out.output, k) } else { a.out.output.clone() };
+            write_obj(&path, &Mesh::new(posed.clone(), rig.mesh.triangles.clone()))?;
+        }
+    }
+    report.add("frames", frames.len());
+    report.add("pose_ms", pose_ms / frames.len() as f64);
+    if glb {
+        let pose = rig.pose(None, 0.0, &edits)?;
+        let options = GlbOptions {
+            node_transforms: Some(pose.locals.clone()),
+            without_animations: false,
+        };
+        write_glb(&rig, &options, &a.out.output)?;
+    }
+    report.add("output", a.out.output.display().to_string());
+    if let Some(png) = &a.out.png {
+        let rest = rig.pose(None, 0.0, &[])?;
+        let place = rest.globals[rig.primitives[0].node];
+        let rest_mesh = Mesh::new(
+            rig.mesh.positions.iter().map(|&p| place.transform_point3(p)).collect(),
+            rig.mesh.triangles.clone(),
+        );
+        let moved: Vec<f64> = posed
+            .iter()
+            .zip(&rest_mesh.positions)
+            .map(|(p, q)| p.distance(*q))
+            .collect();
+        let image = preview::before_after(
+            &rest_mesh,
+            &Mesh::new(posed, rig.mesh.triangles.clone()),
+            &moved,
+            30.0,
+            20.0,
+        )?;
+        write_png(png, &image)?;
+        report.add("png", png.display().to_string());
+    }
+    report.print(&a.out);
+    Ok(())
+}
