@@ -29,7 +29,12 @@ fn vec3s(v: &serde_json::Value) -> Vec<DVec3> {
         .expect("array")
         .iter()
         .map(|p| {
-            let c: Vec<f64> = p.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+            let c: Vec<f64> = p
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|x| x.as_f64().unwrap())
+                .collect();
             DVec3::new(c[0], c[1], c[2])
         })
         .collect()
@@ -37,11 +42,20 @@ fn vec3s(v: &serde_json::Value) -> Vec<DVec3> {
 
 fn max_dist(a: &[DVec3], b: &[DVec3]) -> f64 {
     assert_eq!(a.len(), b.len());
-    a.iter().zip(b).map(|(x, y)| x.distance(*y)).fold(0.0, f64::max)
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| x.distance(*y))
+        .fold(0.0, f64::max)
 }
 
 /// Skin `rig` at `(animation, t)` with `method`.
-fn skin(rig: &Rig, method: BlendMethod, animation: Option<usize>, t: f64, edits: &[JointEdit]) -> Vec<DVec3> {
+fn skin(
+    rig: &Rig,
+    method: BlendMethod,
+    animation: Option<usize>,
+    t: f64,
+    edits: &[JointEdit],
+) -> Vec<DVec3> {
     let bound = Skinning::bind(rig, method).unwrap();
     let pose = rig.pose(animation, t, edits).unwrap();
     let mut out = vec![DVec3::ZERO; rig.mesh.vertex_count()];
@@ -59,9 +73,9 @@ fn gltf_models_match_three_js() {
     for e in r["entries"].as_array().unwrap() {
         let model = e["model"].as_str().unwrap();
         let Some(rig) = gltf(model) else { return };
-        let anim = rig.animation_index(e["animation_name"].as_str().unwrap()).unwrap_or_else(|_| {
-            e["animation_index"].as_u64().unwrap() as usize
-        });
+        let anim = rig
+            .animation_index(e["animation_name"].as_str().unwrap())
+            .unwrap_or_else(|_| e["animation_index"].as_u64().unwrap() as usize);
         let t = e["time"].as_f64().unwrap();
         let diag = e["bbox_diag"].as_f64().unwrap();
         // three.js feeds SimpleSkin's non-unit rotation keys to its matrices as they are; this
@@ -72,10 +86,18 @@ fn gltf_models_match_three_js() {
         } else {
             vec3s(&e["positions"])
         };
-        for method in [BlendMethod::Matrix, BlendMethod::Conformal, BlendMethod::ConformalProjected] {
+        for method in [
+            BlendMethod::Matrix,
+            BlendMethod::Conformal,
+            BlendMethod::ConformalProjected,
+        ] {
             let got = skin(&rig, method, Some(anim), t, &[]);
             let err = max_dist(&got, &want) / diag;
-            assert!(err < 1e-5, "{model} t={t} {}: {err:e} of the diagonal", method.name());
+            assert!(
+                err < 1e-5,
+                "{model} t={t} {}: {err:e} of the diagonal",
+                method.name()
+            );
         }
         if !e["positions_spec_unit_quat_keys"].is_array() {
             let got = skin(&rig, BlendMethod::Matrix, Some(anim), t, &[]);
@@ -102,8 +124,18 @@ fn bones_of(r: &serde_json::Value) -> Vec<ScaledMotor> {
         .unwrap()
         .iter()
         .map(|b| {
-            let q: Vec<f64> = b["quat_wxyz"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
-            let t: Vec<f64> = b["translation"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+            let q: Vec<f64> = b["quat_wxyz"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|x| x.as_f64().unwrap())
+                .collect();
+            let t: Vec<f64> = b["translation"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|x| x.as_f64().unwrap())
+                .collect();
             ScaledMotor::from_scale_rotation_translation(
                 1.0,
                 DQuat::from_xyzw(q[1], q[2], q[3], q[0]),
@@ -124,7 +156,13 @@ fn libigl_lbs_and_dqs() {
             .as_array()
             .unwrap()
             .iter()
-            .map(|row| row.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect())
+            .map(|row| {
+                row.as_array()
+                    .unwrap()
+                    .iter()
+                    .map(|x| x.as_f64().unwrap())
+                    .collect()
+            })
             .collect();
         let m = keys.len();
         let influences = Influences {
@@ -175,13 +213,31 @@ fn bind_pose_reproduces_rest_mesh() {
             let b = Skinning::bind(rig, method).unwrap();
             let mut out = vec![DVec3::ZERO; rig.mesh.vertex_count()];
             b.pose(&identity, &mut out).unwrap();
-            let tol = if method == BlendMethod::MatrixF32 { 1e-6 } else { 1e-12 };
-            assert!(max_dist(&out, &rig.mesh.positions) / diag < tol, "{}", method.name());
+            let tol = if method == BlendMethod::MatrixF32 {
+                1e-6
+            } else {
+                1e-12
+            };
+            assert!(
+                max_dist(&out, &rig.mesh.positions) / diag < tol,
+                "{}",
+                method.name()
+            );
             b.pose(rest_pose.skin_motors().unwrap(), &mut out).unwrap();
             let place = rest_pose.globals[rig.primitives[0].node];
-            let want: Vec<DVec3> = rig.mesh.positions.iter().map(|&p| place.transform_point3(p)).collect();
+            let want: Vec<DVec3> = rig
+                .mesh
+                .positions
+                .iter()
+                .map(|&p| place.transform_point3(p))
+                .collect();
             let err = max_dist(&out, &want) / diag;
-            assert!(err < 1e-5, "{}: rest pose {}: {err:e}", rig.nodes[0].name, method.name());
+            assert!(
+                err < 1e-5,
+                "{}: rest pose {}: {err:e}",
+                rig.nodes[0].name,
+                method.name()
+            );
         }
     }
 }
@@ -196,12 +252,21 @@ fn rigid_motion_agrees_across_backends() {
         DVec3::new(3.0, -1.0, 0.25),
     );
     let keys = vec![m; 3];
-    let want: Vec<DVec3> = rig.mesh.positions.iter().map(|&p| m.transform_point(p)).collect();
+    let want: Vec<DVec3> = rig
+        .mesh
+        .positions
+        .iter()
+        .map(|&p| m.transform_point(p))
+        .collect();
     for method in BlendMethod::ALL {
         let b = Skinning::bind(&rig, method).unwrap();
         let mut out = vec![DVec3::ZERO; rig.mesh.vertex_count()];
         b.pose(&keys, &mut out).unwrap();
-        let tol = if method == BlendMethod::MatrixF32 { 1e-5 } else { 1e-9 };
+        let tol = if method == BlendMethod::MatrixF32 {
+            1e-5
+        } else {
+            1e-9
+        };
         assert!(max_dist(&out, &want) < tol, "{}", method.name());
     }
 }
@@ -219,28 +284,41 @@ fn candy_wrapper_volume() {
     let v0 = rig.mesh.volume();
     // Twist the last bone about its own axis by 180 degrees (in place).
     for bone in 0..skeleton.bones.len() {
-    let [a, b] = skeleton.bones[bone].map(|j| skeleton.joints[j as usize]);
-    let twist = ScaledMotor::from_scale_rotation_translation(1.0, DQuat::from_axis_angle((b - a).normalize(), std::f64::consts::PI * 0.999), DVec3::ZERO);
-    let about = ScaledMotor::from_scale_rotation_translation(1.0, DQuat::IDENTITY, a)
-        * twist
-        * ScaledMotor::from_scale_rotation_translation(1.0, DQuat::IDENTITY, -a);
-    let mut keys = vec![ScaledMotor::IDENTITY; skeleton.bones.len()];
-    keys[bone] = about;
-    let ratio = |method| {
-        let bnd = Skinning::bind(&rig, method).unwrap();
-        let mut out = vec![DVec3::ZERO; rig.mesh.vertex_count()];
-        bnd.pose(&keys, &mut out).unwrap();
-        deform::Mesh::new(out, rig.mesh.triangles.clone()).volume() / v0
-    };
-    let lbs = ratio(BlendMethod::Matrix);
-    let dqs = ratio(BlendMethod::DualQuaternion);
-    let motor = ratio(BlendMethod::MotorLinear);
-    let eq17 = ratio(BlendMethod::Conformal);
-    eprintln!("bone {bone} twisted: volume ratio lbs {lbs:.4} dqs {dqs:.4} motor {motor:.4} eq17 {eq17:.4}");
-    assert!(lbs < dqs.min(motor) - 0.01, "bone {bone}: LBS keeps {lbs}");
-    assert!(dqs > 0.99 && motor > 0.99, "bone {bone}: dqs {dqs} motor {motor}");
-    assert!((dqs - motor).abs() < 1e-9, "motor blending is dual-quaternion blending for rigid keys");
-    assert!((eq17 - lbs).abs() < 1e-9, "equation (17) is LBS for rigid keys");
+        let [a, b] = skeleton.bones[bone].map(|j| skeleton.joints[j as usize]);
+        let twist = ScaledMotor::from_scale_rotation_translation(
+            1.0,
+            DQuat::from_axis_angle((b - a).normalize(), std::f64::consts::PI * 0.999),
+            DVec3::ZERO,
+        );
+        let about = ScaledMotor::from_scale_rotation_translation(1.0, DQuat::IDENTITY, a)
+            * twist
+            * ScaledMotor::from_scale_rotation_translation(1.0, DQuat::IDENTITY, -a);
+        let mut keys = vec![ScaledMotor::IDENTITY; skeleton.bones.len()];
+        keys[bone] = about;
+        let ratio = |method| {
+            let bnd = Skinning::bind(&rig, method).unwrap();
+            let mut out = vec![DVec3::ZERO; rig.mesh.vertex_count()];
+            bnd.pose(&keys, &mut out).unwrap();
+            deform::Mesh::new(out, rig.mesh.triangles.clone()).volume() / v0
+        };
+        let lbs = ratio(BlendMethod::Matrix);
+        let dqs = ratio(BlendMethod::DualQuaternion);
+        let motor = ratio(BlendMethod::MotorLinear);
+        let eq17 = ratio(BlendMethod::Conformal);
+        eprintln!("bone {bone} twisted: volume ratio lbs {lbs:.4} dqs {dqs:.4} motor {motor:.4} eq17 {eq17:.4}");
+        assert!(lbs < dqs.min(motor) - 0.01, "bone {bone}: LBS keeps {lbs}");
+        assert!(
+            dqs > 0.99 && motor > 0.99,
+            "bone {bone}: dqs {dqs} motor {motor}"
+        );
+        assert!(
+            (dqs - motor).abs() < 1e-9,
+            "motor blending is dual-quaternion blending for rigid keys"
+        );
+        assert!(
+            (eq17 - lbs).abs() < 1e-9,
+            "equation (17) is LBS for rigid keys"
+        );
     }
 }
 
@@ -265,7 +343,9 @@ fn elephant_animation() {
             .map(|i| {
                 rig.influences
                     .row(i)
-                    .map(|(j, w)| w * anim.frames[f][j as usize].transform_point3(rig.mesh.positions[i]))
+                    .map(|(j, w)| {
+                        w * anim.frames[f][j as usize].transform_point3(rig.mesh.positions[i])
+                    })
                     .sum()
             })
             .collect();
@@ -275,7 +355,9 @@ fn elephant_animation() {
             b.pose(&keys, &mut out).unwrap();
             let tol = match method {
                 BlendMethod::MatrixF32 => 1e-6,
-                BlendMethod::Matrix | BlendMethod::Conformal | BlendMethod::ConformalProjected => 1e-9,
+                BlendMethod::Matrix | BlendMethod::Conformal | BlendMethod::ConformalProjected => {
+                    1e-9
+                }
                 _ => 0.05,
             };
             let err = max_dist(&out, &want) / diag;
@@ -317,13 +399,34 @@ fn glb_round_trip() {
 /// equation (17) against dual-quaternion skinning, l-infinity over the bounding-box diagonal.
 #[test]
 fn fig2_neck_edits() {
-    let Some(rig) = gltf("CesiumMan.glb") else { return };
-    let neck = rig.joint_index("Skeleton_neck_joint_1").expect("CesiumMan has a neck joint");
+    let Some(rig) = gltf("CesiumMan.glb") else {
+        return;
+    };
+    let neck = rig
+        .joint_index("Skeleton_neck_joint_1")
+        .expect("CesiumMan has a neck joint");
     let diag = rig.mesh.bounding_box().unwrap().diagonal();
     let edits = [
-        ("rotation", ScaledMotor::from_scale_rotation_translation(1.0, DQuat::from_rotation_x(0.3), DVec3::ZERO)),
-        ("dilation", ScaledMotor::from_scale_rotation_translation(1.2, DQuat::IDENTITY, DVec3::ZERO)),
-        ("translation", ScaledMotor::from_scale_rotation_translation(1.0, DQuat::IDENTITY, DVec3::new(0.0, 0.05, 0.0))),
+        (
+            "rotation",
+            ScaledMotor::from_scale_rotation_translation(
+                1.0,
+                DQuat::from_rotation_x(0.3),
+                DVec3::ZERO,
+            ),
+        ),
+        (
+            "dilation",
+            ScaledMotor::from_scale_rotation_translation(1.2, DQuat::IDENTITY, DVec3::ZERO),
+        ),
+        (
+            "translation",
+            ScaledMotor::from_scale_rotation_translation(
+                1.0,
+                DQuat::IDENTITY,
+                DVec3::new(0.0, 0.05, 0.0),
+            ),
+        ),
     ];
     for (what, motor) in edits {
         let e = [JointEdit { joint: neck, motor }];
@@ -332,8 +435,313 @@ fn fig2_neck_edits() {
         let rest = skin(&rig, BlendMethod::Conformal, None, 0.0, &[]);
         let moved = max_dist(&eq17, &rest) / diag;
         let diff = max_dist(&eq17, &dqs) / diag;
-        eprintln!("Fig. 2 {what}: moved {:.3} %, eq17 vs DQS {:.5} %", 100.0 * moved, 100.0 * diff);
+        eprintln!(
+            "Fig. 2 {what}: moved {:.3} %, eq17 vs DQS {:.5} %",
+            100.0 * moved,
+            100.0 * diff
+        );
         assert!(moved > 1e-3, "{what} must move the head");
-        assert!(diff < 0.05 * moved.max(1e-3) + 1e-12 || diff < 0.01, "{what}: {diff}");
+        assert!(
+            diff < 0.05 * moved.max(1e-3) + 1e-12 || diff < 0.01,
+            "{what}: {diff}"
+        );
+    }
+}
+
+/// SimpleSkin's JSON, edited by `f`, parsed again.
+fn simple_skin_edited(
+    f: impl FnOnce(&mut serde_json::Value),
+) -> Option<Result<Rig, deform::skinning::SkinError>> {
+    let path = data_dir()?.join("gltf/SimpleSkin.gltf");
+    let mut doc: serde_json::Value = serde_json::from_slice(&std::fs::read(path).unwrap()).unwrap();
+    f(&mut doc);
+    Some(parse_gltf(
+        &serde_json::to_vec(&doc).unwrap(),
+        "edited",
+        None,
+    ))
+}
+
+/// Bad input: typed errors or documented handling, never a panic.
+#[test]
+fn bad_gltf_input() {
+    use deform::skinning::SkinError;
+    let Some(dir) = data_dir() else { return };
+    // Truncated and corrupt files, at many lengths.
+    for name in ["Fox.glb", "SimpleSkin.gltf"] {
+        let bytes = std::fs::read(dir.join("gltf").join(name)).unwrap();
+        for cut in (0..bytes.len()).step_by(bytes.len() / 97 + 1) {
+            assert!(
+                parse_gltf(&bytes[..cut], name, None).is_err(),
+                "{name} cut at {cut}"
+            );
+        }
+        let mut flipped = bytes.clone();
+        for k in (0..flipped.len()).step_by(131) {
+            flipped[k] ^= 0x5a;
+            let _ = parse_gltf(&flipped, name, None); // any result, no panic
+        }
+    }
+    // Missing inverse bind matrices: identity, as the specification says.
+    let r = simple_skin_edited(|d| {
+        d["skins"][0]
+            .as_object_mut()
+            .unwrap()
+            .remove("inverseBindMatrices");
+    })
+    .unwrap()
+    .unwrap();
+    assert!(r.inverse_bind.iter().all(|m| *m == glam::DMat4::IDENTITY));
+    // An animation targeting a missing node: the glTF checks refuse it.
+    let e = simple_skin_edited(|d| d["animations"][0]["channels"][0]["target"]["node"] = 99.into())
+        .unwrap();
+    assert!(matches!(e, Err(SkinError::Gltf { .. })), "{e:?}");
+    // A skin joint that is not a node.
+    let e = simple_skin_edited(|d| d["skins"][0]["joints"][1] = 42.into()).unwrap();
+    assert!(matches!(e, Err(SkinError::Gltf { .. })), "{e:?}");
+    // A buffer shorter than declared.
+    let e = simple_skin_edited(|d| {
+        let uri = d["buffers"][0]["uri"].as_str().unwrap().to_string();
+        d["buffers"][0]["uri"] = uri[..uri.len() - 40].into();
+    })
+    .unwrap();
+    assert!(matches!(e, Err(SkinError::Data { .. })), "{e:?}");
+    // An accessor reaching past its view.
+    let e = simple_skin_edited(|d| {
+        let c = d["accessors"][0]["count"].as_u64().unwrap();
+        d["accessors"][0]["count"] = (c + 1000).into();
+    })
+    .unwrap();
+    assert!(e.is_err(), "{e:?}");
+}
+
+/// Joint indices out of range, bad weights, weights that do not sum to 1, non-finite keys,
+/// non-similarity transforms asked for as motors.
+#[test]
+fn bad_rig_input() {
+    use deform::skinning::{Animation, Channel, Interpolation, Property, SkinError};
+    let rig = procedural_arm(6, 4);
+    let rebuild = |f: &dyn Fn(&mut deform::skinning::Influences)| {
+        let mut inf = rig.influences.clone();
+        f(&mut inf);
+        Rig::new(
+            rig.nodes.clone(),
+            rig.joints.clone(),
+            rig.inverse_bind.clone(),
+            rig.mesh.clone(),
+            inf,
+            rig.primitives.clone(),
+            rig.animations.clone(),
+            Default::default(),
+        )
+    };
+    let e = rebuild(&|i| i.joints[5] = 7).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            SkinError::JointOutOfRange {
+                vertex: 1,
+                joint: 7,
+                ..
+            }
+        ),
+        "{e:?}"
+    );
+    let e = rebuild(&|i| i.weights[2] = f64::NAN).unwrap_err();
+    assert!(matches!(e, SkinError::BadWeight { vertex: 0, .. }), "{e:?}");
+    let e = rebuild(&|i| i.weights[2] = -0.5).unwrap_err();
+    assert!(matches!(e, SkinError::BadWeight { .. }), "{e:?}");
+    // Weights scaled by 2 on 3 vertices: normalised and counted.
+    let r = rebuild(&|i| (0..12).for_each(|k| i.weights[k] *= 2.0)).unwrap();
+    assert_eq!(r.report.renormalised_vertices, 3);
+    for v in 0..r.mesh.vertex_count() {
+        let s: f64 = r.influences.row(v).map(|(_, w)| w).sum();
+        assert!((s - 1.0).abs() < 1e-12);
+    }
+    // Keyframes: non-finite values and times that do not increase.
+    let bad = Channel::new(
+        0,
+        Property::Translation,
+        Interpolation::Linear,
+        vec![0.0, 1.0],
+        vec![glam::DVec4::ZERO, glam::DVec4::splat(f64::INFINITY)],
+        "c",
+    );
+    assert!(matches!(bad, Err(SkinError::BadTransform { .. })));
+    let bad = Channel::new(
+        0,
+        Property::Translation,
+        Interpolation::Linear,
+        vec![1.0, 1.0],
+        vec![glam::DVec4::ZERO; 2],
+        "c",
+    );
+    assert!(matches!(bad, Err(SkinError::BadTransform { .. })));
+    let bad = Channel::new(
+        0,
+        Property::Rotation,
+        Interpolation::Step,
+        vec![0.0],
+        vec![glam::DVec4::ZERO],
+        "c",
+    );
+    assert!(
+        matches!(bad, Err(SkinError::BadTransform { .. })),
+        "a zero quaternion key"
+    );
+    // A non-uniform scale on a joint: matrices skin it, motors say why they cannot.
+    let mut squash = rig.clone();
+    squash.animations = vec![Animation {
+        name: "squash".into(),
+        channels: vec![Channel::new(
+            1,
+            Property::Scale,
+            Interpolation::Step,
+            vec![0.0],
+            vec![glam::DVec4::new(1.0, 0.5, 1.0, 0.0)],
+            "s",
+        )
+        .unwrap()],
+    }];
+    let pose = squash.pose(Some(0), 0.0, &[]).unwrap();
+    assert!(matches!(
+        pose.skin_motors(),
+        Err(SkinError::NotSimilarity { .. })
+    ));
+    assert!(squash.pose(Some(3), 0.0, &[]).is_err());
+    assert!(squash.joint_index("no such joint").is_err());
+    assert_eq!(squash.joint_index("elbow").unwrap(), 1);
+}
+
+/// STEP holds, CUBICSPLINE follows the Hermite form with tangents scaled by the interval,
+/// LINEAR rotations take the shortest path; times clamp to the keys.
+#[test]
+fn samplers_closed_forms() {
+    use deform::skinning::{Channel, Interpolation, Property};
+    use glam::DVec4;
+    let step = Channel::new(
+        0,
+        Property::Translation,
+        Interpolation::Step,
+        vec![1.0, 2.0],
+        vec![DVec4::X, DVec4::Y],
+        "s",
+    )
+    .unwrap();
+    assert_eq!(step.sample(0.0), DVec4::X);
+    assert_eq!(step.sample(1.99), DVec4::X);
+    assert_eq!(step.sample(2.0), DVec4::Y);
+    assert_eq!(step.sample(9.0), DVec4::Y);
+    // p(s) = 2s^3 - 3s^2 + 1 for value 1 -> 0 with out-tangent 0 and in-tangent 0, plus the
+    // tangent terms: out-tangent m0 = 1 per second over an interval of 2 s.
+    let cubic = Channel::new(
+        0,
+        Property::Translation,
+        Interpolation::CubicSpline,
+        vec![0.0, 2.0],
+        vec![
+            DVec4::ZERO,
+            DVec4::X,
+            DVec4::X,
+            DVec4::ZERO,
+            DVec4::ZERO,
+            DVec4::ZERO,
+        ],
+        "c",
+    )
+    .unwrap();
+    for s in [0.0, 0.25, 0.5, 0.9] {
+        let want = (2.0 * s * s * s - 3.0 * s * s + 1.0) + 2.0 * (s * s * s - 2.0 * s * s + s);
+        assert!((cubic.sample(2.0 * s).x - want).abs() < 1e-14, "s = {s}");
+    }
+    // Shortest path: keys q and -q' (nearly the same rotation) interpolate without a flip.
+    let a = DQuat::from_rotation_z(0.1);
+    let b = -DQuat::from_rotation_z(0.3);
+    let lin = Channel::new(
+        0,
+        Property::Rotation,
+        Interpolation::Linear,
+        vec![0.0, 1.0],
+        vec![DVec4::from(a), DVec4::from(b)],
+        "r",
+    )
+    .unwrap();
+    let mid = DQuat::from_vec4(lin.sample(0.5));
+    assert!(mid.angle_between(DQuat::from_rotation_z(0.2)) < 1e-12);
+}
+
+/// The CLI: glTF and libigl rigs, OBJ and .glb out (validated in CI), exit code 2 on bad input.
+#[test]
+fn skin_cli() {
+    use std::process::Command;
+    let Some(dir) = data_dir() else { return };
+    let out = gltf_out();
+    let exe = env!("CARGO_BIN_EXE_deform");
+    let edit = out.join("neck.json");
+    std::fs::write(
+        &edit,
+        r#"{"rotate": {"axis": [1, 0, 0], "degrees": 20}, "scale": 1.1}"#,
+    )
+    .unwrap();
+    let run = |args: &[&str]| Command::new(exe).args(args).output().unwrap();
+    let man = dir.join("gltf/CesiumMan.glb");
+    let glb = out.join("cesium-edited.glb");
+    let o = run(&[
+        "skin",
+        man.to_str().unwrap(),
+        "--edit",
+        &format!("Skeleton_neck_joint_1={}", edit.display()),
+        "-o",
+        glb.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let back = read_gltf(&glb).unwrap();
+    assert_eq!(back.animations.len(), 1);
+    let obj = out.join("fox.obj");
+    let o = run(&[
+        "skin",
+        dir.join("gltf/Fox.glb").to_str().unwrap(),
+        "--animation",
+        "Walk",
+        "--time",
+        "0.35",
+        "--backend",
+        "dqs",
+        "-o",
+        obj.to_str().unwrap(),
+        "-q",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let m = deform::io::read_obj(&obj).unwrap();
+    assert_eq!(m.vertex_count(), 1728);
+    // Bad input: exit code 2 with a message.
+    let trunc = out.join("truncated.bin");
+    std::fs::write(&trunc, &std::fs::read(&man).unwrap()[..500]).unwrap();
+    let trunc_glb = out.join("truncated-input.glb.bin");
+    std::fs::rename(&trunc, &trunc_glb).unwrap();
+    for args in [
+        vec!["skin", trunc_glb.to_str().unwrap(), "-o", "/tmp/never.obj"],
+        vec![
+            "skin",
+            man.to_str().unwrap(),
+            "--animation",
+            "nope",
+            "-o",
+            "/tmp/never.obj",
+        ],
+        vec![
+            "skin",
+            man.to_str().unwrap(),
+            "--edit",
+            "nobody=x.json",
+            "-o",
+            "/tmp/never.obj",
+        ],
+        vec!["skin", man.to_str().unwrap(), "-o", man.to_str().unwrap()],
+    ] {
+        let o = run(&args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}");
+        assert!(!o.stderr.is_empty());
     }
 }

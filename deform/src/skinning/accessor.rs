@@ -31,21 +31,24 @@ impl Buffers {
                     .ok_or_else(|| err(format!("buffer {}: no binary chunk", b.index())))?
                     .to_vec(),
                 Source::Uri(uri) if uri.starts_with("data:") => {
-                    let payload = uri
-                        .split_once(";base64,")
-                        .map(|(_, p)| p)
-                        .ok_or_else(|| err(format!("buffer {}: data URI is not base64", b.index())))?;
+                    let payload = uri.split_once(";base64,").map(|(_, p)| p).ok_or_else(|| {
+                        err(format!("buffer {}: data URI is not base64", b.index()))
+                    })?;
                     base64::engine::general_purpose::STANDARD
                         .decode(payload.trim())
                         .map_err(|e| err(format!("buffer {}: bad base64: {e}", b.index())))?
                 }
                 Source::Uri(uri) => {
                     let base = base.ok_or_else(|| {
-                        err(format!("buffer {}: external file {uri:?} without a base folder", b.index()))
+                        err(format!(
+                            "buffer {}: external file {uri:?} without a base folder",
+                            b.index()
+                        ))
                     })?;
                     let path = base.join(uri);
-                    std::fs::read(&path)
-                        .map_err(|e| err(format!("buffer {}: {}: {e}", b.index(), path.display())))?
+                    std::fs::read(&path).map_err(|e| {
+                        err(format!("buffer {}: {}: {e}", b.index(), path.display()))
+                    })?
                 }
             };
             if bytes.len() < b.length() {
@@ -79,8 +82,7 @@ impl Buffers {
             });
         }
         let dim = a.dimensions().multiplicity();
-        if matches!(a.dimensions(), Dimensions::Mat2 | Dimensions::Mat3)
-            && a.data_type().size() < 4
+        if matches!(a.dimensions(), Dimensions::Mat2 | Dimensions::Mat3) && a.data_type().size() < 4
         {
             return Err(SkinError::Unsupported {
                 name: name.to_string(),
@@ -96,7 +98,9 @@ impl Buffers {
         let elem = size * dim;
         let stride = view.stride().unwrap_or(elem);
         if stride < elem {
-            return Err(err(format!("stride {stride} below the element size {elem}")));
+            return Err(err(format!(
+                "stride {stride} below the element size {elem}"
+            )));
         }
         let buffer = self
             .data
@@ -172,4 +176,108 @@ fn component(t: DataType, b: &[u8], normalized: bool) -> f64 {
         DataType::U32 => u32::from_le_bytes([b[0], b[1], b[2], b[3]]) as f64,
         DataType::F32 => f32::from_le_bytes([b[0], b[1], b[2], b[3]]) as f64,
     }
+}
+
+/// Check every index this crate follows (nodes, meshes, skins, accessors, views, buffers,
+/// animation samplers and targets) and every enum it reads: the `gltf` crate's own checks
+/// miss some (an animation targeting a missing node), and its accessors then panic.
+pub(crate) fn check_indices(root: &gltf::json::Root) -> Result<(), String> {
+    use gltf::json::validation::Checked;
+    let ok = |what: String, i: usize, n: usize| {
+        if i < n {
+            Ok(())
+        } else {
+            Err(format!(
+                "{what} refers to index {i}, past the {n} there are"
+            ))
+        }
+    };
+    let (nodes, meshes, skins) = (root.nodes.len(), root.meshes.len(), root.skins.len());
+    let (accessors, views, buffers) = (
+        root.accessors.len(),
+        root.buffer_views.len(),
+        root.buffers.len(),
+    );
+    for (i, v) in root.buffer_views.iter().enumerate() {
+        ok(
+            format!("bufferViews[{i}].buffer"),
+            v.buffer.value(),
+            buffers,
+        )?;
+    }
+    for (i, a) in root.accessors.iter().enumerate() {
+        if let Some(v) = a.buffer_view {
+            ok(format!("accessors[{i}].bufferView"), v.value(), views)?;
+        }
+    }
+    for (i, n) in root.nodes.iter().enumerate() {
+        for c in n.children.iter().flatten() {
+            ok(format!("nodes[{i}].children"), c.value(), nodes)?;
+        }
+        if let Some(m) = n.mesh {
+            ok(format!("nodes[{i}].mesh"), m.value(), meshes)?;
+        }
+        if let Some(s) = n.skin {
+            ok(format!("nodes[{i}].skin"), s.value(), skins)?;
+        }
+    }
+    for (i, s) in root.skins.iter().enumerate() {
+        for j in &s.joints {
+            ok(format!("skins[{i}].joints"), j.value(), nodes)?;
+        }
+        if let Some(a) = s.inverse_bind_matrices {
+            ok(
+                format!("skins[{i}].inverseBindMatrices"),
+                a.value(),
+                accessors,
+            )?;
+        }
+    }
+    for (i, m) in root.meshes.iter().enumerate() {
+        for (k, p) in m.primitives.iter().enumerate() {
+            for a in p.attributes.values().chain(p.indices.as_ref()) {
+                ok(format!("meshes[{i}].primitives[{k}]"), a.value(), accessors)?;
+            }
+            if matches!(p.mode, Checked::Invalid) {
+                return Err(format!("meshes[{i}].primitives[{k}].mode is invalid"));
+            }
+        }
+    }
+    for (i, a) in root.animations.iter().enumerate() {
+        for (k, s) in a.samplers.iter().enumerate() {
+            ok(
+                format!("animations[{i}].samplers[{k}].input"),
+                s.input.value(),
+                accessors,
+            )?;
+            ok(
+                format!("animations[{i}].samplers[{k}].output"),
+                s.output.value(),
+                accessors,
+            )?;
+            if matches!(s.interpolation, Checked::Invalid) {
+                return Err(format!(
+                    "animations[{i}].samplers[{k}].interpolation is invalid"
+                ));
+            }
+        }
+        for (k, c) in a.channels.iter().enumerate() {
+            ok(
+                format!("animations[{i}].channels[{k}].sampler"),
+                c.sampler.value(),
+                a.samplers.len(),
+            )?;
+            ok(
+                format!("animations[{i}].channels[{k}].target.node"),
+                c.target.node.value(),
+                nodes,
+            )?;
+            if matches!(c.target.path, Checked::Invalid) {
+                return Err(format!(
+                    "animations[{i}].channels[{k}].target.path is invalid"
+                ));
+            }
+        }
+    }
+    Ok(())
 }

@@ -99,7 +99,11 @@ impl Channel {
         if let Some(k) = times.windows(2).position(|w| w[1] <= w[0]) {
             return Err(bad(format!("key {}: times do not increase", k + 1)));
         }
-        let per_key = if interpolation == Interpolation::CubicSpline { 3 } else { 1 };
+        let per_key = if interpolation == Interpolation::CubicSpline {
+            3
+        } else {
+            1
+        };
         if values.len() != times.len() * per_key {
             return Err(bad(format!(
                 "{} values for {} keys",
@@ -116,7 +120,10 @@ impl Channel {
                 if is_value {
                     let n = v.length();
                     if !(n > 1e-12) {
-                        return Err(bad(format!("key {}: zero rotation quaternion", k / per_key)));
+                        return Err(bad(format!(
+                            "key {}: zero rotation quaternion",
+                            k / per_key
+                        )));
                     }
                     *v /= n;
                 }

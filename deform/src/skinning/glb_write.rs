@@ -47,7 +47,8 @@ impl Bin {
         while self.data.len() % 4 != 0 {
             self.data.push(0);
         }
-        let mut view = json!({"buffer": 0, "byteOffset": self.data.len(), "byteLength": bytes.len()});
+        let mut view =
+            json!({"buffer": 0, "byteOffset": self.data.len(), "byteLength": bytes.len()});
         if let Some(t) = target {
             view["target"] = json!(t);
         }
@@ -60,7 +61,14 @@ impl Bin {
     }
 
     /// `f32` elements of `dim` components (with min/max when `bounds`).
-    fn floats(&mut self, v: &[f32], dim: usize, kind: &str, target: Option<u32>, bounds: bool) -> usize {
+    fn floats(
+        &mut self,
+        v: &[f32],
+        dim: usize,
+        kind: &str,
+        target: Option<u32>,
+        bounds: bool,
+    ) -> usize {
         let bytes: Vec<u8> = v.iter().flat_map(|x| x.to_le_bytes()).collect();
         let mut a = json!({"componentType": 5126, "count": v.len() / dim, "type": kind});
         if bounds {
@@ -153,7 +161,8 @@ pub fn glb_bytes(rig: &Rig, options: &GlbOptions) -> Result<Vec<u8>> {
             .flat_map(|x| x.as_vec3().to_array())
             .collect();
         let position = bin.floats(&pos, 3, "VEC3", Some(34962), true);
-        let idx: Vec<u8> = rig.mesh.triangles[p.triangle_offset..p.triangle_offset + p.triangle_count]
+        let idx: Vec<u8> = rig.mesh.triangles
+            [p.triangle_offset..p.triangle_offset + p.triangle_count]
             .iter()
             .flatten()
             .flat_map(|&i| (i - p.vertex_offset as u32).to_le_bytes())
@@ -178,7 +187,8 @@ pub fn glb_bytes(rig: &Rig, options: &GlbOptions) -> Result<Vec<u8>> {
                 Some(34962),
                 json!({"componentType": 5123, "count": p.vertex_count, "type": "VEC4"})
             ));
-            attributes[format!("WEIGHTS_{set}")] = json!(bin.floats(&w, 4, "VEC4", Some(34962), false));
+            attributes[format!("WEIGHTS_{set}")] =
+                json!(bin.floats(&w, 4, "VEC4", Some(34962), false));
         }
         primitives.push(json!({"attributes": attributes, "indices": indices, "mode": 4}));
     }
@@ -268,7 +278,8 @@ pub fn glb_bytes(rig: &Rig, options: &GlbOptions) -> Result<Vec<u8>> {
     if !animations.is_empty() {
         doc["animations"] = json!(animations);
     }
-    let mut text = serde_json::to_vec(&doc).map_err(|e| crate::Error::InvalidArgument(e.to_string()))?;
+    let mut text =
+        serde_json::to_vec(&doc).map_err(|e| crate::Error::InvalidArgument(e.to_string()))?;
     while text.len() % 4 != 0 {
         text.push(b' ');
     }

@@ -50,6 +50,10 @@ pub fn parse_gltf(bytes: &[u8], name: &str, base: Option<&Path>) -> Result<Rig, 
         name: name.to_string(),
         message: e.to_string(),
     })?;
+    super::accessor::check_indices(gltf.document.as_json()).map_err(|message| SkinError::Gltf {
+        name: name.to_string(),
+        message,
+    })?;
     let buffers = Buffers::load(&gltf.document, gltf.blob.as_deref(), base, name)?;
     let doc = &gltf.document;
     let mut report = LoadReport::default();
@@ -80,8 +84,14 @@ pub fn parse_gltf(bytes: &[u8], name: &str, base: Option<&Path>) -> Result<Rig, 
     let mut influences = Influences::default();
     let mut primitives = Vec::new();
     for (mesh_index, prim_index, node) in instances {
-        let m = doc.meshes().nth(mesh_index).expect("index from the document");
-        let p = m.primitives().nth(prim_index).expect("index from the document");
+        let m = doc
+            .meshes()
+            .nth(mesh_index)
+            .expect("index from the document");
+        let p = m
+            .primitives()
+            .nth(prim_index)
+            .expect("index from the document");
         let info = read_primitive(&p, &buffers, name, &mut mesh, &mut influences)?;
         primitives.push(PrimitiveInfo {
             node,
@@ -173,9 +183,11 @@ fn skinned_primitives<'a>(
     for n in doc.nodes() {
         let Some(m) = n.mesh() else { continue };
         let Some(s) = n.skin() else {
-            report
-                .notes
-                .push(format!("node {}: mesh {} has no skin (ignored)", n.index(), m.index()));
+            report.notes.push(format!(
+                "node {}: mesh {} has no skin (ignored)",
+                n.index(),
+                m.index()
+            ));
             continue;
         };
         for p in m.primitives() {
@@ -193,7 +205,9 @@ fn skinned_primitives<'a>(
     }
     uses.sort_unstable();
     let Some(&(_, _, _, skin)) = uses.iter().min_by_key(|u| u.3) else {
-        return Err(SkinError::NoSkin(format!("{name}: no skinned triangle mesh")));
+        return Err(SkinError::NoSkin(format!(
+            "{name}: no skinned triangle mesh"
+        )));
     };
     let skin = doc.skins().nth(skin).expect("index from the document");
     let others = uses.iter().filter(|u| u.3 != skin.index()).count();
@@ -234,25 +248,40 @@ fn read_primitive(
     let count = v.len() / 3;
     let positions: Vec<DVec3> = v.chunks_exact(3).map(DVec3::from_slice).collect();
     if let Some(i) = positions.iter().position(|x| !x.is_finite()) {
-        return Err(data(format!("vertex {}: position is not finite", offset + i)));
+        return Err(data(format!(
+            "vertex {}: position is not finite",
+            offset + i
+        )));
     }
     let indices: Vec<u32> = match p.indices() {
-        Some(a) => buffers.read(&a, name)?.0.iter().map(|&x| x as u32).collect(),
+        Some(a) => buffers
+            .read(&a, name)?
+            .0
+            .iter()
+            .map(|&x| x as u32)
+            .collect(),
         None => (0..count as u32).collect(),
     };
     if indices.len() % 3 != 0 {
-        return Err(data(format!("{} indices: not whole triangles", indices.len())));
+        return Err(data(format!(
+            "{} indices: not whole triangles",
+            indices.len()
+        )));
     }
     if let Some(&i) = indices.iter().find(|&&i| i as usize >= count) {
-        return Err(data(format!("index {i} past the primitive's {count} vertices")));
+        return Err(data(format!(
+            "index {i} past the primitive's {count} vertices"
+        )));
     }
     let triangle_offset = mesh.triangles.len();
     mesh.positions.extend(positions);
-    mesh.triangles.extend(
-        indices
-            .chunks_exact(3)
-            .map(|t| [t[0] + offset as u32, t[1] + offset as u32, t[2] + offset as u32]),
-    );
+    mesh.triangles.extend(indices.chunks_exact(3).map(|t| {
+        [
+            t[0] + offset as u32,
+            t[1] + offset as u32,
+            t[2] + offset as u32,
+        ]
+    }));
     let sets: Vec<(Vec<f64>, Vec<f64>)> = (0..2)
         .map_while(|s| {
             let j = p.get(&gltf::Semantic::Joints(s))?;
@@ -324,9 +353,9 @@ fn read_animations(
                 gltf::animation::Property::Rotation => Property::Rotation,
                 gltf::animation::Property::Scale => Property::Scale,
                 gltf::animation::Property::MorphTargetWeights => {
-                    report
-                        .notes
-                        .push(format!("{what}: morph target weights ignored (unsupported)"));
+                    report.notes.push(format!(
+                        "{what}: morph target weights ignored (unsupported)"
+                    ));
                     continue;
                 }
             };

@@ -117,10 +117,12 @@ impl Rig {
             }
         }
         pose.skin_matrices.clear();
-        pose.skin_matrices
-            .extend(self.joints.iter().zip(&self.inverse_bind).map(|(&j, ibm)| {
-                DAffine3::from_mat4(pose.globals[j] * *ibm)
-            }));
+        pose.skin_matrices.extend(
+            self.joints
+                .iter()
+                .zip(&self.inverse_bind)
+                .map(|(&j, ibm)| DAffine3::from_mat4(pose.globals[j] * *ibm)),
+        );
         pose.motors.clear();
         if pose.motor_error.is_none() {
             for (k, &j) in self.joints.iter().enumerate() {

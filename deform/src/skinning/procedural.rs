@@ -51,7 +51,11 @@ pub fn procedural_arm(sides: usize, rings: usize) -> Rig {
         Property::Rotation,
         Interpolation::Linear,
         vec![0.0, 1.0, 2.0],
-        vec![rot(DVec3::Z, 0.0), rot(DVec3::Z, 60.0), rot(DVec3::Z, 100.0)],
+        vec![
+            rot(DVec3::Z, 0.0),
+            rot(DVec3::Z, 60.0),
+            rot(DVec3::Z, 100.0),
+        ],
         "bend elbow",
     );
     let zero = DVec4::ZERO;
@@ -60,7 +64,14 @@ pub fn procedural_arm(sides: usize, rings: usize) -> Rig {
         Property::Rotation,
         Interpolation::CubicSpline,
         vec![0.0, 2.0],
-        vec![zero, rot(DVec3::X, 0.0), zero, zero, rot(DVec3::X, 90.0), zero],
+        vec![
+            zero,
+            rot(DVec3::X, 0.0),
+            zero,
+            zero,
+            rot(DVec3::X, 90.0),
+            zero,
+        ],
         "twist wrist",
     );
     let lift = Channel::new(

@@ -60,7 +60,11 @@ impl Trs {
             rotation: rotation.normalize(),
             scale,
         };
-        let norm = m.abs().to_cols_array().iter().fold(0.0f64, |a, &b| a.max(b));
+        let norm = m
+            .abs()
+            .to_cols_array()
+            .iter()
+            .fold(0.0f64, |a, &b| a.max(b));
         let back = trs.matrix();
         let err = (back - *m)
             .abs()
@@ -71,7 +75,9 @@ impl Trs {
             return Err(bad("singular (zero scale)"));
         }
         if err > 1e-6 * norm.max(1.0) {
-            return Err(bad("not a translation * rotation * scale (shear or projection)"));
+            return Err(bad(
+                "not a translation * rotation * scale (shear or projection)",
+            ));
         }
         Ok(trs)
     }
@@ -90,16 +96,17 @@ impl Trs {
     /// # Errors
     /// [`SkinError::NotSimilarity`] for a non-uniform or negative scale.
     pub fn motor(&self, what: &str) -> Result<ScaledMotor, SkinError> {
-        let s = self.uniform_scale().ok_or_else(|| SkinError::NotSimilarity {
-            what: what.to_string(),
-            message: format!("scale {:?}", self.scale),
-        })?;
-        ScaledMotor::try_from_scale_rotation_translation(s, self.rotation, self.translation).map_err(
-            |e| SkinError::NotSimilarity {
+        let s = self
+            .uniform_scale()
+            .ok_or_else(|| SkinError::NotSimilarity {
+                what: what.to_string(),
+                message: format!("scale {:?}", self.scale),
+            })?;
+        ScaledMotor::try_from_scale_rotation_translation(s, self.rotation, self.translation)
+            .map_err(|e| SkinError::NotSimilarity {
                 what: what.to_string(),
                 message: e.to_string(),
-            },
-        )
+            })
     }
 }
 

@@ -34,7 +34,12 @@ impl Skinning {
     /// # Errors
     /// As [`Skinning::bind_influences`].
     pub fn bind(rig: &Rig, method: BlendMethod) -> Result<Self> {
-        Self::bind_influences(&rig.mesh.positions, &rig.influences, rig.joints.len(), method)
+        Self::bind_influences(
+            &rig.mesh.positions,
+            &rig.influences,
+            rig.joints.len(),
+            method,
+        )
     }
 
     /// Bind rest positions with per-vertex influences over `joint_count` joints.
