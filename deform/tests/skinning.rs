@@ -396,7 +396,9 @@ fn glb_round_trip() {
 }
 
 /// The paper's Fig. 2: a slight rotation, dilation and translation at CesiumMan's neck;
-/// equation (17) against dual-quaternion skinning, l-infinity over the bounding-box diagonal.
+/// equation (17) against dual-quaternion skinning, the l-infinity norm of the difference over
+/// all vertices as a percentage of the bounding-box diagonal (the paper: 0.3 %, 0.00035 %,
+/// 1 % on its model; `deform skin --backend cga --compare dqs` prints the same figure).
 #[test]
 fn fig2_neck_edits() {
     let Some(rig) = gltf("CesiumMan.glb") else {
@@ -405,47 +407,63 @@ fn fig2_neck_edits() {
     let neck = rig
         .joint_index("Skeleton_neck_joint_1")
         .expect("CesiumMan has a neck joint");
-    let diag = rig.mesh.bounding_box().unwrap().diagonal();
     let edits = [
         (
             "rotation",
             ScaledMotor::from_scale_rotation_translation(
                 1.0,
-                DQuat::from_rotation_x(0.3),
+                DQuat::from_rotation_x(10f64.to_radians()),
                 DVec3::ZERO,
             ),
         ),
         (
             "dilation",
-            ScaledMotor::from_scale_rotation_translation(1.2, DQuat::IDENTITY, DVec3::ZERO),
+            ScaledMotor::from_scale_rotation_translation(1.1, DQuat::IDENTITY, DVec3::ZERO),
         ),
         (
             "translation",
             ScaledMotor::from_scale_rotation_translation(
                 1.0,
                 DQuat::IDENTITY,
-                DVec3::new(0.0, 0.05, 0.0),
+                DVec3::new(0.0, 0.02, 0.0),
             ),
         ),
     ];
+    let linf = |a: &[DVec3], b: &[DVec3]| {
+        a.iter()
+            .zip(b)
+            .map(|(p, q)| (*p - *q).abs().max_element())
+            .fold(0.0, f64::max)
+    };
+    let mut percent = Vec::new();
     for (what, motor) in edits {
         let e = [JointEdit { joint: neck, motor }];
         let eq17 = skin(&rig, BlendMethod::Conformal, None, 0.0, &e);
         let dqs = skin(&rig, BlendMethod::DualQuaternion, None, 0.0, &e);
         let rest = skin(&rig, BlendMethod::Conformal, None, 0.0, &[]);
-        let moved = max_dist(&eq17, &rest) / diag;
-        let diff = max_dist(&eq17, &dqs) / diag;
-        eprintln!(
-            "Fig. 2 {what}: moved {:.3} %, eq17 vs DQS {:.5} %",
-            100.0 * moved,
-            100.0 * diff
-        );
-        assert!(moved > 1e-3, "{what} must move the head");
-        assert!(
-            diff < 0.05 * moved.max(1e-3) + 1e-12 || diff < 0.01,
-            "{what}: {diff}"
-        );
+        let diag = deform::Mesh::new(eq17.clone(), vec![])
+            .bounding_box()
+            .unwrap()
+            .diagonal();
+        let moved = 100.0 * linf(&eq17, &rest) / diag;
+        let diff = 100.0 * linf(&eq17, &dqs) / diag;
+        eprintln!("Fig. 2 {what}: the edit moves vertices by up to {moved:.3} %, equation (17) vs DQS {diff:.5} % of the diagonal");
+        assert!(moved > 0.1, "{what} must move the head");
+        percent.push(diff);
     }
+    // Rotation and dilation: the two blends differ only where the neck's weight is partial.
+    assert!(
+        percent[0] > 1e-4 && percent[0] < 1.0,
+        "rotation {}",
+        percent[0]
+    );
+    assert!(
+        percent[1] > 1e-4 && percent[1] < 1.0,
+        "dilation {}",
+        percent[1]
+    );
+    // A translation of the neck moves its vertices rigidly in both: they agree.
+    assert!(percent[2] < 1e-6, "translation {}", percent[2]);
 }
 
 /// SimpleSkin's JSON, edited by `f`, parsed again.

@@ -12,7 +12,7 @@ use deform::input::parse_motor;
 use deform::skinning::{
     in_betweens, libigl_rig, read_gltf, write_glb, GlbOptions, JointEdit, Rig, Skinning,
 };
-use deform::{BlendMethod, Mesh};
+use deform::{BlendMethod, Deformer, Mesh};
 use glam::DVec3;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -77,6 +77,11 @@ pub struct SkinArgs {
     /// joint's own frame: rotate or dilate about its pivot, translate along its axes).
     #[arg(long = "edit", value_parser = parse_edit)]
     pub edits: Vec<(String, PathBuf)>,
+    /// Also skin with this backend and report the l-infinity distance between the two, as a
+    /// percentage of the bounding-box diagonal (the paper's Fig. 2: `--backend cga --compare
+    /// dqs` with a slight edit of the neck).
+    #[arg(long, value_enum)]
+    pub compare: Option<Backend>,
     /// Generate N in-between frames from the unedited pose to the edited one (linear
     /// blending), written as an OBJ sequence.
     #[arg(long)]
@@ -133,7 +138,9 @@ fn read_rig(a: &SkinArgs) -> Result<Rig> {
 
 /// `OUT.obj` -> `OUT_0003.obj`.
 fn numbered(path: &Path, k: usize) -> PathBuf {
-    let stem = path.file_stem().map_or("frame".into(), |s| s.to_string_lossy().to_string());
+    let stem = path
+        .file_stem()
+        .map_or("frame".into(), |s| s.to_string_lossy().to_string());
     path.with_file_name(format!("{stem}_{k:04}.obj"))
 }
 
@@ -183,7 +190,11 @@ pub fn skin(a: &SkinArgs) -> Result<()> {
         (Some(_), Some(_)) => bail!("--range and --in-betweens cannot be combined"),
         (Some((t0, t1, n)), None) => (0..n)
             .map(|k| {
-                let s = if n == 1 { 0.0 } else { k as f64 / (n - 1) as f64 };
+                let s = if n == 1 {
+                    0.0
+                } else {
+                    k as f64 / (n - 1) as f64
+                };
                 (t0 + (t1 - t0) * s, edits.clone())
             })
             .collect(),
@@ -193,7 +204,10 @@ pub fn skin(a: &SkinArgs) -> Result<()> {
                 .map(|e| {
                     in_betweens(e.motor, n.max(1))
                         .into_iter()
-                        .map(|m| JointEdit { joint: e.joint, motor: m })
+                        .map(|m| JointEdit {
+                            joint: e.joint,
+                            motor: m,
+                        })
                         .collect()
                 })
                 .collect();
@@ -209,19 +223,44 @@ pub fn skin(a: &SkinArgs) -> Result<()> {
     if glb && sequence {
         bail!("a frame sequence is written as OBJ files, not .glb");
     }
+    let other = a
+        .compare
+        .map(|b| Skinning::bind(&rig, b.method()))
+        .transpose()?;
+    let mut other_posed = vec![DVec3::ZERO; rig.mesh.vertex_count()];
+    let mut linf: f64 = 0.0;
     for (k, (time, frame_edits)) in frames.iter().enumerate() {
         let pose = rig.pose(animation, *time, frame_edits)?;
         let motors = pose.skin_motors()?;
         pose_ms += time_pose(&bound, motors, &mut posed)?;
+        if let Some(o) = &other {
+            o.pose(motors, &mut other_posed)?;
+            linf = posed
+                .iter()
+                .zip(&other_posed)
+                .map(|(p, q)| (*p - *q).abs().max_element())
+                .fold(linf, f64::max);
+        }
         if let Some(i) = posed.iter().position(|p| !p.is_finite()) {
             bail!("vertex {i}: skinning produced a non-finite position");
         }
         if !glb {
-            let path = if sequence { numbered(&a.out.output, k) } else { a.out.output.clone() };
+            let path = if sequence {
+                numbered(&a.out.output, k)
+            } else {
+                a.out.output.clone()
+            };
             write_obj(&path, &Mesh::new(posed.clone(), rig.mesh.triangles.clone()))?;
         }
     }
     report.add("frames", frames.len());
+    if let Some(b) = a.compare {
+        let diag = Mesh::new(posed.clone(), Vec::new())
+            .bounding_box()
+            .map_or(f64::NAN, |b| b.diagonal());
+        report.add("compared_with", b.method().name());
+        report.add("linf_difference_percent_of_diagonal", 100.0 * linf / diag);
+    }
     report.add("pose_ms", pose_ms / frames.len() as f64);
     if glb {
         let pose = rig.pose(None, 0.0, &edits)?;
@@ -236,7 +275,11 @@ pub fn skin(a: &SkinArgs) -> Result<()> {
         let rest = rig.pose(None, 0.0, &[])?;
         let place = rest.globals[rig.primitives[0].node];
         let rest_mesh = Mesh::new(
-            rig.mesh.positions.iter().map(|&p| place.transform_point3(p)).collect(),
+            rig.mesh
+                .positions
+                .iter()
+                .map(|&p| place.transform_point3(p))
+                .collect(),
             rig.mesh.triangles.clone(),
         );
         let moved: Vec<f64> = posed

@@ -1,0 +1,89 @@
+//! Quick report of skinning speed: every backend on libigl's armadillo (5 weights), arm and
+//! CesiumMan, ms per frame (both cores) and ns per vertex, medians of repeated runs; and the
+//! time to sample CesiumMan's animation and build its motors. The criterion bench `skinning`
+//! measures the same.
+//!
+//! `cargo run --release -p deform --example skinning_report`
+
+#[path = "../benches/skin_scenes.rs"]
+mod skin_scenes;
+
+use deform::skinning::{KeyframeBlend, RigPose, Skinning};
+use deform::Deformer;
+use glam::DVec3;
+use std::time::Instant;
+
+/// Median wall time in milliseconds of `runs` calls.
+fn median_ms(runs: usize, mut f: impl FnMut()) -> f64 {
+    let mut t: Vec<f64> = (0..runs)
+        .map(|_| {
+            let s = Instant::now();
+            f();
+            s.elapsed().as_secs_f64() * 1e3
+        })
+        .collect();
+    t.sort_by(f64::total_cmp);
+    t[runs / 2]
+}
+
+fn main() {
+    println!("skinning, {} threads", rayon::current_num_threads());
+    for s in skin_scenes::all() {
+        let n = s.positions.len();
+        println!(
+            "{} ({n} vertices, {} joints, {} influences per vertex)",
+            s.name, s.joints, s.influences.width
+        );
+        let mut out = vec![DVec3::ZERO; n];
+        let mut times = Vec::new();
+        for method in skin_scenes::BACKENDS {
+            let d = Skinning::bind_influences(&s.positions, &s.influences, s.joints, method)
+                .expect("bind");
+            for _ in 0..20 {
+                d.pose(&s.keys, &mut out).expect("pose");
+            }
+            let ms = median_ms(101, || d.pose(&s.keys, &mut out).expect("pose"));
+            times.push((method, ms));
+            println!(
+                "  {:<22} {:>8.3} ms/frame {:>8.1} ns/vertex",
+                method.name(),
+                ms,
+                ms * 1e6 / n as f64
+            );
+        }
+        let get = |m| {
+            times
+                .iter()
+                .find(|(k, _)| *k == m)
+                .map(|t| t.1)
+                .unwrap_or(f64::NAN)
+        };
+        use deform::BlendMethod::*;
+        println!(
+            "  ratios: motor-linear / dual-quaternion {:.2}, conformal / matrix {:.2}, conformal-projected / conformal {:.2}",
+            get(MotorLinear) / get(DualQuaternion),
+            get(Conformal) / get(Matrix),
+            get(ConformalProjected) / get(Conformal)
+        );
+    }
+    if let Some(rig) = skin_scenes::cesium_rig() {
+        let (t0, t1) = rig.animations[0].range();
+        let mut pose = RigPose::default();
+        for (name, blend) in [
+            ("glTF samplers", KeyframeBlend::Gltf),
+            ("motor log blending", KeyframeBlend::MotorLog),
+        ] {
+            let mut t = t0;
+            let ms = median_ms(1001, || {
+                t = if t > t1 { t0 } else { t + 0.013 };
+                rig.pose_into(Some(0), t, blend, &[], &mut pose)
+                    .expect("pose");
+                std::hint::black_box(pose.skin_motors().expect("motors").len());
+            });
+            println!(
+                "CesiumMan: sample + global and skin motors ({name}): {:.2} us/frame",
+                ms * 1e3
+            );
+        }
+    }
+}
