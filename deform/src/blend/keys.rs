@@ -54,7 +54,12 @@ impl ConformalKey {
     fn mul_add(&self, w: f64, acc: ConformalKey) -> ConformalKey {
         let r = |i: usize| {
             let (a, b) = (self.rows[i], acc.rows[i]);
-            [b[0] + w * a[0], b[1] + w * a[1], b[2] + w * a[2], b[3] + w * a[3]]
+            [
+                b[0] + w * a[0],
+                b[1] + w * a[1],
+                b[2] + w * a[2],
+                b[3] + w * a[3],
+            ]
         };
         ConformalKey {
             rows: [r(0), r(1), r(2)],
@@ -133,11 +138,12 @@ impl PreparedKeys {
                 }
                 BlendMethod::MatrixF32 => {
                     let (s, q, t) = k.to_scale_rotation_translation();
-                    self.affines_f32.push(Affine3A::from_scale_rotation_translation(
-                        glam::Vec3::splat(s as f32),
-                        q.normalize().as_quat(),
-                        t.as_vec3(),
-                    ));
+                    self.affines_f32
+                        .push(Affine3A::from_scale_rotation_translation(
+                            glam::Vec3::splat(s as f32),
+                            q.normalize().as_quat(),
+                            t.as_vec3(),
+                        ));
                     continue;
                 }
                 _ => {}

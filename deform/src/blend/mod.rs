@@ -27,10 +27,10 @@
 mod keys;
 
 use crate::deformer::{check_key_count, check_positions, KeyError, MAX_KEYS};
-pub use keys::{ConformalKey, PreparedKeys};
 use crate::Result;
 use cga::ScaledMotor;
 use glam::DVec3;
+pub use keys::{ConformalKey, PreparedKeys};
 use rayon::prelude::*;
 use std::sync::Mutex;
 

@@ -119,7 +119,7 @@ impl Channel {
                 let is_value = per_key == 1 || k % 3 == 1;
                 if is_value {
                     let n = v.length();
-                    if !(n > 1e-12) {
+                    if n.is_nan() || n <= 1e-12 {
                         return Err(bad(format!(
                             "key {}: zero rotation quaternion",
                             k / per_key

@@ -44,7 +44,7 @@ struct Bin {
 impl Bin {
     /// Append `bytes` as a new buffer view (with `target` when given) and an accessor over it.
     fn push(&mut self, bytes: &[u8], target: Option<u32>, accessor: Value) -> usize {
-        while self.data.len() % 4 != 0 {
+        while !self.data.len().is_multiple_of(4) {
             self.data.push(0);
         }
         let mut view =
@@ -261,7 +261,7 @@ pub fn glb_bytes(rig: &Rig, options: &GlbOptions) -> Result<Vec<u8>> {
             })
             .collect()
     };
-    while bin.data.len() % 4 != 0 {
+    while !bin.data.len().is_multiple_of(4) {
         bin.data.push(0);
     }
     let mut doc = json!({
@@ -280,7 +280,7 @@ pub fn glb_bytes(rig: &Rig, options: &GlbOptions) -> Result<Vec<u8>> {
     }
     let mut text =
         serde_json::to_vec(&doc).map_err(|e| crate::Error::InvalidArgument(e.to_string()))?;
-    while text.len() % 4 != 0 {
+    while !text.len().is_multiple_of(4) {
         text.push(b' ');
     }
     let total = 12 + 8 + text.len() + 8 + bin.data.len();

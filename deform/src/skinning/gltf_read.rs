@@ -139,7 +139,7 @@ fn read_nodes(doc: &gltf::Document) -> Result<Vec<RigNode>, SkinError> {
                     scale: DVec3::from(scale.map(f64::from)),
                 };
                 let q = trs.rotation.length();
-                if !trs.translation.is_finite() || !trs.scale.is_finite() || !(q > 1e-12) {
+                if !trs.translation.is_finite() || !trs.scale.is_finite() || q.is_nan() || q <= 1e-12 {
                     return Err(SkinError::BadTransform {
                         what,
                         message: "non-finite or zero TRS".into(),
@@ -172,13 +172,16 @@ fn read_nodes(doc: &gltf::Document) -> Result<Vec<RigNode>, SkinError> {
     Ok(nodes)
 }
 
+/// A skinned primitive as `(mesh, primitive, node)`.
+type Instance = (usize, usize, usize);
+
 /// The first skin used by a mesh, and the `(mesh, primitive, node)` triangle primitives using
 /// it in document order.
 fn skinned_primitives<'a>(
     doc: &'a gltf::Document,
     report: &mut LoadReport,
     name: &str,
-) -> Result<(gltf::Skin<'a>, Vec<(usize, usize, usize)>), SkinError> {
+) -> Result<(gltf::Skin<'a>, Vec<Instance>), SkinError> {
     let mut uses: Vec<(usize, usize, usize, usize)> = Vec::new();
     for n in doc.nodes() {
         let Some(m) = n.mesh() else { continue };
@@ -262,7 +265,7 @@ fn read_primitive(
             .collect(),
         None => (0..count as u32).collect(),
     };
-    if indices.len() % 3 != 0 {
+    if !indices.len().is_multiple_of(3) {
         return Err(data(format!(
             "{} indices: not whole triangles",
             indices.len()
