@@ -763,3 +763,147 @@ fn skin_cli() {
         assert!(!o.stderr.is_empty());
     }
 }
+
+/// Logarithmic keyframe blending: at the keys it is the keys; between keys of a rotation
+/// about a fixed pivot it is the slerp (a motor geodesic of rotations is a rotation); with a
+/// simultaneous translation it is a screw motion, not glTF's separate lerp and slerp.
+#[test]
+fn motor_log_keyframes() {
+    use deform::skinning::{Animation, Channel, Interpolation, KeyframeBlend, Property, RigPose};
+    use glam::DVec4;
+    let mut rig = procedural_arm(8, 10);
+    let rot = |deg: f64| DVec4::from(DQuat::from_rotation_z(deg.to_radians()));
+    let spin = Channel::new(
+        1,
+        Property::Rotation,
+        Interpolation::Linear,
+        vec![0.0, 1.0],
+        vec![rot(0.0), rot(90.0)],
+        "spin",
+    )
+    .unwrap();
+    let slide = Channel::new(
+        1,
+        Property::Translation,
+        Interpolation::Linear,
+        vec![0.0, 1.0],
+        vec![
+            DVec4::new(4.0, 0.0, 0.0, 0.0),
+            DVec4::new(4.0, 2.0, 0.0, 0.0),
+        ],
+        "slide",
+    )
+    .unwrap();
+    rig.animations = vec![
+        Animation {
+            name: "spin".into(),
+            channels: vec![spin.clone()],
+        },
+        Animation {
+            name: "screw".into(),
+            channels: vec![spin, slide],
+        },
+    ];
+    let (mut a, mut b) = (RigPose::default(), RigPose::default());
+    for t in [0.0, 0.3, 0.5, 1.0] {
+        rig.pose_into(Some(0), t, KeyframeBlend::Gltf, &[], &mut a)
+            .unwrap();
+        rig.pose_into(Some(0), t, KeyframeBlend::MotorLog, &[], &mut b)
+            .unwrap();
+        let d = (a.globals[2] - b.globals[2])
+            .abs()
+            .to_cols_array()
+            .into_iter()
+            .fold(0.0, f64::max);
+        assert!(d < 1e-12, "rotation only, t = {t}: {d}");
+        rig.pose_into(Some(1), t, KeyframeBlend::Gltf, &[], &mut a)
+            .unwrap();
+        rig.pose_into(Some(1), t, KeyframeBlend::MotorLog, &[], &mut b)
+            .unwrap();
+        let d = (a.globals[2] - b.globals[2])
+            .abs()
+            .to_cols_array()
+            .into_iter()
+            .fold(0.0, f64::max);
+        if t == 0.0 || t == 1.0 {
+            assert!(d < 1e-12, "screw at a key, t = {t}: {d}");
+        } else {
+            assert!(
+                d > 1e-3,
+                "a screw motion differs from lerp + slerp between keys, t = {t}"
+            );
+        }
+        // The screw: the elbow's local motor at t is exp(t log(M0^-1 M1)) from M0.
+        let m0 = ScaledMotor::from_scale_rotation_translation(
+            1.0,
+            DQuat::IDENTITY,
+            DVec3::new(4.0, 0.0, 0.0),
+        );
+        let m1 = ScaledMotor::from_scale_rotation_translation(
+            1.0,
+            DQuat::from_rotation_z(std::f64::consts::FRAC_PI_2),
+            DVec3::new(4.0, 2.0, 0.0),
+        );
+        let want = ScaledMotor::interpolate(m0, m1, t);
+        let got = b.locals[1];
+        let p = DVec3::new(1.0, 2.0, 3.0);
+        assert!((want.transform_point(p) - got.matrix().transform_point3(p)).length() < 1e-12);
+    }
+}
+
+/// More than 4 influences: the writer keeps the 8 largest as two joint sets, the reader reads
+/// both; vertices with at most 8 influences skin exactly as before.
+#[test]
+fn second_joint_set_round_trip() {
+    let Some(dir) = data_dir() else { return };
+    let lib = dir.join("meshes/libigl");
+    let mesh = deform::io::read_obj(lib.join("elephant.obj")).unwrap();
+    let skeleton = deform::io::read_tgf(lib.join("elephant.tgf")).unwrap();
+    let weights = deform::io::read_dmat(lib.join("elephant-weights.dmat")).unwrap();
+    let rig = libigl_rig(mesh, &skeleton, &weights).unwrap();
+    let bytes = glb_bytes(&rig, &GlbOptions::default()).unwrap();
+    std::fs::write(gltf_out().join("elephant-8-influences.glb"), &bytes).unwrap();
+    let back = parse_gltf(&bytes, "elephant", None).unwrap();
+    assert_eq!(back.influences.width, 8);
+    let keys: Vec<ScaledMotor> = (0..rig.joints.len())
+        .map(|j| {
+            ScaledMotor::from_scale_rotation_translation(
+                1.0,
+                DQuat::from_rotation_y(0.1 * j as f64),
+                DVec3::ZERO,
+            )
+        })
+        .collect();
+    let pose = |r: &Rig| {
+        let b = Skinning::bind(r, BlendMethod::Matrix).unwrap();
+        let mut out = vec![DVec3::ZERO; r.mesh.vertex_count()];
+        b.pose(&keys, &mut out).unwrap();
+        out
+    };
+    let (p, q) = (pose(&rig), pose(&back));
+    let diag = rig.mesh.bounding_box().unwrap().diagonal();
+    let mut exact = 0;
+    for v in 0..rig.mesh.vertex_count() {
+        if rig.influences.row(v).filter(|&(_, w)| w > 0.0).count() <= 8 {
+            exact += 1;
+            assert!(p[v].distance(q[v]) / diag < 1e-6, "vertex {v}");
+        }
+    }
+    assert!(exact > 0);
+}
+
+/// Morph targets are read past and reported (unsupported), not an error.
+#[test]
+fn morph_targets_are_reported() {
+    let Some(r) = simple_skin_edited(|d| {
+        d["meshes"][0]["primitives"][0]["targets"] = serde_json::json!([{"POSITION": 1}]);
+    }) else {
+        return;
+    };
+    let rig = r.unwrap();
+    assert!(
+        rig.report.notes.iter().any(|n| n.contains("morph targets")),
+        "{:?}",
+        rig.report.notes
+    );
+}

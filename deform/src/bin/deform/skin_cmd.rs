@@ -10,7 +10,8 @@ use anyhow::{bail, Context, Result};
 use clap::{Args, ValueEnum};
 use deform::input::parse_motor;
 use deform::skinning::{
-    in_betweens, libigl_rig, read_gltf, write_glb, GlbOptions, JointEdit, Rig, Skinning,
+    in_betweens, libigl_rig, read_gltf, write_glb, GlbOptions, JointEdit, KeyframeBlend, Rig,
+    RigPose, Skinning,
 };
 use deform::{BlendMethod, Deformer, Mesh};
 use glam::DVec3;
@@ -50,6 +51,15 @@ impl Backend {
     }
 }
 
+/// Keyframe blending.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Keyframes {
+    /// Each property by its sampler (LINEAR, STEP, CUBICSPLINE), as glTF specifies.
+    Gltf,
+    /// `M_1 exp(a log(M_1^-1 M_2))` between a node's neighbouring keyframes.
+    MotorLog,
+}
+
 #[derive(Args, Debug)]
 pub struct SkinArgs {
     /// The rigged model: glTF 2.0 (.gltf, .glb), or a mesh (OBJ, OFF) with --skeleton and
@@ -70,6 +80,10 @@ pub struct SkinArgs {
     /// A time range T0:T1:N: N frames written as OUT_0000.obj, OUT_0001.obj, ...
     #[arg(long, value_parser = parse_range, conflicts_with = "time")]
     pub range: Option<(f64, f64, usize)>,
+    /// How keyframes are blended: glTF's samplers, or logarithmic blending of neighbouring
+    /// keyframes as motors (the paper's choice for existing keyframes).
+    #[arg(long, value_enum, default_value_t = Keyframes::Gltf)]
+    pub keyframes: Keyframes,
     /// The skinning backend.
     #[arg(long, value_enum, default_value_t = Backend::Cga)]
     pub backend: Backend,
@@ -229,8 +243,13 @@ pub fn skin(a: &SkinArgs) -> Result<()> {
         .transpose()?;
     let mut other_posed = vec![DVec3::ZERO; rig.mesh.vertex_count()];
     let mut linf: f64 = 0.0;
+    let blend = match a.keyframes {
+        Keyframes::Gltf => KeyframeBlend::Gltf,
+        Keyframes::MotorLog => KeyframeBlend::MotorLog,
+    };
+    let mut pose = RigPose::default();
     for (k, (time, frame_edits)) in frames.iter().enumerate() {
-        let pose = rig.pose(animation, *time, frame_edits)?;
+        rig.pose_into(animation, *time, blend, frame_edits, &mut pose)?;
         let motors = pose.skin_motors()?;
         pose_ms += time_pose(&bound, motors, &mut posed)?;
         if let Some(o) = &other {
