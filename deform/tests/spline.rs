@@ -72,7 +72,8 @@ fn identity_keys_leave_the_mesh_unchanged() {
                 .zip(&mesh.positions)
                 .map(|(a, b)| a.distance(*b))
                 .fold(0.0, f64::max);
-            assert!(err < 1e-12, "{scheme:?} {method:?}: {err}");
+            let tol = if method == BlendMethod::MatrixF32 { 1e-5 } else { 1e-12 };
+            assert!(err < tol, "{scheme:?} {method:?}: {err}");
         }
     }
 }
@@ -196,7 +197,11 @@ fn a_half_turn_twist_keeps_the_section_with_motors_and_collapses_it_with_matrice
     }
     for (method, ratio) in areas {
         match method {
-            BlendMethod::Matrix => assert!(ratio < 0.5, "{method:?}: {ratio}"),
+            // Matrices, and equation (17) which is their blend for rigid keys, collapse.
+            BlendMethod::Matrix
+            | BlendMethod::MatrixF32
+            | BlendMethod::Conformal
+            | BlendMethod::ConformalProjected => assert!(ratio < 0.5, "{method:?}: {ratio}"),
             _ => assert!((ratio - 1.0).abs() < 0.02, "{method:?}: {ratio}"),
         }
     }

@@ -139,7 +139,11 @@ fn read_nodes(doc: &gltf::Document) -> Result<Vec<RigNode>, SkinError> {
                     scale: DVec3::from(scale.map(f64::from)),
                 };
                 let q = trs.rotation.length();
-                if !trs.translation.is_finite() || !trs.scale.is_finite() || q.is_nan() || q <= 1e-12 {
+                if !trs.translation.is_finite()
+                    || !trs.scale.is_finite()
+                    || q.is_nan()
+                    || q <= 1e-12
+                {
                     return Err(SkinError::BadTransform {
                         what,
                         message: "non-finite or zero TRS".into(),
