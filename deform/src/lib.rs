@@ -45,6 +45,7 @@ pub mod shapes;
 pub mod skinning;
 pub mod solve;
 pub mod spline;
+pub mod surgery;
 mod triangle;
 mod union_find;
 pub mod validate;

@@ -1,0 +1,177 @@
+//! Cutting skinned meshes so that they stay animatable (second paper, section 4.2).
+//!
+//! [`Surgery::new`] binds a skinned mesh once: it checks that the mesh is an edge-manifold
+//! triangle mesh with finite positions and influences for every vertex, and builds a
+//! [`FaceBvh`] over its triangles. [`Surgery::cut`] then cuts it by a `cga` plane
+//! (Algorithm 1): vertices are classified by the CGA point-plane predicate `X . pi`, vertices
+//! closer to the plane than a fraction [`CutOptions::snap`] of a crossing edge are snapped onto
+//! it (treated as on the plane, not moved, as Blender's bisect does with its threshold), so no
+//! slivers appear; crossing edges get one new vertex each, shared by both sides; cut faces are
+//! re-triangulated; each side becomes its own [`SkinnedMesh`], optionally capped; new vertices
+//! get their edge's interpolated weights (4 largest, renormalised: section 4.3).
+//!
+//! The cut can be made on the rest mesh or on a posed frame ([`Frame::Posed`]): the plane then
+//! classifies the posed positions, and each new vertex is mapped back to the rest pose through
+//! the inverse of its own blended skin transform, so posing the pieces at that frame gives
+//! exactly the cut that was seen.
+//!
+//! ```
+//! use deform::skinning::procedural_arm;
+//! use deform::surgery::{CutOptions, Frame, Surgery};
+//! let rig = procedural_arm(12, 20);
+//! let s = Surgery::new(&rig.mesh, &rig.influences).unwrap();
+//! let plane = cga::Plane::from_normal_distance(glam::DVec3::X, 4.1);
+//! let cut = s.cut(&plane, Frame::Rest, &CutOptions::default()).unwrap();
+//! let (a, b) = (&cut.pieces[0], &cut.pieces[1]);
+//! assert!((a.mesh.mesh.area() + b.mesh.mesh.area() - rig.mesh.area()).abs() < 1e-9 * rig.mesh.area());
+//! assert_eq!((a.boundary_loops, b.boundary_loops), (1, 1));
+//! ```
+
+mod bvh;
+mod cap;
+mod cut;
+mod weights;
+
+pub use bvh::FaceBvh;
+pub use cut::{CutOptions, CutPiece, CutResult, VertexOrigin};
+pub use weights::{push_interpolated, NEW_VERTEX_INFLUENCES};
+
+use crate::skinning::Influences;
+use crate::Mesh;
+use glam::{DAffine3, DVec3};
+
+/// What is wrong with a surgery's input.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SurgeryError {
+    /// Edges shared by more than two triangles (the first few listed).
+    #[error("non-manifold mesh: {count} edges have more than two triangles, e.g. {example:?}")]
+    NonManifold {
+        /// How many.
+        count: usize,
+        /// One of them.
+        example: [u32; 2],
+    },
+    /// A mesh that cannot be cut (empty, non-finite, indices out of range, influences of
+    /// another length).
+    #[error("{0}")]
+    BadMesh(String),
+    /// A plane, blade or cylinder that is not finite or degenerate.
+    #[error("{0}")]
+    BadTool(String),
+    /// The plane does not cross the mesh: every vertex is on one side (or on the plane).
+    #[error("the plane does not cut the mesh: all {vertices} vertices are on one side")]
+    Misses {
+        /// The mesh's vertex count.
+        vertices: usize,
+    },
+}
+
+/// A triangle mesh with per-vertex skin influences.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SkinnedMesh {
+    /// The rest mesh.
+    pub mesh: Mesh,
+    /// Influences, one row per vertex.
+    pub influences: Influences,
+}
+
+/// The frame a tool is given in.
+#[derive(Clone, Copy, Debug)]
+pub enum Frame<'a> {
+    /// The rest (bind) pose.
+    Rest,
+    /// A posed frame: the posed position of every vertex, and the skin matrix of every joint
+    /// (`global * inverse bind`, [`crate::skinning::RigPose::skin_matrices`]) that posed them
+    /// (by linear blend skinning).
+    Posed {
+        /// Posed positions, one per vertex.
+        positions: &'a [DVec3],
+        /// Skin matrix per joint.
+        skin: &'a [DAffine3],
+    },
+}
+
+/// A skinned mesh bound for cutting: checked once, with its face index.
+#[derive(Clone, Debug)]
+pub struct Surgery {
+    mesh: SkinnedMesh,
+    bvh: FaceBvh,
+    diagonal: f64,
+}
+
+impl Surgery {
+    /// Check the mesh and build its face index.
+    ///
+    /// # Errors
+    /// [`SurgeryError::BadMesh`] for an empty mesh, non-finite positions, indices out of range
+    /// or influences of another length; [`SurgeryError::NonManifold`].
+    pub fn new(mesh: &Mesh, influences: &Influences) -> Result<Surgery, SurgeryError> {
+        let n = mesh.vertex_count();
+        if mesh.triangle_count() == 0 {
+            return Err(SurgeryError::BadMesh("the mesh has no triangles".into()));
+        }
+        if influences.vertex_count() != n || influences.width == 0 {
+            return Err(SurgeryError::BadMesh(format!(
+                "{} influence rows for {n} vertices",
+                influences.vertex_count()
+            )));
+        }
+        if let Some(i) = mesh.positions.iter().position(|p| !p.is_finite()) {
+            return Err(SurgeryError::BadMesh(format!("vertex {i} is not finite")));
+        }
+        if let Some(f) = mesh
+            .triangles
+            .iter()
+            .position(|t| t.iter().any(|&v| v as usize >= n))
+        {
+            return Err(SurgeryError::BadMesh(format!(
+                "triangle {f} refers to a vertex past {n}"
+            )));
+        }
+        let edges = crate::adjacency::edges(&mesh.triangles, n);
+        let bad: Vec<usize> = edges.non_manifold().collect();
+        if let Some(&e) = bad.first() {
+            return Err(SurgeryError::NonManifold {
+                count: bad.len(),
+                example: edges.edges[e],
+            });
+        }
+        let diagonal = mesh.bounding_box().map_or(0.0, |b| b.diagonal());
+        Ok(Surgery {
+            bvh: FaceBvh::new(mesh),
+            mesh: SkinnedMesh {
+                mesh: mesh.clone(),
+                influences: influences.clone(),
+            },
+            diagonal,
+        })
+    }
+
+    /// The bound mesh.
+    pub fn mesh(&self) -> &SkinnedMesh {
+        &self.mesh
+    }
+
+    /// The face index.
+    pub fn bvh(&self) -> &FaceBvh {
+        &self.bvh
+    }
+}
+
+/// The rest position of a point posed at `p` by the blend of `skin` with `influences` row
+/// `parts` (interpolated): the inverse of its blended LBS transform applied to `p`.
+pub(crate) fn unskin(
+    p: DVec3,
+    joints: &[u32],
+    weights: &[f64],
+    skin: &[DAffine3],
+) -> Option<DVec3> {
+    let mut m = DAffine3::ZERO;
+    for (&j, &w) in joints.iter().zip(weights) {
+        let a = skin.get(j as usize)?;
+        m.matrix3 += a.matrix3 * w;
+        m.translation += a.translation * w;
+    }
+    let r = m.inverse().transform_point3(p);
+    r.is_finite().then_some(r)
+}
