@@ -402,3 +402,61 @@ fn hierarchy_order(nodes: &[RigNode]) -> Result<Vec<usize>, SkinError> {
     }
     Ok(order)
 }
+
+impl Rig {
+    /// The same rig (nodes, skin, animations) with its mesh replaced by `parts`, one glTF
+    /// primitive each, in order: how a cut, torn or drilled mesh stays animatable.
+    ///
+    /// # Errors
+    /// As [`Rig::new`] (influences of another length, joint indices past the skin).
+    pub fn with_parts(&self, parts: &[(&Mesh, &Influences)]) -> Result<Rig, SkinError> {
+        let width = parts.iter().map(|p| p.1.width).max().unwrap_or(4);
+        let mut mesh = Mesh::new(Vec::new(), Vec::new());
+        let mut influences = Influences {
+            width,
+            ..Influences::default()
+        };
+        let node = self.primitives.first().map_or(0, |p| p.node);
+        let mut primitives = Vec::new();
+        for (k, (m, inf)) in parts.iter().enumerate() {
+            if inf.vertex_count() != m.vertex_count() {
+                return Err(SkinError::NoSkin(format!(
+                    "part {k}: {} influence rows for {} vertices",
+                    inf.vertex_count(),
+                    m.vertex_count()
+                )));
+            }
+            let offset = mesh.positions.len() as u32;
+            primitives.push(PrimitiveInfo {
+                node,
+                mesh: 0,
+                primitive: k,
+                vertex_offset: offset as usize,
+                vertex_count: m.vertex_count(),
+                triangle_offset: mesh.triangles.len(),
+                triangle_count: m.triangle_count(),
+            });
+            mesh.positions.extend_from_slice(&m.positions);
+            mesh.triangles
+                .extend(m.triangles.iter().map(|t| t.map(|v| v + offset)));
+            for v in 0..m.vertex_count() {
+                let row: Vec<(u32, f64)> = inf.row(v).collect();
+                for k in 0..width {
+                    let (j, w) = row.get(k).copied().unwrap_or((0, 0.0));
+                    influences.joints.push(j);
+                    influences.weights.push(w);
+                }
+            }
+        }
+        Rig::new(
+            self.nodes.clone(),
+            self.joints.clone(),
+            self.inverse_bind.clone(),
+            mesh,
+            influences,
+            primitives,
+            self.animations.clone(),
+            self.report.clone(),
+        )
+    }
+}

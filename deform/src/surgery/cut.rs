@@ -1,13 +1,11 @@
 //! Planar cut (second paper, Algorithm 1).
 
 use super::cap::ear_clip;
-use super::weights::{push_copy, push_interpolated};
-use super::{unskin, Frame, SkinnedMesh, Surgery, SurgeryError};
-use crate::skinning::Influences;
+use super::split::{assemble, new_vertex_data, Assembled, Splitter};
+use super::{Frame, SkinnedMesh, Surgery, SurgeryError};
 use crate::Mesh;
 use cga::Plane;
 use glam::DVec3;
-use std::collections::HashMap;
 
 /// Options of [`Surgery::cut`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -86,12 +84,6 @@ fn sign(x: f64) -> i8 {
     } else {
         0
     }
-}
-
-/// The smallest angle (as its cosine's complement) of a triangle, for choosing diagonals.
-fn min_angle(a: DVec3, b: DVec3, c: DVec3) -> f64 {
-    let ang = |p: DVec3, q: DVec3, r: DVec3| (q - p).angle_between(r - p);
-    ang(a, b, c).min(ang(b, c, a)).min(ang(c, a, b))
 }
 
 impl Surgery {
@@ -173,23 +165,15 @@ impl Surgery {
         if !(s.iter().any(|&x| x > 0.0) && s.iter().any(|&x| x < 0.0)) {
             return Err(SurgeryError::Misses { vertices: n });
         }
-        // Split: faces of each side in a global index space (input vertices, then new ones).
-        let mut new_edges: Vec<(u32, u32, f64)> = Vec::new();
-        let mut edge_index: HashMap<(u32, u32), u32> = HashMap::new();
-        let mut new_vertex = |i: u32, j: u32, e: &mut Vec<(u32, u32, f64)>| -> u32 {
-            let (a, b) = (i.min(j), i.max(j));
-            *edge_index.entry((a, b)).or_insert_with(|| {
-                let (sa, sb) = (s[a as usize], s[b as usize]);
-                e.push((a, b, sa / (sa - sb)));
-                (n + e.len() - 1) as u32
-            })
+        // Split: faces of each side over input vertices, then new ones.
+        let mut splitter = Splitter::new(positions);
+        let root = |a: u32, b: u32| {
+            let (sa, sb) = (s[a as usize], s[b as usize]);
+            sa / (sa - sb)
         };
         let mut faces: [Vec<[u32; 3]>; 2] = [Vec::new(), Vec::new()];
         let mut from: [Vec<u32>; 2] = [Vec::new(), Vec::new()];
-        let side = |g: i8| usize::from(g < 0);
         let mut split_faces = 0;
-        // Positions of new vertices are needed to choose diagonals: computed as they come.
-        let lerp = |a: u32, b: u32, t: f64| positions[a as usize].lerp(positions[b as usize], t);
         for (fi, t) in src.mesh.triangles.iter().enumerate() {
             let mut push = |k: usize, tri: [u32; 3]| {
                 faces[k].push(tri);
@@ -199,192 +183,73 @@ impl Surgery {
             let (pos, neg) = (g.contains(&1), g.contains(&-1));
             if !neg {
                 push(0, *t);
-                continue;
-            }
-            if !pos {
+            } else if !pos {
                 push(1, *t);
-                continue;
-            }
-            split_faces += 1;
-            if let Some(z) = g.iter().position(|&x| x == 0) {
-                let (zv, u, v) = (t[z], t[(z + 1) % 3], t[(z + 2) % 3]);
-                let m = new_vertex(u, v, &mut new_edges);
-                push(side(g[(z + 1) % 3]), [zv, u, m]);
-                push(side(g[(z + 2) % 3]), [zv, m, v]);
-                continue;
-            }
-            // The lone vertex: the one whose sign the other two do not share.
-            let lone = (0..3)
-                .find(|&k| g[k] != g[(k + 1) % 3] && g[k] != g[(k + 2) % 3])
-                .expect("mixed signs");
-            let (a, b, c) = (t[lone], t[(lone + 1) % 3], t[(lone + 2) % 3]);
-            let p = new_vertex(a, b, &mut new_edges);
-            let q = new_vertex(a, c, &mut new_edges);
-            push(side(g[lone]), [a, p, q]);
-            let other = side(-g[lone]);
-            let at = |v: u32, e: &[(u32, u32, f64)]| -> DVec3 {
-                if (v as usize) < n {
-                    positions[v as usize]
-                } else {
-                    let (x, y, t) = e[v as usize - n];
-                    lerp(x, y, t)
-                }
-            };
-            let (pp, pb, pc, pq) = (
-                at(p, &new_edges),
-                at(b, &new_edges),
-                at(c, &new_edges),
-                at(q, &new_edges),
-            );
-            let one = min_angle(pp, pb, pc).min(min_angle(pp, pc, pq));
-            let two = min_angle(pp, pb, pq).min(min_angle(pq, pb, pc));
-            if one >= two {
-                push(other, [p, b, c]);
-                push(other, [p, c, q]);
             } else {
-                push(other, [p, b, q]);
-                push(other, [q, b, c]);
+                split_faces += 1;
+                splitter.split(*t, g, &root, push);
             }
         }
-        // Influences and rest positions of the new vertices.
-        let mut new_inf = Influences {
-            width: src.influences.width,
-            ..Influences::default()
-        };
-        let mut new_rest = Vec::with_capacity(new_edges.len());
-        for (k, &(a, b, t)) in new_edges.iter().enumerate() {
-            push_interpolated(&src.influences, &[(a, 1.0 - t), (b, t)], &mut new_inf);
-            let rest = match frame {
-                Frame::Rest => lerp(a, b, t),
-                Frame::Posed { skin, .. } => {
-                    let r = k * new_inf.width..(k + 1) * new_inf.width;
-                    unskin(
-                        lerp(a, b, t),
-                        &new_inf.joints[r.clone()],
-                        &new_inf.weights[r],
-                        skin,
-                    )
-                    .ok_or_else(|| {
-                        SurgeryError::BadMesh(format!(
-                            "new vertex on edge {a}-{b}: its blended skin transform is singular"
-                        ))
-                    })?
-                }
-            };
-            new_rest.push(rest);
-        }
-        let on_plane = |v: u32| (v as usize) >= n || s[v as usize] == 0.0;
+        let (new_inf, new_rest) = new_vertex_data(src, &splitter.new_edges, frame, positions)?;
+        let on_plane = |g: u32| (g as usize) >= n || s[g as usize] == 0.0;
         let [f0, f1] = faces;
         let [o0, o1] = from;
         let pieces = [(f0, o0), (f1, o1)].map(|(f, o)| {
-            self.piece(
-                f,
-                o,
-                &new_edges,
-                &new_inf,
-                &new_rest,
-                positions,
-                nrm,
-                on_plane,
-                options.cap,
-            )
+            let a = assemble(src, f, &splitter, &new_inf, &new_rest);
+            let plane_vertex: Vec<bool> = a.global.iter().map(|&g| on_plane(g)).collect();
+            piece(a, o, &plane_vertex, nrm, options.cap)
         });
         Ok(CutResult {
             pieces,
-            new_vertices: new_edges.len(),
+            new_vertices: splitter.new_edges.len(),
             split_faces,
             snapped_vertices: snap.len(),
             faces_examined: candidates.len(),
         })
     }
+}
 
-    /// One side: reindex (input vertices in input order, then new ones), influences, caps.
-    #[allow(clippy::too_many_arguments)]
-    fn piece(
-        &self,
-        mut faces: Vec<[u32; 3]>,
-        mut face_origin: Vec<u32>,
-        new_edges: &[(u32, u32, f64)],
-        new_inf: &Influences,
-        new_rest: &[DVec3],
-        frame_positions: &[DVec3],
-        normal: DVec3,
-        on_plane: impl Fn(u32) -> bool,
-        cap: bool,
-    ) -> CutPiece {
-        let src = &self.mesh;
-        let n = src.mesh.vertex_count();
-        let total = n + new_edges.len();
-        let mut local = vec![u32::MAX; total];
-        for t in &faces {
-            for &v in t {
-                local[v as usize] = 0;
-            }
-        }
-        let mut positions = Vec::new();
-        let mut origin = Vec::new();
-        let mut influences = Influences {
-            width: src.influences.width,
-            ..Influences::default()
-        };
-        let mut frame = Vec::new();
-        for (g, slot) in local.iter_mut().enumerate() {
-            if *slot == u32::MAX {
+/// One side: caps, boundary loops.
+fn piece(
+    a: Assembled,
+    mut face_origin: Vec<u32>,
+    plane_vertex: &[bool],
+    normal: DVec3,
+    cap: bool,
+) -> CutPiece {
+    let Assembled {
+        mut mesh,
+        origin,
+        frame,
+        ..
+    } = a;
+    let mut cap_triangles = 0;
+    if cap {
+        let loops =
+            crate::adjacency::boundary_loops(&mesh.mesh.triangles, mesh.mesh.vertex_count());
+        for lp in loops {
+            if lp.len() < 3 || !lp.iter().all(|&v| plane_vertex[v as usize]) {
                 continue;
             }
-            *slot = positions.len() as u32;
-            if g < n {
-                positions.push(src.mesh.positions[g]);
-                origin.push(VertexOrigin::Original(g as u32));
-                push_copy(&src.influences, g as u32, &mut influences);
-                frame.push(frame_positions[g]);
-            } else {
-                let (a, b, t) = new_edges[g - n];
-                positions.push(new_rest[g - n]);
-                origin.push(VertexOrigin::Edge { a, b, t });
-                let w = new_inf.width;
-                let r = (g - n) * w..(g - n + 1) * w;
-                influences
-                    .joints
-                    .extend_from_slice(&new_inf.joints[r.clone()]);
-                influences.weights.extend_from_slice(&new_inf.weights[r]);
-                frame.push(frame_positions[a as usize].lerp(frame_positions[b as usize], t));
+            // The cap runs against the loop (whose half-edges the piece's faces use).
+            let rev: Vec<u32> = lp.iter().rev().copied().collect();
+            let pts: Vec<DVec3> = rev.iter().map(|&v| frame[v as usize]).collect();
+            if let Some(tris) = ear_clip(&pts, normal) {
+                cap_triangles += tris.len();
+                mesh.mesh
+                    .triangles
+                    .extend(tris.iter().map(|t| t.map(|k| rev[k])));
+                face_origin.resize(mesh.mesh.triangle_count(), u32::MAX);
             }
         }
-        let plane_vertex: Vec<bool> = (0..total)
-            .filter(|&g| local[g] != u32::MAX)
-            .map(|g| on_plane(g as u32))
-            .collect();
-        for t in &mut faces {
-            *t = t.map(|v| local[v as usize]);
-        }
-        let mut cap_triangles = 0;
-        if cap {
-            let loops = crate::adjacency::boundary_loops(&faces, positions.len());
-            for lp in loops {
-                if lp.len() < 3 || !lp.iter().all(|&v| plane_vertex[v as usize]) {
-                    continue;
-                }
-                // The cap runs against the loop (whose half-edges the piece's faces use).
-                let rev: Vec<u32> = lp.iter().rev().copied().collect();
-                let pts: Vec<DVec3> = rev.iter().map(|&v| frame[v as usize]).collect();
-                if let Some(tris) = ear_clip(&pts, normal) {
-                    cap_triangles += tris.len();
-                    faces.extend(tris.iter().map(|t| t.map(|k| rev[k])));
-                    face_origin.resize(faces.len(), u32::MAX);
-                }
-            }
-        }
-        let boundary_loops = crate::adjacency::boundary_loops(&faces, positions.len()).len();
-        CutPiece {
-            mesh: SkinnedMesh {
-                mesh: Mesh::new(positions, faces),
-                influences,
-            },
-            origin,
-            face_origin,
-            boundary_loops,
-            cap_triangles,
-        }
+    }
+    let boundary_loops =
+        crate::adjacency::boundary_loops(&mesh.mesh.triangles, mesh.mesh.vertex_count()).len();
+    CutPiece {
+        mesh,
+        origin,
+        face_origin,
+        boundary_loops,
+        cap_triangles,
     }
 }

@@ -30,6 +30,7 @@
 mod bvh;
 mod cap;
 mod cut;
+mod split;
 mod weights;
 
 pub use bvh::FaceBvh;

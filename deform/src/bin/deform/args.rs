@@ -48,6 +48,10 @@ pub enum Command {
     /// the glTF skinning formula, one vertex per glTF vertex, primitives concatenated in
     /// document order), an OBJ sequence (--range, --in-betweens) or the whole rig as .glb.
     Skin(crate::skin_cmd::SkinArgs),
+    /// Cut a rigged model by the plane n.x = d (the second paper's Algorithm 1): both pieces
+    /// stay skinned and animatable; .glb keeps the rig (one primitive per piece), OBJ writes
+    /// the rest mesh. Coordinates are rest-pose mesh space unless --time is given.
+    Cut(crate::surgery_cmds::CutArgs),
 }
 
 /// Options every command that writes files shares.

@@ -60,8 +60,9 @@ pub enum Keyframes {
     MotorLog,
 }
 
+/// A rigged model on the command line.
 #[derive(Args, Debug)]
-pub struct SkinArgs {
+pub struct RigInput {
     /// The rigged model: glTF 2.0 (.gltf, .glb), or a mesh (OBJ, OFF) with --skeleton and
     /// --weights.
     pub model: PathBuf,
@@ -71,6 +72,46 @@ pub struct SkinArgs {
     /// libigl weights (DMAT, vertices x bones) of a mesh model.
     #[arg(long, requires = "skeleton")]
     pub weights: Option<PathBuf>,
+}
+
+impl RigInput {
+    /// The input files.
+    pub fn paths(&self) -> Vec<&Path> {
+        let mut v = vec![self.model.as_path()];
+        v.extend(self.skeleton.as_deref());
+        v.extend(self.weights.as_deref());
+        v
+    }
+
+    /// Read the rig: glTF by extension, else a libigl mesh with skeleton and weights.
+    pub fn read(&self) -> Result<Rig> {
+        let ext = self
+            .model
+            .extension()
+            .and_then(|e| e.to_str())
+            .unwrap_or("")
+            .to_ascii_lowercase();
+        if ext == "gltf" || ext == "glb" {
+            return Ok(read_gltf(&self.model)?);
+        }
+        let (Some(s), Some(w)) = (&self.skeleton, &self.weights) else {
+            bail!(
+                "{}: a mesh model needs --skeleton and --weights (or give a .gltf/.glb)",
+                self.model.display()
+            );
+        };
+        let mesh = crate::output::read_mesh(&self.model)?;
+        let skeleton = deform::io::read_tgf(s)?;
+        let weights = deform::io::read_dmat(w)?;
+        libigl_rig(mesh, &skeleton, &weights)
+            .with_context(|| format!("{}: cannot rig", self.model.display()))
+    }
+}
+
+#[derive(Args, Debug)]
+pub struct SkinArgs {
+    #[command(flatten)]
+    pub rig: RigInput,
     /// The animation, by name or index (default: none, the rest pose).
     #[arg(long)]
     pub animation: Option<String>,
@@ -126,30 +167,6 @@ fn parse_edit(s: &str) -> Result<(String, PathBuf), String> {
     Ok((j.to_string(), PathBuf::from(m)))
 }
 
-/// Read the rig: glTF by extension, else a libigl mesh with skeleton and weights.
-fn read_rig(a: &SkinArgs) -> Result<Rig> {
-    let ext = a
-        .model
-        .extension()
-        .and_then(|e| e.to_str())
-        .unwrap_or("")
-        .to_ascii_lowercase();
-    if ext == "gltf" || ext == "glb" {
-        return Ok(read_gltf(&a.model)?);
-    }
-    let (Some(s), Some(w)) = (&a.skeleton, &a.weights) else {
-        bail!(
-            "{}: a mesh model needs --skeleton and --weights (or give a .gltf/.glb)",
-            a.model.display()
-        );
-    };
-    let mesh = crate::output::read_mesh(&a.model)?;
-    let skeleton = deform::io::read_tgf(s)?;
-    let weights = deform::io::read_dmat(w)?;
-    libigl_rig(mesh, &skeleton, &weights)
-        .with_context(|| format!("{}: cannot rig", a.model.display()))
-}
-
 /// `OUT.obj` -> `OUT_0003.obj`.
 fn numbered(path: &Path, k: usize) -> PathBuf {
     let stem = path
@@ -159,9 +176,7 @@ fn numbered(path: &Path, k: usize) -> PathBuf {
 }
 
 pub fn skin(a: &SkinArgs) -> Result<()> {
-    let mut inputs: Vec<&Path> = vec![a.model.as_path()];
-    inputs.extend(a.skeleton.as_deref());
-    inputs.extend(a.weights.as_deref());
+    let mut inputs = a.rig.paths();
     inputs.extend(a.edits.iter().map(|(_, p)| p.as_path()));
     let mut outputs = vec![a.out.output.as_path()];
     outputs.extend(a.out.png.as_deref());
@@ -172,7 +187,7 @@ pub fn skin(a: &SkinArgs) -> Result<()> {
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("glb"));
     let t = Instant::now();
-    let rig = read_rig(a)?;
+    let rig = a.rig.read()?;
     let load_ms = t.elapsed().as_secs_f64() * 1e3;
     let animation = a
         .animation

@@ -1,0 +1,207 @@
+//! `deform cut`, `deform tear`, `deform drill`: surgery on a rigged model that stays
+//! animatable; the result is written as `.glb` (the rig with the new mesh, its skin and
+//! animations) or OBJ (the rest mesh).
+
+use crate::args::OutputArgs;
+use crate::commands::Report;
+use crate::output::{check_outputs, write_obj, write_png};
+use crate::preview;
+use crate::skin_cmd::RigInput;
+use anyhow::{bail, Context, Result};
+use clap::Args;
+use deform::skinning::{write_glb, GlbOptions, Rig, Skinning};
+use deform::surgery::{CutOptions, Frame, Surgery};
+use deform::{BlendMethod, Deformer, Mesh};
+use glam::{DAffine3, DVec3};
+use std::time::Instant;
+
+/// Where the tool's coordinates are given.
+#[derive(Args, Debug)]
+pub struct ToolFrame {
+    /// Give the tool in the posed world space at this time (of --animation, default the
+    /// first) instead of the rest-pose mesh space.
+    #[arg(long)]
+    pub time: Option<f64>,
+    /// The animation for --time, by name or index.
+    #[arg(long, requires = "time")]
+    pub animation: Option<String>,
+}
+
+#[derive(Args, Debug)]
+pub struct CutArgs {
+    #[command(flatten)]
+    pub rig: RigInput,
+    /// The plane n.x = d as NX,NY,NZ,D (the normal need not be unit).
+    #[arg(long, value_parser = parse_plane, allow_hyphen_values = true)]
+    pub plane: [f64; 4],
+    /// Close both pieces with triangulated caps.
+    #[arg(long)]
+    pub cap: bool,
+    /// Snap fraction: vertices closer to the plane than this fraction of a crossing edge are
+    /// treated as on it.
+    #[arg(long, default_value_t = 0.02)]
+    pub snap: f64,
+    #[command(flatten)]
+    pub frame: ToolFrame,
+    #[command(flatten)]
+    pub out: OutputArgs,
+}
+
+/// `X,Y,Z` as a vector.
+pub fn parse_vec3(s: &str) -> Result<DVec3, String> {
+    let v: Vec<f64> = s
+        .split(',')
+        .map(|x| x.trim().parse::<f64>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| format!("{s:?}: expected X,Y,Z"))?;
+    match v[..] {
+        [x, y, z] if v.iter().all(|c| c.is_finite()) => Ok(DVec3::new(x, y, z)),
+        _ => Err(format!("{s:?}: expected three finite numbers X,Y,Z")),
+    }
+}
+
+fn parse_plane(s: &str) -> Result<[f64; 4], String> {
+    let v: Vec<f64> = s
+        .split(',')
+        .map(|x| x.trim().parse::<f64>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| format!("{s:?}: expected NX,NY,NZ,D"))?;
+    match v[..] {
+        [a, b, c, d] if v.iter().all(|x| x.is_finite()) => Ok([a, b, c, d]),
+        _ => Err(format!("{s:?}: expected four finite numbers NX,NY,NZ,D")),
+    }
+}
+
+/// The posed positions and skin matrices of the frame the tool is given in (none: rest).
+pub struct Posed {
+    pub positions: Vec<DVec3>,
+    pub skin: Vec<DAffine3>,
+}
+
+impl Posed {
+    pub fn read(rig: &Rig, f: &ToolFrame) -> Result<Option<Posed>> {
+        let Some(t) = f.time else { return Ok(None) };
+        let animation = match &f.animation {
+            Some(a) => Some(rig.animation_index(a)?),
+            None => (!rig.animations.is_empty()).then_some(0),
+        };
+        let pose = rig.pose(animation, t, &[])?;
+        let lbs = Skinning::bind(rig, BlendMethod::Matrix)?;
+        let mut positions = vec![DVec3::ZERO; rig.mesh.vertex_count()];
+        lbs.pose(pose.skin_motors()?, &mut positions)?;
+        Ok(Some(Posed {
+            positions,
+            skin: pose.skin_matrices.clone(),
+        }))
+    }
+
+    pub fn frame(p: &Option<Posed>) -> Frame<'_> {
+        match p {
+            None => Frame::Rest,
+            Some(p) => Frame::Posed {
+                positions: &p.positions,
+                skin: &p.skin,
+            },
+        }
+    }
+}
+
+/// Write the new rig (`.glb`) or its rest mesh (OBJ), and a preview of the parts pulled apart
+/// by `spread` along `away(part)`.
+pub fn write_result(
+    rig: &Rig,
+    parts: &[(&Mesh, &deform::skinning::Influences)],
+    out: &OutputArgs,
+    away: impl Fn(usize) -> DVec3,
+    report: &mut Report,
+) -> Result<()> {
+    let result = rig
+        .with_parts(parts)
+        .context("the result is not a valid rig")?;
+    let glb = out
+        .output
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("glb"));
+    if glb {
+        write_glb(&result, &GlbOptions::default(), &out.output)?;
+    } else {
+        write_obj(&out.output, &result.mesh)?;
+    }
+    report.add("output", out.output.display().to_string());
+    if let Some(png) = &out.png {
+        let mut shown = result.mesh.clone();
+        let mut part_of = vec![0.0; shown.vertex_count()];
+        for (k, p) in result.primitives.iter().enumerate() {
+            let shift = away(k);
+            for v in p.vertex_offset..p.vertex_offset + p.vertex_count {
+                shown.positions[v] += shift;
+                part_of[v] = k as f64;
+            }
+        }
+        let image = preview::before_after(&rig.mesh, &shown, &part_of, 30.0, 20.0)?;
+        write_png(png, &image)?;
+        report.add("png", png.display().to_string());
+    }
+    report.print(out);
+    Ok(())
+}
+
+pub fn cut(a: &CutArgs) -> Result<()> {
+    let mut outputs = vec![a.out.output.as_path()];
+    outputs.extend(a.out.png.as_deref());
+    check_outputs(&a.rig.paths(), &outputs)?;
+    let rig = a.rig.read()?;
+    let [nx, ny, nz, d] = a.plane;
+    let normal = DVec3::new(nx, ny, nz);
+    let len = normal.length();
+    if !(len > 0.0) {
+        bail!("--plane: the normal is zero");
+    }
+    let plane = cga::Plane::from_normal_distance(normal / len, d / len);
+    let posed = Posed::read(&rig, &a.frame)?;
+    let t = Instant::now();
+    let surgery = Surgery::new(&rig.mesh, &rig.influences)?;
+    let index_ms = t.elapsed().as_secs_f64() * 1e3;
+    let t = Instant::now();
+    let options = CutOptions {
+        snap: a.snap,
+        cap: a.cap,
+    };
+    let cut = surgery.cut(&plane, Posed::frame(&posed), &options)?;
+    let cut_ms = t.elapsed().as_secs_f64() * 1e3;
+    let mut report = Report::new("cut", &rig.mesh);
+    report.add("index_ms", index_ms);
+    report.add("cut_ms", cut_ms);
+    report.add("new_vertices", cut.new_vertices);
+    report.add("split_faces", cut.split_faces);
+    report.add("snapped_vertices", cut.snapped_vertices);
+    for (k, p) in cut.pieces.iter().enumerate() {
+        report.add(
+            if k == 0 {
+                "piece_positive"
+            } else {
+                "piece_negative"
+            },
+            serde_json::json!({
+                "vertices": p.mesh.mesh.vertex_count(),
+                "triangles": p.mesh.mesh.triangle_count(),
+                "boundary_loops": p.boundary_loops,
+                "cap_triangles": p.cap_triangles,
+            }),
+        );
+    }
+    let spread = 0.04 * rig.mesh.bounding_box().map_or(1.0, |b| b.diagonal());
+    let n = plane.normal();
+    let parts: Vec<_> = cut
+        .pieces
+        .iter()
+        .map(|p| (&p.mesh.mesh, &p.mesh.influences))
+        .collect();
+    write_result(
+        &rig,
+        &parts,
+        &a.out,
+        |k| if k == 0 { n * spread } else { -n * spread },
+        &mut report,
+    )
+}

@@ -1,0 +1,203 @@
+//! The step cut, tear and drill share: splitting triangles along a curve given by the signs of
+//! their corners (which side of a plane, inside or outside a drill), with one new vertex per
+//! crossing edge, shared by the faces on both sides of the edge; and assembling the result.
+
+use super::weights::{push_copy, push_interpolated};
+use super::{unskin, Frame, SkinnedMesh, SurgeryError, VertexOrigin};
+use crate::skinning::Influences;
+use crate::Mesh;
+use glam::DVec3;
+use std::collections::HashMap;
+
+/// New vertices on input edges, created as the faces are split.
+pub(crate) struct Splitter<'a> {
+    /// Input vertex count: new vertices are numbered from here.
+    pub n: usize,
+    /// The input vertices in the frame of the tool.
+    pub positions: &'a [DVec3],
+    /// New vertices: `(a, b, t)` with `a < b`, at `a + t (b - a)`.
+    pub new_edges: Vec<(u32, u32, f64)>,
+    index: HashMap<(u32, u32), u32>,
+}
+
+/// The smallest angle of a triangle.
+fn min_angle(a: DVec3, b: DVec3, c: DVec3) -> f64 {
+    let ang = |p: DVec3, q: DVec3, r: DVec3| (q - p).angle_between(r - p);
+    ang(a, b, c).min(ang(b, c, a)).min(ang(c, a, b))
+}
+
+impl<'a> Splitter<'a> {
+    pub fn new(positions: &'a [DVec3]) -> Self {
+        Splitter {
+            n: positions.len(),
+            positions,
+            new_edges: Vec::new(),
+            index: HashMap::new(),
+        }
+    }
+
+    /// The vertex on edge `i j` where `root(a, b)` (`a < b`) puts it, made once per edge.
+    pub fn edge_vertex(&mut self, i: u32, j: u32, root: &impl Fn(u32, u32) -> f64) -> u32 {
+        let (a, b) = (i.min(j), i.max(j));
+        let (n, e) = (self.n, &mut self.new_edges);
+        *self.index.entry((a, b)).or_insert_with(|| {
+            e.push((a, b, root(a, b)));
+            (n + e.len() - 1) as u32
+        })
+    }
+
+    /// The position of an input or new vertex in the tool's frame.
+    pub fn at(&self, v: u32) -> DVec3 {
+        match (v as usize).checked_sub(self.n) {
+            None => self.positions[v as usize],
+            Some(k) => {
+                let (a, b, t) = self.new_edges[k];
+                self.positions[a as usize].lerp(self.positions[b as usize], t)
+            }
+        }
+    }
+
+    /// Split triangle `t` whose corners have signs `g` (some `1`, some `-1`, maybe a `0`),
+    /// calling `push(side, triangle)` with side 0 for the positive part and 1 for the
+    /// negative part. Orientation is kept; of the quad's two diagonals the one with the larger
+    /// smallest angle is taken.
+    pub fn split(
+        &mut self,
+        t: [u32; 3],
+        g: [i8; 3],
+        root: &impl Fn(u32, u32) -> f64,
+        mut push: impl FnMut(usize, [u32; 3]),
+    ) {
+        let side = |s: i8| usize::from(s < 0);
+        if let Some(z) = g.iter().position(|&x| x == 0) {
+            let (zv, u, v) = (t[z], t[(z + 1) % 3], t[(z + 2) % 3]);
+            let m = self.edge_vertex(u, v, root);
+            push(side(g[(z + 1) % 3]), [zv, u, m]);
+            push(side(g[(z + 2) % 3]), [zv, m, v]);
+            return;
+        }
+        // The lone vertex: the one whose sign the other two do not share.
+        let lone = (0..3)
+            .find(|&k| g[k] != g[(k + 1) % 3] && g[k] != g[(k + 2) % 3])
+            .expect("mixed signs");
+        let (a, b, c) = (t[lone], t[(lone + 1) % 3], t[(lone + 2) % 3]);
+        let p = self.edge_vertex(a, b, root);
+        let q = self.edge_vertex(a, c, root);
+        push(side(g[lone]), [a, p, q]);
+        let other = side(-g[lone]);
+        let (pp, pb, pc, pq) = (self.at(p), self.at(b), self.at(c), self.at(q));
+        let one = min_angle(pp, pb, pc).min(min_angle(pp, pc, pq));
+        let two = min_angle(pp, pb, pq).min(min_angle(pq, pb, pc));
+        if one >= two {
+            push(other, [p, b, c]);
+            push(other, [p, c, q]);
+        } else {
+            push(other, [p, b, q]);
+            push(other, [q, b, c]);
+        }
+    }
+}
+
+/// Influences (interpolated, 4 largest) and rest positions of new vertices `(a, b, t)`: on the
+/// rest pose the interpolated rest point; on a posed frame the posed point mapped back through
+/// the inverse of its own blended skin transform.
+pub(crate) fn new_vertex_data(
+    src: &SkinnedMesh,
+    new_edges: &[(u32, u32, f64)],
+    frame: Frame,
+    frame_positions: &[DVec3],
+) -> Result<(Influences, Vec<DVec3>), SurgeryError> {
+    let mut inf = Influences {
+        width: src.influences.width,
+        ..Influences::default()
+    };
+    let mut rest = Vec::with_capacity(new_edges.len());
+    for (k, &(a, b, t)) in new_edges.iter().enumerate() {
+        push_interpolated(&src.influences, &[(a, 1.0 - t), (b, t)], &mut inf);
+        let (pa, pb) = (a as usize, b as usize);
+        rest.push(match frame {
+            Frame::Rest => src.mesh.positions[pa].lerp(src.mesh.positions[pb], t),
+            Frame::Posed { skin, .. } => {
+                let r = k * inf.width..(k + 1) * inf.width;
+                let p = frame_positions[pa].lerp(frame_positions[pb], t);
+                unskin(p, &inf.joints[r.clone()], &inf.weights[r], skin).ok_or_else(|| {
+                    SurgeryError::BadMesh(format!(
+                        "new vertex on edge {a}-{b}: its blended skin transform is singular"
+                    ))
+                })?
+            }
+        });
+    }
+    Ok((inf, rest))
+}
+
+/// One result mesh from triangles over input vertices `0..n` and new vertices `n..`:
+/// reindexed (input vertices in input order, then new ones), with influences, origins, and
+/// each vertex's position in the tool's frame.
+pub(crate) struct Assembled {
+    pub mesh: SkinnedMesh,
+    pub origin: Vec<VertexOrigin>,
+    pub frame: Vec<DVec3>,
+    /// Global (input or new) index of each result vertex.
+    pub global: Vec<u32>,
+}
+
+pub(crate) fn assemble(
+    src: &SkinnedMesh,
+    mut faces: Vec<[u32; 3]>,
+    splitter: &Splitter,
+    new_inf: &Influences,
+    new_rest: &[DVec3],
+) -> Assembled {
+    let n = src.mesh.vertex_count();
+    let total = n + splitter.new_edges.len();
+    let mut local = vec![u32::MAX; total];
+    for t in &faces {
+        for &v in t {
+            local[v as usize] = 0;
+        }
+    }
+    let mut positions = Vec::new();
+    let mut origin = Vec::new();
+    let mut frame = Vec::new();
+    let mut global = Vec::new();
+    let mut influences = Influences {
+        width: src.influences.width,
+        ..Influences::default()
+    };
+    for (g, slot) in local.iter_mut().enumerate() {
+        if *slot == u32::MAX {
+            continue;
+        }
+        *slot = positions.len() as u32;
+        global.push(g as u32);
+        frame.push(splitter.at(g as u32));
+        if g < n {
+            positions.push(src.mesh.positions[g]);
+            origin.push(VertexOrigin::Original(g as u32));
+            push_copy(&src.influences, g as u32, &mut influences);
+        } else {
+            let (a, b, t) = splitter.new_edges[g - n];
+            positions.push(new_rest[g - n]);
+            origin.push(VertexOrigin::Edge { a, b, t });
+            let w = new_inf.width;
+            let r = (g - n) * w..(g - n + 1) * w;
+            influences
+                .joints
+                .extend_from_slice(&new_inf.joints[r.clone()]);
+            influences.weights.extend_from_slice(&new_inf.weights[r]);
+        }
+    }
+    for t in &mut faces {
+        *t = t.map(|v| local[v as usize]);
+    }
+    Assembled {
+        mesh: SkinnedMesh {
+            mesh: Mesh::new(positions, faces),
+            influences,
+        },
+        origin,
+        frame,
+        global,
+    }
+}
