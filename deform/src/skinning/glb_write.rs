@@ -131,9 +131,14 @@ fn compact_influences(rig: &Rig) -> (usize, Vec<[u16; 8]>, Vec<[f32; 8]>) {
 /// influences per vertex are kept (the largest, renormalised).
 ///
 /// # Errors
-/// [`crate::Error::InvalidArgument`] for more than 65536 joints or `node_transforms` of the
-/// wrong length.
+/// [`crate::Error::InvalidArgument`] for a mesh without triangles, more than 65536 joints or
+/// `node_transforms` of the wrong length.
 pub fn glb_bytes(rig: &Rig, options: &GlbOptions) -> Result<Vec<u8>> {
+    if rig.mesh.triangle_count() == 0 {
+        return Err(crate::Error::InvalidArgument(
+            "the rig's mesh has no triangles: nothing to write".into(),
+        ));
+    }
     if rig.joints.len() > u16::MAX as usize + 1 {
         return Err(crate::Error::InvalidArgument(format!(
             "{} joints: glTF joint indices are 16-bit here",

@@ -1,7 +1,7 @@
 //! Planar cut (second paper, Algorithm 1).
 
 use super::cap::ear_clip;
-use super::split::{assemble, new_vertex_data, Assembled, Splitter};
+use super::split::{assemble, local_loops, new_vertex_data, Assembled, FaceFate, Splitter};
 use super::{Frame, SkinnedMesh, Surgery, SurgeryError};
 use crate::Mesh;
 use cga::Plane;
@@ -33,6 +33,8 @@ impl Default for CutOptions {
 pub enum VertexOrigin {
     /// Vertex `0` of the input mesh.
     Original(u32),
+    /// A midpoint added by refinement (a drill thinner than the triangles).
+    Refined,
     /// A new vertex on the input edge `a b` at `a + t (b - a)` (in the frame of the cut).
     Edge {
         /// First end.
@@ -159,6 +161,7 @@ impl Surgery {
         }
         snap.sort_unstable();
         snap.dedup();
+        let snap_margin = snap.iter().map(|&v| s[v].abs()).fold(tiny, f64::max);
         for &v in &snap {
             s[v] = 0.0;
         }
@@ -173,31 +176,59 @@ impl Surgery {
         };
         let mut faces: [Vec<[u32; 3]>; 2] = [Vec::new(), Vec::new()];
         let mut from: [Vec<u32>; 2] = [Vec::new(), Vec::new()];
-        let mut split_faces = 0;
+        let mut fate = Vec::with_capacity(src.mesh.triangle_count());
+        let mut changed = Vec::new();
+        let mut produced = Vec::new();
         for (fi, t) in src.mesh.triangles.iter().enumerate() {
-            let mut push = |k: usize, tri: [u32; 3]| {
-                faces[k].push(tri);
-                from[k].push(fi as u32);
-            };
             let g = t.map(|v| sign(s[v as usize]));
             let (pos, neg) = (g.contains(&1), g.contains(&-1));
-            if !neg {
-                push(0, *t);
-            } else if !pos {
-                push(1, *t);
+            if !neg || !pos {
+                let k = usize::from(!pos && neg);
+                faces[k].push(*t);
+                from[k].push(fi as u32);
+                fate.push(FaceFate::Kept(k as u8));
             } else {
-                split_faces += 1;
-                splitter.split(*t, g, &root, push);
+                fate.push(FaceFate::Changed);
+                changed.push(fi as u32);
+                splitter.split(*t, g, &root, |k, tri| {
+                    faces[k].push(tri);
+                    from[k].push(fi as u32);
+                    produced.push((tri, k as u8));
+                });
             }
         }
+        let split_faces = changed.len();
+        // Unchanged faces with an edge on the plane (snapped vertices included): that edge may
+        // now be a boundary.
+        let near_snapped = if snap_margin > tiny {
+            bvh.faces_near_plane(nrm, d, snap_margin * 1.01)
+        } else {
+            candidates.clone()
+        };
+        let seeds: Vec<u32> = near_snapped
+            .iter()
+            .copied()
+            .filter(|&f| {
+                let t = src.mesh.triangles[f as usize];
+                t.iter().filter(|&&v| s[v as usize] == 0.0).count() >= 2
+            })
+            .collect();
         let (new_inf, new_rest) = new_vertex_data(src, &splitter.new_edges, frame, positions)?;
         let on_plane = |g: u32| (g as usize) >= n || s[g as usize] == 0.0;
         let [f0, f1] = faces;
         let [o0, o1] = from;
-        let pieces = [(f0, o0), (f1, o1)].map(|(f, o)| {
+        let pieces = [(f0, o0, 0u8), (f1, o1, 1u8)].map(|(f, o, side)| {
             let a = assemble(src, f, &splitter, &new_inf, &new_rest);
-            let plane_vertex: Vec<bool> = a.global.iter().map(|&g| on_plane(g)).collect();
-            piece(a, o, &plane_vertex, nrm, options.cap)
+            let loops = local_loops(
+                &self.topology,
+                &src.mesh.triangles,
+                |f| fate[f as usize],
+                &changed,
+                &seeds,
+                &produced,
+                side,
+            );
+            piece(a, o, loops, &on_plane, nrm, options.cap)
         });
         Ok(CutResult {
             pieces,
@@ -209,11 +240,12 @@ impl Surgery {
     }
 }
 
-/// One side: caps, boundary loops.
+/// One side: caps, boundary loops (`loops` over global vertices).
 fn piece(
     a: Assembled,
     mut face_origin: Vec<u32>,
-    plane_vertex: &[bool],
+    loops: Vec<Vec<u32>>,
+    on_plane: &impl Fn(u32) -> bool,
     normal: DVec3,
     cap: bool,
 ) -> CutPiece {
@@ -221,18 +253,18 @@ fn piece(
         mut mesh,
         origin,
         frame,
+        local,
         ..
     } = a;
     let mut cap_triangles = 0;
+    let mut boundary_loops = loops.len();
     if cap {
-        let loops =
-            crate::adjacency::boundary_loops(&mesh.mesh.triangles, mesh.mesh.vertex_count());
         for lp in loops {
-            if lp.len() < 3 || !lp.iter().all(|&v| plane_vertex[v as usize]) {
+            if lp.len() < 3 || !lp.iter().all(|&v| on_plane(v)) {
                 continue;
             }
             // The cap runs against the loop (whose half-edges the piece's faces use).
-            let rev: Vec<u32> = lp.iter().rev().copied().collect();
+            let rev: Vec<u32> = lp.iter().rev().map(|&g| local[g as usize]).collect();
             let pts: Vec<DVec3> = rev.iter().map(|&v| frame[v as usize]).collect();
             if let Some(tris) = ear_clip(&pts, normal) {
                 cap_triangles += tris.len();
@@ -240,11 +272,10 @@ fn piece(
                     .triangles
                     .extend(tris.iter().map(|t| t.map(|k| rev[k])));
                 face_origin.resize(mesh.mesh.triangle_count(), u32::MAX);
+                boundary_loops -= 1;
             }
         }
     }
-    let boundary_loops =
-        crate::adjacency::boundary_loops(&mesh.mesh.triangles, mesh.mesh.vertex_count()).len();
     CutPiece {
         mesh,
         origin,

@@ -30,11 +30,14 @@
 mod bvh;
 mod cap;
 mod cut;
+mod drill;
+mod refine;
 mod split;
 mod weights;
 
 pub use bvh::FaceBvh;
 pub use cut::{CutOptions, CutPiece, CutResult, VertexOrigin};
+pub use drill::{Drill, DrillOptions, DrillResult};
 pub use weights::{push_interpolated, NEW_VERTEX_INFLUENCES};
 
 use crate::skinning::Influences;
@@ -59,8 +62,10 @@ pub enum SurgeryError {
     /// A plane, blade or cylinder that is not finite or degenerate.
     #[error("{0}")]
     BadTool(String),
-    /// The plane does not cross the mesh: every vertex is on one side (or on the plane).
-    #[error("the plane does not cut the mesh: all {vertices} vertices are on one side")]
+    /// The tool does not reach the mesh: a plane with every vertex on one side (or on it), a
+    /// drill with no vertex inside and no edge through it, a scalpel that does not touch the
+    /// surface.
+    #[error("the tool does not reach the mesh ({vertices} vertices): nothing to cut")]
     Misses {
         /// The mesh's vertex count.
         vertices: usize,
@@ -97,6 +102,7 @@ pub enum Frame<'a> {
 pub struct Surgery {
     mesh: SkinnedMesh,
     bvh: FaceBvh,
+    topology: split::Topology,
     diagonal: f64,
 }
 
@@ -139,6 +145,7 @@ impl Surgery {
         }
         let diagonal = mesh.bounding_box().map_or(0.0, |b| b.diagonal());
         Ok(Surgery {
+            topology: split::Topology::new(&mesh.triangles, n),
             bvh: FaceBvh::new(mesh),
             mesh: SkinnedMesh {
                 mesh: mesh.clone(),

@@ -138,8 +138,8 @@ pub(crate) struct Assembled {
     pub mesh: SkinnedMesh,
     pub origin: Vec<VertexOrigin>,
     pub frame: Vec<DVec3>,
-    /// Global (input or new) index of each result vertex.
-    pub global: Vec<u32>,
+    /// Result index of each global vertex (`u32::MAX`: not in the result).
+    pub local: Vec<u32>,
 }
 
 pub(crate) fn assemble(
@@ -160,7 +160,6 @@ pub(crate) fn assemble(
     let mut positions = Vec::new();
     let mut origin = Vec::new();
     let mut frame = Vec::new();
-    let mut global = Vec::new();
     let mut influences = Influences {
         width: src.influences.width,
         ..Influences::default()
@@ -170,7 +169,6 @@ pub(crate) fn assemble(
             continue;
         }
         *slot = positions.len() as u32;
-        global.push(g as u32);
         frame.push(splitter.at(g as u32));
         if g < n {
             positions.push(src.mesh.positions[g]);
@@ -198,6 +196,163 @@ pub(crate) fn assemble(
         },
         origin,
         frame,
-        global,
+        local,
     }
+}
+
+/// Bind-time topology: the face across each edge and the boundary, so that a tool can count
+/// the boundary loops of its result from the faces it touched alone.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct Topology {
+    /// `neighbors[f][k]`: the face across the edge opposite corner `k` (`u32::MAX`: none).
+    pub neighbors: Vec<[u32; 3]>,
+    /// Boundary half-edges `(a, b, face)` as the faces orient them.
+    pub boundary: Vec<(u32, u32, u32)>,
+    /// Boundary loops of the input.
+    pub loops: usize,
+}
+
+impl Topology {
+    pub fn new(triangles: &[[u32; 3]], n: usize) -> Topology {
+        let edges = crate::adjacency::edges(triangles, n);
+        let mut faces_of = vec![[u32::MAX; 2]; edges.edges.len()];
+        for (f, fe) in edges.face_edges.iter().enumerate() {
+            for &e in fe {
+                let slot = &mut faces_of[e as usize];
+                if slot[0] == u32::MAX {
+                    slot[0] = f as u32;
+                } else {
+                    slot[1] = f as u32;
+                }
+            }
+        }
+        let mut neighbors = Vec::with_capacity(triangles.len());
+        let mut boundary = Vec::new();
+        for (f, t) in triangles.iter().enumerate() {
+            let fe = edges.face_edges[f];
+            let mut nb = [u32::MAX; 3];
+            for k in 0..3 {
+                let [x, y] = faces_of[fe[k] as usize];
+                nb[k] = if x == f as u32 { y } else { x };
+                if nb[k] == u32::MAX {
+                    boundary.push((t[(k + 1) % 3], t[(k + 2) % 3], f as u32));
+                }
+            }
+            neighbors.push(nb);
+        }
+        let loops = crate::adjacency::boundary_loops(triangles, n).len();
+        Topology {
+            neighbors,
+            boundary,
+            loops,
+        }
+    }
+}
+
+/// What a tool did to an input face.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum FaceFate {
+    /// Kept unchanged on this side.
+    Kept(u8),
+    /// Split or removed.
+    Changed,
+}
+
+/// The boundary loops (as vertex sequences over input and new vertices) of side `side` of a
+/// tool's result, found from the changed faces and their neighbours only: `fate` of every
+/// input face, the `changed` input faces, unchanged `seeds` whose edges may have become
+/// boundary (faces with an edge on a cutting plane), the `produced` triangles with their side.
+pub(crate) fn local_loops(
+    topo: &Topology,
+    triangles: &[[u32; 3]],
+    fate: impl Fn(u32) -> FaceFate,
+    changed: &[u32],
+    seeds: &[u32],
+    produced: &[([u32; 3], u8)],
+    side: u8,
+) -> Vec<Vec<u32>> {
+    use std::collections::HashSet;
+    // The unchanged faces of this side next to a changed face, and the seeds.
+    let mut ring: Vec<u32> = changed
+        .iter()
+        .flat_map(|&f| topo.neighbors[f as usize])
+        .chain(seeds.iter().copied())
+        .filter(|&g| g != u32::MAX && fate(g) == FaceFate::Kept(side))
+        .collect();
+    ring.sort_unstable();
+    ring.dedup();
+    let mine = produced.iter().filter(|p| p.1 == side).map(|p| p.0);
+    let mut half: HashSet<(u32, u32)> = HashSet::new();
+    for t in mine.clone().chain(ring.iter().map(|&f| triangles[f as usize])) {
+        for k in 0..3 {
+            half.insert((t[k], t[(k + 1) % 3]));
+        }
+    }
+    let mut out: Vec<(u32, u32)> = Vec::new();
+    for t in mine {
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            if !half.contains(&(b, a)) {
+                out.push((a, b));
+            }
+        }
+    }
+    for &f in &ring {
+        let t = triangles[f as usize];
+        for k in 0..3 {
+            let (a, b) = (t[(k + 1) % 3], t[(k + 2) % 3]);
+            let nb = topo.neighbors[f as usize][k];
+            let boundary = if nb == u32::MAX {
+                true
+            } else {
+                match fate(nb) {
+                    FaceFate::Kept(s) => s != side,
+                    FaceFate::Changed => !half.contains(&(b, a)),
+                }
+            };
+            if boundary {
+                out.push((a, b));
+            }
+        }
+    }
+    let ring_set: HashSet<u32> = ring.iter().copied().collect();
+    out.extend(
+        topo.boundary
+            .iter()
+            .filter(|&&(_, _, f)| fate(f) == FaceFate::Kept(side) && !ring_set.contains(&f))
+            .map(|&(a, b, _)| (a, b)),
+    );
+    chain_loops(&out)
+}
+
+/// Chain half-edges `a -> b` into closed loops (at a vertex with several outgoing edges, the
+/// first unused one is taken).
+pub(crate) fn chain_loops(half: &[(u32, u32)]) -> Vec<Vec<u32>> {
+    let mut next: HashMap<u32, Vec<(u32, bool)>> = HashMap::new();
+    for &(a, b) in half {
+        next.entry(a).or_default().push((b, false));
+    }
+    let mut loops = Vec::new();
+    for &(start, _) in half {
+        let mut lp = Vec::new();
+        let mut v = start;
+        loop {
+            let Some(slot) = next
+                .get_mut(&v)
+                .and_then(|l| l.iter_mut().find(|e| !e.1))
+            else {
+                break;
+            };
+            slot.1 = true;
+            lp.push(v);
+            v = slot.0;
+            if v == start {
+                break;
+            }
+        }
+        if !lp.is_empty() {
+            loops.push(lp);
+        }
+    }
+    loops
 }

@@ -52,6 +52,9 @@ pub enum Command {
     /// stay skinned and animatable; .glb keeps the rig (one primitive per piece), OBJ writes
     /// the rest mesh. Coordinates are rest-pose mesh space unless --time is given.
     Cut(crate::surgery_cmds::CutArgs),
+    /// Drill a hole with a finite cylinder from --tip to --end of --radius (Algorithm 3);
+    /// the result stays skinned and animatable.
+    Drill(crate::surgery_cmds::DrillArgs),
 }
 
 /// Options every command that writes files shares.

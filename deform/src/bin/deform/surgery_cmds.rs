@@ -205,3 +205,57 @@ pub fn cut(a: &CutArgs) -> Result<()> {
         &mut report,
     )
 }
+
+#[derive(Args, Debug)]
+pub struct DrillArgs {
+    #[command(flatten)]
+    pub rig: RigInput,
+    /// The drill's tip A as X,Y,Z.
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub tip: DVec3,
+    /// The drill's end B as X,Y,Z.
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub end: DVec3,
+    /// The drill's radius.
+    #[arg(long)]
+    pub radius: f64,
+    #[command(flatten)]
+    pub frame: ToolFrame,
+    #[command(flatten)]
+    pub out: OutputArgs,
+}
+
+pub fn drill(a: &DrillArgs) -> Result<()> {
+    use deform::surgery::{Drill, DrillOptions};
+    let mut outputs = vec![a.out.output.as_path()];
+    outputs.extend(a.out.png.as_deref());
+    check_outputs(&a.rig.paths(), &outputs)?;
+    let rig = a.rig.read()?;
+    let posed = Posed::read(&rig, &a.frame)?;
+    let t = Instant::now();
+    let surgery = Surgery::new(&rig.mesh, &rig.influences)?;
+    let index_ms = t.elapsed().as_secs_f64() * 1e3;
+    let d = Drill {
+        tip: a.tip,
+        end: a.end,
+        radius: a.radius,
+    };
+    let t = Instant::now();
+    let r = surgery.drill(&d, Posed::frame(&posed), &DrillOptions::default())?;
+    let drill_ms = t.elapsed().as_secs_f64() * 1e3;
+    let mut report = Report::new("drill", &rig.mesh);
+    report.add("index_ms", index_ms);
+    report.add("drill_ms", drill_ms);
+    report.add("new_vertices", r.new_vertices);
+    report.add("removed_faces", r.removed_faces);
+    report.add("refined_faces", r.refined_faces);
+    report.add("holes", r.holes);
+    report.add("boundary_loops", r.boundary_loops);
+    write_result(
+        &rig,
+        &[(&r.mesh.mesh, &r.mesh.influences)],
+        &a.out,
+        |_| DVec3::ZERO,
+        &mut report,
+    )
+}
