@@ -385,8 +385,11 @@ fn check_drill(rig: &Rig, r: &deform::surgery::DrillResult, d: &deform::surgery:
                 let x = m.positions[v] - d.tip;
                 let a = x.dot(axis);
                 let radial = (x - a * axis).length();
-                let on_side = (radial - d.radius).abs() <= 1e-9 * diag && a >= -1e-9 * diag && a <= len + 1e-9 * diag;
-                let on_disc = radial <= d.radius * (1.0 + 1e-9) && (a.abs() <= 1e-9 * diag || (a - len).abs() <= 1e-9 * diag);
+                let on_side = (radial - d.radius).abs() <= 1e-9 * diag
+                    && a >= -1e-9 * diag
+                    && a <= len + 1e-9 * diag;
+                let on_disc = radial <= d.radius * (1.0 + 1e-9)
+                    && (a.abs() <= 1e-9 * diag || (a - len).abs() <= 1e-9 * diag);
                 assert!(on_side || on_disc, "vertex {v}: radial {radial}, axial {a}");
                 let row: Vec<(u32, f64)> = r.mesh.influences.row(v).collect();
                 assert!((row.iter().map(|x| x.1).sum::<f64>() - 1.0).abs() < 1e-12);
@@ -405,7 +408,11 @@ fn drill_through_the_arm() {
     let s = Surgery::new(&rig.mesh, &rig.influences).unwrap();
     let o = DrillOptions::default();
     // Through both walls of the tube, across it.
-    let through = Drill { tip: DVec3::new(2.05, 0.03, -2.0), end: DVec3::new(2.05, 0.03, 2.0), radius: 0.25 };
+    let through = Drill {
+        tip: DVec3::new(2.05, 0.03, -2.0),
+        end: DVec3::new(2.05, 0.03, 2.0),
+        radius: 0.25,
+    };
     let r = s.drill(&through, Frame::Rest, &o).unwrap();
     check_drill(&rig, &r, &through);
     assert_eq!(r.holes, 2, "two walls, two holes");
@@ -418,16 +425,29 @@ fn drill_through_the_arm() {
         boundary_loops: r.boundary_loops,
         cap_triangles: 0,
     };
-    for method in [BlendMethod::Matrix, BlendMethod::DualQuaternion, BlendMethod::MotorLinear, BlendMethod::Conformal] {
+    for method in [
+        BlendMethod::Matrix,
+        BlendMethod::DualQuaternion,
+        BlendMethod::MotorLinear,
+        BlendMethod::Conformal,
+    ] {
         check_animates(&rig, &piece, pose.skin_motors().unwrap(), method);
     }
     // Into one wall only: the tip stops inside the tube.
-    let one = Drill { tip: DVec3::new(5.0, 0.02, 0.0), end: DVec3::new(5.0, 0.02, 3.0), radius: 0.2 };
+    let one = Drill {
+        tip: DVec3::new(5.0, 0.02, 0.0),
+        end: DVec3::new(5.0, 0.02, 3.0),
+        radius: 0.2,
+    };
     let r = s.drill(&one, Frame::Rest, &o).unwrap();
     check_drill(&rig, &r, &one);
     assert_eq!(r.holes, 1);
     // Thinner than the triangles: refined first, then drilled.
-    let thin = Drill { tip: DVec3::new(3.03, 0.011, -1.0), end: DVec3::new(3.03, 0.011, 1.0), radius: 0.02 };
+    let thin = Drill {
+        tip: DVec3::new(3.03, 0.011, -1.0),
+        end: DVec3::new(3.03, 0.011, 1.0),
+        radius: 0.02,
+    };
     let r = s.drill(&thin, Frame::Rest, &o).unwrap();
     check_drill(&rig, &r, &thin);
     assert!(r.refined_faces > 0);
@@ -443,16 +463,51 @@ fn degenerate_and_bad_drills() {
     let o = DrillOptions::default();
     // Tangent to the tube along a line of vertices (a ring vertex at y = 0.6): removes nothing.
     let r = 0.1;
-    let tangent = Drill { tip: DVec3::new(4.0, 0.6 + r, -1.0), end: DVec3::new(4.0, 0.6 + r, 1.0), radius: r };
-    assert!(matches!(s.drill(&tangent, Frame::Rest, &o), Err(SurgeryError::Misses { .. })));
-    let outside = Drill { tip: DVec3::new(0.0, 5.0, 0.0), end: DVec3::new(1.0, 5.0, 0.0), radius: 0.3 };
-    assert!(matches!(s.drill(&outside, Frame::Rest, &o), Err(SurgeryError::Misses { .. })));
-    let nan = Drill { tip: DVec3::NAN, end: DVec3::ONE, radius: 0.3 };
-    assert!(matches!(s.drill(&nan, Frame::Rest, &o), Err(SurgeryError::BadTool(_))));
-    let flat = Drill { tip: DVec3::ONE, end: DVec3::ONE, radius: 0.3 };
-    assert!(matches!(s.drill(&flat, Frame::Rest, &o), Err(SurgeryError::BadTool(_))));
-    let zero = Drill { tip: DVec3::ZERO, end: DVec3::Z, radius: 0.0 };
-    assert!(matches!(s.drill(&zero, Frame::Rest, &o), Err(SurgeryError::BadTool(_))));
+    let tangent = Drill {
+        tip: DVec3::new(4.0, 0.6 + r, -1.0),
+        end: DVec3::new(4.0, 0.6 + r, 1.0),
+        radius: r,
+    };
+    assert!(matches!(
+        s.drill(&tangent, Frame::Rest, &o),
+        Err(SurgeryError::Misses { .. })
+    ));
+    let outside = Drill {
+        tip: DVec3::new(0.0, 5.0, 0.0),
+        end: DVec3::new(1.0, 5.0, 0.0),
+        radius: 0.3,
+    };
+    assert!(matches!(
+        s.drill(&outside, Frame::Rest, &o),
+        Err(SurgeryError::Misses { .. })
+    ));
+    let nan = Drill {
+        tip: DVec3::NAN,
+        end: DVec3::ONE,
+        radius: 0.3,
+    };
+    assert!(matches!(
+        s.drill(&nan, Frame::Rest, &o),
+        Err(SurgeryError::BadTool(_))
+    ));
+    let flat = Drill {
+        tip: DVec3::ONE,
+        end: DVec3::ONE,
+        radius: 0.3,
+    };
+    assert!(matches!(
+        s.drill(&flat, Frame::Rest, &o),
+        Err(SurgeryError::BadTool(_))
+    ));
+    let zero = Drill {
+        tip: DVec3::ZERO,
+        end: DVec3::Z,
+        radius: 0.0,
+    };
+    assert!(matches!(
+        s.drill(&zero, Frame::Rest, &o),
+        Err(SurgeryError::BadTool(_))
+    ));
 }
 
 #[test]
@@ -466,13 +521,26 @@ fn drill_a_posed_frame_and_real_arm() {
     let mut posed = vec![DVec3::ZERO; rig.mesh.vertex_count()];
     lbs.pose(keys, &mut posed).unwrap();
     // The forearm points up (+y) after the 100-degree bend: drill across it.
-    let d = Drill { tip: DVec3::new(2.5, 2.0, -2.0), end: DVec3::new(5.5, 2.0, 2.0), radius: 0.2 };
-    let frame = Frame::Posed { positions: &posed, skin: &pose.skin_matrices };
+    let d = Drill {
+        tip: DVec3::new(2.5, 2.0, -2.0),
+        end: DVec3::new(5.5, 2.0, 2.0),
+        radius: 0.2,
+    };
+    let frame = Frame::Posed {
+        positions: &posed,
+        skin: &pose.skin_matrices,
+    };
     let r = s.drill(&d, frame, &DrillOptions::default()).unwrap();
     assert_manifold(&r.mesh.mesh);
     assert!(r.holes >= 1);
     // Posed again at the same frame, the intersection points lie on the drill.
-    let b = Skinning::bind_influences(&r.mesh.mesh.positions, &r.mesh.influences, 3, BlendMethod::Matrix).unwrap();
+    let b = Skinning::bind_influences(
+        &r.mesh.mesh.positions,
+        &r.mesh.influences,
+        3,
+        BlendMethod::Matrix,
+    )
+    .unwrap();
     let mut out = vec![DVec3::ZERO; r.mesh.mesh.vertex_count()];
     b.pose(keys, &mut out).unwrap();
     let axis = (d.end - d.tip).normalize();
@@ -480,7 +548,10 @@ fn drill_a_posed_frame_and_real_arm() {
         if let VertexOrigin::Edge { .. } = o {
             let x = out[v] - d.tip;
             let radial = (x - x.dot(axis) * axis).length();
-            assert!((radial - d.radius).abs() < 1e-9 || x.dot(axis).abs() < 1e-9, "{radial}");
+            assert!(
+                (radial - d.radius).abs() < 1e-9 || x.dot(axis).abs() < 1e-9,
+                "{radial}"
+            );
         }
     }
     let Some(dir) = data_dir() else { return };
@@ -495,10 +566,18 @@ fn drill_a_posed_frame_and_real_arm() {
     // Along the normal of the vertex nearest the box's centre, through it.
     let c = b.center();
     let v = (0..arm.mesh.vertex_count())
-        .min_by(|&i, &j| arm.mesh.positions[i].distance(c).total_cmp(&arm.mesh.positions[j].distance(c)))
+        .min_by(|&i, &j| {
+            arm.mesh.positions[i]
+                .distance(c)
+                .total_cmp(&arm.mesh.positions[j].distance(c))
+        })
         .unwrap();
     let (p, nrm) = (arm.mesh.positions[v], arm.mesh.vertex_normals()[v]);
-    let d = Drill { tip: p - nrm * 0.5 * span, end: p + nrm * 0.05 * span, radius: 0.01 * span };
+    let d = Drill {
+        tip: p - nrm * 0.5 * span,
+        end: p + nrm * 0.05 * span,
+        radius: 0.01 * span,
+    };
     let r = s.drill(&d, Frame::Rest, &DrillOptions::default()).unwrap();
     check_drill(&arm, &r, &d);
     assert!(r.holes >= 1, "{} holes", r.holes);

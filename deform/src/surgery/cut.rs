@@ -228,7 +228,15 @@ impl Surgery {
                 &produced,
                 side,
             );
-            piece(a, o, loops, &on_plane, nrm, options.cap)
+            piece(
+                a,
+                o,
+                loops,
+                &on_plane,
+                &|g| splitter.at(g),
+                nrm,
+                options.cap,
+            )
         });
         Ok(CutResult {
             pieces,
@@ -246,15 +254,14 @@ fn piece(
     mut face_origin: Vec<u32>,
     loops: Vec<Vec<u32>>,
     on_plane: &impl Fn(u32) -> bool,
+    at: &impl Fn(u32) -> DVec3,
     normal: DVec3,
     cap: bool,
 ) -> CutPiece {
     let Assembled {
         mut mesh,
         origin,
-        frame,
         local,
-        ..
     } = a;
     let mut cap_triangles = 0;
     let mut boundary_loops = loops.len();
@@ -264,8 +271,8 @@ fn piece(
                 continue;
             }
             // The cap runs against the loop (whose half-edges the piece's faces use).
+            let pts: Vec<DVec3> = lp.iter().rev().map(|&g| at(g)).collect();
             let rev: Vec<u32> = lp.iter().rev().map(|&g| local[g as usize]).collect();
-            let pts: Vec<DVec3> = rev.iter().map(|&v| frame[v as usize]).collect();
             if let Some(tris) = ear_clip(&pts, normal) {
                 cap_triangles += tris.len();
                 mesh.mesh

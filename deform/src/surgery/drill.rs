@@ -127,7 +127,11 @@ impl Cylinder {
             let s = disc.sqrt();
             // Stable roots.
             let qq = -0.5 * (l + l.signum() * s);
-            let (mut t0, mut t1) = if qq != 0.0 { (qq / k, n / qq) } else { (0.0, 0.0) };
+            let (mut t0, mut t1) = if qq != 0.0 {
+                (qq / k, n / qq)
+            } else {
+                (0.0, 0.0)
+            };
             if t0 > t1 {
                 std::mem::swap(&mut t0, &mut t1);
             }
@@ -221,7 +225,12 @@ impl Surgery {
         let mut refined_faces = 0;
         for round in 0..=options.max_refinements {
             let (rest, fpos, inf, tris) = match &work {
-                None => (&src.mesh.positions[..], frame_positions, &src.influences, &src.mesh.triangles[..]),
+                None => (
+                    &src.mesh.positions[..],
+                    frame_positions,
+                    &src.influences,
+                    &src.mesh.triangles[..],
+                ),
                 Some(w) => (&w.rest[..], &w.frame[..], &w.influences, &w.triangles[..]),
             };
             let index = match (&work, &posed_index) {
@@ -232,7 +241,9 @@ impl Surgery {
             let near = faces_near_cylinder(&cyl, tris, fpos, index);
             let plan = plan(&cyl, tris, fpos, &near, options.snap);
             let points = plan.crossings + plan.snapped;
-            let needs = !plan.pierced.is_empty() || !plan.two_root.is_empty() || points < options.min_points;
+            let needs = !plan.pierced.is_empty()
+                || !plan.two_root.is_empty()
+                || points < options.min_points;
             if needs && round < options.max_refinements && !near.is_empty() {
                 let mut red: Vec<u32> = plan.pierced.clone();
                 red.extend(&plan.two_root);
@@ -254,7 +265,9 @@ impl Surgery {
                 }
             }
             if plan.removed == 0 {
-                return Err(SurgeryError::Misses { vertices: rest.len() });
+                return Err(SurgeryError::Misses {
+                    vertices: rest.len(),
+                });
             }
             // Split and keep the outside.
             let owned;
@@ -272,31 +285,48 @@ impl Surgery {
             let root = |a: u32, b: u32| {
                 let (pa, pb) = (fpos[a as usize], fpos[b as usize]);
                 let (lo, hi) = cyl.clip(pa, pb).unwrap_or((0.0, 1.0));
-                if plan.sign[a as usize] < 0 { hi } else { lo }
-            };
-            let mut kept = Vec::with_capacity(tris.len());
-            let mut fate = Vec::with_capacity(tris.len());
-            let mut changed = Vec::new();
-            let mut produced = Vec::new();
-            for (fi, t) in tris.iter().enumerate() {
-                let g = t.map(|v| plan.sign[v as usize]);
-                let (pos, neg) = (g.contains(&1), g.contains(&-1));
-                if !neg {
-                    kept.push(*t);
-                    fate.push(FaceFate::Kept(0));
-                    continue;
+                if plan.sign[a as usize] < 0 {
+                    hi
+                } else {
+                    lo
                 }
-                fate.push(FaceFate::Changed);
-                changed.push(fi as u32);
-                if pos {
-                    splitter.split(*t, g, &root, |side, tri| {
+            };
+            // Only faces near the drill can change (a face with a vertex inside meets its box).
+            let mut changed: Vec<u32> = near
+                .iter()
+                .copied()
+                .filter(|&f| tris[f as usize].iter().any(|&v| plan.sign[v as usize] < 0))
+                .collect();
+            changed.sort_unstable();
+            let mut produced = Vec::new();
+            for &f in &changed {
+                let t = tris[f as usize];
+                let g = t.map(|v| plan.sign[v as usize]);
+                if g.contains(&1) {
+                    splitter.split(t, g, &root, |side, tri| {
                         if side == 0 {
-                            kept.push(tri);
                             produced.push((tri, 0u8));
                         }
                     });
                 }
             }
+            let mut kept = Vec::with_capacity(tris.len() + produced.len());
+            let mut next = changed.iter().peekable();
+            for (fi, t) in tris.iter().enumerate() {
+                if next.peek() == Some(&&(fi as u32)) {
+                    next.next();
+                } else {
+                    kept.push(*t);
+                }
+            }
+            kept.extend(produced.iter().map(|p| p.0));
+            let fate = |f: u32| {
+                if changed.binary_search(&f).is_ok() {
+                    FaceFate::Changed
+                } else {
+                    FaceFate::Kept(0)
+                }
+            };
             let removed = changed.len();
             if kept.is_empty() {
                 return Err(SurgeryError::BadTool(
@@ -305,7 +335,10 @@ impl Surgery {
             }
             let posed_frame = match frame {
                 Frame::Rest => Frame::Rest,
-                Frame::Posed { skin, .. } => Frame::Posed { positions: fpos, skin },
+                Frame::Posed { skin, .. } => Frame::Posed {
+                    positions: fpos,
+                    skin,
+                },
             };
             let (new_inf, new_rest) = new_vertex_data(sub, &splitter.new_edges, posed_frame, fpos)?;
             let a = assemble(sub, kept, &splitter, &new_inf, &new_rest);
@@ -318,10 +351,11 @@ impl Surgery {
                 })
                 .collect();
             let boundary_loops = if work.is_none() {
-                local_loops(&self.topology, tris, |f| fate[f as usize], &changed, &[], &produced, 0).len()
+                local_loops(&self.topology, tris, fate, &changed, &[], &produced, 0).len()
             } else {
                 // Refined: the input's topology does not apply.
-                crate::adjacency::boundary_loops(&a.mesh.mesh.triangles, a.mesh.mesh.vertex_count()).len()
+                crate::adjacency::boundary_loops(&a.mesh.mesh.triangles, a.mesh.mesh.vertex_count())
+                    .len()
             };
             return Ok(DrillResult {
                 mesh: a.mesh,
@@ -436,9 +470,9 @@ fn plan(cyl: &Cylinder, tris: &[[u32; 3]], pos: &[DVec3], near: &[u32], snap: f6
     for &v in &snapped_list {
         sign[v as usize] = 0;
     }
-    let removed = tris
+    let removed = near
         .iter()
-        .filter(|t| t.iter().any(|&v| sign[v as usize] < 0))
+        .filter(|&&f| tris[f as usize].iter().any(|&v| sign[v as usize] < 0))
         .count();
     Plan {
         sign,

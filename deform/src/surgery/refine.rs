@@ -28,7 +28,10 @@ impl Work {
         for (f, t) in self.triangles.iter().enumerate() {
             for k in 0..3 {
                 let (a, b) = (t[k], t[(k + 1) % 3]);
-                edge_faces.entry((a.min(b), a.max(b))).or_default().push(f as u32);
+                edge_faces
+                    .entry((a.min(b), a.max(b)))
+                    .or_default()
+                    .push(f as u32);
             }
         }
         let key = |a: u32, b: u32| (a.min(b), a.max(b));
@@ -75,8 +78,17 @@ impl Work {
                 Some(skin) => {
                     let w = self.influences.width;
                     let r = v as usize * w..(v as usize + 1) * w;
-                    unskin(p, &self.influences.joints[r.clone()], &self.influences.weights[r], skin)
-                        .ok_or_else(|| SurgeryError::BadMesh(format!("refining edge {a}-{b}: singular skin transform")))?
+                    unskin(
+                        p,
+                        &self.influences.joints[r.clone()],
+                        &self.influences.weights[r],
+                        skin,
+                    )
+                    .ok_or_else(|| {
+                        SurgeryError::BadMesh(format!(
+                            "refining edge {a}-{b}: singular skin transform"
+                        ))
+                    })?
                 }
             };
             self.rest.push(rest);
@@ -90,7 +102,8 @@ impl Work {
             let [a, b, c] = t;
             if red.contains(&(f as u32)) {
                 let (ab, bc, ca) = (m(a, b).unwrap(), m(b, c).unwrap(), m(c, a).unwrap());
-                self.triangles.extend([[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]);
+                self.triangles
+                    .extend([[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]);
                 replaced += 1;
                 continue;
             }

@@ -132,12 +132,10 @@ pub(crate) fn new_vertex_data(
 }
 
 /// One result mesh from triangles over input vertices `0..n` and new vertices `n..`:
-/// reindexed (input vertices in input order, then new ones), with influences, origins, and
-/// each vertex's position in the tool's frame.
+/// reindexed (input vertices in input order, then new ones), with influences and origins.
 pub(crate) struct Assembled {
     pub mesh: SkinnedMesh,
     pub origin: Vec<VertexOrigin>,
-    pub frame: Vec<DVec3>,
     /// Result index of each global vertex (`u32::MAX`: not in the result).
     pub local: Vec<u32>,
 }
@@ -159,7 +157,6 @@ pub(crate) fn assemble(
     }
     let mut positions = Vec::new();
     let mut origin = Vec::new();
-    let mut frame = Vec::new();
     let mut influences = Influences {
         width: src.influences.width,
         ..Influences::default()
@@ -169,7 +166,6 @@ pub(crate) fn assemble(
             continue;
         }
         *slot = positions.len() as u32;
-        frame.push(splitter.at(g as u32));
         if g < n {
             positions.push(src.mesh.positions[g]);
             origin.push(VertexOrigin::Original(g as u32));
@@ -195,7 +191,6 @@ pub(crate) fn assemble(
             influences,
         },
         origin,
-        frame,
         local,
     }
 }
@@ -283,7 +278,10 @@ pub(crate) fn local_loops(
     ring.dedup();
     let mine = produced.iter().filter(|p| p.1 == side).map(|p| p.0);
     let mut half: HashSet<(u32, u32)> = HashSet::new();
-    for t in mine.clone().chain(ring.iter().map(|&f| triangles[f as usize])) {
+    for t in mine
+        .clone()
+        .chain(ring.iter().map(|&f| triangles[f as usize]))
+    {
         for k in 0..3 {
             half.insert((t[k], t[(k + 1) % 3]));
         }
@@ -336,13 +334,7 @@ pub(crate) fn chain_loops(half: &[(u32, u32)]) -> Vec<Vec<u32>> {
     for &(start, _) in half {
         let mut lp = Vec::new();
         let mut v = start;
-        loop {
-            let Some(slot) = next
-                .get_mut(&v)
-                .and_then(|l| l.iter_mut().find(|e| !e.1))
-            else {
-                break;
-            };
+        while let Some(slot) = next.get_mut(&v).and_then(|l| l.iter_mut().find(|e| !e.1)) {
             slot.1 = true;
             lp.push(v);
             v = slot.0;
