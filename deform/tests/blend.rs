@@ -46,7 +46,11 @@ fn gathered_rows_pose_like_contiguous_rows() {
         a.pose(&motors, &mut pa).unwrap();
         b.pose(&motors, &mut pb).unwrap();
         // Single precision sums in another order: its rounding, about 1e-7 relative.
-        let tol = if method == BlendMethod::MatrixF32 { 1e-5 } else { 1e-12 };
+        let tol = if method == BlendMethod::MatrixF32 {
+            1e-5
+        } else {
+            1e-12
+        };
         for (x, y) in pa.iter().zip(&pb) {
             assert!(x.distance(*y) < tol, "{method:?}");
         }

@@ -72,7 +72,11 @@ fn identity_keys_leave_the_mesh_unchanged() {
                 .zip(&mesh.positions)
                 .map(|(a, b)| a.distance(*b))
                 .fold(0.0, f64::max);
-            let tol = if method == BlendMethod::MatrixF32 { 1e-5 } else { 1e-12 };
+            let tol = if method == BlendMethod::MatrixF32 {
+                1e-5
+            } else {
+                1e-12
+            };
             assert!(err < tol, "{scheme:?} {method:?}: {err}");
         }
     }

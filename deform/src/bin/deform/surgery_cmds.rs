@@ -133,10 +133,9 @@ pub fn write_result(
         let mut part_of = vec![0.0; shown.vertex_count()];
         for (k, p) in result.primitives.iter().enumerate() {
             let shift = away(k);
-            for v in p.vertex_offset..p.vertex_offset + p.vertex_count {
-                shown.positions[v] += shift;
-                part_of[v] = k as f64;
-            }
+            let r = p.vertex_offset..p.vertex_offset + p.vertex_count;
+            shown.positions[r.clone()].iter_mut().for_each(|x| *x += shift);
+            part_of[r].iter_mut().for_each(|x| *x = k as f64);
         }
         let image = preview::before_after(&rig.mesh, &shown, &part_of, 30.0, 20.0)?;
         write_png(png, &image)?;
@@ -154,7 +153,7 @@ pub fn cut(a: &CutArgs) -> Result<()> {
     let [nx, ny, nz, d] = a.plane;
     let normal = DVec3::new(nx, ny, nz);
     let len = normal.length();
-    if !(len > 0.0) {
+    if len.is_nan() || len <= 0.0 {
         bail!("--plane: the normal is zero");
     }
     let plane = cga::Plane::from_normal_distance(normal / len, d / len);
