@@ -21,7 +21,8 @@ pub struct Rational {
 }
 
 /// What the operators say when exact arithmetic leaves 128 bits.
-const OVERFLOW: &str = "exact rational arithmetic overflowed 128 bits (specs are checked for this up front)";
+const OVERFLOW: &str =
+    "exact rational arithmetic overflowed 128 bits (specs are checked for this up front)";
 
 fn gcd(a: i128, b: i128) -> u128 {
     let (mut a, mut b) = (a.unsigned_abs(), b.unsigned_abs());
@@ -66,7 +67,11 @@ impl Rational {
         }
         let Ok(g) = i128::try_from(gcd(num, den).max(1)) else {
             // gcd = 2^127: den is i128::MIN and num is 0 or i128::MIN.
-            return Some(if num == 0 { Rational::ZERO } else { Rational::ONE });
+            return Some(if num == 0 {
+                Rational::ZERO
+            } else {
+                Rational::ONE
+            });
         };
         let (mut num, mut den) = (num / g, den / g);
         if den < 0 {
@@ -174,7 +179,10 @@ impl Rational {
     pub fn checked_add(self, o: Rational) -> Option<Rational> {
         let g = i128::try_from(gcd(self.den, o.den)).ok()?;
         let (da, db) = (self.den / g, o.den / g);
-        let num = self.num.checked_mul(db)?.checked_add(o.num.checked_mul(da)?)?;
+        let num = self
+            .num
+            .checked_mul(db)?
+            .checked_add(o.num.checked_mul(da)?)?;
         Rational::checked_new(num, da.checked_mul(o.den)?)
     }
 
@@ -201,7 +209,11 @@ impl Rational {
     /// Number of bits of the larger of `|numerator|` and the denominator: a product of
     /// values of heights `h1`, `h2` has height at most `h1 + h2`.
     pub fn height(self) -> u32 {
-        128 - self.num.unsigned_abs().max(self.den as u128).leading_zeros()
+        128 - self
+            .num
+            .unsigned_abs()
+            .max(self.den as u128)
+            .leading_zeros()
     }
 }
 
@@ -322,14 +334,26 @@ mod tests {
             Rational::from_f64(0.3333333333333333),
             Some(Rational::new(3333333333333333, 10i128.pow(16)))
         );
-        assert_eq!(Rational::from_f64(1e13), Some(Rational::new(10i128.pow(13), 1)));
+        assert_eq!(
+            Rational::from_f64(1e13),
+            Some(Rational::new(10i128.pow(13), 1))
+        );
         assert_eq!(Rational::from_f64(1.5e-3), Some(Rational::new(3, 2000)));
         // Too large or too small to hold in 127 bits.
         assert_eq!(Rational::from_f64(1e300), None);
         assert_eq!(Rational::from_f64(1e-320), None);
         assert_eq!(Rational::from_f64(f64::MAX), None);
         // Round trip for every decimal with few digits.
-        for x in [0.1, 0.2, 0.3, 0.7, 1e-7, 123.456, -2.5e10, 0.3333333333333333] {
+        for x in [
+            0.1,
+            0.2,
+            0.3,
+            0.7,
+            1e-7,
+            123.456,
+            -2.5e10,
+            0.3333333333333333,
+        ] {
             assert_eq!(Rational::from_f64(x).unwrap().to_f64(), x);
         }
     }
@@ -354,7 +378,10 @@ mod tests {
         // Cross-reduction finds products that fit.
         assert_eq!(tiny.checked_mul(big), Some(Rational::ONE));
         assert_eq!(Rational::checked_new(i128::MIN, 1), None);
-        assert_eq!(Rational::checked_new(i128::MIN, i128::MIN), Some(Rational::ONE));
+        assert_eq!(
+            Rational::checked_new(i128::MIN, i128::MIN),
+            Some(Rational::ONE)
+        );
         assert_eq!(Rational::checked_new(1, 0), None);
     }
 
@@ -372,7 +399,10 @@ mod tests {
         assert!(a < b);
         assert!(-a > -b);
         assert!(Rational::new(-1, 3) < Rational::ZERO);
-        assert_eq!(Rational::new(2, 6).cmp(&Rational::new(1, 3)), Ordering::Equal);
+        assert_eq!(
+            Rational::new(2, 6).cmp(&Rational::new(1, 3)),
+            Ordering::Equal
+        );
         assert!(Rational::new(1, 3) < Rational::new(1, 2));
         assert!(Rational::int(7) > Rational::new(13, 2));
     }
