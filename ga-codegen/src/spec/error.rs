@@ -148,10 +148,17 @@ pub enum SpecErrorKind {
     TooLarge(TooLarge),
 }
 
-/// A spec error: the file, the type and the blade it concerns, where it is, and what is wrong.
+/// A spec error: the file, the type and the blade it concerns, where it is, and what is wrong
+/// (the fields of [`SpecErrorInfo`], read through `Deref`: `e.kind`, `e.location`). Boxed,
+/// so that `Result<_, SpecError>` stays one pointer wide.
+#[derive(Clone, Debug, PartialEq, Error)]
+#[error("{0}")]
+pub struct SpecError(Box<SpecErrorInfo>);
+
+/// What a [`SpecError`] says.
 #[derive(Clone, Debug, PartialEq, Error)]
 #[error("{file}: {}{kind}", context(.type_name, .blade))]
-pub struct SpecError {
+pub struct SpecErrorInfo {
     /// The spec file (or `algebra!`).
     pub file: String,
     /// The type concerned.
@@ -162,6 +169,13 @@ pub struct SpecError {
     pub location: SpecLocation,
     /// What is wrong.
     pub kind: SpecErrorKind,
+}
+
+impl std::ops::Deref for SpecError {
+    type Target = SpecErrorInfo;
+    fn deref(&self) -> &SpecErrorInfo {
+        &self.0
+    }
 }
 
 /// "type `T`: `b`: " for the parts that are known.
@@ -179,24 +193,24 @@ fn context(type_name: &Option<String>, blade: &Option<String>) -> String {
 impl SpecError {
     /// An error about the spec file `file` at `location`.
     pub fn new(file: &str, location: SpecLocation, kind: SpecErrorKind) -> SpecError {
-        SpecError {
+        SpecError(Box::new(SpecErrorInfo {
             file: file.to_string(),
             type_name: None,
             blade: None,
             location,
             kind,
-        }
+        }))
     }
 
     /// Name the type concerned.
     pub fn in_type(mut self, name: &str) -> SpecError {
-        self.type_name = Some(name.to_string());
+        self.0.type_name = Some(name.to_string());
         self
     }
 
     /// Name the blade (or other name) concerned.
     pub fn at_blade(mut self, name: &str) -> SpecError {
-        self.blade = Some(name.to_string());
+        self.0.blade = Some(name.to_string());
         self
     }
 }

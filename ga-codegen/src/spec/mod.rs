@@ -58,7 +58,7 @@ mod sandwiches;
 mod signature;
 mod types;
 
-pub use error::{SpecError, SpecErrorKind, SpecLocation, TooLarge};
+pub use error::{SpecError, SpecErrorInfo, SpecErrorKind, SpecLocation, TooLarge};
 
 use crate::blade::Bitmap;
 use crate::metric::Metric;
