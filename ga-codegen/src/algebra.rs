@@ -131,43 +131,81 @@ fn blade_transform(rows: &[Vec<Rational>]) -> Option<Vec<Exact>> {
         .collect()
 }
 
+/// Products of basis blades by congruence: each blade of the user's basis is expanded in an
+/// orthogonal basis (`to_f`), multiplied there with the diagonal bitmap rule, and mapped back
+/// (`to_e`). Every step is checked.
+pub struct Congruence {
+    to_f: Vec<Exact>,
+    to_e: Vec<Exact>,
+    squares: Vec<Rational>,
+}
+
+impl Congruence {
+    /// The transforms of a metric; `None` when exact arithmetic overflows.
+    pub fn new(metric: &Metric) -> Option<Congruence> {
+        let (p, squares) = metric.checked_orthogonal_basis()?;
+        let q = invert(&p)?;
+        // e_i = sum_k q[i][k] f_k ; f_k = sum_i p[k][i] e_i
+        Some(Congruence {
+            to_f: blade_transform(&q)?,
+            to_e: blade_transform(&p)?,
+            squares,
+        })
+    }
+
+    /// Squares of the orthogonal basis vectors.
+    pub fn squares(&self) -> &[Rational] {
+        &self.squares
+    }
+
+    /// Number of orthogonal-basis blades in the expansion of blade `a`.
+    pub fn spread(&self, a: Bitmap) -> usize {
+        self.to_f[a as usize].len()
+    }
+
+    /// Number of user-basis blades in the expansion of orthogonal blade `f`.
+    pub fn spread_back(&self, f: Bitmap) -> usize {
+        self.to_e[f as usize].len()
+    }
+
+    /// The exact product `e_a e_b`; `None` on overflow.
+    pub fn product(&self, a: Bitmap, b: Bitmap) -> Option<Exact> {
+        let mut prod_f = Exact::new();
+        for (&fa, &ca) in &self.to_f[a as usize] {
+            for (&fb, &cb) in &self.to_f[b as usize] {
+                let mut c = signed(ca.checked_mul(cb)?, reorder_sign(fa, fb));
+                let common = fa & fb;
+                for (k, dk) in self.squares.iter().enumerate() {
+                    if common & (1 << k) != 0 {
+                        c = c.checked_mul(*dk)?;
+                    }
+                }
+                add_term(&mut prod_f, fa ^ fb, c)?;
+            }
+        }
+        let mut prod_e = Exact::new();
+        for (&fk, &c) in &prod_f {
+            for (&eb, &ce) in &self.to_e[fk as usize] {
+                add_term(&mut prod_e, eb, c.checked_mul(ce)?)?;
+            }
+        }
+        Some(prod_e)
+    }
+}
+
 /// The exact geometric product of every pair of basis blades of a metric, by congruence:
 /// `table[a * 2^n + b]` holds the non-zero terms of `e_a e_b`, and the squares of the
 /// orthogonal basis come second. `None` when exact arithmetic overflows.
 pub fn exact_products(metric: &Metric) -> Option<(Vec<Exact>, Vec<Rational>)> {
-    let n = metric.dim();
-    let size = 1usize << n;
-    let (p, d) = metric.checked_orthogonal_basis()?;
-    let q = invert(&p)?;
-    // e_i = sum_k q[i][k] f_k ; f_k = sum_i p[k][i] e_i
-    let to_f = blade_transform(&q)?;
-    let to_e = blade_transform(&p)?;
-    let mut table = Vec::with_capacity(size * size);
+    let size = 1u32 << metric.dim();
+    let c = Congruence::new(metric)?;
+    let mut table = Vec::with_capacity((size * size) as usize);
     for a in 0..size {
         for b in 0..size {
-            let mut prod_f = Exact::new();
-            for (&fa, &ca) in &to_f[a] {
-                for (&fb, &cb) in &to_f[b] {
-                    let mut c = signed(ca.checked_mul(cb)?, reorder_sign(fa, fb));
-                    let common = fa & fb;
-                    for (k, dk) in d.iter().enumerate() {
-                        if common & (1 << k) != 0 {
-                            c = c.checked_mul(*dk)?;
-                        }
-                    }
-                    add_term(&mut prod_f, fa ^ fb, c)?;
-                }
-            }
-            let mut prod_e = Exact::new();
-            for (&fk, &c) in &prod_f {
-                for (&eb, &ce) in &to_e[fk as usize] {
-                    add_term(&mut prod_e, eb, c.checked_mul(ce)?)?;
-                }
-            }
-            table.push(prod_e);
+            table.push(c.product(a, b)?);
         }
     }
-    Some((table, d))
+    Some((table, c.squares))
 }
 
 impl Algebra {

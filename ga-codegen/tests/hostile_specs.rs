@@ -166,6 +166,25 @@ fn size_budget_is_checked_before_any_product() {
         .collect();
     let e = refused(diagonal_spec(&["e1", "e2", "e3"], &[1.0; 3], &types));
     assert!(e.to_string().contains("151 types"), "{e}");
+    // A dense metric makes every blade product a sum of many blades: 7 vectors are too many.
+    let dense = |n: usize| RawSpec {
+        basis: (1..=n).map(|i| format!("e{i}")).collect(),
+        metric: Some(
+            (0..n)
+                .map(|i| (0..n).map(|j| if i == j { 2.0 } else { 1.0 }).collect())
+                .collect(),
+        ),
+        ..RawSpec::default()
+    };
+    let start = std::time::Instant::now();
+    let e = refused(dense(7));
+    assert!(
+        e.to_string()
+            .contains("the product table of the 2^7 blades"),
+        "{e}"
+    );
+    assert!(start.elapsed().as_secs_f64() < 5.0);
+    Spec::from_raw(dense(4), "dense4.toml").unwrap();
     // The shipped specs and the default algebras up to 7 dimensions fit.
     for (p, q, r) in [(3, 0, 0), (3, 0, 1), (4, 1, 0), (7, 0, 0)] {
         Spec::for_signature(p, q, r).unwrap();

@@ -2,23 +2,78 @@
 //!
 //! The estimate counts the work the generator does, in units of about one term inserted in a
 //! symbolic polynomial (a few microseconds and about a kilobyte at the peak, on a laptop core),
-//! and is proportional to the code emitted:
+//! and is proportional to the code emitted. With `m` the mean number of terms of a product of
+//! two basis blades (1 for a diagonal metric, more for a dense one; measured on a sample of
+//! blade pairs by congruence, see [`MetricCost`]):
 //!
-//! - the exact product table of the basis blades: `2 * 4^n`;
-//! - each type of `w` blades (stored and constant): `2 w^2 + 8 w` for its unary methods
+//! - the exact product table of the basis blades: `4^n` times the work of one entry;
+//! - each type of `w` blades (stored and constant): `2 m w^2 + 8 w` for its unary methods
 //!   (reverse, dual, norm, scalar products) plus [`ITEMS_PER_TYPE`] emitted items;
-//! - each ordered pair of types: `3 w_a w_b` for the geometric and outer products and the
+//! - each ordered pair of types: `3 m w_a w_b` for the geometric and outer products and the
 //!   left contraction, plus [`ITEMS_PER_PAIR`] emitted items (`*`, `^`, `|`, `+`, `-`, `From`);
-//! - each sandwich of a versor of `v` blades on an operand of `x`: `v x + 2 v^2 x` (the
+//! - each sandwich of a versor of `v` blades on an operand of `x`: `m v x + 2 m^2 v^2 x` (the
 //!   product `V X` and then `(V X) ~V`), plus its matrix form;
 //! - each emitted item costs [`ITEM`] units (formatting, parsing, printing).
 //!
-//! Measured: `algebras/cga.toml` is about 0.2 million units (0.5 s), `--signature 7,0,0`
-//! about 1.45 million (3.4 s, 830 MB), 80 two-blade types 1.6 million (2.8 s, 870 MB),
-//! `--signature 8,0,0` about 9 million (50 s, 4.7 GB). The budget is [`BUDGET`].
+//! Measured (release build, one core): `algebras/cga.toml` is about 0.13 million units
+//! (0.5 s), `--signature 7,0,0` 1.46 million (3.4 s, 830 MB), a dense 6-dimensional metric
+//! 0.94 million (2.6 s), 80 two-blade types about 1.7 million (2.8 s, 870 MB); refused:
+//! `--signature 8,0,0` (about 10 million units; it took 50 s and 4.7 GB), 150 two-blade types
+//! (5.8 million; 2.8 GB), a dense 7-dimensional metric (10.8 million; 16 s). The budget is
+//! [`BUDGET`].
 
 use super::error::{SpecError, SpecErrorKind, SpecLocation, TooLarge};
 use super::{SandwichDef, TypeDef};
+use crate::algebra::Congruence;
+use crate::blade::Bitmap;
+use crate::metric::Metric;
+
+/// What a metric costs per blade product, measured on a sample of blade pairs.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MetricCost {
+    /// Mean number of terms of a blade product (at least 1).
+    pub terms: f64,
+    /// Mean work of one entry of the exact product table.
+    pub entry: f64,
+}
+
+/// Blade pairs sampled (all of them in algebras of up to 4 vectors).
+const SAMPLE: u64 = 256;
+
+impl MetricCost {
+    /// Measure a metric; `None` when its exact products overflow (reported by the
+    /// exactness phase).
+    pub fn of(metric: &Metric) -> Option<MetricCost> {
+        let c = Congruence::new(metric)?;
+        let size = 1u32 << metric.dim();
+        let pairs: Vec<(Bitmap, Bitmap)> = if u64::from(size) * u64::from(size) <= SAMPLE {
+            (0..size)
+                .flat_map(|a| (0..size).map(move |b| (a, b)))
+                .collect()
+        } else {
+            // A fixed pseudo-random sample (64-bit LCG, high bits), the same on every run.
+            let mut x = 0x9e37_79b9_7f4a_7c15u64;
+            let mut next = move || {
+                x = x
+                    .wrapping_mul(6364136223846793005)
+                    .wrapping_add(1442695040888963407);
+                ((x >> 33) % u64::from(size)) as Bitmap
+            };
+            (0..SAMPLE).map(|_| (next(), next())).collect()
+        };
+        let back = (0..size).map(|f| c.spread_back(f)).sum::<usize>() as f64 / size as f64;
+        let (mut terms, mut entry) = (0.0, 0.0);
+        for &(a, b) in &pairs {
+            terms += c.product(a, b)?.len().max(1) as f64;
+            entry += 1.0 + (c.spread(a) * c.spread(b)) as f64 * back;
+        }
+        let pairs = pairs.len() as f64;
+        Some(MetricCost {
+            terms: terms / pairs,
+            entry: entry / pairs,
+        })
+    }
+}
 
 /// Largest number of basis vectors the generator takes: the general multivector of an
 /// 8-dimensional algebra has 256 blades and its products alone are 65,536 terms each.
@@ -50,25 +105,34 @@ pub struct Estimate {
 }
 
 impl Estimate {
-    /// The estimate of a spec: its dimension, types and sandwiches.
-    pub fn of(dim: usize, types: &[TypeDef], sandwiches: &[SandwichDef]) -> Estimate {
-        let width = |t: &TypeDef| (t.fields.len() + t.constants.len()) as u64;
-        let widths: Vec<u64> = types.iter().map(width).collect();
-        let sum: u64 = widths.iter().sum();
-        let count = types.len() as u64;
+    /// The estimate of a spec: its dimension, the cost of its metric, types and sandwiches.
+    pub fn of(
+        dim: usize,
+        cost: MetricCost,
+        types: &[TypeDef],
+        sandwiches: &[SandwichDef],
+    ) -> Estimate {
+        let width = |t: &TypeDef| (t.fields.len() + t.constants.len()) as f64;
+        let widths: Vec<f64> = types.iter().map(width).collect();
+        let sum: f64 = widths.iter().sum();
+        let count = types.len() as f64;
+        let (m, item) = (cost.terms, ITEM as f64);
+        let units = |x: f64| x.min(u64::MAX as f64 / 8.0) as u64;
         Estimate {
-            table: 2u64.saturating_mul(1u64 << (2 * dim.min(31))),
-            types: widths
-                .iter()
-                .map(|w| 2 * w * w + 8 * w + ITEMS_PER_TYPE * ITEM)
-                .sum(),
-            pairs: 3 * sum * sum + count * count * ITEMS_PER_PAIR * ITEM,
+            table: units(4f64.powi(dim as i32) * cost.entry),
+            types: units(
+                widths
+                    .iter()
+                    .map(|w| 2.0 * m * w * w + 8.0 * w + ITEMS_PER_TYPE as f64 * item)
+                    .sum(),
+            ),
+            pairs: units(3.0 * m * sum * sum + count * count * ITEMS_PER_PAIR as f64 * item),
             sandwiches: sandwiches
                 .iter()
                 .enumerate()
                 .map(|(i, s)| {
                     let (v, x) = (widths[s.versor], widths[s.operand]);
-                    (i, v * x + 2 * v * v * x + 3 * ITEM)
+                    (i, units(m * v * x + 2.0 * m * m * v * v * x + 3.0 * item))
                 })
                 .collect(),
         }
@@ -82,11 +146,12 @@ impl Estimate {
 
 /// Refuse a spec over [`MAX_DIMENSION`] or over [`BUDGET`], saying why.
 pub(super) fn check(
-    dim: usize,
+    metric: &Metric,
     types: &[TypeDef],
     sandwiches: &[SandwichDef],
     source: &str,
 ) -> Result<(), SpecError> {
+    let dim = metric.dim();
     if dim > MAX_DIMENSION {
         return Err(SpecError::new(
             source,
@@ -97,7 +162,11 @@ pub(super) fn check(
             }),
         ));
     }
-    let e = Estimate::of(dim, types, sandwiches);
+    let Some(cost) = MetricCost::of(metric) else {
+        // Exact products overflow: the exactness phase says which entry.
+        return Ok(());
+    };
+    let e = Estimate::of(dim, cost, types, sandwiches);
     let estimate = e.total();
     if estimate <= BUDGET {
         return Ok(());
@@ -145,7 +214,11 @@ pub(super) fn check(
             None,
         ),
         _ => (
-            format!("the product table of the 2^{dim} blades: {} units", e.table),
+            format!(
+                "the product table of the 2^{dim} blades ({:.1} terms per blade product): {} \
+                 units",
+                cost.terms, e.table
+            ),
             SpecLocation::BasisList,
             None,
         ),

@@ -232,7 +232,7 @@ impl Spec {
         let metric = metric::read(&raw, source)?;
         let types = types::read(&raw.types, &metric, source)?;
         let sandwiches = sandwiches::read(&raw.sandwich, &types, source)?;
-        budget::check(metric.dim(), &types, &sandwiches, source)?;
+        budget::check(&metric, &types, &sandwiches, source)?;
         exact::check(&metric, &raw.basis, &types, &raw.types, source)?;
         Ok(Spec {
             source: source.to_string(),
