@@ -39,6 +39,8 @@ fn decimal_metrics_generate_exact_products() {
         (&["e1"][..], &[0.1][..]),
         (&["e1", "e2", "e3"][..], &[0.1, 0.3, 0.7][..]),
         (&["e1", "e2", "e3", "e4", "e5"][..], &[0.1; 5][..]),
+        (&["e1", "e2", "e3"][..], &[0.01; 3][..]),
+        (&["e1", "e2", "e3"][..], &[0.001, -0.002, 0.003][..]),
     ] {
         let spec = Spec::from_raw(diagonal_spec(basis, diagonal, &[]), "decimal.toml").unwrap();
         let g = generate(&spec, &EmitOptions::default()).unwrap();
@@ -88,6 +90,24 @@ fn overflowing_metrics_name_the_entry() {
                 .contains(&format!("metric entry [{row}][{row}]")),
             "{e}"
         );
+    }
+}
+
+#[test]
+fn constants_too_long_to_hold_are_refused_at_the_constant() {
+    for value in [1e-30, 1e300, f64::NAN, f64::INFINITY] {
+        let mut raw = diagonal_spec(&["e1", "e2"], &[1.0; 2], &[("P", &["e1", "e2"])]);
+        raw.types[0].constants.insert("e1".into(), value);
+        let e = refused(raw);
+        assert_eq!(e.kind, SpecErrorKind::BadConstant, "{value}: {e}");
+        assert_eq!(
+            e.location,
+            SpecLocation::ConstantValue {
+                ty: 0,
+                key: "e1".into()
+            }
+        );
+        assert!(e.to_string().contains("type `P`: `e1`"), "{e}");
     }
 }
 

@@ -4,14 +4,18 @@
 //! The product table of the basis blades is computed exactly, with checked arithmetic (it is
 //! what [`crate::Algebra`] computes at generation time and in the generated code). Generation
 //! then multiplies table coefficients with each other and with type constants: a sandwich
-//! term is two table coefficients and up to three constants, a dual term a coefficient and
-//! `1 / (I ~I)`. The check asks that any product of [`TABLE_FACTORS`] table values (one more
-//! than a sandwich needs) and [`CONSTANT_FACTORS`] constants, summed over all `4^n` blade
-//! pairs, fits in 127 bits: with `N` the largest numerator and `D` the common denominator of
-//! each set, `TABLE_FACTORS * bits(N D) + CONSTANT_FACTORS * bits(N_c D_c) + 2n <= 127`.
-//! Metric entries such as `0.1`, `0.3`, `0.7` pass with room to spare; `1e13` on three vectors
-//! (a pseudoscalar square of `1e39`) fails while building the table, and entries with many
-//! digits (`0.3333333333333333`) or very small ones (`1e-9`) fail the headroom.
+//! term is two table coefficients and up to three constants, a dual term one coefficient and
+//! `1 / (I ~I)`. For a set of values let `h = bits(ceil(max |v|)) + bits(D)`, `D` the common
+//! denominator: a product of `k` values, summed over `4^n` blade pairs, then has at most
+//! `k h + 2n` bits. With `h_t` for the table (and metric entries), `h_i` for `1 / (I ~I)` and
+//! `h_c` for the constants, the check asks, with one table factor to spare,
+//!
+//! - products: `3 h_t + 3 h_c + 2n <= 127`;
+//! - duals: `2 h_t + h_i + 3 h_c + 2n <= 127`.
+//!
+//! Metric entries such as `0.1`, `0.3`, `0.7` or `0.001` pass with room to spare; `1e13` on
+//! three vectors (a pseudoscalar square of `1e39`) fails while building the table, and entries
+//! with many digits (`0.3333333333333333`) or very small ones (`1e-9`) fail the headroom.
 
 use super::error::{SpecError, SpecErrorKind, SpecLocation};
 use super::metric::error as metric_error;
@@ -21,18 +25,13 @@ use crate::blade::reverse_sign;
 use crate::metric::{Metric, MetricError};
 use crate::rational::Rational;
 
-/// Table values per product of the bound.
-pub const TABLE_FACTORS: u32 = 3;
-/// Constants per product of the bound.
-pub const CONSTANT_FACTORS: u32 = 3;
-
 /// Bits of a positive integer (1 for 0 and 1).
 fn bits(x: u128) -> u32 {
     (128 - x.leading_zeros()).max(1)
 }
 
-/// `bits(N * D)` of a set of values: the bits of the largest numerator over the common
-/// denominator; `None` when that does not fit in 128 bits.
+/// `h` of a set of values: bits of the largest magnitude (rounded up) plus bits of the common
+/// denominator; `None` when the denominator does not fit in 128 bits.
 fn height(values: impl Iterator<Item = Rational> + Clone) -> Option<u32> {
     let mut den: u128 = 1;
     for v in values.clone() {
@@ -43,8 +42,11 @@ fn height(values: impl Iterator<Item = Rational> + Clone) -> Option<u32> {
         }
         den = (den / a).checked_mul(d)?;
     }
-    let num = values.map(|v| v.numer().unsigned_abs()).max().unwrap_or(1);
-    Some(bits(num) + bits(den))
+    let mag = values
+        .map(|v| v.numer().unsigned_abs().div_ceil(v.denom() as u128))
+        .max()
+        .unwrap_or(1);
+    Some(bits(mag) + bits(den))
 }
 
 /// Check the metric and the type constants; `types` are the validated types, `raw` the
@@ -79,20 +81,25 @@ pub(super) fn check(
     let table_values = table
         .iter()
         .flat_map(|m| m.values().copied())
-        .chain((0..n).flat_map(|i| (0..n).map(move |j| metric.get(i, j))))
-        .chain(ii.and_then(Rational::recip));
+        .chain((0..n).flat_map(|i| (0..n).map(move |j| metric.get(i, j))));
     let h_table = height(table_values).ok_or_else(overflow)?;
+    let h_dual = match ii.and_then(Rational::recip) {
+        Some(r) => height(std::iter::once(r)).ok_or_else(overflow)?,
+        None => 0,
+    };
     let constants = types
         .iter()
         .flat_map(|t| t.constants.iter().map(|c| c.1))
         .chain([Rational::ONE]);
-    let h_const = height(constants).unwrap_or(u32::MAX / 8);
+    let h_const = height(constants).map_or(u32::MAX / 8, |h| 3 * h);
     let room = 127u32.saturating_sub(2 * n as u32);
-    if TABLE_FACTORS * h_table + CONSTANT_FACTORS.saturating_mul(h_const) <= room {
+    let fits =
+        |h_const: u32| 3 * h_table + h_const <= room && 2 * h_table + h_dual + h_const <= room;
+    if fits(h_const) {
         return Ok(());
     }
-    if TABLE_FACTORS * h_table + CONSTANT_FACTORS * 2 <= room {
-        // The metric alone passes: the constants are too large.
+    if fits(3 * 2) {
+        // The metric passes with constants of 1: the constants are too large.
         return Err(constant_error(types, raw, source));
     }
     Err(overflow())
