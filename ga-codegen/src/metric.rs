@@ -89,7 +89,11 @@ impl fmt::Display for MetricError {
                 write!(f, "metric is not symmetric: entry [{i}][{j}] differs from [{j}][{i}]")
             }
             MetricError::NotExact { i, j } => {
-                write!(f, "metric entry [{i}][{j}] is not a finite number that can be held exactly")
+                write!(
+                    f,
+                    "metric entry [{i}][{j}] is not a finite number that can be held exactly \
+                     (a decimal whose digits fit in 127 bits)"
+                )
             }
             MetricError::DuplicateName(n) => write!(f, "basis vector `{n}` is named twice"),
             MetricError::PrefixName { name, longer } => write!(
@@ -176,7 +180,9 @@ impl Metric {
         Ok(Metric { names, g })
     }
 
-    /// A metric from `f64` entries, each of which must be held exactly (integers, halves...).
+    /// A metric from `f64` entries, each read as the decimal it prints as (`0.1` is 1/10, see
+    /// [`Rational::from_f64`]); NaN, infinities and entries of more than 127 bits are
+    /// [`MetricError::NotExact`].
     pub fn from_f64(names: Vec<String>, g: &[Vec<f64>]) -> Result<Metric, MetricError> {
         let mut rows = Vec::with_capacity(g.len());
         for (i, row) in g.iter().enumerate() {
