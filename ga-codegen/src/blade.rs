@@ -81,6 +81,11 @@ pub enum BladeNameError {
 /// Parse a blade name written with basis suffixes in any order (`e31`, `eo1`, `e1o`).
 /// Returns the bitmap and the sign relating the written order to the canonical one:
 /// the written blade equals `sign * canonical`.
+///
+/// Linear in the length of the name times the size of the basis: the ways to split each
+/// tail of the name are counted once (capped at two), from the end, instead of by
+/// backtracking. The bases of a [`crate::Metric`] are prefix-free, so there is at most one
+/// way; other bases may give [`BladeNameError::Ambiguous`].
 pub fn parse_blade(name: &str, basis: &[String]) -> Result<(Bitmap, i32), BladeNameError> {
     if name == "s" || name == "1" {
         return Ok((0, 1));
@@ -90,38 +95,38 @@ pub fn parse_blade(name: &str, basis: &[String]) -> Result<(Bitmap, i32), BladeN
         return Err(BladeNameError::Unknown);
     }
     let suffixes: Vec<&str> = basis.iter().map(|b| suffix(b)).collect();
-    // All ways to split `rest` into suffixes.
-    let mut parses: Vec<Vec<usize>> = Vec::new();
-    fn split(rest: &str, suffixes: &[&str], cur: &mut Vec<usize>, out: &mut Vec<Vec<usize>>) {
-        if out.len() > 1 {
-            return;
-        }
-        if rest.is_empty() {
-            out.push(cur.clone());
-            return;
+    let len = rest.len();
+    // ways[p]: number of splits of rest[p..] (0, 1 or 2 meaning "two or more");
+    // next[p]: the basis index that starts the split when there is exactly one.
+    let mut ways = vec![0u8; len + 1];
+    let mut next = vec![usize::MAX; len + 1];
+    ways[len] = 1;
+    for p in (0..len).rev() {
+        if !rest.is_char_boundary(p) {
+            continue;
         }
         for (i, s) in suffixes.iter().enumerate() {
-            if !s.is_empty() && rest.starts_with(s) {
-                cur.push(i);
-                split(&rest[s.len()..], suffixes, cur, out);
-                cur.pop();
+            if !s.is_empty() && rest[p..].starts_with(s) && ways[p + s.len()] > 0 {
+                ways[p] = (ways[p] + ways[p + s.len()]).min(2);
+                next[p] = i;
             }
         }
     }
-    split(rest, &suffixes, &mut Vec::new(), &mut parses);
-    match parses.len() {
+    match ways[0] {
         0 => Err(BladeNameError::Unknown),
         1 => {
-            let idx = &parses[0];
             let mut bitmap: Bitmap = 0;
             let mut sign = 1;
-            for &i in idx {
+            let mut p = 0;
+            while p < len {
+                let i = next[p];
                 let bit = 1 << i;
                 if bitmap & bit != 0 {
                     return Err(BladeNameError::Repeated);
                 }
                 sign *= reorder_sign(bitmap, bit);
                 bitmap |= bit;
+                p += suffixes[i].len();
             }
             Ok((bitmap, sign))
         }
@@ -176,5 +181,29 @@ mod tests {
         assert_eq!(reorder_sign(0b10, 0b01), -1);
         assert_eq!(reorder_sign(0b01, 0b10), 1);
         assert_eq!(reorder_sign(0b110, 0b001), 1);
+    }
+
+    #[test]
+    fn parsing_is_linear_on_prefix_bases() {
+        // Basis suffixes `1` and `11`: a long run of ones has exponentially many splits.
+        let b: Vec<String> = vec!["e1".into(), "e11".into()];
+        let long = format!("e{}x", "1".repeat(5000));
+        let start = std::time::Instant::now();
+        assert_eq!(parse_blade(&long, &b), Err(BladeNameError::Unknown));
+        assert_eq!(
+            parse_blade(&format!("e{}", "1".repeat(5000)), &b),
+            Err(BladeNameError::Ambiguous)
+        );
+        assert!(start.elapsed().as_secs_f64() < 1.0);
+        assert_eq!(parse_blade("e111", &b), Err(BladeNameError::Ambiguous));
+        assert_eq!(parse_blade("e11", &b), Err(BladeNameError::Ambiguous));
+        assert_eq!(parse_blade("e1", &b), Ok((0b01, 1)));
+        // Multi-character suffixes and any order.
+        let b: Vec<String> = vec!["exy".into(), "ez".into()];
+        assert_eq!(parse_blade("ezxy", &b), Ok((0b11, -1)));
+        assert_eq!(parse_blade("exyz", &b), Ok((0b11, 1)));
+        assert_eq!(parse_blade("exy", &b), Ok((0b01, 1)));
+        assert_eq!(parse_blade("ex", &b), Err(BladeNameError::Unknown));
+        assert_eq!(parse_blade("eé", &b), Err(BladeNameError::Unknown));
     }
 }

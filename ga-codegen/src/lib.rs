@@ -15,6 +15,7 @@
 
 pub mod algebra;
 pub mod blade;
+pub mod ident;
 pub mod lanes;
 pub mod metric;
 pub mod multivector;

@@ -1,5 +1,6 @@
 //! The metric: a symmetric matrix of exact inner products between named basis vectors.
 
+use crate::blade::suffix;
 use crate::rational::Rational;
 use std::fmt;
 
@@ -43,6 +44,29 @@ pub enum MetricError {
     },
     /// Two basis vectors share a name.
     DuplicateName(String),
+    /// The suffix of one basis name starts with the suffix of another (`e1`, `e12`), so blade
+    /// names could be read in two ways (`e12` is `e1^e2` or the basis vector `e12`). Basis
+    /// suffixes must be prefix-free; blade names are then read in one left-to-right pass.
+    PrefixName {
+        /// The shorter name.
+        name: String,
+        /// The name that starts with its suffix.
+        longer: String,
+    },
+    /// A basis name that is a Rust keyword (`enum`, `else`, `extern`): blade names become
+    /// field names.
+    KeywordName(String),
+    /// Exact products of the metric do not fit in 128-bit rationals (entries such as `1e13`
+    /// on three vectors give a pseudoscalar square of `1e39`, or `1e-9` entries give
+    /// denominators beyond `2^127`).
+    Overflow {
+        /// Row of the entry with the largest numerator or denominator.
+        i: usize,
+        /// Column of that entry.
+        j: usize,
+        /// Its value.
+        value: f64,
+    },
     /// A basis name is not `e` followed by a non-empty suffix of letters or digits.
     BadName(String),
 }
@@ -65,9 +89,26 @@ impl fmt::Display for MetricError {
                 write!(f, "metric is not symmetric: entry [{i}][{j}] differs from [{j}][{i}]")
             }
             MetricError::NotExact { i, j } => {
-                write!(f, "metric entry [{i}][{j}] is not a finite number that can be held exactly")
+                write!(
+                    f,
+                    "metric entry [{i}][{j}] is not a finite number that can be held exactly \
+                     (a decimal whose digits fit in 127 bits)"
+                )
             }
             MetricError::DuplicateName(n) => write!(f, "basis vector `{n}` is named twice"),
+            MetricError::PrefixName { name, longer } => write!(
+                f,
+                "basis vector `{longer}`: its suffix starts with the suffix of `{name}`, so blade \
+                 names would be ambiguous (basis suffixes must be prefix-free)"
+            ),
+            MetricError::KeywordName(n) => {
+                write!(f, "basis vector `{n}`: a Rust keyword cannot name a blade")
+            }
+            MetricError::Overflow { i, j, value } => write!(
+                f,
+                "metric entry [{i}][{j}] = {value}: exact products of the metric do not fit in \
+                 128-bit rationals; use entries with fewer digits or a rescaled basis"
+            ),
             MetricError::BadName(n) => write!(
                 f,
                 "basis vector name `{n}` must be `e` followed by letters or digits (e.g. e1, eo, ei)"
@@ -90,6 +131,19 @@ fn check_names(names: &[String]) -> Result<(), MetricError> {
         }
         if names[..i].contains(n) {
             return Err(MetricError::DuplicateName(n.clone()));
+        }
+        if crate::ident::is_keyword(n) {
+            return Err(MetricError::KeywordName(n.clone()));
+        }
+    }
+    for a in names {
+        for b in names {
+            if a != b && suffix(b).starts_with(suffix(a)) {
+                return Err(MetricError::PrefixName {
+                    name: a.clone(),
+                    longer: b.clone(),
+                });
+            }
         }
     }
     Ok(())
@@ -126,7 +180,9 @@ impl Metric {
         Ok(Metric { names, g })
     }
 
-    /// A metric from `f64` entries, each of which must be held exactly (integers, halves...).
+    /// A metric from `f64` entries, each read as the decimal it prints as (`0.1` is 1/10, see
+    /// [`Rational::from_f64`]); NaN, infinities and entries of more than 127 bits are
+    /// [`MetricError::NotExact`].
     pub fn from_f64(names: Vec<String>, g: &[Vec<f64>]) -> Result<Metric, MetricError> {
         let mut rows = Vec::with_capacity(g.len());
         for (i, row) in g.iter().enumerate() {
@@ -155,7 +211,10 @@ impl Metric {
     /// The diagonal signature G(p, q, r): `p` vectors squaring to +1, then `q` to -1, then `r`
     /// to 0, named `e1 .. en` (or `e0` first for the degenerate ones when `r == 1`, as PGA does).
     pub fn signature(p: usize, q: usize, r: usize) -> Result<Metric, MetricError> {
-        let n = p + q + r;
+        let n = p.saturating_add(q).saturating_add(r);
+        if n == 0 || n > MAX_DIMENSION {
+            return Err(MetricError::Dimension(n));
+        }
         let mut names = Vec::new();
         let mut squares = Vec::new();
         if r == 1 {
@@ -182,6 +241,25 @@ impl Metric {
             }
         }
         Metric::diagonal(names, &squares)
+    }
+
+    /// The error for a metric whose exact products overflow: it names the entry with the
+    /// most digits (the largest [`Rational::height`]), the likely culprit.
+    pub fn overflow_error(&self) -> MetricError {
+        let n = self.dim();
+        let (mut i, mut j) = (0, 0);
+        for r in 0..n {
+            for c in r..n {
+                if self.g[r][c].height() > self.g[i][j].height() {
+                    (i, j) = (r, c);
+                }
+            }
+        }
+        MetricError::Overflow {
+            i,
+            j,
+            value: self.g[i][j].to_f64(),
+        }
     }
 
     /// Number of basis vectors.
@@ -212,8 +290,15 @@ impl Metric {
             .collect()
     }
 
-    /// Inner product of two vectors given by coordinates.
+    /// Inner product of two vectors given by coordinates. Panics on overflow (see
+    /// [`Metric::checked_inner`]).
     pub fn inner(&self, u: &[Rational], v: &[Rational]) -> Rational {
+        self.checked_inner(u, v)
+            .expect("exact rational arithmetic overflowed 128 bits")
+    }
+
+    /// Inner product of two vectors given by coordinates; `None` on overflow.
+    pub fn checked_inner(&self, u: &[Rational], v: &[Rational]) -> Option<Rational> {
         let mut s = Rational::ZERO;
         for i in 0..self.dim() {
             if u[i].is_zero() {
@@ -221,22 +306,30 @@ impl Metric {
             }
             for j in 0..self.dim() {
                 if !v[j].is_zero() && !self.g[i][j].is_zero() {
-                    s = s + u[i] * self.g[i][j] * v[j];
+                    s = s.checked_add(u[i].checked_mul(self.g[i][j])?.checked_mul(v[j])?)?;
                 }
             }
         }
-        s
+        Some(s)
     }
 
     /// Diagonalise by congruence, exactly: returns rows `P` and squares `d` such that the
     /// vectors `f_k = sum_i P[k][i] v_i` are mutually orthogonal with `f_k . f_k = d[k]`.
+    /// Panics on overflow, which a metric of a validated spec never reaches (see
+    /// [`Metric::checked_orthogonal_basis`]).
+    pub fn orthogonal_basis(&self) -> (Vec<Vec<Rational>>, Vec<Rational>) {
+        self.checked_orthogonal_basis()
+            .expect("exact rational arithmetic overflowed 128 bits")
+    }
+
+    /// [`Metric::orthogonal_basis`], or `None` when exact arithmetic overflows.
     ///
     /// Symmetric Gram-Schmidt with pivoting: a remaining vector of non-zero square is the next
     /// pivot; if all remaining vectors are null but two are not orthogonal, their sum is used
     /// (for CGA this turns `eo, ei` into `-(eo + ei)`-like combinations of square +-1... all
     /// rational); if all remaining vectors are null and mutually orthogonal they are the
     /// degenerate directions (square 0). No square roots, so every coefficient stays rational.
-    pub fn orthogonal_basis(&self) -> (Vec<Vec<Rational>>, Vec<Rational>) {
+    pub fn checked_orthogonal_basis(&self) -> Option<(Vec<Vec<Rational>>, Vec<Rational>)> {
         let n = self.dim();
         let mut remaining: Vec<Vec<Rational>> = (0..n)
             .map(|i| {
@@ -254,16 +347,21 @@ impl Metric {
         let mut rows = Vec::new();
         let mut squares = Vec::new();
         while !remaining.is_empty() {
-            let mut pivot = remaining.iter().position(|r| !self.inner(r, r).is_zero());
+            let mut pivot = None;
+            for (k, r) in remaining.iter().enumerate() {
+                if !self.checked_inner(r, r)?.is_zero() {
+                    pivot = Some(k);
+                    break;
+                }
+            }
             if pivot.is_none() {
                 'outer: for a in 0..remaining.len() {
                     for b in (a + 1)..remaining.len() {
-                        if !self.inner(&remaining[a], &remaining[b]).is_zero() {
-                            let sum: Vec<Rational> = remaining[a]
-                                .iter()
-                                .zip(&remaining[b])
-                                .map(|(x, y)| *x + *y)
-                                .collect();
+                        if !self.checked_inner(&remaining[a], &remaining[b])?.is_zero() {
+                            let mut sum = Vec::with_capacity(n);
+                            for (x, y) in remaining[a].iter().zip(&remaining[b]) {
+                                sum.push(x.checked_add(*y)?);
+                            }
                             remaining[a] = sum;
                             pivot = Some(a);
                             break 'outer;
@@ -279,19 +377,19 @@ impl Metric {
                 break;
             };
             let pv = remaining.remove(p);
-            let pp = self.inner(&pv, &pv);
+            let pp = self.checked_inner(&pv, &pv)?;
             for r in remaining.iter_mut() {
-                let c = self.inner(r, &pv) / pp;
+                let c = self.checked_inner(r, &pv)?.checked_div(pp)?;
                 if !c.is_zero() {
                     for k in 0..n {
-                        r[k] = r[k] - c * pv[k];
+                        r[k] = r[k].checked_sub(c.checked_mul(pv[k])?)?;
                     }
                 }
             }
             rows.push(pv);
             squares.push(pp);
         }
-        (rows, squares)
+        Some((rows, squares))
     }
 }
 
@@ -360,5 +458,58 @@ mod tests {
         assert_eq!(m.names()[0], "e0");
         let (_, d) = m.orthogonal_basis();
         assert_eq!(d.iter().filter(|x| x.is_zero()).count(), 1);
+    }
+
+    fn names(list: &[&str]) -> Vec<String> {
+        list.iter().map(|s| s.to_string()).collect()
+    }
+
+    #[test]
+    fn rejects_prefix_and_keyword_names() {
+        let one = |n: &[&str]| {
+            let k = n.len();
+            let sq = vec![Rational::ONE; k];
+            Metric::diagonal(names(n), &sq)
+        };
+        assert_eq!(
+            one(&["e1", "e11"]),
+            Err(MetricError::PrefixName {
+                name: "e1".into(),
+                longer: "e11".into()
+            })
+        );
+        assert!(matches!(
+            one(&["e1", "e2", "e12"]),
+            Err(MetricError::PrefixName { .. })
+        ));
+        assert_eq!(
+            one(&["e1", "enum"]),
+            Err(MetricError::KeywordName("enum".into()))
+        );
+        assert!(one(&["eo", "e1", "e2", "e3", "ei"]).is_ok());
+        assert!(one(&["ex", "ey", "ez"]).is_ok());
+    }
+
+    #[test]
+    fn signature_sizes_do_not_wrap() {
+        assert_eq!(
+            Metric::signature(usize::MAX, 2, 0),
+            Err(MetricError::Dimension(usize::MAX))
+        );
+        assert_eq!(Metric::signature(0, 0, 0), Err(MetricError::Dimension(0)));
+        assert_eq!(Metric::signature(11, 0, 0), Err(MetricError::Dimension(11)));
+        assert_eq!(Metric::signature(10, 0, 0).map(|m| m.dim()), Ok(10));
+    }
+
+    #[test]
+    fn congruence_reports_overflow() {
+        let big = Rational::new(i128::MAX / 3, 1);
+        let m = Metric::new(
+            names(&["e1", "e2"]),
+            vec![vec![big, big], vec![big, Rational::new(1, 7)]],
+        )
+        .unwrap();
+        assert!(m.checked_orthogonal_basis().is_none());
+        assert!(cga().checked_orthogonal_basis().is_some());
     }
 }

@@ -173,3 +173,197 @@ fn bad_arguments() {
         assert!(!String::from_utf8_lossy(&out.stderr).contains("panicked"));
     }
 }
+
+/// A spec over `basis` with a diagonal metric of `diagonal` entries and the given items.
+fn spec_with(basis: &str, diagonal: &str, items: &str) -> String {
+    format!("basis = {basis}\ndiagonal = {diagonal}\n{items}")
+}
+
+#[test]
+fn decimal_metric_entries_are_exact() {
+    let dir = scratch("decimal");
+    let file = dir.join("decimal.toml");
+    std::fs::write(
+        &file,
+        spec_with(
+            "[\"e1\", \"e2\", \"e3\"]",
+            "[0.1, 0.3, 0.7]",
+            "[[type]]\nname = \"Tri\"\nblades = [\"e123\"]\n",
+        ),
+    )
+    .unwrap();
+    let out = run(&[file.to_str().unwrap()]);
+    let code = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    // <e123 ~e123> = 0.1 * 0.3 * 0.7 = 0.021 exactly (as a decimal), not a rounded product.
+    assert!(code.contains("0.021 * a.e123 * a.e123"), "{code}");
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn metrics_whose_exact_products_overflow_are_refused() {
+    let basis = "[\"e1\", \"e2\", \"e3\"]";
+    let ty = "[[type]]\nname = \"Tri\"\nblades = [\"e123\"]\n";
+    for (name, diagonal, entry) in [
+        ("big13", "[1e13, 1e13, 1e13]", "[0][0]"),
+        ("big30", "[1e30, 1e30, 1]", "[0][0]"),
+        (
+            "thirds",
+            "[0.3333333333333333, 0.3333333333333333, 0.3333333333333333]",
+            "[0][0]",
+        ),
+        ("huge", "[1e300, 1, 1]", "[0][0]"),
+        ("nan", "[1, nan, 1]", "[1][1]"),
+        ("inf", "[1, 1, inf]", "[2][2]"),
+        ("neginf", "[-inf, 1, 1]", "[0][0]"),
+        ("tiny", "[1e-320, 1, 1]", "[0][0]"),
+    ] {
+        expect_error(
+            &spec_with(basis, diagonal, ty),
+            name,
+            &[&format!("metric entry {entry}")],
+        );
+    }
+}
+
+#[test]
+fn negative_zero_in_the_metric_is_zero() {
+    let dir = scratch("negzero");
+    let file = dir.join("negzero.toml");
+    std::fs::write(
+        &file,
+        spec_with(
+            "[\"e0\", \"e1\"]",
+            "[-0.0, 1]",
+            "[[type]]\nname = \"V\"\nblades = [\"e0\", \"e1\"]\n",
+        ),
+    )
+    .unwrap();
+    let out = run(&[file.to_str().unwrap(), "--summary"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn ambiguous_and_colliding_basis_names_are_refused() {
+    // Suffixes `1` and `11`: blade names would read in many ways (and parsing used to
+    // backtrack for 18 s on `e` + 44 ones + `x`).
+    let long = format!("e{}x", "1".repeat(44));
+    let spec = spec_with(
+        "[\"e1\", \"e11\"]",
+        "[1, 1]",
+        &format!("[[type]]\nname = \"V\"\nblades = [\"{long}\"]\n"),
+    );
+    let start = std::time::Instant::now();
+    expect_error(&spec, "prefix", &["`e11`", "prefix-free"]);
+    assert!(start.elapsed().as_secs_f64() < 10.0);
+    // `e12` would be both the basis vector and e1^e2: the general type would not compile.
+    expect_error(
+        &spec_with("[\"e1\", \"e2\", \"e12\"]", "[1, 1, 1]", ""),
+        "collide",
+        &["`e12`", "prefix-free"],
+    );
+}
+
+#[test]
+fn keyword_names_are_refused() {
+    expect_error(
+        &spec_with("[\"e1\", \"enum\"]", "[1, 1]", ""),
+        "keyword_basis",
+        &["`enum`", "keyword"],
+    );
+    // No basis name is a keyword, but their concatenation is: `e` + `n` + `um`.
+    expect_error(
+        &spec_with("[\"en\", \"eum\"]", "[1, 1]", ""),
+        "keyword_blade",
+        &["type `Mv`", "`enum`", "keyword"],
+    );
+    expect_error(
+        &spec_with(
+            "[\"el\", \"ese\"]",
+            "[1, 1]",
+            "[[type]]\nname = \"B\"\nblades = [\"else\"]\n",
+        ),
+        "keyword_field",
+        &["type `B`", "`else`", "keyword"],
+    );
+}
+
+#[test]
+fn type_names_of_generated_items_are_refused() {
+    let basis = "[\"e1\", \"e2\", \"e3\"]";
+    for (name, ty) in [
+        ("rv_matrix", "RVMatrix"),
+        ("motor_point_matrix", "RotorPointMatrix"),
+        ("sandwich_name", "Sandwich"),
+        ("scalar_name", "Scalar"),
+        ("lanes_name", "F64x2"),
+        ("self_name", "Self"),
+    ] {
+        let items = format!(
+            "[[type]]\nname = \"R\"\nblades = [\"s\", \"e12\"]\nversor = true\n\
+             [[type]]\nname = \"V\"\nblades = [\"e1\", \"e2\"]\n\
+             [[type]]\nname = \"{ty}\"\nblades = [\"e3\"]\n\
+             [[sandwich]]\nversor = \"R\"\noperand = \"V\"\n"
+        );
+        expect_error(
+            &spec_with(basis, "[1, 1, 1]", &items),
+            name,
+            &[&format!("type `{ty}`"), "reserved"],
+        );
+    }
+}
+
+#[test]
+fn specs_too_large_to_generate_are_refused_up_front() {
+    let nine: Vec<String> = (1..=9).map(|i| format!("\"e{i}\"")).collect();
+    let start = std::time::Instant::now();
+    expect_error(
+        &spec_with(
+            &format!("[{}]", nine.join(", ")),
+            &format!("[{}]", ["1"; 9].join(", ")),
+            "",
+        ),
+        "nine",
+        &["too large", "9 basis vectors", "at most 8"],
+    );
+    let mut many = String::new();
+    for t in 0..150 {
+        many.push_str(&format!(
+            "[[type]]\nname = \"T{t}\"\nblades = [\"e1\", \"e2\"]\n"
+        ));
+    }
+    expect_error(
+        &spec_with("[\"e1\", \"e2\", \"e3\"]", "[1, 1, 1]", &many),
+        "many_types",
+        &["too large", "151 types", "22801 ordered pairs"],
+    );
+    for sig in ["8,0,0", "9,0,0"] {
+        let out = run(&["--signature", sig, "--summary"]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{sig}: {err}");
+        assert!(err.contains("too large"), "{sig}: {err}");
+        assert!(err.contains(&format!("--signature {sig}")), "{sig}: {err}");
+    }
+    // Refused before any product is expanded.
+    assert!(start.elapsed().as_secs_f64() < 20.0);
+}
+
+#[test]
+fn signature_sums_do_not_wrap() {
+    for sig in ["18446744073709551615,2,0", "0,0,0", "5,5,0", "1,-1,0"] {
+        let out = run(&["--signature", sig, "--summary"]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{sig}: {err}");
+        assert!(err.contains("--signature"), "{sig}: {err}");
+        assert!(!err.contains("panicked"), "{sig}: {err}");
+    }
+}

@@ -29,7 +29,7 @@ pub(crate) fn expand(tokens: TokenStream) -> syn::Result<TokenStream> {
         Source::File(lit) => expand_file(&lit, &opts, first),
         Source::Inline(inline) => {
             let spec = Spec::from_raw(inline.raw.clone(), INLINE_SOURCE).map_err(|e| {
-                let at = locate::spec_error(&e, &inline.raw, &inline.spans);
+                let at = locate::spec_error(&e, &inline.spans);
                 error_at(at, without_source(&e.to_string()))
             })?;
             let generated = generate(&spec, &opts).map_err(|e| {

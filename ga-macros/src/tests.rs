@@ -225,3 +225,52 @@ fn path_form_errors_name_the_file() {
         format!("{lit}: type `V`: `e2`: unknown blade: not made of the basis names")
     );
 }
+
+#[test]
+fn hostile_specs_are_refused_with_the_binary_messages() {
+    assert_eq!(
+        error(quote!(basis = [e1, e11]; diagonal = [1, 1];)),
+        "basis vector `e11`: its suffix starts with the suffix of `e1`, so blade names would be \
+         ambiguous (basis suffixes must be prefix-free)"
+    );
+    assert!(
+        error(quote!(basis = [e1, e2, e3]; diagonal = [1e13, 1e13, 1e13];))
+            .starts_with("metric entry [0][0] = 10000000000000: exact products")
+    );
+    assert!(
+        error(quote!(basis = [e1, e2, e3]; diagonal = [0.1, 0.2, 1e-30];))
+            .starts_with("metric entry [2][2]")
+    );
+    let e = error(quote! {
+        basis = [e1, e2]; diagonal = [1, 1];
+        type RVMatrix { blades = [e1] }
+    });
+    assert!(
+        e.starts_with("type `RVMatrix`: type name is reserved: names ending in `Matrix`"),
+        "{e}"
+    );
+    let e = error(quote! {
+        basis = [el, ese]; diagonal = [1, 1];
+        type B { blades = [else] }
+    });
+    assert_eq!(
+        e,
+        "type `B`: `else`: blade name is a Rust keyword and cannot name a field"
+    );
+    let e = error(
+        quote!(basis = [e1, e2, e3, e4, e5, e6, e7, e8, e9]; diagonal = [1, 1, 1, 1, 1, 1, 1, 1, 1];),
+    );
+    assert!(
+        e.starts_with("too large to generate: 9 basis vectors"),
+        "{e}"
+    );
+}
+
+#[test]
+fn decimal_metrics_expand() {
+    let got = expanded(quote! {
+        basis = [e1, e2, e3]; diagonal = [0.1, 0.3, 0.7];
+        type Tri { blades = [e123] }
+    });
+    assert!(got.contains("0.021 * a . e123 * a . e123"), "{got}");
+}

@@ -50,16 +50,7 @@ fn parse_args() -> Result<Args, String> {
             "--runtime" => a.runtime = Some(it.next().ok_or("--runtime needs a path")?),
             "--signature" => {
                 let v = it.next().ok_or("--signature needs P,Q,R")?;
-                let parts: Result<Vec<usize>, _> = v.split(',').map(|x| x.trim().parse()).collect();
-                match parts.as_deref() {
-                    Ok([p, q, r]) => a.signature = Some((*p, *q, *r)),
-                    Ok([p, q]) => a.signature = Some((*p, *q, 0)),
-                    _ => {
-                        return Err(format!(
-                            "--signature needs P,Q,R (non-negative integers), not `{v}`"
-                        ))
-                    }
-                }
+                a.signature = Some(parse_signature(&v)?);
             }
             s if s.starts_with('-') => return Err(format!("unknown option `{s}`")),
             s => {
@@ -74,6 +65,28 @@ fn parse_args() -> Result<Args, String> {
         return Err("give either a spec file or --signature P,Q,R".into());
     }
     Ok(a)
+}
+
+/// `P,Q,R` or `P,Q`: non-negative counts whose sum does not overflow (the dimension limits
+/// are the spec's, checked by `Spec::for_signature`).
+fn parse_signature(v: &str) -> Result<(usize, usize, usize), String> {
+    let bad = || format!("--signature needs P,Q,R (non-negative integers), not `{v}`");
+    let parts: Vec<usize> = v
+        .split(',')
+        .map(|x| x.trim().parse::<usize>().map_err(|_| bad()))
+        .collect::<Result<_, _>>()?;
+    let (p, q, r) = match parts.as_slice() {
+        [p, q, r] => (*p, *q, *r),
+        [p, q] => (*p, *q, 0),
+        _ => return Err(bad()),
+    };
+    match p.checked_add(q).and_then(|s| s.checked_add(r)) {
+        Some(_) => Ok((p, q, r)),
+        None => Err(format!(
+            "--signature {v}: P + Q + R is too large (the generator takes at most {} basis vectors)",
+            ga_codegen::spec::budget::MAX_DIMENSION
+        )),
+    }
 }
 
 fn main() -> ExitCode {
