@@ -31,10 +31,14 @@ impl Default for CutOptions {
 /// Where a vertex of a piece comes from.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum VertexOrigin {
-    /// Vertex `0` of the input mesh.
+    /// Input vertex `0`.
     Original(u32),
     /// A midpoint added by refinement (a drill thinner than the triangles).
     Refined,
+    /// A point of a tear's incision (on the plane of its step), or where the scalpel enters.
+    Incision,
+    /// The second copy of incision vertex `0` of the result (the other lip of the tear).
+    Copy(u32),
     /// A new vertex on the input edge `a b` at `a + t (b - a)` (in the frame of the cut).
     Edge {
         /// First end.

@@ -32,12 +32,15 @@ mod cap;
 mod cut;
 mod drill;
 mod refine;
+mod soup;
 mod split;
+mod tear;
 mod weights;
 
 pub use bvh::FaceBvh;
 pub use cut::{CutOptions, CutPiece, CutResult, VertexOrigin};
 pub use drill::{Drill, DrillOptions, DrillResult};
+pub use tear::{Scalpel, TearOptions, TearResult};
 pub use weights::{push_interpolated, NEW_VERTEX_INFLUENCES};
 
 use crate::skinning::Influences;

@@ -55,6 +55,9 @@ pub enum Command {
     /// Drill a hole with a finite cylinder from --tip to --end of --radius (Algorithm 3);
     /// the result stays skinned and animatable.
     Drill(crate::surgery_cmds::DrillArgs),
+    /// Tear the skin with a scalpel given at successive time steps (Algorithm 2): the
+    /// incision opens (--open pulls its lips apart); the result stays skinned and animatable.
+    Tear(crate::surgery_cmds::TearArgs),
 }
 
 /// Options every command that writes files shares.

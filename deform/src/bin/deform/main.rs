@@ -1,5 +1,5 @@
 //! The `deform` program: the motor deformers of the CGA papers on procedural meshes (`demo`)
-//! and on any mesh file (`spline`, `handles`, `fabrik`, `arap`, `ffd`, `cage`, `skin`, `cut`, `drill`), with OBJ output,
+//! and on any mesh file (`spline`, `handles`, `fabrik`, `arap`, `ffd`, `cage`, `skin`, `cut`, `tear`, `drill`), with OBJ output,
 //! PNG previews and timings. Exit code 0 on success, 2 on any error (bad arguments, unreadable
 //! or invalid input, a failed write), with a message that says what and where.
 
@@ -40,6 +40,7 @@ fn main() -> ExitCode {
         args::Command::Skin(a) => skin_cmd::skin(&a),
         args::Command::Cut(a) => surgery_cmds::cut(&a),
         args::Command::Drill(a) => surgery_cmds::drill(&a),
+        args::Command::Tear(a) => surgery_cmds::tear(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -106,13 +106,14 @@ impl Posed {
     }
 }
 
-/// Write the new rig (`.glb`) or its rest mesh (OBJ), and a preview of the parts pulled apart
-/// by `spread` along `away(part)`.
+/// Write the new rig (`.glb`) or its rest mesh (OBJ), and a preview of the parts moved by
+/// `away(part)`, coloured by part, or by `marks` (one value per vertex of a single part).
 pub fn write_result(
     rig: &Rig,
     parts: &[(&Mesh, &deform::skinning::Influences)],
     out: &OutputArgs,
     away: impl Fn(usize) -> DVec3,
+    marks: Option<Vec<f64>>,
     report: &mut Report,
 ) -> Result<()> {
     let result = rig
@@ -134,10 +135,13 @@ pub fn write_result(
         for (k, p) in result.primitives.iter().enumerate() {
             let shift = away(k);
             let r = p.vertex_offset..p.vertex_offset + p.vertex_count;
-            shown.positions[r.clone()].iter_mut().for_each(|x| *x += shift);
+            shown.positions[r.clone()]
+                .iter_mut()
+                .for_each(|x| *x += shift);
             part_of[r].iter_mut().for_each(|x| *x = k as f64);
         }
-        let image = preview::before_after(&rig.mesh, &shown, &part_of, 30.0, 20.0)?;
+        let scalar = marks.unwrap_or(part_of);
+        let image = preview::before_after(&rig.mesh, &shown, &scalar, 30.0, 50.0)?;
         write_png(png, &image)?;
         report.add("png", png.display().to_string());
     }
@@ -201,6 +205,7 @@ pub fn cut(a: &CutArgs) -> Result<()> {
         &parts,
         &a.out,
         |k| if k == 0 { n * spread } else { -n * spread },
+        None,
         &mut report,
     )
 }
@@ -250,11 +255,93 @@ pub fn drill(a: &DrillArgs) -> Result<()> {
     report.add("refined_faces", r.refined_faces);
     report.add("holes", r.holes);
     report.add("boundary_loops", r.boundary_loops);
+    let marks = r
+        .origin
+        .iter()
+        .map(|o| {
+            f64::from(u8::from(!matches!(
+                o,
+                deform::surgery::VertexOrigin::Original(_)
+            )))
+        })
+        .collect();
     write_result(
         &rig,
         &[(&r.mesh.mesh, &r.mesh.influences)],
         &a.out,
         |_| DVec3::ZERO,
+        Some(marks),
+        &mut report,
+    )
+}
+
+#[derive(Args, Debug)]
+pub struct TearArgs {
+    #[command(flatten)]
+    pub rig: RigInput,
+    /// The blade at one time step, AX,AY,AZ:BX,BY,BZ (from A into the skin towards B); at
+    /// least two, in time order.
+    #[arg(long = "scalpel", value_parser = parse_blade, allow_hyphen_values = true, required = true)]
+    pub scalpel: Vec<(DVec3, DVec3)>,
+    /// Pull the incision's lips apart by this much at its middle.
+    #[arg(long, default_value_t = 0.0)]
+    pub open: f64,
+    #[command(flatten)]
+    pub frame: ToolFrame,
+    #[command(flatten)]
+    pub out: OutputArgs,
+}
+
+fn parse_blade(s: &str) -> Result<(DVec3, DVec3), String> {
+    let (a, b) = s
+        .split_once(':')
+        .ok_or_else(|| format!("{s:?}: expected AX,AY,AZ:BX,BY,BZ"))?;
+    Ok((parse_vec3(a)?, parse_vec3(b)?))
+}
+
+pub fn tear(a: &TearArgs) -> Result<()> {
+    use deform::surgery::{Scalpel, TearOptions};
+    let mut outputs = vec![a.out.output.as_path()];
+    outputs.extend(a.out.png.as_deref());
+    check_outputs(&a.rig.paths(), &outputs)?;
+    let rig = a.rig.read()?;
+    let posed = Posed::read(&rig, &a.frame)?;
+    let t = Instant::now();
+    let surgery = Surgery::new(&rig.mesh, &rig.influences)?;
+    let index_ms = t.elapsed().as_secs_f64() * 1e3;
+    let blades: Vec<Scalpel> = a.scalpel.iter().map(|&(a, b)| Scalpel { a, b }).collect();
+    let t = Instant::now();
+    let options = TearOptions {
+        open: a.open,
+        ..TearOptions::default()
+    };
+    let r = surgery.tear(&blades, Posed::frame(&posed), &options)?;
+    let tear_ms = t.elapsed().as_secs_f64() * 1e3;
+    let mut report = Report::new("tear", &rig.mesh);
+    report.add("index_ms", index_ms);
+    report.add("tear_ms", tear_ms);
+    report.add("steps", blades.len() - 1);
+    report.add("incision_vertices", r.incision.len());
+    report.add("new_vertices", r.new_vertices);
+    report.add("duplicated", r.duplicated);
+    report.add("changed_faces", r.changed_faces);
+    report.add("boundary_loops", r.boundary_loops);
+    let marks = r
+        .origin
+        .iter()
+        .map(|o| {
+            f64::from(u8::from(!matches!(
+                o,
+                deform::surgery::VertexOrigin::Original(_)
+            )))
+        })
+        .collect();
+    write_result(
+        &rig,
+        &[(&r.mesh.mesh, &r.mesh.influences)],
+        &a.out,
+        |_| DVec3::ZERO,
+        Some(marks),
         &mut report,
     )
 }

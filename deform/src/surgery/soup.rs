@@ -1,0 +1,223 @@
+//! A triangle mesh under local edits: each face knows the face across each of its edges, each
+//! vertex one face around it, so edges and faces can be split in constant time and a vertex's
+//! fan walked without a global adjacency rebuild. Used by the tear.
+
+use super::weights::{push_copy, push_interpolated};
+use super::{unskin, SurgeryError, VertexOrigin};
+use crate::skinning::Influences;
+use glam::{DAffine3, DVec3};
+
+/// A mesh being edited, with per-vertex data in both frames.
+pub(crate) struct Soup<'a> {
+    pub tris: Vec<[u32; 3]>,
+    /// `nb[f][k]`: the face across the edge opposite corner `k` (`u32::MAX`: boundary).
+    pub nb: Vec<[u32; 3]>,
+    /// One face around each vertex.
+    pub vf: Vec<u32>,
+    /// The input face each face comes from.
+    pub root: Vec<u32>,
+    /// Whether each input face was edited.
+    pub touched: Vec<bool>,
+    pub frame: Vec<DVec3>,
+    pub rest: Vec<DVec3>,
+    pub influences: Influences,
+    pub origin: Vec<VertexOrigin>,
+    /// The skin matrices of a posed frame.
+    pub skin: Option<&'a [DAffine3]>,
+}
+
+impl<'a> Soup<'a> {
+    #[allow(clippy::too_many_arguments)]
+    pub fn new(
+        tris: &[[u32; 3]],
+        nb: &[[u32; 3]],
+        rest: &[DVec3],
+        frame: &[DVec3],
+        influences: &Influences,
+        skin: Option<&'a [DAffine3]>,
+    ) -> Soup<'a> {
+        let mut vf = vec![u32::MAX; rest.len()];
+        for (f, t) in tris.iter().enumerate() {
+            for &v in t {
+                vf[v as usize] = f as u32;
+            }
+        }
+        Soup {
+            tris: tris.to_vec(),
+            nb: nb.to_vec(),
+            vf,
+            root: (0..tris.len() as u32).collect(),
+            touched: vec![false; tris.len()],
+            frame: frame.to_vec(),
+            rest: rest.to_vec(),
+            influences: influences.clone(),
+            origin: (0..rest.len() as u32).map(VertexOrigin::Original).collect(),
+            skin,
+        }
+    }
+
+    /// A new vertex at frame position `p`, its influences interpolated from `parts`.
+    pub fn add_vertex(&mut self, p: DVec3, parts: &[(u32, f64)]) -> Result<u32, SurgeryError> {
+        let mut row = Influences {
+            width: self.influences.width,
+            ..Influences::default()
+        };
+        push_interpolated(&self.influences, parts, &mut row);
+        let rest = match self.skin {
+            None => parts.iter().map(|&(v, w)| w * self.rest[v as usize]).sum(),
+            Some(skin) => unskin(p, &row.joints, &row.weights, skin).ok_or_else(|| {
+                SurgeryError::BadMesh("a new vertex's blended skin transform is singular".into())
+            })?,
+        };
+        self.influences.joints.extend_from_slice(&row.joints);
+        self.influences.weights.extend_from_slice(&row.weights);
+        self.frame.push(p);
+        self.rest.push(rest);
+        self.origin.push(VertexOrigin::Incision);
+        self.vf.push(u32::MAX);
+        Ok((self.rest.len() - 1) as u32)
+    }
+
+    /// A second copy of vertex `v` (same influences and positions).
+    pub fn copy_vertex(&mut self, v: u32) -> u32 {
+        let src = self.influences.clone_row(v);
+        self.influences.joints.extend_from_slice(&src.0);
+        self.influences.weights.extend_from_slice(&src.1);
+        self.frame.push(self.frame[v as usize]);
+        self.rest.push(self.rest[v as usize]);
+        self.origin.push(VertexOrigin::Copy(v));
+        self.vf.push(u32::MAX);
+        (self.rest.len() - 1) as u32
+    }
+
+    fn new_face(&mut self, t: [u32; 3], nb: [u32; 3], root: u32) -> u32 {
+        self.tris.push(t);
+        self.nb.push(nb);
+        self.root.push(root);
+        (self.tris.len() - 1) as u32
+    }
+
+    fn mark(&mut self, f: u32) {
+        let r = self.root[f as usize] as usize;
+        self.touched[r] = true;
+    }
+
+    /// In face `g`, the neighbour pointer `old` becomes `new`.
+    fn repoint(&mut self, g: u32, old: u32, new: u32) {
+        if g == u32::MAX {
+            return;
+        }
+        if let Some(slot) = self.nb[g as usize].iter_mut().find(|x| **x == old) {
+            *slot = new;
+        }
+    }
+
+    /// Face `f` rotated so that corner `k` comes first: `(tri, neighbours)`.
+    fn rotated(&self, f: u32, k: usize) -> ([u32; 3], [u32; 3]) {
+        let (t, n) = (self.tris[f as usize], self.nb[f as usize]);
+        (
+            [t[k], t[(k + 1) % 3], t[(k + 2) % 3]],
+            [n[k], n[(k + 1) % 3], n[(k + 2) % 3]],
+        )
+    }
+
+    /// Split the edge opposite corner `k` of face `f` at the new vertex `v` (both faces of the
+    /// edge are split in two).
+    pub fn split_edge(&mut self, f: u32, k: usize, v: u32) {
+        let ([c, p, q], [g, b_nb, a_nb]) = self.rotated(f, k);
+        self.mark(f);
+        let f2 = self.new_face([c, v, q], [u32::MAX, b_nb, f], self.root[f as usize]);
+        self.tris[f as usize] = [c, p, v];
+        self.nb[f as usize] = [u32::MAX, f2, a_nb];
+        self.repoint(b_nb, f, f2);
+        self.vf[v as usize] = f;
+        self.vf[q as usize] = f2;
+        self.vf[c as usize] = f;
+        self.vf[p as usize] = f;
+        if g != u32::MAX {
+            self.mark(g);
+            let tg = self.tris[g as usize];
+            let kg = (0..3)
+                .find(|&i| tg[i] != p && tg[i] != q)
+                .expect("the neighbour has a third corner");
+            let ([c2, q2, p2], [_, b2, a2]) = self.rotated(g, kg);
+            debug_assert!(q2 == q && p2 == p, "consistent orientation");
+            // g = (c2, q, p) becomes (c2, q, v) and g2 = (c2, v, p).
+            let g2 = self.new_face([c2, v, p], [f, b2, g], self.root[g as usize]);
+            self.tris[g as usize] = [c2, q, v];
+            self.nb[g as usize] = [f2, g2, a2];
+            self.repoint(b2, g, g2);
+            self.nb[f as usize][0] = g2;
+            self.nb[f2 as usize][0] = g;
+            self.vf[c2 as usize] = g;
+        }
+    }
+
+    /// Split face `f` into three at the new vertex `v` inside it.
+    pub fn split_face(&mut self, f: u32, v: u32) {
+        let [a, b, c] = self.tris[f as usize];
+        let [na, nb_, nc] = self.nb[f as usize];
+        self.mark(f);
+        let root = self.root[f as usize];
+        let f2 = self.new_face([b, c, v], [u32::MAX, u32::MAX, na], root);
+        let f3 = self.new_face([c, a, v], [u32::MAX, u32::MAX, nb_], root);
+        self.tris[f as usize] = [a, b, v];
+        self.nb[f as usize] = [f2, f3, nc];
+        self.nb[f2 as usize][0] = f3;
+        self.nb[f2 as usize][1] = f;
+        self.nb[f3 as usize][0] = f;
+        self.nb[f3 as usize][1] = f2;
+        self.repoint(na, f, f2);
+        self.repoint(nb_, f, f3);
+        self.vf[v as usize] = f;
+        self.vf[a as usize] = f;
+        self.vf[b as usize] = f;
+        self.vf[c as usize] = f2;
+    }
+
+    /// The faces around vertex `v`, in order (one direction, then the other from a boundary).
+    pub fn fan(&self, v: u32) -> Vec<u32> {
+        let start = self.vf[v as usize];
+        let mut out = Vec::new();
+        if start == u32::MAX {
+            return out;
+        }
+        // Across the edge v -> next corner (opposite the corner after it).
+        let step = |f: u32, forward: bool| -> u32 {
+            let t = self.tris[f as usize];
+            let k = t.iter().position(|&x| x == v).expect("v in its fan");
+            let across = if forward { (k + 2) % 3 } else { (k + 1) % 3 };
+            self.nb[f as usize][across]
+        };
+        let mut f = start;
+        loop {
+            out.push(f);
+            let g = step(f, true);
+            if g == u32::MAX || g == start || out.len() > 4096 {
+                if g == start {
+                    return out;
+                }
+                break;
+            }
+            f = g;
+        }
+        let mut f = step(start, false);
+        while f != u32::MAX && !out.contains(&f) && out.len() <= 4096 {
+            out.push(f);
+            f = step(f, false);
+        }
+        out
+    }
+}
+
+impl Influences {
+    /// Vertex `v`'s joints and weights.
+    pub(crate) fn clone_row(&self, v: u32) -> (Vec<u32>, Vec<f64>) {
+        let mut tmp = Influences {
+            width: self.width,
+            ..Influences::default()
+        };
+        push_copy(self, v, &mut tmp);
+        (tmp.joints, tmp.weights)
+    }
+}
