@@ -14,11 +14,14 @@ pub(crate) struct Soup<'a> {
     pub nb: Vec<[u32; 3]>,
     /// One face around each vertex.
     pub vf: Vec<u32>,
-    /// The input face each face comes from.
-    pub root: Vec<u32>,
+    /// Input face count: faces from here on are new.
+    pub input_faces: usize,
+    /// The input face each new face comes from.
+    root_new: Vec<u32>,
     /// Whether each input face was edited.
     pub touched: Vec<bool>,
-    pub frame: Vec<DVec3>,
+    /// Positions in the tool's frame (empty on the rest pose: they are `rest`).
+    frame: Vec<DVec3>,
     pub rest: Vec<DVec3>,
     pub influences: Influences,
     pub origin: Vec<VertexOrigin>,
@@ -31,24 +34,24 @@ impl<'a> Soup<'a> {
     pub fn new(
         tris: &[[u32; 3]],
         nb: &[[u32; 3]],
+        vf: &[u32],
         rest: &[DVec3],
         frame: &[DVec3],
         influences: &Influences,
         skin: Option<&'a [DAffine3]>,
     ) -> Soup<'a> {
-        let mut vf = vec![u32::MAX; rest.len()];
-        for (f, t) in tris.iter().enumerate() {
-            for &v in t {
-                vf[v as usize] = f as u32;
-            }
-        }
         Soup {
             tris: tris.to_vec(),
             nb: nb.to_vec(),
-            vf,
-            root: (0..tris.len() as u32).collect(),
+            vf: vf.to_vec(),
+            input_faces: tris.len(),
+            root_new: Vec::new(),
             touched: vec![false; tris.len()],
-            frame: frame.to_vec(),
+            frame: if skin.is_some() {
+                frame.to_vec()
+            } else {
+                Vec::new()
+            },
             rest: rest.to_vec(),
             influences: influences.clone(),
             origin: (0..rest.len() as u32).map(VertexOrigin::Original).collect(),
@@ -71,11 +74,38 @@ impl<'a> Soup<'a> {
         };
         self.influences.joints.extend_from_slice(&row.joints);
         self.influences.weights.extend_from_slice(&row.weights);
-        self.frame.push(p);
+        if self.skin.is_some() {
+            self.frame.push(p);
+        }
         self.rest.push(rest);
         self.origin.push(VertexOrigin::Incision);
         self.vf.push(u32::MAX);
         Ok((self.rest.len() - 1) as u32)
+    }
+
+    /// Vertex `v`'s position in the tool's frame.
+    #[inline]
+    pub fn at(&self, v: u32) -> DVec3 {
+        if self.skin.is_some() {
+            self.frame[v as usize]
+        } else {
+            self.rest[v as usize]
+        }
+    }
+
+    /// Move vertex `v` to `p` in the tool's frame (its rest position follows).
+    pub fn move_to(&mut self, v: u32, p: DVec3) -> Result<(), SurgeryError> {
+        match self.skin {
+            None => self.rest[v as usize] = p,
+            Some(skin) => {
+                self.frame[v as usize] = p;
+                let (j, w) = self.influences.clone_row(v);
+                self.rest[v as usize] = unskin(p, &j, &w, skin).ok_or_else(|| {
+                    SurgeryError::BadMesh("a moved vertex's skin transform is singular".into())
+                })?;
+            }
+        }
+        Ok(())
     }
 
     /// A second copy of vertex `v` (same influences and positions).
@@ -83,22 +113,33 @@ impl<'a> Soup<'a> {
         let src = self.influences.clone_row(v);
         self.influences.joints.extend_from_slice(&src.0);
         self.influences.weights.extend_from_slice(&src.1);
-        self.frame.push(self.frame[v as usize]);
+        if self.skin.is_some() {
+            self.frame.push(self.frame[v as usize]);
+        }
         self.rest.push(self.rest[v as usize]);
         self.origin.push(VertexOrigin::Copy(v));
         self.vf.push(u32::MAX);
         (self.rest.len() - 1) as u32
     }
 
+    /// The input face face `f` comes from.
+    pub fn root(&self, f: u32) -> u32 {
+        match (f as usize).checked_sub(self.input_faces) {
+            None => f,
+            Some(k) => self.root_new[k],
+        }
+    }
+
     fn new_face(&mut self, t: [u32; 3], nb: [u32; 3], root: u32) -> u32 {
         self.tris.push(t);
         self.nb.push(nb);
-        self.root.push(root);
+        self.root_new.push(root);
         (self.tris.len() - 1) as u32
     }
 
-    fn mark(&mut self, f: u32) {
-        let r = self.root[f as usize] as usize;
+    /// Mark face `f`'s input face as edited.
+    pub fn mark(&mut self, f: u32) {
+        let r = self.root(f) as usize;
         self.touched[r] = true;
     }
 
@@ -126,7 +167,7 @@ impl<'a> Soup<'a> {
     pub fn split_edge(&mut self, f: u32, k: usize, v: u32) {
         let ([c, p, q], [g, b_nb, a_nb]) = self.rotated(f, k);
         self.mark(f);
-        let f2 = self.new_face([c, v, q], [u32::MAX, b_nb, f], self.root[f as usize]);
+        let f2 = self.new_face([c, v, q], [u32::MAX, b_nb, f], self.root(f));
         self.tris[f as usize] = [c, p, v];
         self.nb[f as usize] = [u32::MAX, f2, a_nb];
         self.repoint(b_nb, f, f2);
@@ -143,7 +184,7 @@ impl<'a> Soup<'a> {
             let ([c2, q2, p2], [_, b2, a2]) = self.rotated(g, kg);
             debug_assert!(q2 == q && p2 == p, "consistent orientation");
             // g = (c2, q, p) becomes (c2, q, v) and g2 = (c2, v, p).
-            let g2 = self.new_face([c2, v, p], [f, b2, g], self.root[g as usize]);
+            let g2 = self.new_face([c2, v, p], [f, b2, g], self.root(g));
             self.tris[g as usize] = [c2, q, v];
             self.nb[g as usize] = [f2, g2, a2];
             self.repoint(b2, g, g2);
@@ -158,7 +199,7 @@ impl<'a> Soup<'a> {
         let [a, b, c] = self.tris[f as usize];
         let [na, nb_, nc] = self.nb[f as usize];
         self.mark(f);
-        let root = self.root[f as usize];
+        let root = self.root(f);
         let f2 = self.new_face([b, c, v], [u32::MAX, u32::MAX, na], root);
         let f3 = self.new_face([c, a, v], [u32::MAX, u32::MAX, nb_], root);
         self.tris[f as usize] = [a, b, v];

@@ -205,6 +205,8 @@ pub(crate) struct Topology {
     pub boundary: Vec<(u32, u32, u32)>,
     /// Boundary loops of the input.
     pub loops: usize,
+    /// One face around each vertex (`u32::MAX` for an unreferenced vertex).
+    pub vertex_face: Vec<u32>,
 }
 
 impl Topology {
@@ -236,10 +238,17 @@ impl Topology {
             neighbors.push(nb);
         }
         let loops = crate::adjacency::boundary_loops(triangles, n).len();
+        let mut vertex_face = vec![u32::MAX; n];
+        for (f, t) in triangles.iter().enumerate() {
+            for &v in t {
+                vertex_face[v as usize] = f as u32;
+            }
+        }
         Topology {
             neighbors,
             boundary,
             loops,
+            vertex_face,
         }
     }
 }

@@ -143,6 +143,7 @@ impl Surgery {
         let mut soup = Soup::new(
             &src.mesh.triangles,
             &self.topology.neighbors,
+            &self.topology.vertex_face,
             &src.mesh.positions,
             positions,
             &src.influences,
@@ -156,7 +157,7 @@ impl Surgery {
         let mut incision = vec![points[0]];
         let mut planes = Vec::new();
         for i in 0..points.len() - 1 {
-            let s = soup.frame[points[i] as usize];
+            let s = soup.at(points[i]);
             let next = scalpel[i + 1];
             let normal = (next.a - s).cross(next.b - s);
             let len = normal.length();
@@ -180,12 +181,9 @@ impl Surgery {
         let changed: Vec<u32> = (0..src.mesh.triangle_count() as u32)
             .filter(|&f| soup.touched[f as usize])
             .collect();
-        let produced: Vec<([u32; 3], u8)> = soup
-            .tris
-            .iter()
-            .zip(&soup.root)
-            .filter(|(_, &r)| soup.touched[r as usize])
-            .map(|(t, _)| (*t, 0u8))
+        let produced: Vec<([u32; 3], u8)> = (0..soup.tris.len() as u32)
+            .filter(|&f| soup.touched[soup.root(f) as usize])
+            .map(|f| (soup.tris[f as usize], 0u8))
             .collect();
         let fate = |f: u32| {
             if soup.touched[f as usize] {
@@ -265,11 +263,11 @@ fn first_hit(
 fn insert_point(soup: &mut Soup, f0: u32, p: DVec3, snap: f64) -> Result<u32, SurgeryError> {
     // The face (of those made from f0 so far) that holds p.
     let candidates: Vec<u32> = (0..soup.tris.len() as u32)
-        .filter(|&f| soup.root[f as usize] == f0)
+        .filter(|&f| soup.root(f) == f0)
         .collect();
     let mut best = (f64::INFINITY, candidates[0], [0.0; 3]);
     for &f in &candidates {
-        let [a, b, c] = soup.tris[f as usize].map(|v| soup.frame[v as usize]);
+        let [a, b, c] = soup.tris[f as usize].map(|v| soup.at(v));
         let bary = barycentric(p, a, b, c);
         let outside = -bary.iter().copied().fold(0.0, f64::min);
         if outside < best.0 {
@@ -320,13 +318,13 @@ fn walk(
     sd.insert(to, 0.0);
     let mut path = vec![from];
     let (mut v, mut prev) = (from, u32::MAX);
-    let target = soup.frame[to as usize];
+    let target = soup.at(to);
     let limit = 4 * soup.tris.len() + 16;
     for _ in 0..limit {
         if v == to {
             return Ok(path);
         }
-        let here = soup.frame[v as usize];
+        let here = soup.at(v);
         let toward = target - here;
         let mut best: Option<(f64, Next)> = None;
         let consider = |score: f64, next: Next, best: &mut Option<(f64, Next)>| {
@@ -340,7 +338,7 @@ fn walk(
             let (a, b) = (t[(k + 1) % 3], t[(k + 2) % 3]);
             let mut s = |x: u32| {
                 *sd.entry(x)
-                    .or_insert_with(|| normal.dot(soup.frame[x as usize] - point))
+                    .or_insert_with(|| normal.dot(soup.at(x) - point))
             };
             let (sa, sb) = (s(a), s(b));
             let score = |p: DVec3| {
@@ -349,19 +347,19 @@ fn walk(
             };
             for (x, sx) in [(a, sa), (b, sb)] {
                 if sx == 0.0 && x != prev {
-                    consider(score(soup.frame[x as usize]), Next::Vertex(x), &mut best);
+                    consider(score(soup.at(x)), Next::Vertex(x), &mut best);
                 }
             }
             if sa * sb < 0.0 {
                 let t_ab = sa / (sa - sb);
                 if t_ab < snap && a != prev {
                     sd.insert(a, 0.0);
-                    consider(score(soup.frame[a as usize]), Next::Vertex(a), &mut best);
+                    consider(score(soup.at(a)), Next::Vertex(a), &mut best);
                 } else if 1.0 - t_ab < snap && b != prev {
                     sd.insert(b, 0.0);
-                    consider(score(soup.frame[b as usize]), Next::Vertex(b), &mut best);
+                    consider(score(soup.at(b)), Next::Vertex(b), &mut best);
                 } else {
-                    let p = soup.frame[a as usize].lerp(soup.frame[b as usize], t_ab);
+                    let p = soup.at(a).lerp(soup.at(b), t_ab);
                     consider(score(p), Next::Edge { f, k, t: t_ab }, &mut best);
                 }
             }
@@ -378,7 +376,7 @@ fn walk(
             Next::Edge { f, k, t } => {
                 let tri = soup.tris[f as usize];
                 let (a, b) = (tri[(k + 1) % 3], tri[(k + 2) % 3]);
-                let p = soup.frame[a as usize].lerp(soup.frame[b as usize], t);
+                let p = soup.at(a).lerp(soup.at(b), t);
                 let m = soup.add_vertex(p, &[(a, 1.0 - t), (b, t)])?;
                 sd.insert(m, 0.0);
                 soup.split_edge(f, k, m);
@@ -411,13 +409,13 @@ fn open_incision(
     }
     let total: f64 = incision
         .windows(2)
-        .map(|w| soup.frame[w[0] as usize].distance(soup.frame[w[1] as usize]))
+        .map(|w| soup.at(w[0]).distance(soup.at(w[1])))
         .sum();
     let mut arc = 0.0;
     let mut copies = 0;
     for j in 1..m - 1 {
         let v = incision[j];
-        arc += soup.frame[incision[j - 1] as usize].distance(soup.frame[v as usize]);
+        arc += soup.at(incision[j - 1]).distance(soup.at(v));
         let fan = soup.fan(v);
         // The left face: the one holding the half-edge v -> next.
         let next = incision[j + 1];
@@ -457,8 +455,7 @@ fn open_incision(
                     *x = c;
                 }
             }
-            let r = soup.root[f as usize] as usize;
-            soup.touched[r] = true;
+            soup.mark(f);
         }
         soup.vf[c as usize] = right[0];
         soup.vf[v as usize] = left;
@@ -467,29 +464,22 @@ fn open_incision(
             let step = planes
                 .iter()
                 .min_by(|a, b| {
-                    a.0.dot(soup.frame[v as usize] - a.1)
+                    a.0.dot(soup.at(v) - a.1)
                         .abs()
-                        .total_cmp(&b.0.dot(soup.frame[v as usize] - b.1).abs())
+                        .total_cmp(&b.0.dot(soup.at(v) - b.1).abs())
                 })
                 .expect("a plane per step");
-            let lt = soup.tris[left as usize].map(|x| soup.frame[x as usize]);
+            let lt = soup.tris[left as usize].map(|x| soup.at(x));
             let centre = (lt[0] + lt[1] + lt[2]) / 3.0;
-            let n = if step.0.dot(centre - soup.frame[v as usize]) >= 0.0 {
+            let n = if step.0.dot(centre - soup.at(v)) >= 0.0 {
                 step.0
             } else {
                 -step.0
             };
             let w = 0.5 * open * (std::f64::consts::PI * arc / total).sin();
             for (x, sign) in [(v, 1.0), (c, -1.0)] {
-                let p = soup.frame[x as usize] + sign * w * n;
-                soup.frame[x as usize] = p;
-                let (j, wt) = soup.influences.clone_row(x);
-                soup.rest[x as usize] = match soup.skin {
-                    None => p,
-                    Some(skin) => super::unskin(p, &j, &wt, skin).ok_or_else(|| {
-                        SurgeryError::BadMesh("an opened lip's skin transform is singular".into())
-                    })?,
-                };
+                let p = soup.at(x) + sign * w * n;
+                soup.move_to(x, p)?;
             }
         }
     }
