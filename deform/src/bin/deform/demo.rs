@@ -298,34 +298,16 @@ pub fn run(a: &DemoArgs) -> Result<()> {
         });
     }
 
-    // Skinning: the procedural rigged arm at the end of its animation (elbow bent, wrist
-    // twisted), with the elbow dilated 1.3x, skinned by equation (17); the rig written as .glb.
-    {
-        use deform::skinning::{procedural_arm, write_glb, GlbOptions, JointEdit, Skinning};
-        let rig = procedural_arm(24, 81);
-        let t = Instant::now();
-        let skin = Skinning::bind(&rig, deform::BlendMethod::Conformal)?;
-        let bind_ms = ms(t);
-        let edit = [JointEdit {
-            joint: 1,
-            motor: ScaledMotor::from_scale_rotation_translation(1.3, DQuat::IDENTITY, DVec3::ZERO),
-        }];
-        let pose = rig.pose(Some(0), 2.0, &edit)?;
-        let mut out = vec![DVec3::ZERO; rig.mesh.vertex_count()];
-        let pose_ms = time_pose(&skin, pose.skin_motors()?, &mut out)?;
-        let moved: Vec<f64> = out
-            .iter()
-            .zip(&rig.mesh.positions)
-            .map(|(p, q)| p.distance(*q))
-            .collect();
-        save("skin-arm", &rig.mesh, out, &moved)?;
-        write_glb(&rig, &GlbOptions::default(), a.out.join("skin-arm.glb"))?;
+    // Skinning, then cutting, tearing and drilling the rigged arm, re-animated after each
+    // (surgery_demo.rs); every rig is also written as .glb.
+    for s in crate::surgery_demo::scenes(&a.out)? {
+        save(s.name, &s.rest, s.posed, &s.scalar)?;
         rows.push(Row {
-            name: "skin-arm",
-            method: "3-joint rig, animation + dilated elbow / equation (17)".into(),
-            vertices: rig.mesh.vertex_count(),
-            bind_ms,
-            pose_ms,
+            name: s.name,
+            method: s.method,
+            vertices: s.rest.vertex_count(),
+            bind_ms: s.bind_ms,
+            pose_ms: s.pose_ms,
         });
     }
 

@@ -15,7 +15,7 @@ use glam::{DQuat, DVec3};
 use std::time::Instant;
 
 /// One scene's meshes and times.
-pub struct LatticeScene {
+pub struct DemoScene {
     pub name: &'static str,
     pub method: String,
     pub rest: Mesh,
@@ -43,13 +43,13 @@ fn run(
     rest: &Mesh,
     bind: impl FnOnce() -> deform::Result<Box<dyn Deformer>>,
     keys: &[ScaledMotor],
-) -> Result<LatticeScene> {
+) -> Result<DemoScene> {
     let t = Instant::now();
     let d = bind()?;
     let bind_ms = t.elapsed().as_secs_f64() * 1e3;
     let mut posed = vec![DVec3::ZERO; rest.vertex_count()];
     let pose_ms = time_pose(d.as_ref(), keys, &mut posed)?;
-    Ok(LatticeScene {
+    Ok(DemoScene {
         name,
         method,
         scalar: moved(rest, &posed),
@@ -61,7 +61,7 @@ fn run(
 }
 
 /// The FFD twists and the cage bend.
-pub fn scenes(length: f64) -> Result<Vec<LatticeScene>> {
+pub fn scenes(length: f64) -> Result<Vec<DemoScene>> {
     let mut out = Vec::new();
     // FFD: a 2x2x2 lattice whose u = 0 layer turns -90 degrees and u = 1 layer +90 degrees
     // about the bar's axis.

@@ -13,6 +13,7 @@ mod output;
 mod preview;
 mod skin_cmd;
 mod surgery_cmds;
+mod surgery_demo;
 
 use clap::Parser;
 use std::process::ExitCode;

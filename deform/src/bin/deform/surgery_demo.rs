@@ -1,0 +1,158 @@
+//! The demo's skinning and surgery scenes (second paper): a procedural rigged arm animated
+//! and its elbow dilated by equation (17); then cut (capped), torn (three scalpel steps,
+//! opened) and drilled, each result re-animated at the end of the arm's animation. Every rig
+//! is also written as `.glb` (mesh, skin, animations), so any glTF viewer replays it.
+
+use crate::commands::time_pose;
+use crate::lattice_demo::DemoScene;
+use anyhow::Result;
+use cga::ScaledMotor;
+use deform::skinning::{procedural_arm, write_glb, GlbOptions, JointEdit, Rig, Skinning};
+use deform::surgery::{
+    CutOptions, Drill, DrillOptions, Frame, Scalpel, Surgery, TearOptions, VertexOrigin,
+};
+use deform::{BlendMethod, Mesh};
+use glam::{DQuat, DVec3};
+use std::path::Path;
+use std::time::Instant;
+
+/// Pose `rig` at `t` of its animation (with `edits`) by equation (17); write it as .glb.
+fn animate(rig: &Rig, t: f64, edits: &[JointEdit], glb: &Path) -> Result<(Vec<DVec3>, f64)> {
+    let skin = Skinning::bind(rig, BlendMethod::Conformal)?;
+    let pose = rig.pose(Some(0), t, edits)?;
+    let mut out = vec![DVec3::ZERO; rig.mesh.vertex_count()];
+    let pose_ms = time_pose(&skin, pose.skin_motors()?, &mut out)?;
+    write_glb(rig, &GlbOptions::default(), glb)?;
+    Ok((out, pose_ms))
+}
+
+/// 1 for vertices a tool made, 0 for input vertices.
+fn made(origin: &[VertexOrigin]) -> Vec<f64> {
+    origin
+        .iter()
+        .map(|o| f64::from(u8::from(!matches!(o, VertexOrigin::Original(_)))))
+        .collect()
+}
+
+pub fn scenes(out: &Path) -> Result<Vec<DemoScene>> {
+    let rig = procedural_arm(24, 81);
+    let mut scenes = Vec::new();
+    let ms = |t: Instant| t.elapsed().as_secs_f64() * 1e3;
+
+    let edit = [JointEdit {
+        joint: 1,
+        motor: ScaledMotor::from_scale_rotation_translation(1.3, DQuat::IDENTITY, DVec3::ZERO),
+    }];
+    let t = Instant::now();
+    let (posed, pose_ms) = animate(&rig, 2.0, &edit, &out.join("skin-arm.glb"))?;
+    let moved = posed
+        .iter()
+        .zip(&rig.mesh.positions)
+        .map(|(p, q)| p.distance(*q))
+        .collect();
+    scenes.push(DemoScene {
+        name: "skin-arm",
+        method: "3-joint rig, animation + dilated elbow / equation (17)".into(),
+        rest: rig.mesh.clone(),
+        posed,
+        scalar: moved,
+        bind_ms: ms(t) - pose_ms,
+        pose_ms,
+    });
+
+    let surgery = Surgery::new(&rig.mesh, &rig.influences)?;
+    // Cut across the upper arm, capped: the two pieces stay on the skeleton.
+    let t = Instant::now();
+    let plane = cga::Plane::from_normal_distance(DVec3::new(1.0, 0.3, 0.0).normalize(), 2.6);
+    let cut = surgery.cut(
+        &plane,
+        Frame::Rest,
+        &CutOptions {
+            cap: true,
+            ..CutOptions::default()
+        },
+    )?;
+    let cut_ms = ms(t);
+    let parts: Vec<_> = cut
+        .pieces
+        .iter()
+        .map(|p| (&p.mesh.mesh, &p.mesh.influences))
+        .collect();
+    let cut_rig = rig.with_parts(&parts)?;
+    let (posed, pose_ms) = animate(&cut_rig, 2.0, &[], &out.join("cut-arm.glb"))?;
+    let side: Vec<f64> = cut_rig
+        .primitives
+        .iter()
+        .flat_map(|p| std::iter::repeat_n(p.primitive as f64, p.vertex_count))
+        .collect();
+    scenes.push(DemoScene {
+        name: "cut-arm",
+        method: format!(
+            "cut + caps ({} new vertices) / re-animated",
+            cut.new_vertices
+        ),
+        rest: cut_rig.mesh.clone(),
+        posed,
+        scalar: side,
+        bind_ms: cut_ms,
+        pose_ms,
+    });
+
+    // Tear along the forearm's front (+z, towards the camera) in three scalpel steps, opened.
+    let blade = |x: f64, y: f64| Scalpel {
+        a: DVec3::new(x, y, 1.2),
+        b: DVec3::new(x, y, 0.2),
+    };
+    let t = Instant::now();
+    let tear = surgery.tear(
+        &[blade(4.6, 0.05), blade(5.4, 0.1), blade(6.3, 0.0)],
+        Frame::Rest,
+        &TearOptions {
+            open: 0.25,
+            ..TearOptions::default()
+        },
+    )?;
+    let tear_ms = ms(t);
+    let torn = rig.with_parts(&[(&tear.mesh.mesh, &tear.mesh.influences)])?;
+    let (posed, pose_ms) = animate(&torn, 2.0, &[], &out.join("tear-arm.glb"))?;
+    scenes.push(DemoScene {
+        name: "tear-arm",
+        method: format!(
+            "tear, 2 steps, opened ({} incision vertices) / re-animated",
+            tear.incision.len()
+        ),
+        rest: torn.mesh.clone(),
+        posed,
+        scalar: made(&tear.origin),
+        bind_ms: tear_ms,
+        pose_ms,
+    });
+
+    // Drill through the upper arm.
+    let t = Instant::now();
+    let drill = surgery.drill(
+        &Drill {
+            tip: DVec3::new(1.5, 0.1, -2.0),
+            end: DVec3::new(1.5, 0.1, 2.0),
+            radius: 0.3,
+        },
+        Frame::Rest,
+        &DrillOptions::default(),
+    )?;
+    let drill_ms = ms(t);
+    let drilled = rig.with_parts(&[(&drill.mesh.mesh, &drill.mesh.influences)])?;
+    let (posed, pose_ms) = animate(&drilled, 2.0, &[], &out.join("drill-arm.glb"))?;
+    scenes.push(DemoScene {
+        name: "drill-arm",
+        method: format!("drill, {} holes / re-animated", drill.holes),
+        rest: Mesh::new(
+            drilled.mesh.positions.clone(),
+            drilled.mesh.triangles.clone(),
+        ),
+        posed,
+        scalar: made(&drill.origin),
+        bind_ms: drill_ms,
+        pose_ms,
+    });
+    Ok(scenes)
+}
