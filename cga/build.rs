@@ -21,6 +21,7 @@ fn main() {
             ..EmitOptions::default()
         };
         let g = generate(&spec, &opts).unwrap_or_else(|e| panic!("{e}"));
-        std::fs::write(out.join(file), g.code).expect("write generated code");
+        let code = g.code().unwrap_or_else(|e| panic!("{e}"));
+        std::fs::write(out.join(file), code).expect("write generated code");
     }
 }

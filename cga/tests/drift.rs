@@ -11,7 +11,11 @@ fn fresh(scalar: ScalarType) -> String {
         scalar,
         ..EmitOptions::default()
     };
-    generate(&spec, &opts).expect("generate").code
+    generate(&spec, &opts)
+        .expect("generate")
+        .code()
+        .expect("formats")
+        .to_string()
 }
 
 #[test]

@@ -6,7 +6,7 @@
 //! `super::*`); `tests/` builds it for every spec in `algebras/`.
 
 use crate::blade::grade;
-use crate::emit::{snake, Generated};
+use crate::emit::{snake, Generated, Method, Op};
 use crate::spec::Spec;
 use std::fmt::Write;
 
@@ -122,20 +122,20 @@ fn check(count: &mut usize, fails: &mut Vec<String>, what: &str, got: Multivecto
             if tn != name {
                 continue;
             }
-            let line = match m.as_str() {
-                "rev" | "involute" | "conjugate" | "dual" => {
+            let line = match m {
+                Method::Rev | Method::Involute | Method::Conjugate | Method::Dual => {
+                    let m = m.name();
                     format!("check(c, f, \"{name}::{m}\", a.{m}().mv(), ma.{m}());\n")
                 }
-                "grade" => (0..=n)
+                Method::Grade => (0..=n)
                     .map(|k| format!("check(c, f, \"{name}::grade({k})\", a.grade({k}).mv(), ma.grade({k}));\n"))
                     .collect(),
-                "normalized" => format!(
+                Method::Normalized => format!(
                     "if ma.norm() > 1e-3 {{ check(c, f, \"{name}::normalized\", a.normalized().mv(), ma.scale(1.0 / ma.norm())); }}\n"
                 ),
-                "inverse" => format!(
+                Method::Inverse => format!(
                     "if ma.norm_squared().abs() > 1e-3 {{ check(c, f, \"{name}::inverse\", a.inverse().mv(), ma.rev().scale(1.0 / ma.norm_squared())); }}\n"
                 ),
-                _ => String::new(),
             };
             s.push_str(&line);
         }
@@ -152,20 +152,22 @@ fn check(count: &mut usize, fails: &mut Vec<String>, what: &str, got: Multivecto
     for o in &generated.ops {
         let (l, r) = (snake(&o.left), snake(&o.right));
         let (ln, rn) = (&o.left, &o.right);
-        let body = match o.op.as_str() {
-            "*" => format!("check(c, f, \"{ln} * {rn}\", (a * b).mv(), ma.gp(&mb));"),
-            "^" => format!("check(c, f, \"{ln} ^ {rn}\", (a ^ b).mv(), ma.outer(&mb));"),
-            "|" => format!("check(c, f, \"{ln} | {rn}\", (a | b).mv(), ma.left_contraction(&mb));"),
-            "+" => format!("check(c, f, \"{ln} + {rn}\", (a + b).mv(), &ma + &mb);"),
-            "-" => format!("check(c, f, \"{ln} - {rn}\", (a - b).mv(), &ma - &mb);"),
-            "from" => {
+        let body = match o.op {
+            Op::Geometric => format!("check(c, f, \"{ln} * {rn}\", (a * b).mv(), ma.gp(&mb));"),
+            Op::Outer => format!("check(c, f, \"{ln} ^ {rn}\", (a ^ b).mv(), ma.outer(&mb));"),
+            Op::LeftContraction => {
+                format!("check(c, f, \"{ln} | {rn}\", (a | b).mv(), ma.left_contraction(&mb));")
+            }
+            Op::Add => format!("check(c, f, \"{ln} + {rn}\", (a + b).mv(), &ma + &mb);"),
+            Op::Sub => format!("check(c, f, \"{ln} - {rn}\", (a - b).mv(), &ma - &mb);"),
+            Op::From => {
                 let _ = writeln!(
                     s,
                     "{{ let a = rand_{l}(&mut rng); check(c, f, \"{rn}::from({ln})\", {rn}::from(a).mv(), a.mv()); }}"
                 );
                 continue;
             }
-            "sandwich" => {
+            Op::Sandwich => {
                 let vt = spec
                     .types
                     .iter()
@@ -180,7 +182,6 @@ fn check(count: &mut usize, fails: &mut Vec<String>, what: &str, got: Multivecto
                 );
                 continue;
             }
-            _ => continue,
         };
         let _ = writeln!(
             s,

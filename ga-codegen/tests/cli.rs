@@ -34,7 +34,7 @@ fn prints_exactly_what_the_library_generates() {
     let text = std::fs::read_to_string(workspace().join("algebras/cga.toml")).unwrap();
     let spec = ga_codegen::Spec::from_toml(&text, "algebras/cga.toml").unwrap();
     let lib = ga_codegen::generate(&spec, &ga_codegen::EmitOptions::default()).unwrap();
-    assert!(String::from_utf8(out.stdout).unwrap() == lib.code);
+    assert!(String::from_utf8(out.stdout).unwrap() == lib.code().unwrap());
 }
 
 #[test]

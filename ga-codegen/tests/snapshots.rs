@@ -9,7 +9,9 @@ fn cga_code() -> String {
     let spec = ga_codegen::Spec::from_toml(&text, "algebras/cga.toml").expect("valid spec");
     ga_codegen::generate(&spec, &ga_codegen::EmitOptions::default())
         .expect("generate")
-        .code
+        .code()
+        .expect("formats")
+        .to_string()
 }
 
 /// The item starting at the line that begins with `head`, up to its matching closing brace.

@@ -115,6 +115,14 @@ fn main() -> ExitCode {
             return ExitCode::from(2);
         }
     };
+    // Format the module (prettyplease); its line count is part of the summary.
+    let code = match generated.code() {
+        Ok(c) => c,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    };
     let elapsed = start.elapsed();
     if args.summary {
         println!(
@@ -128,7 +136,7 @@ fn main() -> ExitCode {
     }
     match &args.out {
         Some(path) => {
-            if let Err(e) = std::fs::write(path, &generated.code) {
+            if let Err(e) = std::fs::write(path, code) {
                 eprintln!("error: cannot write {}: {e}", path.display());
                 return ExitCode::from(2);
             }
@@ -139,7 +147,7 @@ fn main() -> ExitCode {
                 elapsed.as_secs_f64() * 1e3
             );
         }
-        None if !args.summary => print!("{}", generated.code),
+        None if !args.summary => print!("{code}"),
         None => {}
     }
     ExitCode::SUCCESS
