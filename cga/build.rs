@@ -16,8 +16,11 @@ fn main() {
         (ScalarType::F64, "cga_f64.rs"),
         (ScalarType::F32, "cga_f32.rs"),
     ] {
+        // `library`: serde and bytemuck impls behind this crate's features of those names, and
+        // the `types` module that the crate root re-exports.
         let opts = EmitOptions {
             scalar,
+            library: true,
             ..EmitOptions::default()
         };
         let g = generate(&spec, &opts).unwrap_or_else(|e| panic!("{e}"));

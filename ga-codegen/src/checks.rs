@@ -45,6 +45,13 @@ impl ToMv for f64 {{
     fn mv(self) -> Multivector {{ Multivector::scalar(&algebra(), self) }}
 }}
 
+fn check_that(count: &mut usize, fails: &mut Vec<String>, what: &str, ok: bool) {{
+    *count += 1;
+    if !ok && fails.len() < 50 {{
+        fails.push(format!("{{what}}: false"));
+    }}
+}}
+
 fn check(count: &mut usize, fails: &mut Vec<String>, what: &str, got: Multivector, want: Multivector) {{
     *count += 1;
     let tol = 1e-12 * (1.0 + want.max_abs());
@@ -117,6 +124,15 @@ fn check(count: &mut usize, fails: &mut Vec<String>, what: &str, got: Multivecto
              check(c, f, \"{name} / 1.7\", (a / 1.7).mv(), ma.scale(1.0 / 1.7));\n\
              check(c, f, \"{name}::norm_squared\", a.norm_squared().mv(), ma.norm_squared().mv());\n\
              check(c, f, \"{name}::from_multivector\", {name}::from_multivector(&ma).mv(), ma.clone());\n"
+        );
+        // The predicates, on a value with one coefficient (chosen at random) changed.
+        let _ = write!(
+            s,
+            "{{ let i = ((rng.next() + 1.0) * 0.5 * {name}::LEN as f64) as usize % {name}::LEN; let with = |x: f64| {{ let mut c = a.to_array(); c[i] = x; {name}::from_array(c) }};\n\
+             check_that(c, f, \"{name}::is_finite/is_nan on a random value\", a.is_finite() && !a.is_nan() && a.abs_diff_eq(a, 0.0));\n\
+             let nan = with(f64::NAN); check_that(c, f, \"{name}::is_finite/is_nan/abs_diff_eq with a NaN\", nan.is_nan() && !nan.is_finite() && !nan.abs_diff_eq(nan, 1.0) && !a.abs_diff_eq(nan, 1.0));\n\
+             let inf = with(-f64::INFINITY); check_that(c, f, \"{name}::is_finite/is_nan with an infinity\", !inf.is_finite() && !inf.is_nan() && !inf.abs_diff_eq(a, 1e300));\n\
+             let near = with(a.to_array()[i] + 0.5); check_that(c, f, \"{name}::abs_diff_eq\", near.abs_diff_eq(a, 0.5 + 1e-12) && a.abs_diff_eq(near, 0.5 + 1e-12) && !near.abs_diff_eq(a, 0.499)); }}\n"
         );
         for (tn, m) in &generated.methods {
             if tn != name {

@@ -79,6 +79,25 @@ impl Gen<'_> {
         }
     }
 
+    /// The symbolic expansion of the result `o` from `m`, one line per output field
+    /// (`` - `e12` = a.s * b.e12 + ...``), for docs.
+    pub(super) fn expansion(&self, o: OutType, m: &SymMv, names: &Names) -> String {
+        match o {
+            OutType::Zero => "0".to_string(),
+            OutType::Scalar => format!("- `s` = {}", names.poly_text(&m.get(0))),
+            OutType::Type(ti) => self.spec.types[ti]
+                .fields
+                .iter()
+                .map(|f| {
+                    let mut p = Poly::default();
+                    p.add_scaled(&m.get(f.bitmap), Rational::int(f.sign as i64));
+                    format!("- `{}` = {}", f.name, names.poly_text(&p))
+                })
+                .collect::<Vec<_>>()
+                .join("\n"),
+        }
+    }
+
     /// Whether the metric is degenerate (a basis vector squares to zero).
     fn degenerate(&self) -> bool {
         self.table

@@ -71,10 +71,14 @@ impl Gen<'_> {
                 OutType::Type(ti) if op == Op::Geometric => self.build_paired(ti, &m, ta, tb),
                 _ => None,
             };
-            let fdoc = doc(if paired.is_some() {
-                "Geometric product (paired-lane form: two output fields per `F64x2`)."
+            let fdoc = doc(&if paired.is_some() {
+                format!(
+                    "Geometric product (paired-lane form: two output fields per `F64x2`).\n\n\
+                     Scalar expansion (`a` the left operand, `b` the right one):\n{}",
+                    self.expansion(o, &m, &names)
+                )
             } else {
-                op.doc()
+                op.doc().to_string()
             });
             let body = paired.unwrap_or_else(|| self.build(o, &m, &names));
             // `^` and `|` are products written with `*`: say that this is meant.

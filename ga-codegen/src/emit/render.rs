@@ -223,7 +223,15 @@ impl<'a> Names<'a> {
     }
 }
 
-/// `#[doc = ".."]` for a doc text.
+/// A doc text as one `#[doc = " line"]` per line, each starting with a space as `///` comments
+/// do, so that the formatted code reads `/// line` (never `///line` or `/** .. */`).
 pub(super) fn doc(text: &str) -> TokenStream {
-    quote!(#[doc = #text])
+    let lines = text.split('\n').map(|l| {
+        if l.is_empty() {
+            String::new()
+        } else {
+            format!(" {l}")
+        }
+    });
+    quote!(#(#[doc = #lines])*)
 }

@@ -55,6 +55,7 @@ impl Gen<'_> {
             #[must_use]
             pub const fn from_array(c: [#s; #nf]) -> Self { Self { #(#fields: c[#idx]),* } }
         };
+        body.extend(self.predicates(t));
         body.extend(self.unary_methods(t));
         body.extend(self.multivector_conversions(t));
         let rt = &self.rt;
@@ -96,6 +97,24 @@ impl Gen<'_> {
             doc.push_str(" Assumed normalised (`x * ~x = 1`) by its sandwich products.");
         }
         doc
+    }
+
+    /// `is_finite`, `is_nan` and `abs_diff_eq`, as glam's (constant blades are equal and
+    /// finite, so only stored coefficients are compared).
+    fn predicates(&self, t: &TypeDef) -> TokenStream {
+        let s = &self.s;
+        let fields: Vec<_> = t.fields.iter().map(|f| ident(&f.name)).collect();
+        quote! {
+            /// Whether every coefficient is finite (not infinite and not NaN).
+            #[inline] #[must_use] pub fn is_finite(self) -> bool { #(self.#fields.is_finite())&&* }
+            /// Whether any coefficient is NaN.
+            #[inline] #[must_use] pub fn is_nan(self) -> bool { #(self.#fields.is_nan())||* }
+            /// Whether every coefficient differs from `other`'s by at most `max_abs_diff`, as
+            /// glam's `abs_diff_eq`; false when a coefficient of either is NaN.
+            #[inline] #[must_use] pub fn abs_diff_eq(self, other: Self, max_abs_diff: #s) -> bool {
+                #((self.#fields - other.#fields).abs() <= max_abs_diff)&&*
+            }
+        }
     }
 
     /// `rev`, `involute`, `conjugate`, `dual` (result types inferred), the norms, and for
