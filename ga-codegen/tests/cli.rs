@@ -173,3 +173,15 @@ fn bad_arguments() {
         assert!(!String::from_utf8_lossy(&out.stderr).contains("panicked"));
     }
 }
+
+#[test]
+fn blade_name_that_is_a_keyword() {
+    // A keyword (`enum` = `e` + `num`) passes the spec's name rules but cannot be a field:
+    // refused with the type and the blade named, before any code is emitted.
+    let spec = "basis = [\"e1\", \"enum\"]\ndiagonal = [1, 1]\n[[type]]\nname = \"V\"\nblades = [\"e1\", \"enum\"]\n";
+    expect_error(
+        spec,
+        "keyword_blade",
+        &["`V`", "`enum`", "not a Rust identifier"],
+    );
+}

@@ -14,8 +14,8 @@ pub(super) fn ident(name: &str) -> Ident {
     Ident::new(name, Span::call_site())
 }
 
-/// True for a name that can be a Rust identifier in generated code: ASCII letters, digits and
-/// `_`, not starting with a digit, and not a keyword.
+/// True for a name that can be a Rust identifier in generated code: an identifier for syn
+/// (Unicode letters allowed), not a raw identifier, and not a keyword of any edition.
 pub(super) fn is_ident(name: &str) -> bool {
     const KEYWORDS: &[&str] = &[
         "_", "as", "async", "await", "break", "const", "continue", "crate", "dyn", "else", "enum",
@@ -25,10 +25,7 @@ pub(super) fn is_ident(name: &str) -> bool {
         "final", "gen", "macro", "override", "priv", "try", "typeof", "unsized", "virtual",
         "yield",
     ];
-    let mut chars = name.chars();
-    matches!(chars.next(), Some(c) if c.is_ascii_alphabetic() || c == '_')
-        && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')
-        && !KEYWORDS.contains(&name)
+    !name.contains('#') && !KEYWORDS.contains(&name) && syn::parse_str::<Ident>(name).is_ok()
 }
 
 /// An unsuffixed integer literal.
@@ -234,4 +231,21 @@ pub(super) fn doc(text: &str) -> TokenStream {
         }
     });
     quote!(#(#[doc = #lines])*)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::is_ident;
+
+    #[test]
+    fn identifiers() {
+        for ok in ["e1", "eo12i", "s", "Motor", "e_x", "eα"] {
+            assert!(is_ident(ok), "{ok}");
+        }
+        for bad in [
+            "", "1e", "e-1", "e 1", "enum", "self", "Self", "_", "r#e1", "gen", "e1.0",
+        ] {
+            assert!(!is_ident(bad), "{bad}");
+        }
+    }
 }
