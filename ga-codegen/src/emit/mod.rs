@@ -7,13 +7,14 @@
 //! module (or a macro expansion): it has no inner attributes.
 //!
 //! The emitter works in phases, one file each:
-//! - [`infer`]: result types of symbolic products and the expressions that build them;
-//! - [`types`]: one struct per declared type with its methods and scalar operators;
-//! - [`operators`]: binary operators between declared types and conversions;
-//! - [`sandwich`]: fused sandwich products and their matrix (outermorphism) form;
-//! - [`lanes`]: paired-lane (`F64x2`) forms of dense geometric products;
-//! - [`library`]: serde and bytemuck impls and the list of types, for a library's API;
-//! - [`summary`]: the human-readable table of what was emitted.
+//! - `render.rs`: literals, identifiers and polynomials as tokens (and as text for docs);
+//! - `infer.rs`: result types of symbolic products and the expressions that build them;
+//! - `types.rs`: one struct per declared type with its methods and scalar operators;
+//! - `operators.rs`: binary operators between declared types and conversions;
+//! - `sandwich.rs`: fused sandwich products and their matrix (outermorphism) form;
+//! - `lanes.rs`: paired-lane (`F64x2`) forms of dense geometric products;
+//! - `library.rs`: serde and bytemuck impls and the list of types, for a library's API;
+//! - `summary.rs`: the human-readable table of what was emitted.
 //!
 //! Code is built as [`TokenStream`]s with `quote`; [`Generated::code`] parses them into a
 //! `syn::File` and formats it with prettyplease, and the `algebra!` macro returns the tokens

@@ -2,7 +2,7 @@
 //! conversions, unary methods, norms, conversions to and from the generic multivector, and the
 //! scalar operators (negation, scalar product and quotient).
 
-use super::render::{doc, float, ident, int, lit, Names};
+use super::render::{doc, ident, int, lit, Names};
 use super::{Gen, Method, OutType};
 use crate::blade::{blade_name, grade, Bitmap};
 use crate::rational::Rational;
@@ -237,7 +237,8 @@ impl Gen<'_> {
         let names = Names::new(t, None);
         let a = SymMv::of_type(t, 0);
         let neg = a.add_scaled(&a, Rational::int(-2));
-        let (o, on) = (self.infer(&neg), self.out_type(self.infer(&neg)));
+        let o = self.infer(&neg);
+        let on = self.out_type(o);
         let body = self.build(o, &neg, &names);
         self.out.extend(quote! {
             impl ::core::ops::Neg for #name { type Output = #on; #[inline] fn neg(self) -> #on { let a = self; #body } }
@@ -245,13 +246,13 @@ impl Gen<'_> {
         let m = self
             .table
             .product(&a, &SymMv::scalar_var(), Product::Geometric);
-        let (o, on) = (self.infer(&m), self.out_type(self.infer(&m)));
+        let o = self.infer(&m);
+        let on = self.out_type(o);
         let body = self.build(o, &m, &names);
-        let one = float(1.0);
         self.out.extend(quote! {
             impl ::core::ops::Mul<#s> for #name { type Output = #on; #[inline] fn mul(self, s: #s) -> #on { let a = self; #body } }
             impl ::core::ops::Mul<#name> for #s { type Output = #on; #[inline] fn mul(self, a: #name) -> #on { let s = self; #body } }
-            impl ::core::ops::Div<#s> for #name { type Output = #on; #[inline] #[allow(clippy::suspicious_arithmetic_impl)] fn div(self, s: #s) -> #on { let a = self; let s = #one / s; #body } }
+            impl ::core::ops::Div<#s> for #name { type Output = #on; #[inline] #[allow(clippy::suspicious_arithmetic_impl)] fn div(self, s: #s) -> #on { let a = self; let s = 1.0 / s; #body } }
         });
     }
 }
