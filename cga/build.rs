@@ -16,11 +16,15 @@ fn main() {
         (ScalarType::F64, "cga_f64.rs"),
         (ScalarType::F32, "cga_f32.rs"),
     ] {
+        // `library`: serde and bytemuck impls behind this crate's features of those names, and
+        // the `types` module that the crate root re-exports.
         let opts = EmitOptions {
             scalar,
+            library: true,
             ..EmitOptions::default()
         };
         let g = generate(&spec, &opts).unwrap_or_else(|e| panic!("{e}"));
-        std::fs::write(out.join(file), g.code).expect("write generated code");
+        let code = g.code().unwrap_or_else(|e| panic!("{e}"));
+        std::fs::write(out.join(file), code).expect("write generated code");
     }
 }

@@ -23,7 +23,8 @@ fn main() {
     for (name, spec) in specs {
         let g = generate(&spec, &opts).unwrap_or_else(|e| panic!("{e}"));
         let checks = emit_checks(&spec, &g, "::ga_codegen");
-        std::fs::write(out.join(format!("{name}.rs")), &g.code).expect("write");
+        let code = g.code().unwrap_or_else(|e| panic!("{e}"));
+        std::fs::write(out.join(format!("{name}.rs")), code).expect("write");
         std::fs::write(out.join(format!("{name}_checks.rs")), checks).expect("write");
     }
 }

@@ -205,8 +205,11 @@ pub fn report() -> String {
             let result = ga_codegen::Spec::from_toml(&text, "algebras/cga.toml")
                 .map_err(|e| e.to_string())
                 .and_then(|spec| {
-                    ga_codegen::generate(&spec, &ga_codegen::EmitOptions::default())
-                        .map_err(|e| e.to_string())
+                    let g = ga_codegen::generate(&spec, &ga_codegen::EmitOptions::default())
+                        .map_err(|e| e.to_string())?;
+                    // Format too (prettyplease), as the CLI and the build script do.
+                    g.code().map_err(|e| e.to_string())?;
+                    Ok(g)
                 });
             let secs = start.elapsed().as_secs_f64();
             match result {

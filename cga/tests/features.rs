@@ -24,3 +24,75 @@ fn pod_cast() {
     let back: &[cga::f32::Motor] = bytemuck::cast_slice(bytes);
     assert_eq!(back, &ms);
 }
+
+/// Every generated type (not only those a hand-written list once named) serialises as its
+/// coefficient array in storage order and reads back.
+#[cfg(feature = "serde")]
+#[test]
+fn serde_every_generated_type() {
+    fn round_trip<T>(x: T, len: usize)
+    where
+        T: serde::Serialize + serde::de::DeserializeOwned + PartialEq + std::fmt::Debug,
+    {
+        let s = serde_json::to_string(&x).unwrap();
+        let v: Vec<f64> = serde_json::from_str(&s).unwrap();
+        assert_eq!(v.len(), len, "{s}");
+        assert_eq!(serde_json::from_str::<T>(&s).unwrap(), x);
+    }
+    macro_rules! each {
+        ($($t:ident),*) => {$(
+            let x = cga::$t::from_array(std::array::from_fn(|i| i as f64 + 0.5));
+            round_trip(x, cga::$t::LEN);
+            let y = cga::f32::$t::from_array(std::array::from_fn(|i| i as f32 - 0.25));
+            round_trip(y, cga::f32::$t::LEN);
+        )*};
+    }
+    each!(
+        Vector,
+        Point,
+        Bivector,
+        Trivector,
+        Quadvector,
+        Pseudoscalar,
+        Rotor,
+        Translator,
+        Dilator,
+        Motor,
+        ScaledMotor,
+        Even,
+        Odd,
+        Mv
+    );
+}
+
+/// Every generated type is `Pod`: a slice of any of them casts to bytes and back.
+#[cfg(feature = "bytemuck")]
+#[test]
+fn pod_every_generated_type() {
+    macro_rules! each {
+        ($($t:ident),*) => {$(
+            let xs = [cga::$t::from_array(std::array::from_fn(|i| i as f64)); 2];
+            let bytes: &[u8] = bytemuck::cast_slice(&xs);
+            assert_eq!(bytes.len(), 2 * cga::$t::LEN * 8);
+            assert_eq!(bytemuck::cast_slice::<u8, cga::$t>(bytes), &xs);
+            let z: cga::f32::$t = bytemuck::Zeroable::zeroed();
+            assert_eq!(z, cga::f32::$t::default());
+        )*};
+    }
+    each!(
+        Vector,
+        Point,
+        Bivector,
+        Trivector,
+        Quadvector,
+        Pseudoscalar,
+        Rotor,
+        Translator,
+        Dilator,
+        Motor,
+        ScaledMotor,
+        Even,
+        Odd,
+        Mv
+    );
+}

@@ -441,3 +441,44 @@ proptest! {
         }
     }
 }
+
+/// The generated predicates, as glam's: `is_finite` (no infinity, no NaN), `is_nan` (any
+/// NaN), `abs_diff_eq` (every stored coefficient within the bound; false with a NaN), in f64
+/// and f32, agreeing with the coefficient arrays.
+#[test]
+fn generated_predicates_match_the_coefficients() {
+    let m =
+        Motor::from_rotation_translation(DQuat::from_rotation_y(0.4), DVec3::new(1.0, -2.0, 0.5));
+    assert!(m.is_finite() && !m.is_nan());
+    assert!(m.abs_diff_eq(m, 0.0));
+    for i in 0..Motor::LEN {
+        for (bad, nan) in [
+            (f64::NAN, true),
+            (f64::INFINITY, false),
+            (-f64::INFINITY, false),
+        ] {
+            let mut c = m.to_array();
+            c[i] = bad;
+            let x = Motor::from_array(c);
+            assert_eq!(x.is_finite(), finite(&c));
+            assert_eq!(x.is_nan(), nan, "{x:?}");
+            assert!(!x.is_finite());
+            assert!(!x.abs_diff_eq(m, 1e300) && !m.abs_diff_eq(x, 1e300));
+        }
+        let mut c = m.to_array();
+        c[i] += 1e-3;
+        let near = Motor::from_array(c);
+        assert!(near.abs_diff_eq(m, 1.001e-3) && m.abs_diff_eq(near, 1.001e-3));
+        assert!(!near.abs_diff_eq(m, 0.999e-3));
+    }
+    // A point's constant `eo` is not stored, so only stored coefficients count.
+    let p = Point::from_vec3(DVec3::new(3.0, 4.0, 0.0));
+    assert!(p.is_finite() && p.abs_diff_eq(Point::from_vec3(DVec3::new(3.0, 4.0, 1e-9)), 1e-8));
+    let p32 = cga::f32::Point::from_vec3(glam::Vec3::new(1e20, 0.0, 0.0));
+    assert!(
+        !p32.is_finite() && !p32.is_nan(),
+        "0.5 |x|^2 overflows f32: {p32:?}"
+    );
+    let r32 = cga::f32::Rotor::from_array([f32::NAN, 0.0, 0.0, 0.0]);
+    assert!(r32.is_nan() && !r32.is_finite() && !r32.abs_diff_eq(r32, f32::MAX));
+}

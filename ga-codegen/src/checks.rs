@@ -1,193 +1,263 @@
 //! Emits a self-check harness for a generated module: every emitted product, method,
 //! sandwich, matrix form and conversion is compared with the slow generic [`crate::Multivector`]
-//! on seeded random inputs.
+//! on seeded random inputs, and the predicates (`is_finite`, `is_nan`, `abs_diff_eq`) are
+//! checked on values with a NaN, an infinity and a perturbed coefficient.
 //!
 //! The harness is Rust code meant to be included next to the generated module (it uses
-//! `super::*`); `tests/` builds it for every spec in `algebras/`.
+//! `super::*`); `tests/` builds it for every spec in `algebras/`. Numeric checks made while
+//! generating (before the emitter relies on a result) live beside it in [`crate::verify`].
 
 use crate::blade::grade;
-use crate::emit::{snake, Generated};
-use crate::spec::Spec;
-use std::fmt::Write;
+use crate::emit::{snake, Generated, Method, Op};
+use crate::spec::{Spec, TypeDef};
+use proc_macro2::{Ident, Literal, Span, TokenStream};
+use quote::quote;
+
+fn ident(name: &str) -> Ident {
+    Ident::new(name, Span::call_site())
+}
+
+/// A string literal (the description of a check).
+fn text(s: &str) -> Literal {
+    Literal::string(s)
+}
 
 /// Emit the check harness for `spec` and the code generated from it (f64 only).
 /// It defines `pub fn check_all(n: usize, seed: u64) -> (usize, Vec<String>)`, returning the
 /// number of comparisons made and a description of each failure.
 pub fn emit_checks(spec: &Spec, generated: &Generated, runtime: &str) -> String {
-    let rt = runtime;
-    let mut s = String::new();
-    let n = spec.metric.dim();
-    let _ = write!(
-        s,
-        r#"
-use super::*;
-use {rt}::Multivector;
+    let rt: TokenStream = runtime.parse().expect("a runtime path");
+    let mut out = quote! {
+        use super::*;
+        use #rt::Multivector;
 
-/// A small seeded generator (xorshift64*), uniform in [-1, 1).
-pub struct Rng(pub u64);
-impl Rng {{
-    /// Next value.
-    pub fn next(&mut self) -> f64 {{
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        let x = self.0.wrapping_mul(0x2545_f491_4f6c_dd1d);
-        (x >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-    }}
-}}
-
-/// Conversion of a result to the generic multivector.
-pub trait ToMv {{
-    /// As a generic multivector.
-    fn mv(self) -> Multivector;
-}}
-impl ToMv for f64 {{
-    fn mv(self) -> Multivector {{ Multivector::scalar(&algebra(), self) }}
-}}
-
-fn check(count: &mut usize, fails: &mut Vec<String>, what: &str, got: Multivector, want: Multivector) {{
-    *count += 1;
-    let tol = 1e-12 * (1.0 + want.max_abs());
-    let finite = got.coeffs().iter().all(|x| x.is_finite());
-    if !finite || got.max_diff(&want) > tol {{
-        if fails.len() < 50 {{
-            fails.push(format!("{{what}}: generated {{got:?}}, generic {{want:?}}"));
-        }}
-    }}
-}}
-"#
-    );
-    for t in &spec.types {
-        let sn = snake(&t.name);
-        let _ = write!(
-            s,
-            "impl ToMv for {name} {{ fn mv(self) -> Multivector {{ self.to_multivector() }} }}\n\
-             /// A random `{name}` (coefficients uniform in [-1, 1)).\n\
-             pub fn rand_{sn}(rng: &mut Rng) -> {name} {{ {name}::from_array(::core::array::from_fn(|_| rng.next())) }}\n",
-            name = t.name
-        );
-        if t.versor {
-            let biv: Vec<u32> = t
-                .fields
-                .iter()
-                .filter(|f| grade(f.bitmap) == 2)
-                .map(|f| f.bitmap)
-                .collect();
-            let sets: String = biv
-                .iter()
-                .map(|b| format!("b.set({b}, rng.next());"))
-                .collect();
-            if biv.is_empty() {
-                // No bivector generator (an odd versor such as a reflection): a random element
-                // of the type scaled so that its reversion norm a ~a is +-1.
-                let _ = write!(
-                    s,
-                    "/// A random unit `{name}`: a random element scaled so that `|a ~a| = 1`.\n\
-                     pub fn unit_{sn}(rng: &mut Rng) -> {name} {{ let m = rand_{sn}(rng).mv(); let n = m.gp(&m.rev()).get(0).abs().sqrt(); {name}::from_multivector(&m.scale(1.0 / n)) }}\n",
-                    name = t.name
-                );
-            } else {
-                let _ = write!(
-                    s,
-                    "/// A random unit `{name}`: the normalised exponential of a random bivector in the type.\n\
-                     pub fn unit_{sn}(rng: &mut Rng) -> {name} {{ let mut b = Multivector::zero(&algebra()); {sets} let m = b.exp(); let m = m.scale(1.0 / m.norm()); {name}::from_multivector(&m) }}\n",
-                    name = t.name
-                );
+        /// A small seeded generator (xorshift64*), uniform in [-1, 1).
+        pub struct Rng(pub u64);
+        impl Rng {
+            /// Next value.
+            pub fn next(&mut self) -> f64 {
+                self.0 ^= self.0 >> 12;
+                self.0 ^= self.0 << 25;
+                self.0 ^= self.0 >> 27;
+                let x = self.0.wrapping_mul(0x2545_f491_4f6c_dd1d);
+                (x >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
             }
         }
-    }
-    s.push_str(
-        "/// Compare every generated function with the generic multivector on `n` random inputs.\n\
-         pub fn check_all(n: usize, seed: u64) -> (usize, Vec<String>) {\n\
-         let mut rng = Rng(seed.max(1));\n\
-         let mut count = 0usize;\n\
-         let mut fails = Vec::new();\n\
-         let c = &mut count; let f = &mut fails;\n\
-         for _ in 0..n {\n",
-    );
-    for t in &spec.types {
-        let sn = snake(&t.name);
-        let name = &t.name;
-        let _ = write!(
-            s,
-            "{{ let a = rand_{sn}(&mut rng); let ma = a.mv();\n\
-             check(c, f, \"-{name}\", (-a).mv(), -&ma);\n\
-             check(c, f, \"{name} * 1.7\", (a * 1.7).mv(), ma.scale(1.7));\n\
-             check(c, f, \"1.7 * {name}\", (1.7 * a).mv(), ma.scale(1.7));\n\
-             check(c, f, \"{name} / 1.7\", (a / 1.7).mv(), ma.scale(1.0 / 1.7));\n\
-             check(c, f, \"{name}::norm_squared\", a.norm_squared().mv(), ma.norm_squared().mv());\n\
-             check(c, f, \"{name}::from_multivector\", {name}::from_multivector(&ma).mv(), ma.clone());\n"
-        );
-        for (tn, m) in &generated.methods {
-            if tn != name {
-                continue;
+
+        /// Conversion of a result to the generic multivector.
+        pub trait ToMv {
+            /// As a generic multivector.
+            fn mv(self) -> Multivector;
+        }
+        impl ToMv for f64 {
+            fn mv(self) -> Multivector { Multivector::scalar(&algebra(), self) }
+        }
+
+        fn check_that(count: &mut usize, fails: &mut Vec<String>, what: &str, ok: bool) {
+            *count += 1;
+            if !ok && fails.len() < 50 {
+                fails.push(format!("{what}: false"));
             }
-            let line = match m.as_str() {
-                "rev" | "involute" | "conjugate" | "dual" => {
-                    format!("check(c, f, \"{name}::{m}\", a.{m}().mv(), ma.{m}());\n")
+        }
+
+        fn check(count: &mut usize, fails: &mut Vec<String>, what: &str, got: Multivector, want: Multivector) {
+            *count += 1;
+            let tol = 1e-12 * (1.0 + want.max_abs());
+            let finite = got.coeffs().iter().all(|x| x.is_finite());
+            if !finite || got.max_diff(&want) > tol {
+                if fails.len() < 50 {
+                    fails.push(format!("{what}: generated {got:?}, generic {want:?}"));
                 }
-                "grade" => (0..=n)
-                    .map(|k| format!("check(c, f, \"{name}::grade({k})\", a.grade({k}).mv(), ma.grade({k}));\n"))
-                    .collect(),
-                "normalized" => format!(
-                    "if ma.norm() > 1e-3 {{ check(c, f, \"{name}::normalized\", a.normalized().mv(), ma.scale(1.0 / ma.norm())); }}\n"
-                ),
-                "inverse" => format!(
-                    "if ma.norm_squared().abs() > 1e-3 {{ check(c, f, \"{name}::inverse\", a.inverse().mv(), ma.rev().scale(1.0 / ma.norm_squared())); }}\n"
-                ),
-                _ => String::new(),
-            };
-            s.push_str(&line);
+            }
         }
-        if t.versor {
-            // On unit versors the versor inverse is the true inverse: check against the
-            // generic inverse (a linear solve), which does not assume anything.
-            let _ = writeln!(
-                s,
-                "{{ let u = unit_{sn}(&mut rng); let mu = u.mv(); if let Some(inv) = mu.inverse() {{ check(c, f, \"unit {name}::inverse vs generic inverse\", u.inverse().mv(), inv); }} else {{ f.push(\"unit {name} has no generic inverse\".to_string()); }} }}"
-            );
-        }
-        s.push_str("}\n");
+    };
+    for t in &spec.types {
+        out.extend(generators(t));
+    }
+    let mut body = TokenStream::new();
+    for t in &spec.types {
+        body.extend(type_checks(spec, t, generated));
     }
     for o in &generated.ops {
-        let (l, r) = (snake(&o.left), snake(&o.right));
-        let (ln, rn) = (&o.left, &o.right);
-        let body = match o.op.as_str() {
-            "*" => format!("check(c, f, \"{ln} * {rn}\", (a * b).mv(), ma.gp(&mb));"),
-            "^" => format!("check(c, f, \"{ln} ^ {rn}\", (a ^ b).mv(), ma.outer(&mb));"),
-            "|" => format!("check(c, f, \"{ln} | {rn}\", (a | b).mv(), ma.left_contraction(&mb));"),
-            "+" => format!("check(c, f, \"{ln} + {rn}\", (a + b).mv(), &ma + &mb);"),
-            "-" => format!("check(c, f, \"{ln} - {rn}\", (a - b).mv(), &ma - &mb);"),
-            "from" => {
-                let _ = writeln!(
-                    s,
-                    "{{ let a = rand_{l}(&mut rng); check(c, f, \"{rn}::from({ln})\", {rn}::from(a).mv(), a.mv()); }}"
-                );
-                continue;
-            }
-            "sandwich" => {
-                let vt = spec
-                    .types
-                    .iter()
-                    .find(|t| &t.name == ln)
-                    .expect("versor type");
-                let gen = if vt.unit { "unit" } else { "rand" };
-                let _ = write!(
-                    s,
-                    "{{ let a = {gen}_{l}(&mut rng); let b = rand_{r}(&mut rng); let (ma, mb) = (a.mv(), b.mv()); let want = ma.gp(&mb).gp(&ma.rev());\n\
-                     check(c, f, \"{ln}.sandwich({rn})\", a.sandwich(b).mv(), want.clone());\n\
-                     check(c, f, \"{ln}.{r}_matrix().apply({rn})\", a.{r}_matrix().apply(b).mv(), want); }}\n"
-                );
-                continue;
-            }
-            _ => continue,
-        };
-        let _ = writeln!(
-            s,
-            "{{ let a = rand_{l}(&mut rng); let b = rand_{r}(&mut rng); let (ma, mb) = (a.mv(), b.mv()); {body} }}"
-        );
+        body.extend(op_check(spec, o.op, &o.left, &o.right));
     }
-    s.push_str("}\n(count, fails)\n}\n");
-    let file = syn::parse_file(&s).expect("check harness parses");
+    out.extend(quote! {
+        /// Compare every generated function with the generic multivector on `n` random inputs.
+        pub fn check_all(n: usize, seed: u64) -> (usize, Vec<String>) {
+            let mut rng = Rng(seed.max(1));
+            let mut count = 0usize;
+            let mut fails = Vec::new();
+            let c = &mut count; let f = &mut fails;
+            for _ in 0..n { #body }
+            (count, fails)
+        }
+    });
+    let file: syn::File = syn::parse2(out).expect("check harness parses");
     prettyplease::unparse(&file)
+}
+
+/// `ToMv` for a type, its random generator and, for a versor, its random unit generator.
+fn generators(t: &TypeDef) -> TokenStream {
+    let name = ident(&t.name);
+    let sn = snake(&t.name);
+    let (rand, unit) = (ident(&format!("rand_{sn}")), ident(&format!("unit_{sn}")));
+    let rand_doc = format!(" A random `{}` (coefficients uniform in [-1, 1)).", t.name);
+    let mut out = quote! {
+        impl ToMv for #name { fn mv(self) -> Multivector { self.to_multivector() } }
+        #[doc = #rand_doc]
+        pub fn #rand(rng: &mut Rng) -> #name { #name::from_array(::core::array::from_fn(|_| rng.next())) }
+    };
+    if t.versor {
+        let biv: Vec<Literal> = t
+            .fields
+            .iter()
+            .filter(|f| grade(f.bitmap) == 2)
+            .map(|f| Literal::u32_unsuffixed(f.bitmap))
+            .collect();
+        if biv.is_empty() {
+            // No bivector generator (an odd versor such as a reflection): a random element
+            // of the type scaled so that its reversion norm a ~a is +-1.
+            let doc = format!(
+                " A random unit `{}`: a random element scaled so that `|a ~a| = 1`.",
+                t.name
+            );
+            out.extend(quote! {
+                #[doc = #doc]
+                pub fn #unit(rng: &mut Rng) -> #name { let m = #rand(rng).mv(); let n = m.gp(&m.rev()).get(0).abs().sqrt(); #name::from_multivector(&m.scale(1.0 / n)) }
+            });
+        } else {
+            let doc = format!(
+                " A random unit `{}`: the normalised exponential of a random bivector in the type.",
+                t.name
+            );
+            out.extend(quote! {
+                #[doc = #doc]
+                pub fn #unit(rng: &mut Rng) -> #name { let mut b = Multivector::zero(&algebra()); #(b.set(#biv, rng.next());)* let m = b.exp(); let m = m.scale(1.0 / m.norm()); #name::from_multivector(&m) }
+            });
+        }
+    }
+    out
+}
+
+/// The checks of one type: negation, scalar products, norm, conversion, predicates, unary
+/// methods and, for a versor, the inverse of a unit one.
+fn type_checks(spec: &Spec, t: &TypeDef, generated: &Generated) -> TokenStream {
+    let n = spec.metric.dim();
+    let name = ident(&t.name);
+    let tn = &t.name;
+    let sn = snake(&t.name);
+    let (rand, unit) = (ident(&format!("rand_{sn}")), ident(&format!("unit_{sn}")));
+    let w = |s: String| text(&s);
+    let (neg, mul, lmul, div, nsq, from) = (
+        w(format!("-{tn}")),
+        w(format!("{tn} * 1.7")),
+        w(format!("1.7 * {tn}")),
+        w(format!("{tn} / 1.7")),
+        w(format!("{tn}::norm_squared")),
+        w(format!("{tn}::from_multivector")),
+    );
+    let (p_rand, p_nan, p_inf, p_near) = (
+        w(format!("{tn}::is_finite/is_nan on a random value")),
+        w(format!("{tn}::is_finite/is_nan/abs_diff_eq with a NaN")),
+        w(format!("{tn}::is_finite/is_nan with an infinity")),
+        w(format!("{tn}::abs_diff_eq")),
+    );
+    let mut out = quote! {
+        check(c, f, #neg, (-a).mv(), -&ma);
+        check(c, f, #mul, (a * 1.7).mv(), ma.scale(1.7));
+        check(c, f, #lmul, (1.7 * a).mv(), ma.scale(1.7));
+        check(c, f, #div, (a / 1.7).mv(), ma.scale(1.0 / 1.7));
+        check(c, f, #nsq, a.norm_squared().mv(), ma.norm_squared().mv());
+        check(c, f, #from, #name::from_multivector(&ma).mv(), ma.clone());
+        // The predicates, on a value with one coefficient (chosen at random) changed.
+        {
+            let i = ((rng.next() + 1.0) * 0.5 * #name::LEN as f64) as usize % #name::LEN;
+            let with = |x: f64| { let mut c = a.to_array(); c[i] = x; #name::from_array(c) };
+            check_that(c, f, #p_rand, a.is_finite() && !a.is_nan() && a.abs_diff_eq(a, 0.0));
+            let nan = with(f64::NAN);
+            check_that(c, f, #p_nan, nan.is_nan() && !nan.is_finite() && !nan.abs_diff_eq(nan, 1.0) && !a.abs_diff_eq(nan, 1.0));
+            let inf = with(-f64::INFINITY);
+            check_that(c, f, #p_inf, !inf.is_finite() && !inf.is_nan() && !inf.abs_diff_eq(a, 1e300));
+            let near = with(a.to_array()[i] + 0.5);
+            check_that(c, f, #p_near, near.abs_diff_eq(a, 0.5 + 1e-12) && a.abs_diff_eq(near, 0.5 + 1e-12) && !near.abs_diff_eq(a, 0.499));
+        }
+    };
+    for (_, m) in generated.methods.iter().filter(|(n, _)| n == tn) {
+        let what = w(format!("{tn}::{}", m.name()));
+        let method = ident(m.name());
+        out.extend(match m {
+            Method::Rev | Method::Involute | Method::Conjugate | Method::Dual => {
+                quote!(check(c, f, #what, a.#method().mv(), ma.#method());)
+            }
+            Method::Grade => (0..=n)
+                .map(|k| {
+                    let what = w(format!("{tn}::grade({k})"));
+                    let k = Literal::usize_unsuffixed(k);
+                    quote!(check(c, f, #what, a.grade(#k).mv(), ma.grade(#k));)
+                })
+                .collect(),
+            Method::Normalized => quote! {
+                if ma.norm() > 1e-3 { check(c, f, #what, a.normalized().mv(), ma.scale(1.0 / ma.norm())); }
+            },
+            Method::Inverse => quote! {
+                if ma.norm_squared().abs() > 1e-3 { check(c, f, #what, a.inverse().mv(), ma.rev().scale(1.0 / ma.norm_squared())); }
+            },
+        });
+    }
+    if t.versor {
+        // On unit versors the versor inverse is the true inverse: check against the generic
+        // inverse (a linear solve), which does not assume anything.
+        let what = w(format!("unit {tn}::inverse vs generic inverse"));
+        let none = w(format!("unit {tn} has no generic inverse"));
+        out.extend(quote! {
+            {
+                let u = #unit(&mut rng);
+                let mu = u.mv();
+                if let Some(inv) = mu.inverse() { check(c, f, #what, u.inverse().mv(), inv); } else { f.push(#none.to_string()); }
+            }
+        });
+    }
+    quote!({ let a = #rand(&mut rng); let ma = a.mv(); #out })
+}
+
+/// The check of one emitted binary operation, sandwich or conversion.
+fn op_check(spec: &Spec, op: Op, left: &str, right: &str) -> TokenStream {
+    let (l, r) = (snake(left), snake(right));
+    let (rand_l, rand_r) = (ident(&format!("rand_{l}")), ident(&format!("rand_{r}")));
+    let body = match op {
+        Op::Geometric | Op::Outer | Op::LeftContraction | Op::Add | Op::Sub => {
+            let what = text(&format!("{left} {} {right}", op.symbol()));
+            match op {
+                Op::Geometric => quote!(check(c, f, #what, (a * b).mv(), ma.gp(&mb));),
+                Op::Outer => quote!(check(c, f, #what, (a ^ b).mv(), ma.outer(&mb));),
+                Op::LeftContraction => {
+                    quote!(check(c, f, #what, (a | b).mv(), ma.left_contraction(&mb));)
+                }
+                Op::Add => quote!(check(c, f, #what, (a + b).mv(), &ma + &mb);),
+                _ => quote!(check(c, f, #what, (a - b).mv(), &ma - &mb);),
+            }
+        }
+        Op::From => {
+            let what = text(&format!("{right}::from({left})"));
+            let rn = ident(right);
+            return quote!({ let a = #rand_l(&mut rng); check(c, f, #what, #rn::from(a).mv(), a.mv()); });
+        }
+        Op::Sandwich => {
+            let vt = spec
+                .types
+                .iter()
+                .find(|t| t.name == left)
+                .expect("versor type");
+            let gen = ident(&format!("{}_{l}", if vt.unit { "unit" } else { "rand" }));
+            let what = text(&format!("{left}.sandwich({right})"));
+            let what_m = text(&format!("{left}.{r}_matrix().apply({right})"));
+            let matrix = ident(&format!("{r}_matrix"));
+            return quote!({
+                let a = #gen(&mut rng); let b = #rand_r(&mut rng); let (ma, mb) = (a.mv(), b.mv()); let want = ma.gp(&mb).gp(&ma.rev());
+                check(c, f, #what, a.sandwich(b).mv(), want.clone());
+                check(c, f, #what_m, a.#matrix().apply(b).mv(), want);
+            });
+        }
+    };
+    quote!({ let a = #rand_l(&mut rng); let b = #rand_r(&mut rng); let (ma, mb) = (a.mv(), b.mv()); #body })
 }

@@ -36,6 +36,8 @@ pub use spec::{Spec, SpecError};
 #[cfg(feature = "codegen")]
 pub mod emit;
 #[cfg(feature = "codegen")]
-pub use emit::{generate, EmitOptions, GenError, Generated, ScalarType};
+pub use emit::{generate, EmitOptions, GenError, Generated, Method, Op, ScalarType};
 #[cfg(feature = "codegen")]
 pub mod checks;
+#[cfg(feature = "codegen")]
+pub mod verify;

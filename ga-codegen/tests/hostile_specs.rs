@@ -44,7 +44,7 @@ fn decimal_metrics_generate_exact_products() {
     ] {
         let spec = Spec::from_raw(diagonal_spec(basis, diagonal, &[]), "decimal.toml").unwrap();
         let g = generate(&spec, &EmitOptions::default()).unwrap();
-        assert!(!g.code.is_empty());
+        assert!(!g.code().expect("formats").is_empty());
     }
     // A full 3x3 metric with 0.1 and 0.3 entries.
     let raw = RawSpec {

@@ -1,15 +1,20 @@
-//! insta snapshots of a few generated CGA functions, so that any change to generated code shows
-//! up in review: the motor product and the fused motor sandwich on a normalised point.
+//! insta snapshots of generated CGA code, so that any change to generated code shows up in
+//! review: every geometric product between versor types (the paired-lane kernels among them),
+//! every fused sandwich the spec declares, and the matrix form of the motor-point sandwich.
+//! `algebras/cga.summary.txt` (tested in `summary.rs`) lists everything else.
 
 use std::path::Path;
 
-fn cga_code() -> String {
+fn cga() -> (ga_codegen::Spec, String) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../algebras/cga.toml");
     let text = std::fs::read_to_string(path).expect("read cga.toml");
     let spec = ga_codegen::Spec::from_toml(&text, "algebras/cga.toml").expect("valid spec");
-    ga_codegen::generate(&spec, &ga_codegen::EmitOptions::default())
+    let code = ga_codegen::generate(&spec, &ga_codegen::EmitOptions::default())
         .expect("generate")
-        .code
+        .code()
+        .expect("formats")
+        .to_string();
+    (spec, code)
 }
 
 /// The item starting at the line that begins with `head`, up to its matching closing brace.
@@ -34,20 +39,44 @@ fn item(code: &str, head: &str) -> String {
     panic!("unbalanced item `{head}`")
 }
 
-#[test]
-fn motor_times_motor() {
-    insta::assert_snapshot!(item(
-        &cga_code(),
-        "impl ::core::ops::Mul<Motor> for Motor {"
-    ));
+fn snake(name: &str) -> String {
+    ga_codegen::emit::snake(name)
 }
 
 #[test]
-fn motor_sandwich_point() {
-    insta::assert_snapshot!(item(&cga_code(), "impl Sandwich<Point> for Motor {"));
+fn every_versor_product() {
+    let (spec, code) = cga();
+    let versors: Vec<&str> = spec
+        .types
+        .iter()
+        .filter(|t| t.versor)
+        .map(|t| t.name.as_str())
+        .collect();
+    assert!(versors.len() >= 5, "{versors:?}");
+    for a in &versors {
+        for b in &versors {
+            insta::assert_snapshot!(
+                format!("mul_{}_{}", snake(a), snake(b)),
+                item(&code, &format!("impl ::core::ops::Mul<{b}> for {a} {{"))
+            );
+        }
+    }
+}
+
+#[test]
+fn every_fused_sandwich() {
+    let (spec, code) = cga();
+    assert!(!spec.sandwiches.is_empty());
+    for d in &spec.sandwiches {
+        let (v, x) = (&spec.types[d.versor].name, &spec.types[d.operand].name);
+        insta::assert_snapshot!(
+            format!("sandwich_{}_{}", snake(v), snake(x)),
+            item(&code, &format!("impl Sandwich<{x}> for {v} {{"))
+        );
+    }
 }
 
 #[test]
 fn motor_point_matrix() {
-    insta::assert_snapshot!(item(&cga_code(), "impl MotorPointMatrix {"));
+    insta::assert_snapshot!(item(&cga().1, "impl MotorPointMatrix {"));
 }

@@ -1,6 +1,7 @@
-//! The expansion: input tokens -> spec -> `ga_codegen::generate` -> tokens.
+//! The expansion: input tokens -> spec -> `ga_codegen::generate` -> tokens (as generated: no
+//! formatting and no string round trip).
 
-use crate::grammar::{error_at, Input, Range, Source};
+use crate::grammar::{error_at, Input, Source};
 use crate::locate;
 use ga_codegen::{generate, EmitOptions, Spec};
 use proc_macro2::TokenStream;
@@ -36,7 +37,7 @@ pub(crate) fn expand(tokens: TokenStream) -> syn::Result<TokenStream> {
                 let at = locate::gen_error(&e, &inline.raw, &inline.spans);
                 error_at(at, without_source(&e.to_string()))
             })?;
-            to_tokens(&generated.code, first)
+            Ok(located(generated.tokens, first))
         }
     }
 }
@@ -72,7 +73,7 @@ fn expand_file(
     // same as `ga-codegen <path>` run from the crate's directory.
     let spec = Spec::from_toml(&text, &written).map_err(|e| syn::Error::new(lit.span(), e))?;
     let generated = generate(&spec, opts).map_err(|e| syn::Error::new(lit.span(), e))?;
-    let mut out = to_tokens(&generated.code, at)?;
+    let mut out = located(generated.tokens, at);
     // Make the compiler track the file, so that editing the spec re-expands the macro.
     if let Some(abs) = path.to_str().filter(|_| path.is_absolute()) {
         out.extend(quote::quote! {
@@ -82,21 +83,12 @@ fn expand_file(
     Ok(out)
 }
 
-/// The generated module source as tokens, with call-site hygiene but located at one token of
-/// the input (`at`). A single-line location matters: clippy's `possible_missing_comma` reads
-/// the source between the tokens of an array element, and with the whole (multi-line)
-/// invocation as location it would find line breaks there and fire on generated matrices.
-fn to_tokens(code: &str, at: proc_macro2::Span) -> syn::Result<TokenStream> {
-    let tokens: TokenStream = code.parse().map_err(|e| {
-        error_at(
-            Range::call_site(),
-            format!("internal error: the generated code does not tokenize: {e}"),
-        )
-    })?;
-    Ok(respan(
-        tokens,
-        proc_macro2::Span::call_site().located_at(at),
-    ))
+/// The generated tokens with call-site hygiene but located at one token of the input (`at`).
+/// A single-line location matters: clippy's `possible_missing_comma` reads the source between
+/// the tokens of an array element, and with the whole (multi-line) invocation as location it
+/// would find line breaks there and fire on generated matrices.
+fn located(tokens: TokenStream, at: proc_macro2::Span) -> TokenStream {
+    respan(tokens, proc_macro2::Span::call_site().located_at(at))
 }
 
 fn respan(tokens: TokenStream, span: proc_macro2::Span) -> TokenStream {

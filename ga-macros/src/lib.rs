@@ -1,8 +1,8 @@
 //! # ga-macros
 //!
 //! [`algebra!`] declares a geometric algebra inline and expands to the specialised types that
-//! the `ga-codegen` binary generates for the same spec: the expansion *is* the binary's
-//! output (`ga_codegen::generate`), turned into tokens. This crate is a thin front end:
+//! the `ga-codegen` binary generates for the same spec: the expansion *is* the tokens of
+//! `ga_codegen::generate`, which the binary formats. This crate is a thin front end:
 //! tokens -> spec -> `ga-codegen` -> tokens.
 //!
 //! ## Dependencies

@@ -15,8 +15,10 @@ fn generated(toml: &str, source: &str, scalar: ScalarType) -> String {
         scalar,
         ..EmitOptions::default()
     };
-    let code = generate(&spec, &opts).expect("generates").code;
-    code.parse::<TokenStream>().expect("tokenizes").to_string()
+    generate(&spec, &opts)
+        .expect("generates")
+        .tokens
+        .to_string()
 }
 
 fn expanded(tokens: TokenStream) -> String {

@@ -1,11 +1,14 @@
 //! `ga-codegen`: regenerate an algebra's Rust module from a spec file or a signature.
 //!
 //! ```text
-//! ga-codegen SPEC.toml [-o FILE] [--scalar f32|f64] [--summary]
-//! ga-codegen --signature P,Q,R [-o FILE] [--scalar f32|f64] [--summary]
+//! ga-codegen SPEC.toml [-o FILE] [--scalar f32|f64] [--summary] [--runtime PATH] [--library]
+//! ga-codegen --signature P,Q,R [-o FILE] [--scalar f32|f64] [--summary] [--runtime PATH] [--library]
 //! ```
 //! Without `-o` the module is printed. `--summary` prints the types and the product table
-//! instead of the code. Errors name the file, the type and the blade, and exit with code 2.
+//! instead of the code (the time taken goes to stderr, so the listing is reproducible:
+//! `algebras/cga.summary.txt` is `ga-codegen algebras/cga.toml --summary`). `--library` adds
+//! the `serde`/`bytemuck` impls behind cargo features and the `types` module (as the `cga`
+//! crate compiles it). Errors name the file, the type and the blade, and exit with code 2.
 
 use ga_codegen::{generate, EmitOptions, ScalarType, Spec};
 use std::path::PathBuf;
@@ -13,8 +16,8 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 const USAGE: &str =
-    "usage: ga-codegen SPEC.toml [-o FILE] [--scalar f32|f64] [--summary] [--runtime PATH]
-       ga-codegen --signature P,Q,R [-o FILE] [--scalar f32|f64] [--summary] [--runtime PATH]";
+    "usage: ga-codegen SPEC.toml [-o FILE] [--scalar f32|f64] [--summary] [--runtime PATH] [--library]
+       ga-codegen --signature P,Q,R [-o FILE] [--scalar f32|f64] [--summary] [--runtime PATH] [--library]";
 
 struct Args {
     spec: Option<PathBuf>,
@@ -22,6 +25,7 @@ struct Args {
     out: Option<PathBuf>,
     scalar: ScalarType,
     summary: bool,
+    library: bool,
     runtime: Option<String>,
 }
 
@@ -32,6 +36,7 @@ fn parse_args() -> Result<Args, String> {
         out: None,
         scalar: ScalarType::F64,
         summary: false,
+        library: false,
         runtime: None,
     };
     let mut it = std::env::args().skip(1);
@@ -47,6 +52,7 @@ fn parse_args() -> Result<Args, String> {
                 }
             }
             "--summary" => a.summary = true,
+            "--library" => a.library = true,
             "--runtime" => a.runtime = Some(it.next().ok_or("--runtime needs a path")?),
             "--signature" => {
                 let v = it.next().ok_or("--signature needs P,Q,R")?;
@@ -116,6 +122,7 @@ fn main() -> ExitCode {
     };
     let mut opts = EmitOptions {
         scalar: args.scalar,
+        library: args.library,
         ..EmitOptions::default()
     };
     if let Some(r) = args.runtime {
@@ -123,6 +130,14 @@ fn main() -> ExitCode {
     }
     let generated = match generate(&spec, &opts) {
         Ok(g) => g,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    // Format the module (prettyplease); its line count is part of the summary.
+    let code = match generated.code() {
+        Ok(c) => c,
         Err(e) => {
             eprintln!("error: {e}");
             return ExitCode::from(2);
@@ -137,11 +152,11 @@ fn main() -> ExitCode {
             spec.metric.dim()
         );
         print!("{}", generated.summary());
-        println!("generated in {:.1} ms", elapsed.as_secs_f64() * 1e3);
+        eprintln!("generated in {:.1} ms", elapsed.as_secs_f64() * 1e3);
     }
     match &args.out {
         Some(path) => {
-            if let Err(e) = std::fs::write(path, &generated.code) {
+            if let Err(e) = std::fs::write(path, code) {
                 eprintln!("error: cannot write {}: {e}", path.display());
                 return ExitCode::from(2);
             }
@@ -152,7 +167,7 @@ fn main() -> ExitCode {
                 elapsed.as_secs_f64() * 1e3
             );
         }
-        None if !args.summary => print!("{}", generated.code),
+        None if !args.summary => print!("{code}"),
         None => {}
     }
     ExitCode::SUCCESS

@@ -1,0 +1,41 @@
+//! The summary of a generated module: its types, then its product table (geometric products
+//! and sandwiches, with result types and term counts), as printed by `ga-codegen --summary`.
+
+use super::{Generated, Op};
+use std::fmt::Write;
+
+impl Generated {
+    /// A human-readable summary: types, then the product table.
+    pub fn summary(&self) -> String {
+        let mut s = String::new();
+        let _ = writeln!(s, "types ({}):", self.types.len());
+        for (n, f) in &self.types {
+            let _ = writeln!(s, "  {n:<16} {f} fields");
+        }
+        let total: usize = self.ops.iter().map(|o| o.terms).sum();
+        let _ = writeln!(
+            s,
+            "operations: {} emitted ({} multiply terms), {} identically zero and skipped",
+            self.ops.len(),
+            total,
+            self.zero_ops
+        );
+        for o in self
+            .ops
+            .iter()
+            .filter(|o| matches!(o.op, Op::Geometric | Op::Sandwich))
+        {
+            let _ = writeln!(
+                s,
+                "  {:<12} {:<9} {:<12} -> {:<12} {:>5} terms",
+                o.left,
+                o.op.symbol(),
+                o.right,
+                o.output,
+                o.terms
+            );
+        }
+        let _ = writeln!(s, "lines of code: {}", self.lines());
+        s
+    }
+}
