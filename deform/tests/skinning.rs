@@ -733,6 +733,28 @@ fn skin_cli() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let m = deform::io::read_obj(&obj).unwrap();
     assert_eq!(m.vertex_count(), 1728);
+    // A libigl rig with its DMAT animation: frame 100.
+    let lib = dir.join("meshes/libigl");
+    let ele = out.join("elephant-100.obj");
+    let o = run(&[
+        "skin",
+        lib.join("elephant.obj").to_str().unwrap(),
+        "--skeleton",
+        lib.join("elephant.tgf").to_str().unwrap(),
+        "--weights",
+        lib.join("elephant-weights.dmat").to_str().unwrap(),
+        "--dmat-animation",
+        lib.join("elephant-anim.dmat").to_str().unwrap(),
+        "--time",
+        "100",
+        "--backend",
+        "lbs",
+        "-o",
+        ele.to_str().unwrap(),
+        "-q",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(deform::io::read_obj(&ele).unwrap().vertex_count(), 6034);
     // Bad input: exit code 2 with a message.
     let trunc = out.join("truncated.bin");
     std::fs::write(&trunc, &std::fs::read(&man).unwrap()[..500]).unwrap();

@@ -269,16 +269,21 @@ impl PreparedKeys {
         }
     }
 
-    /// `normalise(sum w R)` over the row, in the hemisphere of its first key.
+    /// `normalise(sum w R)` over the row, in the hemisphere of its first key (the loop of
+    /// [`Motor::blend_linear_pairs`], written over the row so that it compiles to straight
+    /// multiply-adds; a sum with a vanishing rotor part gives the identity, as there).
     #[inline]
     fn linear_blend(&self, row: Row) -> Motor {
-        match row.keys {
-            None => Motor::blend_linear(&self.motors[row.first..], row.weights),
-            Some(k) => Motor::blend_linear_pairs(
-                k.iter()
-                    .zip(row.weights)
-                    .map(|(&k, &w)| (self.motors[k as usize], w)),
-            ),
+        let m0 = self.motors[row.key(0)];
+        let acc = row.fold(Motor::default(), |acc, k, w| {
+            let m = self.motors[k];
+            let d = m.s * m0.s + m.e12 * m0.e12 + m.e13 * m0.e13 + m.e23 * m0.e23;
+            acc + m * if d < 0.0 { -w } else { w }
+        });
+        if acc.norm_squared() > f64::MIN_POSITIVE {
+            acc.normalize_rigid()
+        } else {
+            Motor::IDENTITY
         }
     }
 

@@ -121,6 +121,10 @@ pub struct SkinArgs {
     /// A time range T0:T1:N: N frames written as OUT_0000.obj, OUT_0001.obj, ...
     #[arg(long, value_parser = parse_range, conflicts_with = "time")]
     pub range: Option<(f64, f64, usize)>,
+    /// A libigl animation (DMAT: per frame, per bone, the 4x3 block `igl::lbs_matrix` takes)
+    /// for a mesh model; --time is then the frame index.
+    #[arg(long, requires = "skeleton")]
+    pub dmat_animation: Option<PathBuf>,
     /// How keyframes are blended: glTF's samplers, or logarithmic blending of neighbouring
     /// keyframes as motors (the paper's choice for existing keyframes).
     #[arg(long, value_enum, default_value_t = Keyframes::Gltf)]
@@ -177,6 +181,7 @@ fn numbered(path: &Path, k: usize) -> PathBuf {
 
 pub fn skin(a: &SkinArgs) -> Result<()> {
     let mut inputs = a.rig.paths();
+    inputs.extend(a.dmat_animation.as_deref());
     inputs.extend(a.edits.iter().map(|(_, p)| p.as_path()));
     let mut outputs = vec![a.out.output.as_path()];
     outputs.extend(a.out.png.as_deref());
@@ -214,6 +219,21 @@ pub fn skin(a: &SkinArgs) -> Result<()> {
     }
     report.add("load_ms", load_ms);
     report.add("bind_ms", bind_ms);
+    let dmat = match &a.dmat_animation {
+        None => None,
+        Some(path) => {
+            if !edits.is_empty() || a.animation.is_some() {
+                bail!(
+                    "--dmat-animation poses the bones directly: no --edit or --animation with it"
+                );
+            }
+            let m = deform::io::read_dmat(path)?;
+            let anim = deform::skinning::read_libigl_animation(&m, rig.joints.len())
+                .with_context(|| format!("{}: not an animation of this rig", path.display()))?;
+            report.add("frames_in_animation", anim.frames.len());
+            Some(anim)
+        }
+    };
     // The frames: (time, edits) pairs.
     let frames: Vec<(f64, Vec<JointEdit>)> = match (a.range, a.in_betweens) {
         (Some(_), Some(_)) => bail!("--range and --in-betweens cannot be combined"),
@@ -264,8 +284,20 @@ pub fn skin(a: &SkinArgs) -> Result<()> {
     };
     let mut pose = RigPose::default();
     for (k, (time, frame_edits)) in frames.iter().enumerate() {
-        rig.pose_into(animation, *time, blend, frame_edits, &mut pose)?;
-        let motors = pose.skin_motors()?;
+        let frame_motors;
+        let motors = match &dmat {
+            Some(anim) => {
+                if *time < 0.0 || time.fract() != 0.0 {
+                    bail!("--time {time}: with --dmat-animation it is a frame index (0, 1, ...)");
+                }
+                frame_motors = anim.skin_motors(*time as usize)?;
+                &frame_motors[..]
+            }
+            None => {
+                rig.pose_into(animation, *time, blend, frame_edits, &mut pose)?;
+                pose.skin_motors()?
+            }
+        };
         pose_ms += time_pose(&bound, motors, &mut posed)?;
         if let Some(o) = &other {
             o.pose(motors, &mut other_posed)?;
