@@ -10,22 +10,13 @@ use deform::{
     BlendMethod, HandleOptions, Mesh, MotorHandles, SplineDeformer, SplineOptions, WeightScheme,
 };
 use glam::{DQuat, DVec3};
-use std::path::PathBuf;
+#[path = "measure.rs"]
+mod measure;
 
 /// A mesh of the data set, e.g. `mesh("large/armadillo-50k.obj")`, from `$CGA_DATA_DIR/meshes`
 /// (else `../shared/data/meshes`); `None` when absent (a panic under `CI=true`).
 pub fn mesh(rel: &str) -> Option<Mesh> {
-    let dir = std::env::var_os("CGA_DATA_DIR")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../shared/data"));
-    let path = dir.join("meshes").join(rel);
-    if !path.is_file() {
-        if std::env::var("CI").as_deref() == Ok("true") {
-            panic!("{} is missing (CI=true)", path.display());
-        }
-        eprintln!("skipped: {} not found (set CGA_DATA_DIR)", path.display());
-        return None;
-    }
+    let path = measure::data(&format!("meshes/{rel}"))?;
     Some(deform::io::read_mesh(&path).expect("mesh loads"))
 }
 

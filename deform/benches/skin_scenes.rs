@@ -8,24 +8,10 @@
 use cga::ScaledMotor;
 use deform::skinning::{read_gltf, Influences, Rig};
 use glam::{DQuat, DVec3};
-use std::path::PathBuf;
 
-/// A file of the data set (`$CGA_DATA_DIR`, else `../shared/data`); `None` when absent (a
-/// panic under `CI=true`).
-pub fn data(rel: &str) -> Option<PathBuf> {
-    let dir = std::env::var_os("CGA_DATA_DIR")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../shared/data"));
-    let path = dir.join(rel);
-    if !path.is_file() {
-        if std::env::var("CI").as_deref() == Ok("true") {
-            panic!("{} is missing (CI=true)", path.display());
-        }
-        eprintln!("skipped: {} not found (set CGA_DATA_DIR)", path.display());
-        return None;
-    }
-    Some(path)
-}
+#[path = "measure.rs"]
+mod measure;
+use measure::data;
 
 /// A skinning scene: rest positions, influences, joint count, and the keys of one frame.
 pub struct SkinScene {

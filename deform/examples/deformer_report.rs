@@ -5,25 +5,15 @@
 //!
 //! `cargo run --release -p deform --example deformer_report`
 
+#[path = "../benches/measure.rs"]
+mod measure;
 #[path = "../benches/scenes.rs"]
 mod scenes;
 
+use measure::median_ms;
+
 use deform::{BlendMethod, Deformer, Mesh};
 use glam::DVec3;
-use std::time::Instant;
-
-/// Median wall time in milliseconds of `runs` calls.
-fn median_ms(runs: usize, mut f: impl FnMut()) -> f64 {
-    let mut t: Vec<f64> = (0..runs)
-        .map(|_| {
-            let s = Instant::now();
-            f();
-            s.elapsed().as_secs_f64() * 1e3
-        })
-        .collect();
-    t.sort_by(f64::total_cmp);
-    t[runs / 2]
-}
 
 fn report(name: &str, mesh: &Mesh) {
     let n = mesh.vertex_count();

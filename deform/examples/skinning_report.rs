@@ -5,26 +5,16 @@
 //!
 //! `cargo run --release -p deform --example skinning_report`
 
+#[path = "../benches/measure.rs"]
+mod measure;
 #[path = "../benches/skin_scenes.rs"]
 mod skin_scenes;
+
+use measure::median_ms;
 
 use deform::skinning::{KeyframeBlend, RigPose, Skinning};
 use deform::Deformer;
 use glam::DVec3;
-use std::time::Instant;
-
-/// Median wall time in milliseconds of `runs` calls.
-fn median_ms(runs: usize, mut f: impl FnMut()) -> f64 {
-    let mut t: Vec<f64> = (0..runs)
-        .map(|_| {
-            let s = Instant::now();
-            f();
-            s.elapsed().as_secs_f64() * 1e3
-        })
-        .collect();
-    t.sort_by(f64::total_cmp);
-    t[runs / 2]
-}
 
 fn main() {
     println!("skinning, {} threads", rayon::current_num_threads());

@@ -4,24 +4,14 @@
 //!
 //! `cargo run --release -p deform --example surgery_report`
 
+#[path = "../benches/measure.rs"]
+mod measure;
 #[path = "../benches/surgery_scenes.rs"]
 mod surgery_scenes;
 
-use deform::surgery::{CutOptions, DrillOptions, Frame, Surgery, TearOptions};
-use std::time::Instant;
+use measure::median_ms;
 
-/// Median wall time in milliseconds of `runs` calls.
-fn median_ms(runs: usize, mut f: impl FnMut()) -> f64 {
-    let mut t: Vec<f64> = (0..runs)
-        .map(|_| {
-            let s = Instant::now();
-            f();
-            s.elapsed().as_secs_f64() * 1e3
-        })
-        .collect();
-    t.sort_by(f64::total_cmp);
-    t[runs / 2]
-}
+use deform::surgery::{CutOptions, DrillOptions, Frame, Surgery, TearOptions};
 
 fn main() {
     for s in surgery_scenes::all() {

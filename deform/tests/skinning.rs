@@ -275,12 +275,10 @@ fn rigid_motion_agrees_across_backends() {
 /// LBS loses volume; dual quaternions and motor blending do not (they may bulge a little).
 #[test]
 fn candy_wrapper_volume() {
-    let Some(dir) = data_dir() else { return };
-    let lib = dir.join("meshes/libigl");
-    let mesh = deform::io::read_obj(lib.join("arm.obj")).unwrap();
-    let skeleton = deform::io::read_tgf(lib.join("arm.tgf")).unwrap();
-    let weights = deform::io::read_dmat(lib.join("arm-weights.dmat")).unwrap();
-    let rig = libigl_rig(mesh, &skeleton, &weights).unwrap();
+    let Some(rig) = common::libigl_rig("arm") else {
+        return;
+    };
+    let skeleton = deform::io::read_tgf(data_dir().unwrap().join("meshes/libigl/arm.tgf")).unwrap();
     let v0 = rig.mesh.volume();
     // Twist the last bone about its own axis by 180 degrees (in place).
     for bone in 0..skeleton.bones.len() {
@@ -877,12 +875,9 @@ fn motor_log_keyframes() {
 /// both; vertices with at most 8 influences skin exactly as before.
 #[test]
 fn second_joint_set_round_trip() {
-    let Some(dir) = data_dir() else { return };
-    let lib = dir.join("meshes/libigl");
-    let mesh = deform::io::read_obj(lib.join("elephant.obj")).unwrap();
-    let skeleton = deform::io::read_tgf(lib.join("elephant.tgf")).unwrap();
-    let weights = deform::io::read_dmat(lib.join("elephant-weights.dmat")).unwrap();
-    let rig = libigl_rig(mesh, &skeleton, &weights).unwrap();
+    let Some(rig) = common::libigl_rig("elephant") else {
+        return;
+    };
     let bytes = glb_bytes(&rig, &GlbOptions::default()).unwrap();
     std::fs::write(gltf_out().join("elephant-8-influences.glb"), &bytes).unwrap();
     let back = parse_gltf(&bytes, "elephant", None).unwrap();

@@ -281,12 +281,9 @@ fn cut_a_posed_frame() {
 
 #[test]
 fn cut_real_meshes() {
-    let Some(dir) = data_dir() else { return };
-    let lib = dir.join("meshes/libigl");
-    let mesh = deform::io::read_obj(lib.join("arm.obj")).unwrap();
-    let skeleton = deform::io::read_tgf(lib.join("arm.tgf")).unwrap();
-    let weights = deform::io::read_dmat(lib.join("arm-weights.dmat")).unwrap();
-    let rig = libigl_rig(mesh, &skeleton, &weights).unwrap();
+    let Some(rig) = common::libigl_rig("arm") else {
+        return;
+    };
     let loops0 =
         deform::adjacency::boundary_loops(&rig.mesh.triangles, rig.mesh.vertex_count()).len();
     let s = Surgery::new(&rig.mesh, &rig.influences).unwrap();
@@ -555,12 +552,9 @@ fn drill_a_posed_frame_and_real_arm() {
             );
         }
     }
-    let Some(dir) = data_dir() else { return };
-    let lib = dir.join("meshes/libigl");
-    let mesh = deform::io::read_obj(lib.join("arm.obj")).unwrap();
-    let skeleton = deform::io::read_tgf(lib.join("arm.tgf")).unwrap();
-    let weights = deform::io::read_dmat(lib.join("arm-weights.dmat")).unwrap();
-    let arm = libigl_rig(mesh, &skeleton, &weights).unwrap();
+    let Some(arm) = common::libigl_rig("arm") else {
+        return;
+    };
     let s = Surgery::new(&arm.mesh, &arm.influences).unwrap();
     let b = arm.mesh.bounding_box().unwrap();
     let span = b.diagonal();
@@ -774,12 +768,9 @@ fn tear_real_and_posed() {
             assert!(d < 1e-9, "{d}");
         }
     }
-    let Some(dir) = data_dir() else { return };
-    let lib = dir.join("meshes/libigl");
-    let mesh = deform::io::read_obj(lib.join("arm.obj")).unwrap();
-    let skeleton = deform::io::read_tgf(lib.join("arm.tgf")).unwrap();
-    let weights = deform::io::read_dmat(lib.join("arm-weights.dmat")).unwrap();
-    let arm = libigl_rig(mesh, &skeleton, &weights).unwrap();
+    let Some(arm) = common::libigl_rig("arm") else {
+        return;
+    };
     let s = Surgery::new(&arm.mesh, &arm.influences).unwrap();
     let loops0 =
         deform::adjacency::boundary_loops(&arm.mesh.triangles, arm.mesh.vertex_count()).len();

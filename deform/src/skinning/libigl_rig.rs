@@ -62,15 +62,7 @@ pub fn libigl_rig(mesh: Mesh, skeleton: &Skeleton, weights: &Dmat) -> Result<Rig
             influences.weights.push(weights.get(i, b));
         }
     }
-    let primitives = vec![PrimitiveInfo {
-        node: 0,
-        mesh: 0,
-        primitive: 0,
-        vertex_offset: 0,
-        vertex_count: n,
-        triangle_offset: 0,
-        triangle_count: mesh.triangle_count(),
-    }];
+    let primitives = vec![PrimitiveInfo::whole(&mesh)];
     Rig::new(
         nodes,
         (0..m).collect(),

@@ -86,23 +86,14 @@ pub fn procedural_arm(sides: usize, rings: usize) -> Rig {
         .into_iter()
         .map(|c| c.expect("valid procedural keys"))
         .collect();
-    let n = mesh.vertex_count();
-    let t = mesh.triangle_count();
+    let primitives = vec![PrimitiveInfo::whole(&mesh)];
     Rig::new(
         nodes,
         vec![0, 1, 2],
         inverse_bind,
         mesh,
         influences,
-        vec![PrimitiveInfo {
-            node: 0,
-            mesh: 0,
-            primitive: 0,
-            vertex_offset: 0,
-            vertex_count: n,
-            triangle_offset: 0,
-            triangle_count: t,
-        }],
+        primitives,
         vec![Animation {
             name: "bend".into(),
             channels,

@@ -189,6 +189,21 @@ pub struct PrimitiveInfo {
     pub triangle_count: usize,
 }
 
+impl PrimitiveInfo {
+    /// One primitive holding all of `mesh` (a rig built from one mesh, under node 0).
+    pub fn whole(mesh: &Mesh) -> PrimitiveInfo {
+        PrimitiveInfo {
+            node: 0,
+            mesh: 0,
+            primitive: 0,
+            vertex_offset: 0,
+            vertex_count: mesh.vertex_count(),
+            triangle_offset: 0,
+            triangle_count: mesh.triangle_count(),
+        }
+    }
+}
+
 /// What the loader changed or ignored.
 #[derive(Clone, Debug, PartialEq, Default)]
 pub struct LoadReport {

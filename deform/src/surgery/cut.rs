@@ -2,8 +2,7 @@
 
 use super::cap::ear_clip;
 use super::split::{assemble, local_loops, new_vertex_data, Assembled, FaceFate, Splitter};
-use super::{Frame, SkinnedMesh, Surgery, SurgeryError};
-use crate::Mesh;
+use super::{check_snap, Frame, SkinnedMesh, Surgery, SurgeryError};
 use cga::Plane;
 use glam::DVec3;
 
@@ -112,29 +111,11 @@ impl Surgery {
                 "the plane is not finite or its normal is not unit: {nrm} . x = {d}"
             )));
         }
-        if !(0.0..0.5).contains(&options.snap) {
-            return Err(SurgeryError::BadTool(format!(
-                "snap fraction {} outside [0, 0.5)",
-                options.snap
-            )));
-        }
+        check_snap(options.snap)?;
         let src = &self.mesh;
         let n = src.mesh.vertex_count();
-        let mut refit;
-        let (positions, bvh) = match frame {
-            Frame::Rest => (&src.mesh.positions[..], &self.bvh),
-            Frame::Posed { positions, .. } => {
-                if positions.len() != n || positions.iter().any(|p| !p.is_finite()) {
-                    return Err(SurgeryError::BadTool(format!(
-                        "{} posed positions for {n} vertices (or not finite)",
-                        positions.len()
-                    )));
-                }
-                refit = self.bvh.clone();
-                refit.refit(&Mesh::new(positions.to_vec(), src.mesh.triangles.clone()));
-                (positions, &refit)
-            }
-        };
+        let resolved = self.resolve(frame)?;
+        let (positions, bvh) = (resolved.positions, &*resolved.bvh);
         // Classify by the CGA predicate X . pi = x . n - d.
         let mut s: Vec<f64> = positions
             .iter()

@@ -13,7 +13,7 @@
 
 use super::refine::Work;
 use super::split::{assemble, local_loops, new_vertex_data, FaceFate, Splitter};
-use super::{Frame, SkinnedMesh, Surgery, SurgeryError, VertexOrigin};
+use super::{check_snap, Frame, SkinnedMesh, Surgery, SurgeryError, VertexOrigin};
 use crate::Mesh;
 use glam::DVec3;
 
@@ -186,12 +186,7 @@ impl Surgery {
                 drill.radius
             )));
         }
-        if !(0.0..0.5).contains(&options.snap) {
-            return Err(SurgeryError::BadTool(format!(
-                "snap fraction {} outside [0, 0.5)",
-                options.snap
-            )));
-        }
+        check_snap(options.snap)?;
         let cyl = Cylinder {
             a: drill.tip,
             n: axis / len,
@@ -200,27 +195,9 @@ impl Surgery {
         };
         let src = &self.mesh;
         let n0 = src.mesh.vertex_count();
-        let (frame_positions, skin) = match frame {
-            Frame::Rest => (&src.mesh.positions[..], None),
-            Frame::Posed { positions, skin } => {
-                if positions.len() != n0 || positions.iter().any(|p| !p.is_finite()) {
-                    return Err(SurgeryError::BadTool(format!(
-                        "{} posed positions for {n0} vertices (or not finite)",
-                        positions.len()
-                    )));
-                }
-                (positions, Some(skin))
-            }
-        };
+        let resolved = self.resolve(frame)?;
+        let (frame_positions, skin) = (resolved.positions, resolved.skin);
         let loops_before = self.topology.loops;
-        let posed_index = match frame {
-            Frame::Rest => None,
-            Frame::Posed { positions, .. } => {
-                let mut b = self.bvh.clone();
-                b.refit(&Mesh::new(positions.to_vec(), src.mesh.triangles.clone()));
-                Some(b)
-            }
-        };
         let mut work: Option<Work> = None;
         let mut refined_faces = 0;
         for round in 0..=options.max_refinements {
@@ -233,11 +210,7 @@ impl Surgery {
                 ),
                 Some(w) => (&w.rest[..], &w.frame[..], &w.influences, &w.triangles[..]),
             };
-            let index = match (&work, &posed_index) {
-                (Some(_), _) => None,
-                (None, Some(b)) => Some(b),
-                (None, None) => Some(&self.bvh),
-            };
+            let index = work.is_none().then_some(&*resolved.bvh);
             let near = faces_near_cylinder(&cyl, tris, fpos, index);
             let plan = plan(&cyl, tris, fpos, &near, options.snap);
             let points = plan.crossings + plan.snapped;

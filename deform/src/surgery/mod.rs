@@ -186,3 +186,53 @@ pub(crate) fn unskin(
     let r = m.inverse().transform_point3(p);
     r.is_finite().then_some(r)
 }
+
+/// A tool's frame, resolved: the positions it sees, the skin matrices of a posed frame, and
+/// the face index over those positions (the bound index on the rest pose, a refitted copy on a
+/// posed frame).
+pub(crate) struct Resolved<'a> {
+    pub positions: &'a [DVec3],
+    pub skin: Option<&'a [DAffine3]>,
+    pub bvh: std::borrow::Cow<'a, FaceBvh>,
+}
+
+impl Surgery {
+    /// Resolve `frame`, checking posed positions.
+    pub(crate) fn resolve<'a>(&'a self, frame: Frame<'a>) -> Result<Resolved<'a>, SurgeryError> {
+        let src = &self.mesh.mesh;
+        let n = src.vertex_count();
+        Ok(match frame {
+            Frame::Rest => Resolved {
+                positions: &src.positions,
+                skin: None,
+                bvh: std::borrow::Cow::Borrowed(&self.bvh),
+            },
+            Frame::Posed { positions, skin } => {
+                if positions.len() != n || positions.iter().any(|p| !p.is_finite()) {
+                    return Err(SurgeryError::BadTool(format!(
+                        "{} posed positions for {n} vertices (or not finite)",
+                        positions.len()
+                    )));
+                }
+                let mut bvh = self.bvh.clone();
+                bvh.refit(&Mesh::new(positions.to_vec(), src.triangles.clone()));
+                Resolved {
+                    positions,
+                    skin: Some(skin),
+                    bvh: std::borrow::Cow::Owned(bvh),
+                }
+            }
+        })
+    }
+}
+
+/// Check a snap fraction.
+pub(crate) fn check_snap(snap: f64) -> Result<(), SurgeryError> {
+    if (0.0..0.5).contains(&snap) {
+        Ok(())
+    } else {
+        Err(SurgeryError::BadTool(format!(
+            "snap fraction {snap} outside [0, 0.5)"
+        )))
+    }
+}

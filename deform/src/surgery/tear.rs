@@ -13,7 +13,7 @@
 
 use super::soup::Soup;
 use super::split::{local_loops, FaceFate};
-use super::{Frame, SkinnedMesh, Surgery, SurgeryError, VertexOrigin};
+use super::{check_snap, Frame, SkinnedMesh, Surgery, SurgeryError, VertexOrigin};
 use crate::Mesh;
 use glam::DVec3;
 use std::collections::{HashMap, HashSet};
@@ -100,33 +100,14 @@ impl Surgery {
                 "scalpel {i} is not a finite, non-empty segment"
             )));
         }
-        if !(0.0..0.5).contains(&options.snap) || !options.open.is_finite() {
-            return Err(SurgeryError::BadTool("bad snap fraction or opening".into()));
+        check_snap(options.snap)?;
+        if !options.open.is_finite() {
+            return Err(SurgeryError::BadTool("the opening is not finite".into()));
         }
         let src = &self.mesh;
         let n0 = src.mesh.vertex_count();
-        let (positions, skin) = match frame {
-            Frame::Rest => (&src.mesh.positions[..], None),
-            Frame::Posed { positions, skin } => {
-                if positions.len() != n0 || positions.iter().any(|p| !p.is_finite()) {
-                    return Err(SurgeryError::BadTool(format!(
-                        "{} posed positions for {n0} vertices (or not finite)",
-                        positions.len()
-                    )));
-                }
-                (positions, Some(skin))
-            }
-        };
-        let refit;
-        let bvh = match frame {
-            Frame::Rest => &self.bvh,
-            Frame::Posed { .. } => {
-                let mut b = self.bvh.clone();
-                b.refit(&Mesh::new(positions.to_vec(), src.mesh.triangles.clone()));
-                refit = b;
-                &refit
-            }
-        };
+        let resolved = self.resolve(frame)?;
+        let (positions, skin, bvh) = (resolved.positions, resolved.skin, &*resolved.bvh);
         // Where each blade enters the skin, on the input mesh.
         let mut hits = Vec::with_capacity(scalpel.len());
         for (i, s) in scalpel.iter().enumerate() {

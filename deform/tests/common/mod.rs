@@ -139,3 +139,13 @@ pub fn mul(a: &sprs::CsMat<f64>, x: &[f64]) -> Vec<f64> {
         .map(|row| row.iter().map(|(j, v)| v * x[j]).sum())
         .collect()
 }
+
+/// A libigl rig of the data set: `meshes/libigl/{name}.obj`, `{name}.tgf` and
+/// `{name}-weights.dmat` (`arm`, `elephant`).
+pub fn libigl_rig(name: &str) -> Option<deform::skinning::Rig> {
+    let lib = data_dir()?.join("meshes/libigl");
+    let mesh = deform::io::read_obj(lib.join(format!("{name}.obj"))).expect("mesh");
+    let skeleton = deform::io::read_tgf(lib.join(format!("{name}.tgf"))).expect("skeleton");
+    let weights = deform::io::read_dmat(lib.join(format!("{name}-weights.dmat"))).expect("weights");
+    Some(deform::skinning::libigl_rig(mesh, &skeleton, &weights).expect("rig"))
+}

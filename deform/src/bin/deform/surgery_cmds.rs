@@ -149,11 +149,33 @@ pub fn write_result(
     Ok(())
 }
 
+/// What every surgery command reads first: the rig (refusing outputs that are inputs), the
+/// posed frame of --time, the bound surgery and the time its index took.
+struct Prepared {
+    rig: Rig,
+    posed: Option<Posed>,
+    surgery: Surgery,
+    index_ms: f64,
+}
+
+fn prepare(rig: &RigInput, frame: &ToolFrame, out: &OutputArgs) -> Result<Prepared> {
+    let mut outputs = vec![out.output.as_path()];
+    outputs.extend(out.png.as_deref());
+    check_outputs(&rig.paths(), &outputs)?;
+    let rig = rig.read()?;
+    let posed = Posed::read(&rig, frame)?;
+    let t = Instant::now();
+    let surgery = Surgery::new(&rig.mesh, &rig.influences)?;
+    let index_ms = t.elapsed().as_secs_f64() * 1e3;
+    Ok(Prepared {
+        rig,
+        posed,
+        surgery,
+        index_ms,
+    })
+}
+
 pub fn cut(a: &CutArgs) -> Result<()> {
-    let mut outputs = vec![a.out.output.as_path()];
-    outputs.extend(a.out.png.as_deref());
-    check_outputs(&a.rig.paths(), &outputs)?;
-    let rig = a.rig.read()?;
     let [nx, ny, nz, d] = a.plane;
     let normal = DVec3::new(nx, ny, nz);
     let len = normal.length();
@@ -161,10 +183,12 @@ pub fn cut(a: &CutArgs) -> Result<()> {
         bail!("--plane: the normal is zero");
     }
     let plane = cga::Plane::from_normal_distance(normal / len, d / len);
-    let posed = Posed::read(&rig, &a.frame)?;
-    let t = Instant::now();
-    let surgery = Surgery::new(&rig.mesh, &rig.influences)?;
-    let index_ms = t.elapsed().as_secs_f64() * 1e3;
+    let Prepared {
+        rig,
+        posed,
+        surgery,
+        index_ms,
+    } = prepare(&a.rig, &a.frame, &a.out)?;
     let t = Instant::now();
     let options = CutOptions {
         snap: a.snap,
@@ -231,14 +255,12 @@ pub struct DrillArgs {
 
 pub fn drill(a: &DrillArgs) -> Result<()> {
     use deform::surgery::{Drill, DrillOptions};
-    let mut outputs = vec![a.out.output.as_path()];
-    outputs.extend(a.out.png.as_deref());
-    check_outputs(&a.rig.paths(), &outputs)?;
-    let rig = a.rig.read()?;
-    let posed = Posed::read(&rig, &a.frame)?;
-    let t = Instant::now();
-    let surgery = Surgery::new(&rig.mesh, &rig.influences)?;
-    let index_ms = t.elapsed().as_secs_f64() * 1e3;
+    let Prepared {
+        rig,
+        posed,
+        surgery,
+        index_ms,
+    } = prepare(&a.rig, &a.frame, &a.out)?;
     let d = Drill {
         tip: a.tip,
         end: a.end,
@@ -301,14 +323,12 @@ fn parse_blade(s: &str) -> Result<(DVec3, DVec3), String> {
 
 pub fn tear(a: &TearArgs) -> Result<()> {
     use deform::surgery::{Scalpel, TearOptions};
-    let mut outputs = vec![a.out.output.as_path()];
-    outputs.extend(a.out.png.as_deref());
-    check_outputs(&a.rig.paths(), &outputs)?;
-    let rig = a.rig.read()?;
-    let posed = Posed::read(&rig, &a.frame)?;
-    let t = Instant::now();
-    let surgery = Surgery::new(&rig.mesh, &rig.influences)?;
-    let index_ms = t.elapsed().as_secs_f64() * 1e3;
+    let Prepared {
+        rig,
+        posed,
+        surgery,
+        index_ms,
+    } = prepare(&a.rig, &a.frame, &a.out)?;
     let blades: Vec<Scalpel> = a.scalpel.iter().map(|&(a, b)| Scalpel { a, b }).collect();
     let t = Instant::now();
     let options = TearOptions {

@@ -1,0 +1,35 @@
+//! What the benches and quick reports share: locating the data set, and median timings.
+#![allow(dead_code)]
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+/// A file of the data set, e.g. `data("meshes/libigl/arm.obj")`, from `$CGA_DATA_DIR` (else
+/// `../shared/data`); `None` when absent (a panic under `CI=true`).
+pub fn data(rel: &str) -> Option<PathBuf> {
+    let dir = std::env::var_os("CGA_DATA_DIR")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../shared/data"));
+    let path = dir.join(rel);
+    if !path.is_file() {
+        if std::env::var("CI").as_deref() == Ok("true") {
+            panic!("{} is missing (CI=true)", path.display());
+        }
+        eprintln!("skipped: {} not found (set CGA_DATA_DIR)", path.display());
+        return None;
+    }
+    Some(path)
+}
+
+/// Median wall time in milliseconds of `runs` calls.
+pub fn median_ms(runs: usize, mut f: impl FnMut()) -> f64 {
+    let mut t: Vec<f64> = (0..runs)
+        .map(|_| {
+            let s = Instant::now();
+            f();
+            s.elapsed().as_secs_f64() * 1e3
+        })
+        .collect();
+    t.sort_by(f64::total_cmp);
+    t[runs / 2]
+}
