@@ -11,7 +11,7 @@ use deform::{
 };
 use glam::{DQuat, DVec3};
 #[path = "measure.rs"]
-mod measure;
+pub mod measure;
 
 /// A mesh of the data set, e.g. `mesh("large/armadillo-50k.obj")`, from `$CGA_DATA_DIR/meshes`
 /// (else `../shared/data/meshes`); `None` when absent (a panic under `CI=true`).

@@ -10,7 +10,7 @@ use deform::skinning::{read_gltf, Influences, Rig};
 use glam::{DQuat, DVec3};
 
 #[path = "measure.rs"]
-mod measure;
+pub mod measure;
 use measure::data;
 
 /// A skinning scene: rest positions, influences, joint count, and the keys of one frame.

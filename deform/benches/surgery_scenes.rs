@@ -12,7 +12,7 @@ use deform::surgery::{Drill, Scalpel};
 use glam::DVec3;
 
 #[path = "measure.rs"]
-mod measure;
+pub mod measure;
 use measure::data;
 
 /// A rig and its three tools.

@@ -5,12 +5,10 @@
 //!
 //! `cargo run --release -p deform --example deformer_report`
 
-#[path = "../benches/measure.rs"]
-mod measure;
 #[path = "../benches/scenes.rs"]
 mod scenes;
 
-use measure::median_ms;
+use scenes::measure::median_ms;
 
 use deform::{BlendMethod, Deformer, Mesh};
 use glam::DVec3;

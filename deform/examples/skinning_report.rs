@@ -5,12 +5,10 @@
 //!
 //! `cargo run --release -p deform --example skinning_report`
 
-#[path = "../benches/measure.rs"]
-mod measure;
 #[path = "../benches/skin_scenes.rs"]
 mod skin_scenes;
 
-use measure::median_ms;
+use skin_scenes::measure::median_ms;
 
 use deform::skinning::{KeyframeBlend, RigPose, Skinning};
 use deform::Deformer;

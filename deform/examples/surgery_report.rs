@@ -4,12 +4,10 @@
 //!
 //! `cargo run --release -p deform --example surgery_report`
 
-#[path = "../benches/measure.rs"]
-mod measure;
 #[path = "../benches/surgery_scenes.rs"]
 mod surgery_scenes;
 
-use measure::median_ms;
+use surgery_scenes::measure::median_ms;
 
 use deform::surgery::{CutOptions, DrillOptions, Frame, Surgery, TearOptions};
 

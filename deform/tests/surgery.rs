@@ -6,8 +6,7 @@
 mod common;
 
 use cga::{Plane, ScaledMotor};
-use common::data_dir;
-use deform::skinning::{libigl_rig, procedural_arm, Rig, Skinning};
+use deform::skinning::{procedural_arm, Rig, Skinning};
 use deform::surgery::{
     CutOptions, CutPiece, CutResult, Frame, Surgery, SurgeryError, VertexOrigin,
 };

@@ -49,6 +49,13 @@ pub enum VertexOrigin {
     },
 }
 
+impl VertexOrigin {
+    /// Whether the vertex is an input vertex (not made by a tool).
+    pub fn is_input(&self) -> bool {
+        matches!(self, VertexOrigin::Original(_))
+    }
+}
+
 /// One side of a cut.
 #[derive(Clone, Debug, PartialEq)]
 pub struct CutPiece {

@@ -175,6 +175,28 @@ fn prepare(rig: &RigInput, frame: &ToolFrame, out: &OutputArgs) -> Result<Prepar
     })
 }
 
+/// [`write_result`] for a tool with one result mesh, its new vertices marked in the preview.
+fn write_one(
+    rig: &Rig,
+    mesh: &deform::surgery::SkinnedMesh,
+    origin: &[deform::surgery::VertexOrigin],
+    out: &OutputArgs,
+    report: &mut Report,
+) -> Result<()> {
+    let marks = origin
+        .iter()
+        .map(|o| if o.is_input() { 0.0 } else { 1.0 })
+        .collect();
+    write_result(
+        rig,
+        &[(&mesh.mesh, &mesh.influences)],
+        out,
+        |_| DVec3::ZERO,
+        Some(marks),
+        report,
+    )
+}
+
 pub fn cut(a: &CutArgs) -> Result<()> {
     let [nx, ny, nz, d] = a.plane;
     let normal = DVec3::new(nx, ny, nz);
@@ -277,24 +299,7 @@ pub fn drill(a: &DrillArgs) -> Result<()> {
     report.add("refined_faces", r.refined_faces);
     report.add("holes", r.holes);
     report.add("boundary_loops", r.boundary_loops);
-    let marks = r
-        .origin
-        .iter()
-        .map(|o| {
-            f64::from(u8::from(!matches!(
-                o,
-                deform::surgery::VertexOrigin::Original(_)
-            )))
-        })
-        .collect();
-    write_result(
-        &rig,
-        &[(&r.mesh.mesh, &r.mesh.influences)],
-        &a.out,
-        |_| DVec3::ZERO,
-        Some(marks),
-        &mut report,
-    )
+    write_one(&rig, &r.mesh, &r.origin, &a.out, &mut report)
 }
 
 #[derive(Args, Debug)]
@@ -346,22 +351,5 @@ pub fn tear(a: &TearArgs) -> Result<()> {
     report.add("duplicated", r.duplicated);
     report.add("changed_faces", r.changed_faces);
     report.add("boundary_loops", r.boundary_loops);
-    let marks = r
-        .origin
-        .iter()
-        .map(|o| {
-            f64::from(u8::from(!matches!(
-                o,
-                deform::surgery::VertexOrigin::Original(_)
-            )))
-        })
-        .collect();
-    write_result(
-        &rig,
-        &[(&r.mesh.mesh, &r.mesh.influences)],
-        &a.out,
-        |_| DVec3::ZERO,
-        Some(marks),
-        &mut report,
-    )
+    write_one(&rig, &r.mesh, &r.origin, &a.out, &mut report)
 }

@@ -30,7 +30,7 @@ fn animate(rig: &Rig, t: f64, edits: &[JointEdit], glb: &Path) -> Result<(Vec<DV
 fn made(origin: &[VertexOrigin]) -> Vec<f64> {
     origin
         .iter()
-        .map(|o| f64::from(u8::from(!matches!(o, VertexOrigin::Original(_)))))
+        .map(|o| if o.is_input() { 0.0 } else { 1.0 })
         .collect()
 }
 
