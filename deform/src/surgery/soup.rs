@@ -37,12 +37,34 @@ impl<'a> Soup<'a> {
         vf: &[u32],
         rest: &[DVec3],
         frame: &[DVec3],
-        influences: &Influences,
+        src_influences: &Influences,
         skin: Option<&'a [DAffine3]>,
     ) -> Soup<'a> {
+        let influences = src_influences;
+        // Room for the edits of a typical tear without regrowing.
+        let extra = 256;
+        let grown = |n: usize| n + extra;
+        let mut influences = Influences {
+            width: influences.width,
+            joints: Vec::with_capacity(grown(rest.len()) * influences.width),
+            weights: Vec::with_capacity(grown(rest.len()) * influences.width),
+        };
+        influences.joints.extend_from_slice(&src_influences.joints);
+        influences
+            .weights
+            .extend_from_slice(&src_influences.weights);
+        let with_room = |v: &[[u32; 3]]| {
+            let mut out = Vec::with_capacity(grown(v.len()));
+            out.extend_from_slice(v);
+            out
+        };
+        let mut rest_v = Vec::with_capacity(grown(rest.len()));
+        rest_v.extend_from_slice(rest);
+        let mut origin = Vec::with_capacity(grown(rest.len()));
+        origin.extend((0..rest.len() as u32).map(VertexOrigin::Original));
         Soup {
-            tris: tris.to_vec(),
-            nb: nb.to_vec(),
+            tris: with_room(tris),
+            nb: with_room(nb),
             vf: vf.to_vec(),
             input_faces: tris.len(),
             root_new: Vec::new(),
@@ -52,9 +74,9 @@ impl<'a> Soup<'a> {
             } else {
                 Vec::new()
             },
-            rest: rest.to_vec(),
-            influences: influences.clone(),
-            origin: (0..rest.len() as u32).map(VertexOrigin::Original).collect(),
+            rest: rest_v,
+            influences,
+            origin,
             skin,
         }
     }

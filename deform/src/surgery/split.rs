@@ -155,11 +155,14 @@ pub(crate) fn assemble(
             local[v as usize] = 0;
         }
     }
-    let mut positions = Vec::new();
-    let mut origin = Vec::new();
+    let kept = local.iter().filter(|&&x| x != u32::MAX).count();
+    let w = src.influences.width;
+    let mut positions = Vec::with_capacity(kept);
+    let mut origin = Vec::with_capacity(kept);
     let mut influences = Influences {
-        width: src.influences.width,
-        ..Influences::default()
+        width: w,
+        joints: Vec::with_capacity(kept * w),
+        weights: Vec::with_capacity(kept * w),
     };
     for (g, slot) in local.iter_mut().enumerate() {
         if *slot == u32::MAX {
