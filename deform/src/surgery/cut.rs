@@ -166,8 +166,9 @@ impl Surgery {
             let (sa, sb) = (s[a as usize], s[b as usize]);
             sa / (sa - sb)
         };
-        let mut faces: [Vec<[u32; 3]>; 2] = [Vec::new(), Vec::new()];
-        let mut from: [Vec<u32>; 2] = [Vec::new(), Vec::new()];
+        let f = src.mesh.triangle_count();
+        let mut faces: [Vec<[u32; 3]>; 2] = [Vec::with_capacity(f), Vec::with_capacity(f)];
+        let mut from: [Vec<u32>; 2] = [Vec::with_capacity(f), Vec::with_capacity(f)];
         let mut fate = Vec::with_capacity(src.mesh.triangle_count());
         let mut changed = Vec::new();
         let mut produced = Vec::new();
