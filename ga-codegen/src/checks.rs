@@ -142,6 +142,14 @@ fn check(count: &mut usize, fails: &mut Vec<String>, what: &str, got: Multivecto
         if t.versor {
             // On unit versors the versor inverse is the true inverse: check against the
             // generic inverse (a linear solve), which does not assume anything.
+            if t.unit {
+                // The generator of true unit versors really gives `u ~u = 1`: the reductions of
+                // the sandwiches rely on it.
+                let _ = writeln!(
+                    s,
+                    "{{ let mu = unit_{sn}(&mut rng).mv(); check(c, f, \"unit {name}: u ~u = 1\", mu.gp(&mu.rev()), Multivector::scalar(&algebra(), 1.0)); }}"
+                );
+            }
             let _ = writeln!(
                 s,
                 "{{ let u = unit_{sn}(&mut rng); let mu = u.mv(); if let Some(inv) = mu.inverse() {{ check(c, f, \"unit {name}::inverse vs generic inverse\", u.inverse().mv(), inv); }} else {{ f.push(\"unit {name} has no generic inverse\".to_string()); }} }}"
@@ -178,6 +186,19 @@ fn check(count: &mut usize, fails: &mut Vec<String>, what: &str, got: Multivecto
                      check(c, f, \"{ln}.sandwich({rn})\", a.sandwich(b).mv(), want.clone());\n\
                      check(c, f, \"{ln}.{r}_matrix().apply({rn})\", a.{r}_matrix().apply(b).mv(), want); }}\n"
                 );
+                if vt.unit {
+                    // A unit versor's sandwich is reduced with `a ~a = 1` and keeps the grades of
+                    // the operand: check it also on a product of two true unit versors (a
+                    // screw, a boost and a rotation, ...), which is again a unit versor, when that
+                    // product stays in the type.
+                    let _ = write!(
+                        s,
+                        "{{ let m2 = unit_{l}(&mut rng).mv().gp(&unit_{l}(&mut rng).mv()); let a = {ln}::from_multivector(&m2);\n\
+                         if m2.max_diff(&a.mv()) < 1e-12 {{ let b = rand_{r}(&mut rng); let (ma, mb) = (a.mv(), b.mv()); let want = ma.gp(&mb).gp(&ma.rev());\n\
+                         check(c, f, \"{ln}.sandwich({rn}) (product of unit versors)\", a.sandwich(b).mv(), want.clone());\n\
+                         check(c, f, \"{ln}.{r}_matrix().apply({rn}) (product of unit versors)\", a.{r}_matrix().apply(b).mv(), want); }} }}\n"
+                    );
+                }
                 continue;
             }
             _ => continue,

@@ -880,8 +880,15 @@ impl ::core::convert::From<{name}> for {rt}::Multivector {{
         let (tv, tx) = (&spec.types[d.versor], &spec.types[d.operand]);
         let a = SymMv::of_type(tv, 0);
         let b = SymMv::of_type(tx, 1);
-        let ab = self.table.product(&a, &b, Product::Geometric);
-        let r = self.table.product(&ab, &a.rev(), Product::Geometric);
+        // issue 8: a unit versor's sandwich is reduced modulo `a ~a = 1` and keeps the grades
+        // of the operand (see `unit_versor`).
+        let (r, ideal) = if tv.unit {
+            crate::unit_versor::unit_sandwich(&mut self.table, &self.alg, tv, tx)
+        } else {
+            let ab = self.table.product(&a, &b, Product::Geometric);
+            let r = self.table.product(&ab, &a.rev(), Product::Geometric);
+            (r, crate::unit_versor::UnitIdeal::default())
+        };
         let oi = match d.output {
             Some(oi) => {
                 let to = &spec.types[oi];
@@ -1040,6 +1047,8 @@ impl ::core::convert::From<{name}> for {rt}::Multivector {{
             );
         }
         let (vn, xn, on) = (&tv.name, &tx.name, &to.name);
+        let sw_body = format!("{lets} {on} {{ {fields} }}");
+        let _ = &ideal;
         let s = self.s;
         let mat = format!("{vn}{xn}Matrix");
         let ny = to.fields.len();
@@ -1089,7 +1098,7 @@ impl ::core::convert::From<{name}> for {rt}::Multivector {{
     type Output = {on};
     #[doc = {doc:?}]
     #[inline]
-    fn sandwich(&self, b: {xn}) -> {on} {{ let a = self; {lets} {on} {{ {fields} }} }}
+    fn sandwich(&self, b: {xn}) -> {on} {{ let a = self; {sw_body} }}
 }}
 #[doc = {mdoc:?}]
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -38,3 +38,5 @@ pub mod emit;
 pub use emit::{generate, EmitOptions, GenError, Generated, ScalarType};
 #[cfg(feature = "codegen")]
 pub mod checks;
+#[cfg(feature = "codegen")]
+pub mod unit_versor;
