@@ -39,4 +39,6 @@ pub use emit::{generate, EmitOptions, GenError, Generated, ScalarType};
 #[cfg(feature = "codegen")]
 pub mod checks;
 #[cfg(feature = "codegen")]
+pub mod factor;
+#[cfg(feature = "codegen")]
 pub mod unit_versor;

@@ -1,0 +1,491 @@
+//! Factorisation of fused sandwiches into a short straight-line program.
+//!
+//! The expanded sandwich `a x ~a` is a quadratic form in the versor for each output
+//! coefficient; evaluated term by term it costs about one multiply per term. Written as two
+//! half products it can be much cheaper, because the second half shares the first half's
+//! results between outputs. For a unit versor (`a ~a = 1`) the cheapest split is usually the
+//! commutator form of quaternion rotation (`v + 2 q x (q x v + w v)`):
+//!
+//! ```text
+//! a x ~a = x (a ~a) + (a x - x a) ~a = x + 2 <c ~a>,   c = (a x - x a) / 2
+//! ```
+//!
+//! where the commutator `c` drops every part of `a` that commutes with `x` (the scalar, for a
+//! start). This module builds such candidate programs (the commutator on either side, and the
+//! two plain half products), proves each one equal to the reduced expansion (exactly, modulo
+//! the identities of `a ~a = 1` from [`crate::unit_versor`]), and returns the cheapest,
+//! counting multiplies and adds. Nothing here is specific to one algebra.
+
+use crate::blade::{blade_name, Bitmap};
+use crate::rational::Rational;
+use crate::spec::TypeDef;
+use crate::symbolic::{BladeTable, Monomial, Poly, Product, SymMv, Var};
+use crate::unit_versor::{equivalent_mv_coeff, UnitIdeal};
+use std::collections::BTreeMap;
+use std::fmt::Write;
+
+/// The operand number of temporaries inside [`Poly`] monomials.
+const TEMP: u8 = 3;
+
+/// An operand of a product in a [`Program`]: a field of an operand, or a temporary.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Atom {
+    /// A field of the versor (operand 0) or of the operand (operand 1).
+    Var(Var),
+    /// A temporary, by index into [`Program::temps`].
+    Temp(usize),
+}
+
+/// `sum c_i * prod atoms_i`: a sum of products with exact coefficients.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Sum(pub Vec<(Rational, Vec<Atom>)>);
+
+impl Sum {
+    fn from_poly(p: &Poly) -> Sum {
+        Sum(p
+            .0
+            .iter()
+            .map(|(m, &c)| {
+                let atoms = m
+                    .iter()
+                    .map(|v| {
+                        if v.operand == TEMP {
+                            Atom::Temp(v.field as usize)
+                        } else {
+                            Atom::Var(*v)
+                        }
+                    })
+                    .collect();
+                (c, atoms)
+            })
+            .collect())
+    }
+
+    /// Multiplies and adds, with the terms grouped by the magnitude of their coefficient
+    /// (one multiply per group whose magnitude is not 1).
+    pub fn ops(&self) -> (usize, usize) {
+        let mut muls = 0;
+        let mut mags = std::collections::BTreeSet::new();
+        for (c, atoms) in &self.0 {
+            muls += atoms.len().saturating_sub(1);
+            let mag = if *c < Rational::ZERO { -*c } else { *c };
+            if !atoms.is_empty() && mag != Rational::ONE {
+                mags.insert(mag);
+            }
+        }
+        (muls + mags.len(), self.0.len().saturating_sub(1))
+    }
+
+    /// Rust source: terms grouped by coefficient magnitude, `2.0 * (x - y) + z`.
+    pub fn render(&self, atom: &dyn Fn(Atom) -> String) -> String {
+        if self.0.is_empty() {
+            return "0.0".to_string();
+        }
+        // magnitude -> (negative?, product) terms; constants form their own group.
+        let mut groups: BTreeMap<Rational, Vec<(bool, String)>> = BTreeMap::new();
+        let mut constant = Rational::ZERO;
+        for (c, atoms) in &self.0 {
+            if atoms.is_empty() {
+                constant = constant + *c;
+                continue;
+            }
+            let neg = *c < Rational::ZERO;
+            let mag = if neg { -*c } else { *c };
+            let prod = atoms
+                .iter()
+                .map(|a| atom(*a))
+                .collect::<Vec<_>>()
+                .join(" * ");
+            groups.entry(mag).or_default().push((neg, prod));
+        }
+        // (negative?, text) per group.
+        let mut parts: Vec<(bool, String)> = Vec::new();
+        // Magnitude 1 first.
+        let mut order: Vec<Rational> = groups.keys().copied().collect();
+        order.sort_by_key(|m| *m != Rational::ONE);
+        for mag in order {
+            let mut terms = groups.remove(&mag).expect("group");
+            let all_neg = terms.iter().all(|t| t.0);
+            if all_neg {
+                terms.iter_mut().for_each(|t| t.0 = false);
+            }
+            if let Some(i) = terms.iter().position(|t| !t.0) {
+                let first = terms.remove(i);
+                terms.insert(0, first);
+            }
+            let mut s = String::new();
+            for (i, (neg, p)) in terms.iter().enumerate() {
+                if i > 0 {
+                    s.push_str(if *neg { " - " } else { " + " });
+                }
+                s.push_str(p);
+            }
+            let text = if mag == Rational::ONE {
+                s
+            } else if terms.len() > 1 {
+                format!("{} * ({s})", lit(mag))
+            } else {
+                format!("{} * {s}", lit(mag))
+            };
+            parts.push((all_neg, text));
+        }
+        if !constant.is_zero() {
+            let neg = constant < Rational::ZERO;
+            parts.push((neg, lit(if neg { -constant } else { constant })));
+        }
+        if let Some(i) = parts.iter().position(|p| !p.0) {
+            let first = parts.remove(i);
+            parts.insert(0, first);
+        }
+        let mut out = String::new();
+        for (i, (neg, p)) in parts.iter().enumerate() {
+            if i == 0 {
+                if *neg {
+                    out.push('-');
+                }
+            } else {
+                out.push_str(if *neg { " - " } else { " + " });
+            }
+            // A leading minus before a sum needs parentheses (`-(x + y)` is not `-x + y`).
+            if i == 0 && *neg && p.contains([' ']) && !p.contains('(') {
+                let _ = write!(out, "({p})");
+            } else {
+                out.push_str(p);
+            }
+        }
+        out
+    }
+}
+
+fn lit(c: Rational) -> String {
+    let x = c.to_f64();
+    let s = format!("{x:?}");
+    if s.contains('.') || s.contains('e') {
+        s
+    } else {
+        format!("{s}.0")
+    }
+}
+
+/// A straight-line program: temporaries, then one expression per output field.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Program {
+    /// Temporaries, in evaluation order: (name, expression over fields and earlier temps).
+    pub temps: Vec<(String, Sum)>,
+    /// One expression per output field, in storage order.
+    pub outputs: Vec<Sum>,
+    /// How the program computes the sandwich, for the doc comment.
+    pub form: String,
+}
+
+impl Program {
+    /// Multiplies and adds of the whole program.
+    pub fn ops(&self) -> (usize, usize) {
+        self.temps
+            .iter()
+            .map(|t| &t.1)
+            .chain(&self.outputs)
+            .map(Sum::ops)
+            .fold((0, 0), |a, b| (a.0 + b.0, a.1 + b.1))
+    }
+
+    /// `let` statements for the temporaries, given how to write a field of operand 0 / 1.
+    pub fn render_lets(&self, var: &dyn Fn(Var) -> String) -> String {
+        let atom = |a: Atom| match a {
+            Atom::Var(v) => var(v),
+            Atom::Temp(i) => self.temps[i].0.clone(),
+        };
+        self.temps
+            .iter()
+            .map(|(n, e)| format!("let {n} = {};", e.render(&atom)))
+            .collect::<Vec<_>>()
+            .join(" ")
+    }
+
+    /// The expression of output field `k`.
+    pub fn render_output(&self, k: usize, var: &dyn Fn(Var) -> String) -> String {
+        let atom = |a: Atom| match a {
+            Atom::Var(v) => var(v),
+            Atom::Temp(i) => self.temps[i].0.clone(),
+        };
+        self.outputs[k].render(&atom)
+    }
+}
+
+/// Multiplies and adds of the term-by-term form: every product of two versor fields once,
+/// then each output coefficient as `sum_j x_j * (quadratic form)`.
+pub fn direct_ops(r: &SymMv, to: &TypeDef) -> (usize, usize) {
+    let mut pairs = std::collections::BTreeSet::new();
+    let (mut muls, mut adds) = (0, 0);
+    for f in &to.fields {
+        let p = r.get(f.bitmap);
+        let mut cols: BTreeMap<Monomial, Vec<(Monomial, Rational)>> = BTreeMap::new();
+        for (m, &c) in &p.0 {
+            let rest: Monomial = m.iter().copied().filter(|v| v.operand != 0).collect();
+            let own: Monomial = m.iter().copied().filter(|v| v.operand == 0).collect();
+            cols.entry(rest).or_default().push((own, c));
+        }
+        adds += cols.len().saturating_sub(1);
+        for (rest, terms) in cols {
+            muls += rest.len();
+            adds += terms.len() - 1;
+            for (own, c) in terms {
+                if own.len() >= 2 {
+                    pairs.insert(own.clone());
+                    muls += own.len() - 2;
+                }
+                if !own.is_empty() && c != Rational::ONE && c != -Rational::ONE {
+                    muls += 1;
+                }
+            }
+        }
+    }
+    (muls + pairs.len(), adds)
+}
+
+/// The candidate splits of `a x ~a`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Split {
+    /// `x + <c ~a>` with `c = a x - x a` (needs `a ~a = 1`).
+    LeftCommutator,
+    /// `x + <a d>` with `d = x ~a - ~a x` (needs `~a a = 1`).
+    RightCommutator,
+    /// `<(a x) ~a>`.
+    LeftHalf,
+    /// `<a (x ~a)>`.
+    RightHalf,
+}
+
+/// The cheapest straight-line program for the sandwich of `tv` (the versor, operand 0) on
+/// `tx` (the operand, operand 1) into `to`, proven equal to `reduced` (the expansion, reduced
+/// modulo `ideal`) on every output field; `None` when no split is cheaper than the
+/// term-by-term form.
+pub fn sandwich_program(
+    table: &mut BladeTable,
+    basis: &[String],
+    tv: &TypeDef,
+    tx: &TypeDef,
+    to: &TypeDef,
+    reduced: &SymMv,
+    ideal: &UnitIdeal,
+) -> Option<Program> {
+    let (dm, da) = direct_ops(reduced, to);
+    let mut best: Option<(usize, Program)> = None;
+    let splits: &[Split] = if ideal.is_empty() {
+        &[Split::LeftHalf, Split::RightHalf]
+    } else {
+        &[
+            Split::LeftCommutator,
+            Split::RightCommutator,
+            Split::LeftHalf,
+            Split::RightHalf,
+        ]
+    };
+    for &split in splits {
+        let Some(p) = split_program(table, basis, tv, tx, to, reduced, ideal, split) else {
+            continue;
+        };
+        let (m, a) = p.ops();
+        let cost = m + a;
+        if cost < dm + da && best.as_ref().is_none_or(|b| cost < b.0) {
+            best = Some((cost, p));
+        }
+    }
+    best.map(|b| b.1)
+}
+
+/// Substitute the temporaries (operand [`TEMP`]) of `p` by their expansions.
+fn substitute(p: &Poly, temps: &[Poly]) -> Poly {
+    let mut out = Poly::default();
+    for (m, &c) in &p.0 {
+        let mut term = Poly::constant(c);
+        let mut plain: Monomial = Vec::new();
+        for v in m {
+            if v.operand == TEMP {
+                term = term.mul(&temps[v.field as usize]);
+            } else {
+                plain.push(*v);
+            }
+        }
+        out.add_scaled(&term.mul_monomial(&plain), Rational::ONE);
+    }
+    out
+}
+
+#[allow(clippy::too_many_arguments)] // the two types, the output, and what the result must equal
+fn split_program(
+    table: &mut BladeTable,
+    basis: &[String],
+    tv: &TypeDef,
+    tx: &TypeDef,
+    to: &TypeDef,
+    reduced: &SymMv,
+    ideal: &UnitIdeal,
+    split: Split,
+) -> Option<Program> {
+    let a = SymMv::of_type(tv, 0);
+    let x = SymMv::of_type(tx, 1);
+    let ar = a.rev();
+    let g = Product::Geometric;
+    let (first, prefix, what) = match split {
+        Split::LeftCommutator => {
+            let ax = table.product(&a, &x, g);
+            let xa = table.product(&x, &a, g);
+            (
+                ax.add_scaled(&xa, -Rational::ONE),
+                "c",
+                "x + <c ~a> with the commutator c = a x - x a",
+            )
+        }
+        Split::RightCommutator => {
+            let xa = table.product(&x, &ar, g);
+            let ax = table.product(&ar, &x, g);
+            (
+                xa.add_scaled(&ax, -Rational::ONE),
+                "d",
+                "x + <a d> with the commutator d = x ~a - ~a x",
+            )
+        }
+        Split::LeftHalf => (table.product(&a, &x, g), "h", "<h ~a> with h = a x"),
+        Split::RightHalf => (table.product(&x, &ar, g), "h", "<a h> with h = x ~a"),
+    };
+    // Temporaries: one per blade of the first half, with the common magnitude of its
+    // coefficients factored out (the commutator's factor 2).
+    let mut temp_polys = Vec::new();
+    let mut temp_names = Vec::new();
+    let mut tsym = SymMv::default();
+    for (i, (&b, p)) in first.0.iter().enumerate() {
+        let mag = common_magnitude(p);
+        let mut q = Poly::default();
+        q.add_scaled(p, Rational::ONE / mag);
+        temp_polys.push(q);
+        temp_names.push(format!("{prefix}_{}", blade_name(b as Bitmap, basis)));
+        tsym.0.insert(
+            b,
+            Poly::var(
+                Var {
+                    operand: TEMP,
+                    field: i as u16,
+                },
+                mag,
+            ),
+        );
+    }
+    let second = match split {
+        Split::LeftCommutator | Split::LeftHalf => table.product(&tsym, &ar, g),
+        Split::RightCommutator | Split::RightHalf => table.product(&a, &tsym, g),
+    };
+    let with_x = matches!(split, Split::LeftCommutator | Split::RightCommutator);
+    // Output expressions, checked against the reduced expansion.
+    let mut outputs = Vec::new();
+    for f in &to.fields {
+        let mut p = second.get(f.bitmap);
+        if with_x {
+            p.add_scaled(&x.get(f.bitmap), Rational::ONE);
+        }
+        let mut signed = Poly::default();
+        signed.add_scaled(&p, Rational::int(f.sign as i64));
+        let expanded = substitute(&p, &temp_polys);
+        if !equivalent_mv_coeff(ideal, &expanded, &reduced.get(f.bitmap), 0) {
+            return None;
+        }
+        outputs.push(signed);
+    }
+    // A temporary that is one field (times a constant) is written in place; one whose terms
+    // are all negative is stored negated, and its uses negated instead.
+    let mut subst: Vec<Option<Poly>> = vec![None; temp_polys.len()];
+    for (i, t) in temp_polys.iter_mut().enumerate() {
+        let tv = Var {
+            operand: TEMP,
+            field: i as u16,
+        };
+        if t.0.len() == 1 && t.0.keys().next().is_some_and(|m| m.len() <= 1) {
+            subst[i] = Some(t.clone());
+        } else if t.0.values().all(|c| *c < Rational::ZERO) {
+            let mut n = Poly::default();
+            n.add_scaled(t, -Rational::ONE);
+            *t = n;
+            subst[i] = Some(Poly::var(tv, -Rational::ONE));
+        }
+    }
+    let outputs: Vec<Poly> = outputs
+        .iter()
+        .map(|p| {
+            let mut out = Poly::default();
+            for (m, &c) in &p.0 {
+                let mut term = Poly::constant(c);
+                let mut plain: Monomial = Vec::new();
+                for v in m {
+                    match (v.operand == TEMP).then(|| subst[v.field as usize].as_ref()) {
+                        Some(Some(q)) => term = term.mul(q),
+                        _ => plain.push(*v),
+                    }
+                }
+                out.add_scaled(&term.mul_monomial(&plain), Rational::ONE);
+            }
+            out
+        })
+        .collect();
+    // Keep the temporaries the outputs use, renumbered.
+    let mut used = vec![false; temp_polys.len()];
+    for p in &outputs {
+        for m in p.0.keys() {
+            for v in m {
+                if v.operand == TEMP {
+                    used[v.field as usize] = true;
+                }
+            }
+        }
+    }
+    let mut renum = vec![0u16; temp_polys.len()];
+    let mut temps = Vec::new();
+    for i in 0..temp_polys.len() {
+        if used[i] {
+            renum[i] = temps.len() as u16;
+            temps.push((temp_names[i].clone(), Sum::from_poly(&temp_polys[i])));
+        }
+    }
+    let outputs = outputs
+        .iter()
+        .map(|p| {
+            let mut q = Poly::default();
+            for (m, &c) in &p.0 {
+                let mut mm: Monomial = m
+                    .iter()
+                    .map(|v| {
+                        if v.operand == TEMP {
+                            Var {
+                                operand: TEMP,
+                                field: renum[v.field as usize],
+                            }
+                        } else {
+                            *v
+                        }
+                    })
+                    .collect();
+                mm.sort();
+                q.add_term(mm, c);
+            }
+            Sum::from_poly(&q)
+        })
+        .collect();
+    Some(Program {
+        temps,
+        outputs,
+        form: what.to_string(),
+    })
+}
+
+/// The magnitude shared by every coefficient of `p`, or 1 when they differ.
+fn common_magnitude(p: &Poly) -> Rational {
+    let mut mag = None;
+    for &c in p.0.values() {
+        let m = if c < Rational::ZERO { -c } else { c };
+        match mag {
+            None => mag = Some(m),
+            Some(x) if x == m => {}
+            Some(_) => return Rational::ONE,
+        }
+    }
+    mag.unwrap_or(Rational::ONE)
+}
