@@ -269,6 +269,9 @@ pub fn sandwich_program(
     reduced: &SymMv,
     ideal: &UnitIdeal,
 ) -> Option<Program> {
+    if !bounded_norm(table, tv) {
+        return None;
+    }
     let (dm, da) = direct_ops(reduced, to);
     let mut best: Option<(usize, Program)> = None;
     let splits: &[Split] = if ideal.is_empty() {
@@ -292,6 +295,22 @@ pub fn sandwich_program(
         }
     }
     best.map(|b| b.1)
+}
+
+/// True when the norm `<a ~a>_0` of the versor type is a sum of squares of its fields with
+/// positive coefficients (rotors, motors: the scalar and rotation parts are then at most 1 for
+/// a unit versor, and the other fields, such as translations, do not enter the norm).
+///
+/// Otherwise (dilators, Lorentz boosts: `cosh^2 - sinh^2 = 1`) the fields of a unit versor
+/// grow without bound, and a split form such as `x + 2 <c ~a>` adds terms of size `|a|^2` that
+/// cancel to the small result, losing relative precision that the term-by-term form keeps
+/// (measured on `Dilator`: 1.5e-12 against 6.7e-13 for scale 100), so only the term-by-term
+/// form is emitted for them.
+fn bounded_norm(table: &mut BladeTable, tv: &TypeDef) -> bool {
+    let a = SymMv::of_type(tv, 0);
+    let n = table.product(&a, &a.rev(), Product::Scalar).get(0);
+    n.0.iter()
+        .all(|(m, c)| *c > Rational::ZERO && m.len() == 2 && m[0] == m[1])
 }
 
 /// Substitute the temporaries (operand [`TEMP`]) of `p` by their expansions.
