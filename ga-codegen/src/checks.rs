@@ -10,7 +10,8 @@ use crate::emit::{snake, Generated};
 use crate::spec::Spec;
 use std::fmt::Write;
 
-/// Emit the check harness for `spec` and the code generated from it (f64 only).
+/// Emit the check harness for `spec` and the code generated from it (f64 or f32: the harness
+/// reads the module's `Scalar`, and compares in f64 with a tolerance for the scalar type).
 /// It defines `pub fn check_all(n: usize, seed: u64) -> (usize, Vec<String>)`, returning the
 /// number of comparisons made and a description of each failure.
 pub fn emit_checks(spec: &Spec, generated: &Generated, runtime: &str) -> String {
@@ -44,10 +45,16 @@ pub trait ToMv {{
 impl ToMv for f64 {{
     fn mv(self) -> Multivector {{ Multivector::scalar(&algebra(), self) }}
 }}
+impl ToMv for f32 {{
+    fn mv(self) -> Multivector {{ Multivector::scalar(&algebra(), self as f64) }}
+}}
+
+/// Relative tolerance of a comparison: 1e-12 for f64, 1e-4 for f32.
+pub const TOL: f64 = if ::core::mem::size_of::<Scalar>() == 4 {{ 1e-4 }} else {{ 1e-12 }};
 
 fn check(count: &mut usize, fails: &mut Vec<String>, what: &str, got: Multivector, want: Multivector) {{
     *count += 1;
-    let tol = 1e-12 * (1.0 + want.max_abs());
+    let tol = TOL * (1.0 + want.max_abs());
     let finite = got.coeffs().iter().all(|x| x.is_finite());
     if !finite || got.max_diff(&want) > tol {{
         if fails.len() < 50 {{
@@ -63,7 +70,7 @@ fn check(count: &mut usize, fails: &mut Vec<String>, what: &str, got: Multivecto
             s,
             "impl ToMv for {name} {{ fn mv(self) -> Multivector {{ self.to_multivector() }} }}\n\
              /// A random `{name}` (coefficients uniform in [-1, 1)).\n\
-             pub fn rand_{sn}(rng: &mut Rng) -> {name} {{ {name}::from_array(::core::array::from_fn(|_| rng.next())) }}\n",
+             pub fn rand_{sn}(rng: &mut Rng) -> {name} {{ {name}::from_array(::core::array::from_fn(|_| rng.next() as Scalar)) }}\n",
             name = t.name
         );
         if t.versor {
@@ -194,7 +201,7 @@ fn check(count: &mut usize, fails: &mut Vec<String>, what: &str, got: Multivecto
                     let _ = write!(
                         s,
                         "{{ let m2 = unit_{l}(&mut rng).mv().gp(&unit_{l}(&mut rng).mv()); let a = {ln}::from_multivector(&m2);\n\
-                         if m2.max_diff(&a.mv()) < 1e-12 {{ let b = rand_{r}(&mut rng); let (ma, mb) = (a.mv(), b.mv()); let want = ma.gp(&mb).gp(&ma.rev());\n\
+                         if m2.max_diff(&a.mv()) < 1e-6 {{ let b = rand_{r}(&mut rng); let (ma, mb) = (a.mv(), b.mv()); let want = ma.gp(&mb).gp(&ma.rev());\n\
                          check(c, f, \"{ln}.sandwich({rn}) (product of unit versors)\", a.sandwich(b).mv(), want.clone());\n\
                          check(c, f, \"{ln}.{r}_matrix().apply({rn}) (product of unit versors)\", a.{r}_matrix().apply(b).mv(), want); }} }}\n"
                     );

@@ -753,12 +753,34 @@ impl ::core::convert::From<{name}> for {rt}::Multivector {{
                 OutType::Type(ti) if *sym == "*" => self.build_paired(ti, m, ta, tb),
                 _ => None,
             };
+            // issue 8: f32 products between versor types in 4-lane form (see `quad_lanes`).
+            let mut lane_doc = match (&paired, o) {
+                (Some(_), OutType::Type(ti)) => crate::quad_lanes::expansion_doc(
+                    " Geometric product (paired-lane form: two output fields per `F64x2`).",
+                    &spec.types[ti],
+                    m,
+                    &|p| names.poly(p),
+                ),
+                _ => doc.to_string(),
+            };
+            let paired = match (paired, o) {
+                (None, OutType::Type(ti)) if *sym == "*" && self.s == "f32" => {
+                    crate::quad_lanes::build(ta, tb, &spec.types[ti], m, &self.rt, &|p| {
+                        names.poly(p)
+                    })
+                    .map(|(body, qdoc)| {
+                        lane_doc = qdoc;
+                        body
+                    })
+                }
+                (p, _) => p,
+            };
             let _ = writeln!(
                 self.out,
                 "impl ::core::ops::{tr}<{bn}> for {an} {{ type Output = {on}; #[doc = {doc:?}] #[inline] {allow}fn {method}(self, b: {bn}) -> {on} {{ let a = self; {body} }} }}",
                 an = ta.name,
                 bn = tb.name,
-                doc = if paired.is_some() { "Geometric product (paired-lane form: two output fields per `F64x2`)." } else { doc },
+                doc = lane_doc,
                 body = paired.unwrap_or_else(|| self.build(o, m, &names)),
                 // `^` and `|` are products written with `*`: say that this is meant.
                 allow = if matches!(*tr, "BitXor" | "BitOr") {

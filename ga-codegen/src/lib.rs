@@ -16,6 +16,7 @@
 pub mod algebra;
 pub mod blade;
 pub mod lanes;
+pub mod lanes4;
 pub mod metric;
 pub mod multivector;
 pub mod rational;
@@ -40,5 +41,7 @@ pub use emit::{generate, EmitOptions, GenError, Generated, ScalarType};
 pub mod checks;
 #[cfg(feature = "codegen")]
 pub mod factor;
+#[cfg(feature = "codegen")]
+pub mod quad_lanes;
 #[cfg(feature = "codegen")]
 pub mod unit_versor;
