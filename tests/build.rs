@@ -1,8 +1,8 @@
-//! Generates every algebra in `algebras/` (f64), plus the default spec of a signature, each with
+//! Generates every algebra in `algebras/` (f64, and CGA also in f32), plus the default spec of a signature, each with
 //! the check harness that compares its generated functions with the generic multivector.
 
 use ga_codegen::checks::emit_checks;
-use ga_codegen::{generate, EmitOptions, Spec};
+use ga_codegen::{generate, EmitOptions, ScalarType, Spec};
 use std::path::PathBuf;
 
 fn main() {
@@ -20,7 +20,21 @@ fn main() {
         "sig201".to_string(),
         Spec::for_signature(2, 0, 1).unwrap_or_else(|e| panic!("{e}")),
     ));
-    for (name, spec) in specs {
+    // The f32 CGA module too (4-lane products), checked with an f32 tolerance.
+    let cga_spec = specs[0].1.clone();
+    let mut all: Vec<(String, Spec, EmitOptions)> = specs
+        .into_iter()
+        .map(|(n, s)| (n, s, opts.clone()))
+        .collect();
+    all.push((
+        "cga_f32".to_string(),
+        cga_spec,
+        EmitOptions {
+            scalar: ScalarType::F32,
+            ..EmitOptions::default()
+        },
+    ));
+    for (name, spec, opts) in all {
         let g = generate(&spec, &opts).unwrap_or_else(|e| panic!("{e}"));
         let checks = emit_checks(&spec, &g, "::ga_codegen");
         let code = g.code().unwrap_or_else(|e| panic!("{e}"));

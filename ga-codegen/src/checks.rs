@@ -22,7 +22,8 @@ fn text(s: &str) -> Literal {
     Literal::string(s)
 }
 
-/// Emit the check harness for `spec` and the code generated from it (f64 only).
+/// Emit the check harness for `spec` and the code generated from it (f64 or f32: the harness
+/// reads the module's `Scalar`, and compares in f64 with a tolerance for the scalar type).
 /// It defines `pub fn check_all(n: usize, seed: u64) -> (usize, Vec<String>)`, returning the
 /// number of comparisons made and a description of each failure.
 pub fn emit_checks(spec: &Spec, generated: &Generated, runtime: &str) -> String {
@@ -52,6 +53,12 @@ pub fn emit_checks(spec: &Spec, generated: &Generated, runtime: &str) -> String 
         impl ToMv for f64 {
             fn mv(self) -> Multivector { Multivector::scalar(&algebra(), self) }
         }
+        impl ToMv for f32 {
+            fn mv(self) -> Multivector { Multivector::scalar(&algebra(), self as f64) }
+        }
+
+        /// Relative tolerance of a comparison: 1e-12 for f64, 1e-4 for f32.
+        pub const TOL: f64 = if ::core::mem::size_of::<Scalar>() == 4 { 1e-4 } else { 1e-12 };
 
         fn check_that(count: &mut usize, fails: &mut Vec<String>, what: &str, ok: bool) {
             *count += 1;
@@ -62,7 +69,7 @@ pub fn emit_checks(spec: &Spec, generated: &Generated, runtime: &str) -> String 
 
         fn check(count: &mut usize, fails: &mut Vec<String>, what: &str, got: Multivector, want: Multivector) {
             *count += 1;
-            let tol = 1e-12 * (1.0 + want.max_abs());
+            let tol = TOL * (1.0 + want.max_abs());
             let finite = got.coeffs().iter().all(|x| x.is_finite());
             if !finite || got.max_diff(&want) > tol {
                 if fails.len() < 50 {
@@ -105,7 +112,7 @@ fn generators(t: &TypeDef) -> TokenStream {
     let mut out = quote! {
         impl ToMv for #name { fn mv(self) -> Multivector { self.to_multivector() } }
         #[doc = #rand_doc]
-        pub fn #rand(rng: &mut Rng) -> #name { #name::from_array(::core::array::from_fn(|_| rng.next())) }
+        pub fn #rand(rng: &mut Rng) -> #name { #name::from_array(::core::array::from_fn(|_| rng.next() as Scalar)) }
     };
     if t.versor {
         let biv: Vec<Literal> = t
@@ -172,14 +179,15 @@ fn type_checks(spec: &Spec, t: &TypeDef, generated: &Generated) -> TokenStream {
         // The predicates, on a value with one coefficient (chosen at random) changed.
         {
             let i = ((rng.next() + 1.0) * 0.5 * #name::LEN as f64) as usize % #name::LEN;
-            let with = |x: f64| { let mut c = a.to_array(); c[i] = x; #name::from_array(c) };
+            let with = |x: Scalar| { let mut c = a.to_array(); c[i] = x; #name::from_array(c) };
             check_that(c, f, #p_rand, a.is_finite() && !a.is_nan() && a.abs_diff_eq(a, 0.0));
-            let nan = with(f64::NAN);
+            let nan = with(Scalar::NAN);
             check_that(c, f, #p_nan, nan.is_nan() && !nan.is_finite() && !nan.abs_diff_eq(nan, 1.0) && !a.abs_diff_eq(nan, 1.0));
-            let inf = with(-f64::INFINITY);
-            check_that(c, f, #p_inf, !inf.is_finite() && !inf.is_nan() && !inf.abs_diff_eq(a, 1e300));
+            let inf = with(-Scalar::INFINITY);
+            check_that(c, f, #p_inf, !inf.is_finite() && !inf.is_nan() && !inf.abs_diff_eq(a, Scalar::MAX));
             let near = with(a.to_array()[i] + 0.5);
-            check_that(c, f, #p_near, near.abs_diff_eq(a, 0.5 + 1e-12) && a.abs_diff_eq(near, 0.5 + 1e-12) && !near.abs_diff_eq(a, 0.499));
+            let e: Scalar = if ::core::mem::size_of::<Scalar>() == 4 { 1e-5 } else { 1e-12 };
+            check_that(c, f, #p_near, near.abs_diff_eq(a, 0.5 + e) && a.abs_diff_eq(near, 0.5 + e) && !near.abs_diff_eq(a, 0.499));
         }
     };
     for (_, m) in generated.methods.iter().filter(|(n, _)| n == tn) {
@@ -207,6 +215,14 @@ fn type_checks(spec: &Spec, t: &TypeDef, generated: &Generated) -> TokenStream {
     if t.versor {
         // On unit versors the versor inverse is the true inverse: check against the generic
         // inverse (a linear solve), which does not assume anything.
+        if t.unit {
+            // The generator of true unit versors really gives `u ~u = 1`: the reductions of
+            // the sandwiches rely on it.
+            let what = w(format!("unit {tn}: u ~u = 1"));
+            out.extend(quote! {
+                { let mu = #unit(&mut rng).mv(); check(c, f, #what, mu.gp(&mu.rev()), Multivector::scalar(&algebra(), 1.0)); }
+            });
+        }
         let what = w(format!("unit {tn}::inverse vs generic inverse"));
         let none = w(format!("unit {tn} has no generic inverse"));
         out.extend(quote! {
@@ -252,11 +268,34 @@ fn op_check(spec: &Spec, op: Op, left: &str, right: &str) -> TokenStream {
             let what = text(&format!("{left}.sandwich({right})"));
             let what_m = text(&format!("{left}.{r}_matrix().apply({right})"));
             let matrix = ident(&format!("{r}_matrix"));
-            return quote!({
+            let mut out = quote!({
                 let a = #gen(&mut rng); let b = #rand_r(&mut rng); let (ma, mb) = (a.mv(), b.mv()); let want = ma.gp(&mb).gp(&ma.rev());
                 check(c, f, #what, a.sandwich(b).mv(), want.clone());
                 check(c, f, #what_m, a.#matrix().apply(b).mv(), want);
             });
+            if vt.unit {
+                // A unit versor's sandwich is reduced with `a ~a = 1` and keeps the grades of
+                // the operand: check it also on a product of two true unit versors (a screw, a
+                // boost and a rotation, ...), which is again a unit versor, when that product
+                // stays in the type.
+                let what = text(&format!(
+                    "{left}.sandwich({right}) (product of unit versors)"
+                ));
+                let what_m = text(&format!(
+                    "{left}.{r}_matrix().apply({right}) (product of unit versors)"
+                ));
+                let vn = ident(left);
+                out.extend(quote!({
+                    let m2 = #gen(&mut rng).mv().gp(&#gen(&mut rng).mv());
+                    let a = #vn::from_multivector(&m2);
+                    if m2.max_diff(&a.mv()) < 1e-6 {
+                        let b = #rand_r(&mut rng); let (ma, mb) = (a.mv(), b.mv()); let want = ma.gp(&mb).gp(&ma.rev());
+                        check(c, f, #what, a.sandwich(b).mv(), want.clone());
+                        check(c, f, #what_m, a.#matrix().apply(b).mv(), want);
+                    }
+                }));
+            }
+            return out;
         }
     };
     quote!({ let a = #rand_l(&mut rng); let b = #rand_r(&mut rng); let (ma, mb) = (a.mv(), b.mv()); #body })

@@ -17,6 +17,7 @@ pub mod algebra;
 pub mod blade;
 pub mod ident;
 pub mod lanes;
+pub mod lanes4;
 pub mod metric;
 pub mod multivector;
 pub mod rational;
@@ -39,5 +40,11 @@ pub mod emit;
 pub use emit::{generate, EmitOptions, GenError, Generated, Method, Op, ScalarType};
 #[cfg(feature = "codegen")]
 pub mod checks;
+#[cfg(feature = "codegen")]
+pub mod factor;
+#[cfg(feature = "codegen")]
+pub mod quad_lanes;
+#[cfg(feature = "codegen")]
+pub mod unit_versor;
 #[cfg(feature = "codegen")]
 pub mod verify;

@@ -54,17 +54,17 @@ impl Poly {
         if c.is_zero() {
             return;
         }
-        let e = self.0.entry(m).or_insert(Rational::ZERO);
-        *e = *e + c;
-        if e.is_zero() {
-            let key: Vec<Monomial> = self
-                .0
-                .iter()
-                .filter(|(_, v)| v.is_zero())
-                .map(|(k, _)| k.clone())
-                .collect();
-            for k in key {
-                self.0.remove(&k);
+        match self.0.entry(m) {
+            std::collections::btree_map::Entry::Vacant(v) => {
+                v.insert(c);
+            }
+            std::collections::btree_map::Entry::Occupied(mut o) => {
+                let s = *o.get() + c;
+                if s.is_zero() {
+                    o.remove();
+                } else {
+                    *o.get_mut() = s;
+                }
             }
         }
     }
@@ -86,6 +86,18 @@ impl Poly {
                 m.sort();
                 out.add_term(m, ca * cb);
             }
+        }
+        out
+    }
+
+    /// `self * m` for a monomial `m`.
+    pub fn mul_monomial(&self, m: &Monomial) -> Poly {
+        let mut out = Poly::default();
+        for (k, &c) in &self.0 {
+            let mut mm = k.clone();
+            mm.extend_from_slice(m);
+            mm.sort();
+            out.add_term(mm, c);
         }
         out
     }

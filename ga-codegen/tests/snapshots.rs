@@ -1,15 +1,24 @@
 //! insta snapshots of generated CGA code, so that any change to generated code shows up in
 //! review: every geometric product between versor types (the paired-lane kernels among them),
-//! every fused sandwich the spec declares, and the matrix form of the motor-point sandwich.
+//! every fused sandwich the spec declares, the matrix form of the motor-point sandwich, and the
+//! f32 motor product in four-lane form.
 //! `algebras/cga.summary.txt` (tested in `summary.rs`) lists everything else.
 
 use std::path::Path;
 
 fn cga() -> (ga_codegen::Spec, String) {
+    cga_in(ga_codegen::ScalarType::F64)
+}
+
+fn cga_in(scalar: ga_codegen::ScalarType) -> (ga_codegen::Spec, String) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../algebras/cga.toml");
     let text = std::fs::read_to_string(path).expect("read cga.toml");
     let spec = ga_codegen::Spec::from_toml(&text, "algebras/cga.toml").expect("valid spec");
-    let code = ga_codegen::generate(&spec, &ga_codegen::EmitOptions::default())
+    let opts = ga_codegen::EmitOptions {
+        scalar,
+        ..ga_codegen::EmitOptions::default()
+    };
+    let code = ga_codegen::generate(&spec, &opts)
         .expect("generate")
         .code()
         .expect("formats")
@@ -79,4 +88,12 @@ fn every_fused_sandwich() {
 #[test]
 fn motor_point_matrix() {
     insta::assert_snapshot!(item(&cga().1, "impl MotorPointMatrix {"));
+}
+
+#[test]
+fn motor_times_motor_f32_four_lanes() {
+    insta::assert_snapshot!(item(
+        &cga_in(ga_codegen::ScalarType::F32).1,
+        "impl ::core::ops::Mul<Motor> for Motor {"
+    ));
 }

@@ -25,6 +25,12 @@ algebra_module!(
     "G(4,1) from `algebras/cga.toml`."
 );
 algebra_module!(
+    cga_f32,
+    "cga_f32.rs",
+    "cga_f32_checks.rs",
+    "G(4,1) from `algebras/cga.toml`, f32 (4-lane products)."
+);
+algebra_module!(
     pga3d,
     "pga3d.rs",
     "pga3d_checks.rs",

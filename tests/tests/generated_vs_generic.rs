@@ -18,6 +18,11 @@ fn cga_generated_matches_generic() {
 }
 
 #[test]
+fn cga_f32_generated_matches_generic() {
+    run("cga_f32", tests::cga_f32::checks::check_all(200, 6));
+}
+
+#[test]
 fn pga3d_generated_matches_generic() {
     run("pga3d", tests::pga3d::checks::check_all(200, 2));
 }

@@ -3,7 +3,7 @@
 
 use super::infer::terms;
 use super::render::{doc, ident, Names};
-use super::{Gen, Op, OpSummary, OutType};
+use super::{Gen, Op, OpSummary, OutType, ScalarType};
 use crate::rational::Rational;
 use crate::symbolic::{Product, SymMv};
 use quote::quote;
@@ -71,15 +71,33 @@ impl Gen<'_> {
                 OutType::Type(ti) if op == Op::Geometric => self.build_paired(ti, &m, ta, tb),
                 _ => None,
             };
-            let fdoc = doc(&if paired.is_some() {
-                format!(
-                    "Geometric product (paired-lane form: two output fields per `F64x2`).\n\n\
+            // f32 products between versor types in 4-lane form (see `quad_lanes`).
+            let quad = match o {
+                OutType::Type(ti)
+                    if paired.is_none()
+                        && op == Op::Geometric
+                        && self.scalar == ScalarType::F32 =>
+                {
+                    crate::quad_lanes::build(ta, tb, &spec.types[ti], &m, &self.rt)
+                }
+                _ => None,
+            };
+            let lane_form = if paired.is_some() {
+                Some("paired-lane form: two output fields per `F64x2`")
+            } else if quad.is_some() {
+                Some("4-lane form: four output fields per `F32x4`")
+            } else {
+                None
+            };
+            let fdoc = doc(&match lane_form {
+                Some(form) => format!(
+                    "Geometric product ({form}).\n\n\
                      Scalar expansion (`a` the left operand, `b` the right one):\n{}",
                     self.expansion(o, &m, &names)
-                )
-            } else {
-                op.doc().to_string()
+                ),
+                None => op.doc().to_string(),
             });
+            let paired = paired.or(quad);
             let body = paired.unwrap_or_else(|| self.build(o, &m, &names));
             // `^` and `|` are products written with `*`: say that this is meant.
             let allow = matches!(op, Op::Outer | Op::LeftContraction)

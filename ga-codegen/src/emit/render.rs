@@ -115,7 +115,7 @@ impl<'a> Names<'a> {
         }
     }
 
-    fn var(&self, v: Var) -> TokenStream {
+    pub(super) fn var(&self, v: Var) -> TokenStream {
         match self.field(v) {
             Some((prefix, f)) => {
                 if v.operand == 0 {

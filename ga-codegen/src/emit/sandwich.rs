@@ -11,7 +11,8 @@ use super::{snake, Gen, GenError, Op, OpSummary, OutType};
 use crate::blade::blade_name;
 use crate::rational::Rational;
 use crate::spec::{SandwichDef, TypeDef};
-use crate::symbolic::{Monomial, Poly, Product, SymMv};
+use crate::symbolic::{Monomial, Poly, Product, SymMv, Var};
+use crate::unit_versor::UnitIdeal;
 use proc_macro2::{Ident, TokenStream};
 use quote::quote;
 use std::collections::BTreeMap;
@@ -63,13 +64,21 @@ fn linear_form(r: &SymMv, tx: &TypeDef, to: &TypeDef) -> Vec<Vec<Poly>> {
 impl Gen<'_> {
     /// The symbolic sandwich `v * x * ~v` and its output type: the declared one (checked),
     /// else the inferred one.
-    fn sandwich_output(&mut self, d: &SandwichDef) -> Result<(SymMv, usize), GenError> {
+    ///
+    /// A unit versor's sandwich is reduced modulo `a ~a = 1` and keeps the grades of the
+    /// operand (see [`crate::unit_versor`]); the identities used come back with it.
+    fn sandwich_output(&mut self, d: &SandwichDef) -> Result<(SymMv, UnitIdeal, usize), GenError> {
         let spec = self.spec;
         let (tv, tx) = (&spec.types[d.versor], &spec.types[d.operand]);
-        let a = SymMv::of_type(tv, 0);
-        let b = SymMv::of_type(tx, 1);
-        let ab = self.table.product(&a, &b, Product::Geometric);
-        let r = self.table.product(&ab, &a.rev(), Product::Geometric);
+        let (r, ideal) = if tv.unit {
+            crate::unit_versor::unit_sandwich(&mut self.table, &self.alg, tv, tx)
+        } else {
+            let a = SymMv::of_type(tv, 0);
+            let b = SymMv::of_type(tx, 1);
+            let ab = self.table.product(&a, &b, Product::Geometric);
+            let r = self.table.product(&ab, &a.rev(), Product::Geometric);
+            (r, UnitIdeal::default())
+        };
         let oi = match d.output {
             Some(oi) => {
                 let to = &spec.types[oi];
@@ -125,7 +134,7 @@ impl Gen<'_> {
                 }
             },
         };
-        Ok((r, oi))
+        Ok((r, ideal, oi))
     }
 
     /// The straight-line program of a sandwich from its linear form: every product of two
@@ -208,7 +217,7 @@ impl Gen<'_> {
     /// The fused sandwich `impl Sandwich<X> for V`, the matrix type `VXMatrix` with `apply`,
     /// and `V::x_matrix()`.
     pub(super) fn sandwich(&mut self, d: &SandwichDef) -> Result<(), GenError> {
-        let (r, oi) = self.sandwich_output(d)?;
+        let (r, ideal, oi) = self.sandwich_output(d)?;
         let spec = self.spec;
         let (tv, tx, to) = (
             &spec.types[d.versor],
@@ -217,12 +226,42 @@ impl Gen<'_> {
         );
         let coef = linear_form(&r, tx, to);
         let nx = tx.fields.len();
-        let (kernel, matrix) = self.sandwich_kernel(tv, tx, to, &coef);
+        let (mut kernel, matrix) = self.sandwich_kernel(tv, tx, to, &coef);
+        // The matrix form keeps the pairwise products of the term-by-term kernel.
+        let lets = kernel.lets();
+        let (mut sdoc, nterms) = self.sandwich_doc(tv, tx, to, &coef);
+        // A cheaper straight-line program (two half products sharing work), proven equal to
+        // the expansion, replaces the term-by-term body (see `factor`).
+        if let Some(prog) = crate::factor::sandwich_program(
+            &mut self.table,
+            spec.metric.names(),
+            tv,
+            tx,
+            to,
+            &r,
+            &ideal,
+        ) {
+            let names = Names::new(tv, Some(tx));
+            let var = |v: Var| names.var(v);
+            kernel = Kernel {
+                temps: prog.render_temps(&var),
+                outputs: to
+                    .fields
+                    .iter()
+                    .enumerate()
+                    .map(|(k, f)| (ident(&f.name), prog.render_output(k, &var)))
+                    .collect(),
+            };
+            let (m, ad) = prog.ops();
+            sdoc.push_str(&format!(
+                "\n\nComputed as {} ({m} multiplies, {ad} adds).",
+                prog.form
+            ));
+        }
         let (vn, xn, on) = (ident(&tv.name), ident(&tx.name), ident(&to.name));
         let s = &self.s;
         let mat = ident(&format!("{}{}Matrix", tv.name, tx.name));
         let body = kernel.body(&on);
-        let lets = kernel.lets();
         let ny = int(to.fields.len());
         let apply = to.fields.iter().enumerate().map(|(k, f)| {
             let mut e = TokenStream::new();
@@ -247,7 +286,6 @@ impl Gen<'_> {
             let f = ident(&f.name);
             quote!(#f: #e,)
         });
-        let (sdoc, nterms) = self.sandwich_doc(tv, tx, to, &coef);
         let cols: Vec<String> = tx
             .fields
             .iter()
