@@ -180,7 +180,8 @@ impl Motor {
         // 1/sqrt(a + eps b) = a^-1/2 (1 - eps b/(2a)) with eps = e123i; M = q_r - eps q_d, so
         // M (p + eps q) has real part p q_r and dual part p q_d - q q_r.
         let p = 1.0 / a.sqrt();
-        let q = -0.5 * b * p / a;
+        // p / a = p^3: one division fewer (this runs once per vertex in motor blending).
+        let q = -0.5 * b * (p * p * p);
         let (r, d) = (self.real_quat(), self.dual_quat_part());
         Self::from_quats(r * p, d * p - r * q)
     }
