@@ -186,6 +186,21 @@ impl Motor {
         Self::from_quats(r * p, d * p - r * q)
     }
 
+    /// Divide by the norm of the rotor part only, `M / sqrt(<M ~M>_0)`, leaving the `e123i`
+    /// defect of `M ~M` in place: the cheap normalisation for a motor that is only applied to
+    /// points (as Kavan's dual-quaternion skinning divides by `|q_r|` only).
+    ///
+    /// The result's [`Motor::transform_point`] equals that of [`Motor::normalize_rigid`]: with
+    /// `M = q_r - eps q_d`, the defect is the part of `q_d` along `q_r`, and the translation
+    /// `2 vec(q_d ~q_r)` does not see it. Anything else (composition, `log`, `M ~M = 1`) needs
+    /// [`Motor::normalize_rigid`].
+    #[inline]
+    #[must_use]
+    pub fn normalize_for_points(self) -> Motor {
+        let p = 1.0 / self.norm_squared().sqrt();
+        Motor::from_array(self.to_array().map(|c| c * p))
+    }
+
     /// [`Motor::normalize_rigid`] that rejects non-motors.
     ///
     /// # Errors

@@ -573,3 +573,44 @@ proptest! {
         prop_assert!((b.exp_similarity().transform_point(x) - m.transform_point(x)).length() < 1e-12 * (1.0 + x.length()) * (1.0 + v.length()));
     }
 }
+
+proptest! {
+    /// Dividing a blended motor by its rotor norm only moves points exactly as the full
+    /// renormalisation does, although the sum keeps its `e123i` defect.
+    #[test]
+    fn normalize_for_points_acts_like_normalize_rigid(
+        (_q, _t, a) in motor(), (_q2, _t2, b) in motor(), (_q3, _t3, c) in motor(),
+        w in (0.05..1.0f64, 0.05..1.0f64, 0.05..1.0f64), x in v3(),
+    ) {
+        let sum = a * w.0 + b * w.1 + c * w.2;
+        prop_assume!(sum.norm_squared() > 1e-3);
+        let exact = sum.normalize_rigid();
+        let cheap = sum.normalize_for_points();
+        // The rotor part is the same; only the defect differs.
+        prop_assert!(unit_defect(exact) < 1e-12);
+        prop_assert!((cheap.norm_squared() - 1.0).abs() < 1e-12);
+        let scale = 1.0 + x.length() + 15.0;
+        prop_assert!((cheap.transform_point(x) - exact.transform_point(x)).length() < 1e-12 * scale);
+    }
+}
+
+/// The test above is not vacuous: a blend of motors with different rotations has a defect,
+/// which `normalize_for_points` keeps and `normalize_rigid` removes.
+#[test]
+fn blended_motors_have_a_defect() {
+    let a =
+        Motor::from_rotation_translation(DQuat::from_rotation_y(0.2), DVec3::new(1.0, 0.0, 0.0));
+    let b =
+        Motor::from_rotation_translation(DQuat::from_rotation_x(1.1), DVec3::new(0.0, 3.0, -1.0));
+    let sum = a * 0.5 + b * 0.5;
+    let cheap = sum.normalize_for_points();
+    assert!(
+        cheap.versor_defect().abs() > 1e-3,
+        "{}",
+        cheap.versor_defect()
+    );
+    assert!(sum.normalize_rigid().versor_defect().abs() < 1e-15);
+    let x = DVec3::new(0.3, -2.0, 1.5);
+    let d = cheap.transform_point(x) - sum.normalize_rigid().transform_point(x);
+    assert!(d.length() < 1e-14, "{d}");
+}

@@ -178,9 +178,17 @@ impl PreparedKeys {
                 // action `M X ~M` without building M).
                 self.log_blend(row).exp_similarity().transform_point(p)
             }
-            BlendMethod::MotorLinear => self
-                .linear_blend(row)
-                .transform_point(self.scale_of(row) * p),
+            BlendMethod::MotorLinear => {
+                // Only the rotor norm is divided out: the point action is the same as that
+                // of the exactly renormalised motor (see `Motor::normalize_for_points`).
+                let m = self.linear_sum(row);
+                let m = if m.norm_squared() > f64::MIN_POSITIVE {
+                    m.normalize_for_points()
+                } else {
+                    Motor::IDENTITY
+                };
+                m.transform_point(self.scale_of(row) * p)
+            }
             BlendMethod::DualQuaternion => {
                 let (q, t) = self.dual_quaternion_blend(row);
                 q * (self.scale_of(row) * p) + t
@@ -274,17 +282,23 @@ impl PreparedKeys {
     /// multiply-adds; a sum with a vanishing rotor part gives the identity, as there).
     #[inline]
     fn linear_blend(&self, row: Row) -> Motor {
-        let m0 = self.motors[row.key(0)];
-        let acc = row.fold(Motor::default(), |acc, k, w| {
-            let m = self.motors[k];
-            let d = m.s * m0.s + m.e12 * m0.e12 + m.e13 * m0.e13 + m.e23 * m0.e23;
-            acc + m * if d < 0.0 { -w } else { w }
-        });
+        let acc = self.linear_sum(row);
         if acc.norm_squared() > f64::MIN_POSITIVE {
             acc.normalize_rigid()
         } else {
             Motor::IDENTITY
         }
+    }
+
+    /// `sum w M` over the row, each key in the hemisphere of the row's first key.
+    #[inline]
+    fn linear_sum(&self, row: Row) -> Motor {
+        let m0 = self.motors[row.key(0)];
+        row.fold(Motor::default(), |acc, k, w| {
+            let m = self.motors[k];
+            let d = m.s * m0.s + m.e12 * m0.e12 + m.e13 * m0.e13 + m.e23 * m0.e23;
+            acc + m * if d < 0.0 { -w } else { w }
+        })
     }
 
     /// `exp(sum w ln s)`: the geometric blend of the key scales.
