@@ -354,12 +354,13 @@ impl Gen<'_> {
         let names = Names::new(tv, Some(tx));
         let nx = tx.fields.len();
         let mut doc = format!(
-            "`{v} * {x} * ~{v}`, fused: every product of two versor coefficients is computed once \
-             and each output coefficient is linear in the operand (in a loop the compiler hoists \
-             the versor part, so this costs about a matrix product).\n\nSymbolic expansion (`a` \
-             the versor, `b` the operand):\n",
+            "`{v} * {x} * ~{v}`, fused into one function. To apply one `{v}` to many operands, \
+             build its matrix form once (`{v}::{m}_matrix`, a `{v}{x}Matrix`) and `apply` it: \
+             a matrix product per operand.\n\nSymbolic expansion (`a` the versor, `b` the \
+             operand; each output coefficient is linear in the operand):\n",
             v = tv.name,
-            x = tx.name
+            x = tx.name,
+            m = snake(&tx.name),
         );
         let mut nterms = 0;
         for (k, f) in to.fields.iter().enumerate() {
