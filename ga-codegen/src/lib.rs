@@ -43,8 +43,6 @@ pub mod checks;
 #[cfg(feature = "codegen")]
 pub mod factor;
 #[cfg(feature = "codegen")]
-pub mod quad_lanes;
-#[cfg(feature = "codegen")]
 pub mod unit_versor;
 #[cfg(feature = "codegen")]
 pub mod verify;

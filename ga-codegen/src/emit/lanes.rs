@@ -44,6 +44,43 @@ impl Part {
     }
 }
 
+/// The terms of a lane-form product, per output field of `t`: `a_j -> [(b_k, c)]` for each
+/// term `c a_j b_k` (the output field's sign applied). `None` when the product does not
+/// qualify for a lane form: operands that are not versors, constants, fewer than four fields,
+/// or a term that is not `a.x * b.y`. Shared by the paired (f64) and 4-lane (f32) builders.
+pub(super) fn lane_terms(
+    ta: &TypeDef,
+    tb: &TypeDef,
+    t: &TypeDef,
+    m: &SymMv,
+) -> Option<Vec<BTreeMap<u16, Vec<(u16, Rational)>>>> {
+    let qualifies = ta.versor
+        && tb.versor
+        && ta.constants.is_empty()
+        && tb.constants.is_empty()
+        && ta.fields.len() >= 4
+        && tb.fields.len() >= 4
+        && t.fields.len() >= 4;
+    if !qualifies {
+        return None;
+    }
+    let mut lanes = Vec::with_capacity(t.fields.len());
+    for f in &t.fields {
+        let mut by_a: BTreeMap<u16, Vec<(u16, Rational)>> = BTreeMap::new();
+        for (mono, &c) in &m.get(f.bitmap).0 {
+            match mono.as_slice() {
+                [x, y] if x.operand == 0 && y.operand == 1 => by_a
+                    .entry(x.field)
+                    .or_default()
+                    .push((y.field, c * Rational::int(f.sign as i64))),
+                _ => return None,
+            }
+        }
+        lanes.push(by_a);
+    }
+    Some(lanes)
+}
+
 impl Gen<'_> {
     /// The body of a geometric product between two versor types in paired-lane form, or `None`
     /// when the product does not qualify (f32, constants, small types, non-bilinear terms).
@@ -59,33 +96,11 @@ impl Gen<'_> {
         ta: &TypeDef,
         tb: &TypeDef,
     ) -> Option<TokenStream> {
-        let t = &self.spec.types[ti];
-        let qualifies = self.scalar == ScalarType::F64
-            && ta.versor
-            && tb.versor
-            && ta.constants.is_empty()
-            && tb.constants.is_empty()
-            && ta.fields.len() >= 4
-            && tb.fields.len() >= 4
-            && t.fields.len() >= 4;
-        if !qualifies {
+        if self.scalar != ScalarType::F64 {
             return None;
         }
-        // Per output field: a_j -> [(b_k, c)].
-        let mut lanes: Vec<BTreeMap<u16, Vec<(u16, Rational)>>> = Vec::new();
-        for f in &t.fields {
-            let mut by_a: BTreeMap<u16, Vec<(u16, Rational)>> = BTreeMap::new();
-            for (mono, &c) in &m.get(f.bitmap).0 {
-                match mono.as_slice() {
-                    [x, y] if x.operand == 0 && y.operand == 1 => by_a
-                        .entry(x.field)
-                        .or_default()
-                        .push((y.field, c * Rational::int(f.sign as i64))),
-                    _ => return None,
-                }
-            }
-            lanes.push(by_a);
-        }
+        let t = &self.spec.types[ti];
+        let lanes = lane_terms(ta, tb, t, m)?;
         let af = |j: u16| ta.fields[j as usize].name.as_str();
         let bf = |k: u16| tb.fields[k as usize].name.as_str();
         let a_lane = |j: u16| ident(&format!("a_{}", af(j)));

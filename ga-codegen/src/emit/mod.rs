@@ -24,6 +24,7 @@ mod infer;
 mod lanes;
 mod library;
 mod operators;
+mod quad_lanes;
 mod render;
 mod sandwich;
 mod summary;

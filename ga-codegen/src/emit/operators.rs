@@ -78,7 +78,7 @@ impl Gen<'_> {
                         && op == Op::Geometric
                         && self.scalar == ScalarType::F32 =>
                 {
-                    crate::quad_lanes::build(ta, tb, &spec.types[ti], &m, &self.rt)
+                    super::quad_lanes::build(ta, tb, &spec.types[ti], &m, &self.rt)
                 }
                 _ => None,
             };

@@ -4,8 +4,10 @@
 //! `splat(a.x) * (b.y0, b.y1, b.y2, b.y3)` terms, where the operand quad is a quad of the
 //! operand's storage (`b.s, b.e12, b.e13, b.e23`) loaded once, or a shuffle of it. Terms are
 //! grouped by their vector of coefficients, so that each group is signed (an exact sign-bit
-//! flip) or scaled once. The f64 twin is the paired-lane form in `emit/lanes.rs`.
+//! flip) or scaled once. The f64 twin is the paired-lane form in `lanes.rs`, which also finds the terms.
 
+use super::lanes::lane_terms;
+use super::render::{ident, lit};
 use crate::rational::Rational;
 use crate::spec::TypeDef;
 use crate::symbolic::SymMv;
@@ -16,61 +18,21 @@ use std::collections::{BTreeMap, BTreeSet};
 /// One lane term: operand field index per lane (`None`: the lane has no term).
 type Tuple = [Option<u16>; 4];
 
-fn ident(name: &str) -> Ident {
-    Ident::new(name, Span::call_site())
-}
-
-/// An exact coefficient as a float literal (`-` then the magnitude for negative values).
-fn lit(c: Rational) -> TokenStream {
-    let x = c.to_f64();
-    let l = Literal::f64_unsuffixed(x.abs());
-    if x < 0.0 {
-        quote!(-#l)
-    } else {
-        quote!(#l)
-    }
-}
-
 /// The body of `a * b` (types `ta`, `tb`, result `t`, symbolic product `m`) in 4-lane form;
 /// `None` when the product does not qualify (constants, fewer than four fields, a term that
 /// is not `a.x * b.y`, or too little saved). The emitter writes the doc with the scalar
 /// expansion.
 ///
 /// `rt` is the runtime crate path.
-pub fn build(
+pub(super) fn build(
     ta: &TypeDef,
     tb: &TypeDef,
     t: &TypeDef,
     m: &SymMv,
     rt: &TokenStream,
 ) -> Option<TokenStream> {
-    let qualifies = ta.versor
-        && tb.versor
-        && ta.constants.is_empty()
-        && tb.constants.is_empty()
-        && ta.fields.len() >= 4
-        && tb.fields.len() >= 4
-        && t.fields.len() >= 4;
-    if !qualifies {
-        return None;
-    }
-    // Per output field: a_j -> [(b_k, c)].
-    let mut lanes: Vec<BTreeMap<u16, Vec<(u16, Rational)>>> = Vec::new();
-    let mut scalar_terms = 0usize;
-    for f in &t.fields {
-        let mut by_a: BTreeMap<u16, Vec<(u16, Rational)>> = BTreeMap::new();
-        for (mono, &c) in &m.get(f.bitmap).0 {
-            match mono.as_slice() {
-                [x, y] if x.operand == 0 && y.operand == 1 => by_a
-                    .entry(x.field)
-                    .or_default()
-                    .push((y.field, c * Rational::int(f.sign as i64))),
-                _ => return None,
-            }
-            scalar_terms += 1;
-        }
-        lanes.push(by_a);
-    }
+    let lanes = lane_terms(ta, tb, t, m)?;
+    let scalar_terms: usize = lanes.iter().flat_map(|l| l.values()).map(Vec::len).sum();
     let af = |j: u16| ident(&format!("a_{}", ta.fields[j as usize].name));
     let bf = |k: u16| &tb.fields[k as usize].name;
     let nbq = tb.fields.len().div_ceil(4);
