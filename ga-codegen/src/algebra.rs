@@ -73,19 +73,7 @@ pub fn checked_wedge(x: &Exact, y: &Exact) -> Option<Exact> {
 fn invert(m: &[Vec<Rational>]) -> Option<Vec<Vec<Rational>>> {
     let n = m.len();
     let mut a: Vec<Vec<Rational>> = m.to_vec();
-    let mut inv: Vec<Vec<Rational>> = (0..n)
-        .map(|i| {
-            (0..n)
-                .map(|j| {
-                    if i == j {
-                        Rational::ONE
-                    } else {
-                        Rational::ZERO
-                    }
-                })
-                .collect()
-        })
-        .collect();
+    let mut inv = Rational::identity_matrix(n);
     for col in 0..n {
         // The congruence transform is invertible, so a pivot always exists.
         let p = (col..n).find(|&r| !a[r][col].is_zero())?;

@@ -331,19 +331,7 @@ impl Metric {
     /// degenerate directions (square 0). No square roots, so every coefficient stays rational.
     pub fn checked_orthogonal_basis(&self) -> Option<(Vec<Vec<Rational>>, Vec<Rational>)> {
         let n = self.dim();
-        let mut remaining: Vec<Vec<Rational>> = (0..n)
-            .map(|i| {
-                (0..n)
-                    .map(|j| {
-                        if i == j {
-                            Rational::ONE
-                        } else {
-                            Rational::ZERO
-                        }
-                    })
-                    .collect()
-            })
-            .collect();
+        let mut remaining = Rational::identity_matrix(n);
         let mut rows = Vec::new();
         let mut squares = Vec::new();
         while !remaining.is_empty() {

@@ -60,6 +60,23 @@ impl Rational {
     /// One.
     pub const ONE: Rational = Rational { num: 1, den: 1 };
 
+    /// The `n x n` identity matrix, row by row.
+    pub fn identity_matrix(n: usize) -> Vec<Vec<Rational>> {
+        (0..n)
+            .map(|i| {
+                (0..n)
+                    .map(|j| {
+                        if i == j {
+                            Rational::ONE
+                        } else {
+                            Rational::ZERO
+                        }
+                    })
+                    .collect()
+            })
+            .collect()
+    }
+
     /// `num / den`, reduced; `None` when `den == 0` or the value does not fit.
     pub fn checked_new(num: i128, den: i128) -> Option<Rational> {
         if den == 0 {
