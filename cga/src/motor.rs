@@ -255,15 +255,13 @@ impl Motor {
 /// `dst[i] = (r0 . p, r1 . p, r2 . p)` with rows `[m_x, m_y, m_z, _, m_const]`: a 3x4 affine map.
 #[inline]
 pub(crate) fn affine_rows(r0: &[S; 5], r1: &[S; 5], r2: &[S; 5], src: &[V3], dst: &mut [V3]) {
-    let (a00, a01, a02, a03) = (r0[0], r0[1], r0[2], r0[4]);
-    let (a10, a11, a12, a13) = (r1[0], r1[1], r1[2], r1[4]);
-    let (a20, a21, a22, a23) = (r2[0], r2[1], r2[2], r2[4]);
+    // glam's matrix (SIMD in f32) applies the rows; columns are e1, e2, e3, translation.
+    let m = Mat4::from_cols_array(&[
+        r0[0], r1[0], r2[0], 0.0, r0[1], r1[1], r2[1], 0.0, r0[2], r1[2], r2[2], 0.0, r0[4], r1[4],
+        r2[4], 1.0,
+    ]);
     for (o, p) in dst.iter_mut().zip(src) {
-        *o = V3::new(
-            a00 * p.x + a01 * p.y + a02 * p.z + a03,
-            a10 * p.x + a11 * p.y + a12 * p.z + a13,
-            a20 * p.x + a21 * p.y + a22 * p.z + a23,
-        );
+        *o = m.transform_point3(*p);
     }
 }
 
