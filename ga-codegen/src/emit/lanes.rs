@@ -44,6 +44,9 @@ impl Part {
     }
 }
 
+/// The terms of one output field of a lane-form product: `a_j -> [(b_k, c)]`.
+pub(super) type LaneTerms = BTreeMap<u16, Vec<(u16, Rational)>>;
+
 /// The terms of a lane-form product, per output field of `t`: `a_j -> [(b_k, c)]` for each
 /// term `c a_j b_k` (the output field's sign applied). `None` when the product does not
 /// qualify for a lane form: operands that are not versors, constants, fewer than four fields,
@@ -53,7 +56,7 @@ pub(super) fn lane_terms(
     tb: &TypeDef,
     t: &TypeDef,
     m: &SymMv,
-) -> Option<Vec<BTreeMap<u16, Vec<(u16, Rational)>>>> {
+) -> Option<Vec<LaneTerms>> {
     let qualifies = ta.versor
         && tb.versor
         && ta.constants.is_empty()
@@ -66,7 +69,7 @@ pub(super) fn lane_terms(
     }
     let mut lanes = Vec::with_capacity(t.fields.len());
     for f in &t.fields {
-        let mut by_a: BTreeMap<u16, Vec<(u16, Rational)>> = BTreeMap::new();
+        let mut by_a = LaneTerms::new();
         for (mono, &c) in &m.get(f.bitmap).0 {
             match mono.as_slice() {
                 [x, y] if x.operand == 0 && y.operand == 1 => by_a

@@ -6,7 +6,7 @@
 //! grouped by their vector of coefficients, so that each group is signed (an exact sign-bit
 //! flip) or scaled once. The f64 twin is the paired-lane form in `lanes.rs`, which also finds the terms.
 
-use super::lanes::lane_terms;
+use super::lanes::{lane_terms, LaneTerms};
 use super::render::{ident, lit};
 use crate::rational::Rational;
 use crate::spec::TypeDef;
@@ -44,7 +44,7 @@ pub(super) fn build(
     let mut vector_ops = 0usize;
     for (pi, quad) in t.fields.chunks(4).enumerate() {
         let empty = BTreeMap::new();
-        let l: Vec<&BTreeMap<u16, Vec<(u16, Rational)>>> = (0..4)
+        let l: Vec<&LaneTerms> = (0..4)
             .map(|i| {
                 if i < quad.len() {
                     &lanes[4 * pi + i]
