@@ -270,19 +270,33 @@ enum Split {
     RightHalf,
 }
 
-/// The cheapest straight-line program for the sandwich of `tv` (the versor, operand 0) on
-/// `tx` (the operand, operand 1) into `to`, proven equal to `reduced` (the expansion, reduced
-/// modulo `ideal`) on every output field; `None` when no split is cheaper than the
-/// term-by-term form.
-pub fn sandwich_program(
-    table: &mut BladeTable,
-    basis: &[String],
-    tv: &TypeDef,
-    tx: &TypeDef,
-    to: &TypeDef,
-    reduced: &SymMv,
-    ideal: &UnitIdeal,
-) -> Option<Program> {
+/// One fused sandwich to factor: the versor type `tv` (operand 0) on `tx` (operand 1) into
+/// `to`, with `reduced` the expansion reduced modulo `ideal` (the unit identities of `tv`).
+pub struct SandwichCase<'a> {
+    /// The basis vector names (for the temporaries' names).
+    pub basis: &'a [String],
+    /// The versor type.
+    pub tv: &'a TypeDef,
+    /// The operand type.
+    pub tx: &'a TypeDef,
+    /// The output type.
+    pub to: &'a TypeDef,
+    /// The reduced expansion every program must equal.
+    pub reduced: &'a SymMv,
+    /// The unit identities of the versor.
+    pub ideal: &'a UnitIdeal,
+}
+
+/// The cheapest straight-line program for the sandwich `case`, proven equal to its reduced
+/// expansion on every output field; `None` when no split is cheaper than the term-by-term form.
+pub fn sandwich_program(table: &mut BladeTable, case: &SandwichCase) -> Option<Program> {
+    let SandwichCase {
+        tv,
+        to,
+        reduced,
+        ideal,
+        ..
+    } = *case;
     if !bounded_norm(table, tv) {
         return None;
     }
@@ -299,7 +313,7 @@ pub fn sandwich_program(
         ]
     };
     for &split in splits {
-        let Some(p) = split_program(table, basis, tv, tx, to, reduced, ideal, split) else {
+        let Some(p) = split_program(table, case, split) else {
             continue;
         };
         let (m, a) = p.ops();
@@ -345,17 +359,15 @@ fn substitute(p: &Poly, temps: &[Poly]) -> Poly {
     out
 }
 
-#[allow(clippy::too_many_arguments)] // the two types, the output, and what the result must equal
-fn split_program(
-    table: &mut BladeTable,
-    basis: &[String],
-    tv: &TypeDef,
-    tx: &TypeDef,
-    to: &TypeDef,
-    reduced: &SymMv,
-    ideal: &UnitIdeal,
-    split: Split,
-) -> Option<Program> {
+fn split_program(table: &mut BladeTable, case: &SandwichCase, split: Split) -> Option<Program> {
+    let SandwichCase {
+        basis,
+        tv,
+        tx,
+        to,
+        reduced,
+        ideal,
+    } = *case;
     let a = SymMv::of_type(tv, 0);
     let x = SymMv::of_type(tx, 1);
     let ar = a.rev();

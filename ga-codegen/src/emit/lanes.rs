@@ -84,6 +84,19 @@ pub(super) fn lane_terms(
     Some(lanes)
 }
 
+/// Order a group of signed terms (`true`: subtracted) to lead with an added one. When every
+/// term is subtracted, the signs are flipped and `true` is returned: the group is negated.
+pub(super) fn lead_with_added<T>(terms: &mut [(bool, T)]) -> bool {
+    let all_neg = terms.iter().all(|t| t.0);
+    if all_neg {
+        terms.iter_mut().for_each(|t| t.0 = false);
+    }
+    if let Some(first) = terms.iter().position(|t| !t.0) {
+        terms.swap(0, first);
+    }
+    all_neg
+}
+
 impl Gen<'_> {
     /// The body of a geometric product between two versor types in paired-lane form, or `None`
     /// when the product does not qualify (f32, constants, small types, non-bilinear terms).
@@ -147,14 +160,7 @@ impl Gen<'_> {
             let mut parts: Vec<Part> = Vec::new();
             let parts_terms: usize = groups.values().map(Vec::len).sum();
             for ((c0, c1), mut terms) in groups {
-                // Lead with an added term; if every term is subtracted, negate the group.
-                let all_neg = terms.iter().all(|t| t.0);
-                if all_neg {
-                    terms.iter_mut().for_each(|t| t.0 = false);
-                }
-                if let Some(first) = terms.iter().position(|t| !t.0) {
-                    terms.swap(0, first);
-                }
+                let all_neg = lead_with_added(&mut terms);
                 let mut sum = TokenStream::new();
                 for (i, (neg, lt)) in terms.iter().enumerate() {
                     let bvec = match lt.b {

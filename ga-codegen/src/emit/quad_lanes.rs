@@ -6,7 +6,7 @@
 //! grouped by their vector of coefficients, so that each group is signed (an exact sign-bit
 //! flip) or scaled once. The f64 twin is the paired-lane form in `lanes.rs`, which also finds the terms.
 
-use super::lanes::{lane_terms, LaneTerms};
+use super::lanes::{lane_terms, lead_with_added, LaneTerms};
 use super::render::{ident, lit};
 use crate::rational::Rational;
 use crate::spec::TypeDef;
@@ -17,6 +17,9 @@ use std::collections::{BTreeMap, BTreeSet};
 
 /// One lane term: operand field index per lane (`None`: the lane has no term).
 type Tuple = [Option<u16>; 4];
+
+/// A signed lane term (`true`: subtracted): the versor field splatted and the operand tuple.
+type SignedTerm = (bool, (u16, Tuple));
 
 /// The body of `a * b` (types `ta`, `tb`, result `t`, symbolic product `m`) in 4-lane form;
 /// `None` when the product does not qualify (constants, fewer than four fields, a term that
@@ -54,7 +57,7 @@ pub(super) fn build(
             })
             .collect();
         // Coefficient vector (first non-zero positive) -> signed terms.
-        let mut groups: BTreeMap<[Rational; 4], Vec<(bool, u16, Tuple)>> = BTreeMap::new();
+        let mut groups: BTreeMap<[Rational; 4], Vec<SignedTerm>> = BTreeMap::new();
         let js: BTreeSet<u16> = l.iter().flat_map(|x| x.keys().copied()).collect();
         for j in js {
             let t: Vec<&[(u16, Rational)]> = l
@@ -73,20 +76,14 @@ pub(super) fn build(
                 let neg = coef[0] < Rational::ZERO;
                 let key = if neg { coef.map(|c| -c) } else { coef };
                 used_splats.insert(j);
-                groups.entry(key).or_default().push((neg, j, tuple));
+                groups.entry(key).or_default().push((neg, (j, tuple)));
             }
         }
         let mut parts: Vec<(bool, TokenStream)> = Vec::new();
         for (coef, mut terms) in groups {
-            let all_neg = terms.iter().all(|t| t.0);
-            if all_neg {
-                terms.iter_mut().for_each(|t| t.0 = false);
-            }
-            if let Some(first) = terms.iter().position(|t| !t.0) {
-                terms.swap(0, first);
-            }
+            let all_neg = lead_with_added(&mut terms);
             let mut sum = TokenStream::new();
-            for (i, (neg, j, tuple)) in terms.iter().enumerate() {
+            for (i, (neg, (j, tuple))) in terms.iter().enumerate() {
                 let (bvec, built) =
                     operand_quad(tuple, nbq, &bf, &mut used_quads, &mut used_shuffles);
                 if i > 0 {

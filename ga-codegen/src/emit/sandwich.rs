@@ -232,15 +232,15 @@ impl Gen<'_> {
         let (mut sdoc, nterms) = self.sandwich_doc(tv, tx, to, &coef);
         // A cheaper straight-line program (two half products sharing work), proven equal to
         // the expansion, replaces the term-by-term body (see `factor`).
-        if let Some(prog) = crate::factor::sandwich_program(
-            &mut self.table,
-            spec.metric.names(),
+        let case = crate::factor::SandwichCase {
+            basis: spec.metric.names(),
             tv,
             tx,
             to,
-            &r,
-            &ideal,
-        ) {
+            reduced: &r,
+            ideal: &ideal,
+        };
+        if let Some(prog) = crate::factor::sandwich_program(&mut self.table, &case) {
             let names = Names::new(tv, Some(tx));
             let var = |v: Var| names.var(v);
             kernel = Kernel {
