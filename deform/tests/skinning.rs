@@ -377,6 +377,7 @@ fn glb_round_trip() {
         let bytes = glb_bytes(rig, &GlbOptions::default()).unwrap();
         std::fs::write(gltf_out().join(format!("{name}.glb")), &bytes).unwrap();
         let back = parse_gltf(&bytes, name, None).unwrap();
+        check_written_normals(&bytes, rig, name);
         assert_eq!(back.animations.len(), rig.animations.len());
         assert_eq!(back.mesh.triangles, rig.mesh.triangles);
         let diag = rig.mesh.bounding_box().unwrap().diagonal();
@@ -391,6 +392,34 @@ fn glb_round_trip() {
             }
         }
     }
+}
+
+/// Every written primitive has unit normals that are the rig's smooth vertex normals.
+fn check_written_normals(bytes: &[u8], rig: &deform::skinning::Rig, name: &str) {
+    let g = gltf::Gltf::from_slice(bytes).unwrap();
+    let blob = g.blob.as_deref();
+    let want = rig.mesh.vertex_normals();
+    let mut seen = 0;
+    for prim in g.meshes().flat_map(|m| m.primitives().collect::<Vec<_>>()) {
+        let reader = prim.reader(|b| if b.index() == 0 { blob } else { None });
+        let normals: Vec<[f32; 3]> = reader.read_normals().expect("a NORMAL attribute").collect();
+        let count = reader.read_positions().unwrap().count();
+        assert_eq!(normals.len(), count, "{name}");
+        for n in normals {
+            let n = glam::Vec3::from(n);
+            assert!(
+                (n.length() - 1.0).abs() < 1e-6,
+                "{name}: |n| = {}",
+                n.length()
+            );
+            let w = want[seen];
+            if w != glam::DVec3::ZERO {
+                assert!((n.as_dvec3() - w).length() < 1e-6, "{name} vertex {seen}");
+            }
+            seen += 1;
+        }
+    }
+    assert_eq!(seen, rig.mesh.vertex_count(), "{name}");
 }
 
 /// The paper's Fig. 2: a slight rotation, dilation and translation at CesiumMan's neck;

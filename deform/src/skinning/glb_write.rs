@@ -33,6 +33,23 @@ pub fn write_glb(rig: &Rig, options: &GlbOptions, path: impl AsRef<Path>) -> Res
     std::fs::rename(&tmp, path).map_err(io)
 }
 
+/// Smooth vertex normals of the bind-pose mesh ([`crate::Mesh::vertex_normals`], area
+/// weighted), unit length in single precision as glTF requires. Without them a viewer must
+/// shade the mesh flat. A vertex with no non-degenerate face gets `+z`.
+fn unit_normals(mesh: &crate::Mesh) -> Vec<[f32; 3]> {
+    mesh.vertex_normals()
+        .into_iter()
+        .map(|n| {
+            let n = n.as_vec3().normalize_or_zero();
+            if n == glam::Vec3::ZERO {
+                [0.0, 0.0, 1.0]
+            } else {
+                n.to_array()
+            }
+        })
+        .collect()
+}
+
 /// Binary buffer under construction: 4-byte aligned views.
 #[derive(Default)]
 struct Bin {
@@ -127,8 +144,8 @@ fn compact_influences(rig: &Rig) -> (usize, Vec<[u16; 8]>, Vec<[f32; 8]>) {
 
 /// The rig as binary glTF: one mesh (every primitive of [`Rig::primitives`]), one skin, the
 /// nodes (a new root node instances the skinned mesh), the animations, and a scene.
-/// Positions, matrices and keys are written in single precision, as glTF stores them. Up to 8
-/// influences per vertex are kept (the largest, renormalised).
+/// Positions, smooth normals, matrices and keys are written in single precision, as glTF
+/// stores them. Up to 8 influences per vertex are kept (the largest, renormalised).
 ///
 /// # Errors
 /// [`crate::Error::InvalidArgument`] for a mesh without triangles, more than 65536 joints or
@@ -158,6 +175,7 @@ pub fn glb_bytes(rig: &Rig, options: &GlbOptions) -> Result<Vec<u8>> {
     };
     let mut bin = Bin::default();
     let (width, joints, weights) = compact_influences(rig);
+    let normals = unit_normals(&rig.mesh);
     let mut primitives = Vec::new();
     for p in &rig.primitives {
         let range = p.vertex_offset..p.vertex_offset + p.vertex_count;
@@ -177,7 +195,9 @@ pub fn glb_bytes(rig: &Rig, options: &GlbOptions) -> Result<Vec<u8>> {
             Some(34963),
             json!({"componentType": 5125, "count": 3 * p.triangle_count, "type": "SCALAR"}),
         );
-        let mut attributes = json!({"POSITION": position});
+        let nrm: Vec<f32> = normals[range.clone()].iter().flatten().copied().collect();
+        let normal = bin.floats(&nrm, 3, "VEC3", Some(34962), false);
+        let mut attributes = json!({"POSITION": position, "NORMAL": normal});
         for set in 0..width / 4 {
             let j: Vec<u8> = joints[range.clone()]
                 .iter()
