@@ -3,8 +3,10 @@
 use super::cap::ear_clip;
 use super::split::{assemble, local_loops, new_vertex_data, Assembled, FaceFate, Splitter};
 use super::{check_snap, Frame, SkinnedMesh, Surgery, SurgeryError};
+use crate::skinning::Influences;
 use cga::Plane;
 use glam::DVec3;
+use std::collections::HashMap;
 
 /// Options of [`Surgery::cut`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -128,6 +130,15 @@ impl Surgery {
             .iter()
             .map(|&p| plane.signed_distance(p))
             .collect();
+        let weld = self.weld.as_ref();
+        // Coincident vertices are classified as one (posed copies can differ in the last
+        // bits); each copy's own value still places its edge's new vertex.
+        let own = weld.map(|_| s.clone());
+        if let Some(w) = weld {
+            for v in 0..n {
+                s[v] = s[w.canon[v] as usize];
+            }
+        }
         let tiny = 1e-12 * self.diagonal;
         let candidates = bvh.faces_near_plane(nrm, d, tiny);
         let mut snap = Vec::new();
@@ -157,13 +168,25 @@ impl Surgery {
         for &v in &snap {
             s[v] = 0.0;
         }
+        if let Some(w) = weld {
+            // A snapped vertex snaps its coincident copies (whose own edges may not have).
+            for &v in &snap {
+                s[w.canon[v] as usize] = 0.0;
+            }
+            for v in 0..n {
+                s[v] = s[w.canon[v] as usize];
+            }
+        }
         if !(s.iter().any(|&x| x > 0.0) && s.iter().any(|&x| x < 0.0)) {
             return Err(SurgeryError::Misses { vertices: n });
         }
         // Split: faces of each side over input vertices, then new ones.
         let mut splitter = Splitter::new(positions);
         let root = |a: u32, b: u32| {
-            let (sa, sb) = (s[a as usize], s[b as usize]);
+            let (sa, sb) = match &own {
+                Some(o) if o[a as usize] * o[b as usize] < 0.0 => (o[a as usize], o[b as usize]),
+                _ => (s[a as usize], s[b as usize]),
+            };
             sa / (sa - sb)
         };
         let f = src.mesh.triangle_count();
@@ -206,15 +229,32 @@ impl Surgery {
                 t.iter().filter(|&&v| s[v as usize] == 0.0).count() >= 2
             })
             .collect();
-        let (new_inf, new_rest) = new_vertex_data(src, &splitter.new_edges, frame, positions)?;
+        let (mut new_inf, mut new_rest) =
+            new_vertex_data(src, &splitter.new_edges, frame, positions)?;
         let on_plane = |g: u32| (g as usize) >= n || s[g as usize] == 0.0;
+        // Loops are found over welded vertices when coincident ones exist.
+        let canon = weld.map(|w| canonical_ids(&w.canon, &splitter.new_edges));
+        if let Some(c) = &canon {
+            share_copies(&c[n..], n, &mut new_inf, &mut new_rest);
+        }
+        let (topology, triangles, produced) = match (weld, &canon) {
+            (Some(w), Some(c)) => (
+                &w.topology,
+                &w.triangles[..],
+                produced
+                    .iter()
+                    .map(|(t, k)| (t.map(|v| c[v as usize]), *k))
+                    .collect(),
+            ),
+            _ => (&self.topology, &src.mesh.triangles[..], produced),
+        };
         let [f0, f1] = faces;
         let [o0, o1] = from;
         let pieces = [(f0, o0, 0u8), (f1, o1, 1u8)].map(|(f, o, side)| {
             let a = assemble(src, f, &splitter, &new_inf, &new_rest);
             let loops = local_loops(
-                &self.topology,
-                &src.mesh.triangles,
+                topology,
+                triangles,
                 |f| fate[f as usize],
                 &changed,
                 &seeds,
@@ -225,6 +265,7 @@ impl Surgery {
                 a,
                 o,
                 loops,
+                canon.as_deref(),
                 &on_plane,
                 &|g| splitter.at(g),
                 nrm,
@@ -241,11 +282,45 @@ impl Surgery {
     }
 }
 
-/// One side: caps, boundary loops (`loops` over global vertices).
+/// The canonical id of every input and new vertex: `canon` for input vertices, and for a new
+/// vertex the first new vertex on an edge between the same canonical ends (the copies of a
+/// seam edge are split at the same point).
+fn canonical_ids(canon: &[u32], new_edges: &[(u32, u32, f64)]) -> Vec<u32> {
+    let n = canon.len();
+    let mut first: HashMap<(u32, u32), u32> = HashMap::with_capacity(new_edges.len());
+    let mut out = Vec::with_capacity(n + new_edges.len());
+    out.extend_from_slice(canon);
+    for (k, &(a, b, _)) in new_edges.iter().enumerate() {
+        let (ca, cb) = (canon[a as usize], canon[b as usize]);
+        let key = (ca.min(cb), ca.max(cb));
+        out.push(*first.entry(key).or_insert((n + k) as u32));
+    }
+    out
+}
+
+/// Give the copies of a new vertex (one per copy of a seam edge) the rest position and
+/// influences of the first, so that they coincide exactly and pose alike: `canon_new[k]` is
+/// the canonical global id of new vertex `k` (new ids start at `n`).
+fn share_copies(canon_new: &[u32], n: usize, inf: &mut Influences, rest: &mut [DVec3]) {
+    let w = inf.width;
+    for (k, &c) in canon_new.iter().enumerate() {
+        let c = c as usize - n;
+        if c != k {
+            rest[k] = rest[c];
+            inf.joints.copy_within(c * w..(c + 1) * w, k * w);
+            inf.weights.copy_within(c * w..(c + 1) * w, k * w);
+        }
+    }
+}
+
+/// One side: caps, boundary loops (`loops` over global vertices, or over their canonical ids
+/// `canon` when coincident vertices were welded).
+#[allow(clippy::too_many_arguments)] // the piece, its loops, and how to read their vertices
 fn piece(
     a: Assembled,
     mut face_origin: Vec<u32>,
     loops: Vec<Vec<u32>>,
+    canon: Option<&[u32]>,
     on_plane: &impl Fn(u32) -> bool,
     at: &impl Fn(u32) -> DVec3,
     normal: DVec3,
@@ -258,6 +333,21 @@ fn piece(
     } = a;
     let mut cap_triangles = 0;
     let mut boundary_loops = loops.len();
+    // The piece's local index of a loop vertex: through any of its coincident copies that the
+    // piece uses when welded.
+    let local_of: Vec<u32> = match canon {
+        None => local,
+        Some(c) => {
+            let mut l = vec![u32::MAX; local.len()];
+            for (g, &x) in local.iter().enumerate() {
+                let slot = &mut l[c[g] as usize];
+                if x != u32::MAX && *slot == u32::MAX {
+                    *slot = x;
+                }
+            }
+            l
+        }
+    };
     if cap {
         for lp in loops {
             if lp.len() < 3 || !lp.iter().all(|&v| on_plane(v)) {
@@ -265,7 +355,10 @@ fn piece(
             }
             // The cap runs against the loop (whose half-edges the piece's faces use).
             let pts: Vec<DVec3> = lp.iter().rev().map(|&g| at(g)).collect();
-            let rev: Vec<u32> = lp.iter().rev().map(|&g| local[g as usize]).collect();
+            let rev: Vec<u32> = lp.iter().rev().map(|&g| local_of[g as usize]).collect();
+            if rev.contains(&u32::MAX) {
+                continue;
+            }
             if let Some(tris) = ear_clip(&pts, normal) {
                 cap_triangles += tris.len();
                 mesh.mesh

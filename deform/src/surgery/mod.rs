@@ -10,6 +10,13 @@
 //! re-triangulated; each side becomes its own [`SkinnedMesh`], optionally capped; new vertices
 //! get their edge's interpolated weights (4 largest, renormalised: section 4.3).
 //!
+//! glTF models split vertices along UV seams, so vertex by vertex they are open patches.
+//! [`Surgery::new`] welds vertices at bit-identical positions for the cut's topology: boundary
+//! loops and caps are found over the welded surface (a cut of CesiumMan closes with two caps
+//! instead of meeting hundreds of seam loops), while each piece keeps every input vertex; the
+//! copies of a new vertex on a seam get identical rest positions and weights. Tears and drills
+//! count loops over the input's own vertices.
+//!
 //! The cut can be made on the rest mesh or on a posed frame ([`Frame::Posed`]): the plane then
 //! classifies the posed positions, and each new vertex is mapped back to the rest pose through
 //! the inverse of its own blended skin transform, so posing the pieces at that frame gives
@@ -36,6 +43,7 @@ mod soup;
 mod split;
 mod tear;
 mod weights;
+mod weld;
 
 pub use bvh::FaceBvh;
 pub use cut::{CutOptions, CutPiece, CutResult, VertexOrigin};
@@ -106,6 +114,8 @@ pub struct Surgery {
     mesh: SkinnedMesh,
     bvh: FaceBvh,
     topology: split::Topology,
+    /// Coincident vertices welded, for the loops and caps of a cut (`None`: none coincide).
+    weld: Option<weld::Weld>,
     diagonal: f64,
 }
 
@@ -149,6 +159,7 @@ impl Surgery {
         let diagonal = mesh.bounding_box().map_or(0.0, |b| b.diagonal());
         Ok(Surgery {
             topology: split::Topology::new(&mesh.triangles, n),
+            weld: weld::Weld::new(mesh),
             bvh: FaceBvh::new(mesh),
             mesh: SkinnedMesh {
                 mesh: mesh.clone(),
