@@ -13,28 +13,8 @@ use deform::surgery::{
 use deform::{BlendMethod, Deformer, Mesh};
 use glam::{DQuat, DVec3};
 
-/// Edge-manifold and consistently oriented: no edge has more than two triangles and no
-/// directed edge appears twice.
 fn assert_manifold(m: &Mesh) {
-    let e = deform::adjacency::edges(&m.triangles, m.vertex_count());
-    assert_eq!(e.non_manifold().count(), 0, "non-manifold edges");
-    let mut directed: Vec<(u32, u32)> = m
-        .triangles
-        .iter()
-        .flat_map(|t| [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])])
-        .collect();
-    directed.sort_unstable();
-    let n = directed.len();
-    directed.dedup();
-    assert_eq!(
-        directed.len(),
-        n,
-        "a directed edge appears twice (flipped triangles)"
-    );
-    assert!(m
-        .triangles
-        .iter()
-        .all(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2]));
+    common::assert_oriented_manifold(&m.triangles, m.vertex_count());
 }
 
 /// Every check that holds for any cut of `rig` by `plane` on the rest pose.

@@ -37,17 +37,7 @@ fn welded_loops(m: &Mesh) -> usize {
 
 /// Welded, the piece is an edge-manifold, consistently oriented surface.
 fn assert_welded_manifold(m: &Mesh) {
-    let t = welded(m);
-    let e = deform::adjacency::edges(&t, m.vertex_count());
-    assert_eq!(e.non_manifold().count(), 0, "non-manifold edges");
-    let mut directed: Vec<(u32, u32)> = t
-        .iter()
-        .flat_map(|t| [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])])
-        .collect();
-    directed.sort_unstable();
-    let n = directed.len();
-    directed.dedup();
-    assert_eq!(directed.len(), n, "a directed edge appears twice");
+    common::assert_oriented_manifold(&welded(m), m.vertex_count());
 }
 
 /// Areas add up (caps aside), new vertices lie on the plane, loops agree with a welded count.

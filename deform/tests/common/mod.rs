@@ -149,3 +149,25 @@ pub fn libigl_rig(name: &str) -> Option<deform::skinning::Rig> {
     let weights = deform::io::read_dmat(lib.join(format!("{name}-weights.dmat"))).expect("weights");
     Some(deform::skinning::libigl_rig(mesh, &skeleton, &weights).expect("rig"))
 }
+
+/// Edge-manifold and consistently oriented: no edge has more than two triangles, no directed
+/// edge appears twice, no triangle repeats a vertex.
+pub fn assert_oriented_manifold(triangles: &[[u32; 3]], vertex_count: usize) {
+    let e = deform::adjacency::edges(triangles, vertex_count);
+    assert_eq!(e.non_manifold().count(), 0, "non-manifold edges");
+    let mut directed: Vec<(u32, u32)> = triangles
+        .iter()
+        .flat_map(|t| [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])])
+        .collect();
+    directed.sort_unstable();
+    let n = directed.len();
+    directed.dedup();
+    assert_eq!(
+        directed.len(),
+        n,
+        "a directed edge appears twice (flipped triangles)"
+    );
+    assert!(triangles
+        .iter()
+        .all(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2]));
+}
