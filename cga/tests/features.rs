@@ -25,6 +25,29 @@ fn pod_cast() {
     assert_eq!(back, &ms);
 }
 
+/// Call `$m!` with every type of `algebras/cga.toml` (one list for the tests below).
+#[allow(unused_macros)]
+macro_rules! every_type {
+    ($m:ident) => {
+        $m!(
+            Vector,
+            Point,
+            Bivector,
+            Trivector,
+            Quadvector,
+            Pseudoscalar,
+            Rotor,
+            Translator,
+            Dilator,
+            Motor,
+            ScaledMotor,
+            Even,
+            Odd,
+            Mv
+        )
+    };
+}
+
 /// Every generated type (not only those a hand-written list once named) serialises as its
 /// coefficient array in storage order and reads back.
 #[cfg(feature = "serde")]
@@ -47,22 +70,7 @@ fn serde_every_generated_type() {
             round_trip(y, cga::f32::$t::LEN);
         )*};
     }
-    each!(
-        Vector,
-        Point,
-        Bivector,
-        Trivector,
-        Quadvector,
-        Pseudoscalar,
-        Rotor,
-        Translator,
-        Dilator,
-        Motor,
-        ScaledMotor,
-        Even,
-        Odd,
-        Mv
-    );
+    every_type!(each);
 }
 
 /// Every generated type is `Pod`: a slice of any of them casts to bytes and back.
@@ -79,20 +87,5 @@ fn pod_every_generated_type() {
             assert_eq!(z, cga::f32::$t::default());
         )*};
     }
-    each!(
-        Vector,
-        Point,
-        Bivector,
-        Trivector,
-        Quadvector,
-        Pseudoscalar,
-        Rotor,
-        Translator,
-        Dilator,
-        Motor,
-        ScaledMotor,
-        Even,
-        Odd,
-        Mv
-    );
+    every_type!(each);
 }
