@@ -4,6 +4,7 @@
 //! In-process timing loops with `std::time::Instant` and `black_box`; the whole report takes a
 //! few seconds. Ratios below 1 mean the GA path is faster.
 
+use crate::grade::{Spread, Tally, Target};
 use crate::timing::Lcg;
 use cga::Sandwich;
 use std::fmt::Write as _;
@@ -16,15 +17,17 @@ const N: usize = 1024;
 const BUDGET: Duration = Duration::from_millis(250);
 
 /// Nanoseconds per element of `f`, which processes `N` elements per call; best of 5 rounds.
-fn time_ns(f: impl FnMut()) -> f64 {
+fn time_ns(f: impl FnMut()) -> Spread {
     crate::timing::time_ns(N, BUDGET, f)
 }
 
 struct Row {
     what: &'static str,
-    ga: f64,
-    reference: Option<(&'static str, f64)>,
-    target: &'static str,
+    ga: Spread,
+    /// The baseline measured in the same run; the target then bounds the ratio `ga / reference`.
+    reference: Option<(&'static str, Spread)>,
+    /// A ratio bound with a reference, a nanosecond bound without; `None`: reported only.
+    target: Option<Target>,
 }
 
 /// Runs every measurement and returns a printable table.
@@ -77,7 +80,7 @@ pub fn report() -> String {
         what: "f64 motor * motor",
         ga,
         reference: Some(("DMat4 * DMat4", gl)),
-        target: "ratio <= 1",
+        target: Some(Target::AtMost(1.0)),
     });
     let ga = time_ns(|| {
         let (a, o) = (black_box(&motors32), &mut out_m32);
@@ -97,7 +100,7 @@ pub fn report() -> String {
         what: "f32 motor * motor",
         ga,
         reference: Some(("Mat4 * Mat4 (SIMD)", gl)),
-        target: "ratio <= 1",
+        target: Some(Target::AtMost(1.0)),
     });
 
     // One motor per point (sandwich) against quaternion + translation.
@@ -119,7 +122,7 @@ pub fn report() -> String {
         what: "f64 motor on point (sandwich)",
         ga,
         reference: Some(("DQuat * p + t", gl)),
-        target: "ratio <= 1.3",
+        target: Some(Target::AtMost(1.3)),
     });
     let ga = time_ns(|| {
         let (m, p, o) = (black_box(&motors32), black_box(&pts32), &mut out_p32);
@@ -144,7 +147,7 @@ pub fn report() -> String {
         what: "f32 motor on point (sandwich)",
         ga,
         reference: Some(("Quat * p + t", gl)),
-        target: "ratio <= 1.3",
+        target: Some(Target::AtMost(1.3)),
     });
 
     // Batch: one motor, many points.
@@ -165,7 +168,7 @@ pub fn report() -> String {
         what: "f64 batch transform_points",
         ga,
         reference: Some(("DMat4::transform_point3", gl)),
-        target: "ratio <= 1.1",
+        target: Some(Target::AtMost(1.1)),
     });
     let m032 = motors32[7];
     let mat032 = mats32[7];
@@ -184,7 +187,7 @@ pub fn report() -> String {
         what: "f32 batch transform_points",
         ga,
         reference: Some(("Mat4::transform_point3", gl)),
-        target: "ratio <= 1.1",
+        target: Some(Target::AtMost(1.1)),
     });
     // The fused sandwich on many points, for comparison.
     let ga = time_ns(|| {
@@ -201,7 +204,7 @@ pub fn report() -> String {
             "DMat4::transform_point3",
             gl_f64_batch(&mat0, &pts, &mut out_p),
         )),
-        target: "report",
+        target: None,
     });
 
     // Closed-form log / exp and blends.
@@ -216,7 +219,7 @@ pub fn report() -> String {
         what: "f64 rigid log",
         ga,
         reference: None,
-        target: "< 100 ns",
+        target: Some(Target::Below(100.0)),
     });
     let ga = time_ns(|| {
         for (o, b) in out_m.iter_mut().zip(black_box(&logs)) {
@@ -228,7 +231,7 @@ pub fn report() -> String {
         what: "f64 rigid exp",
         ga,
         reference: None,
-        target: "< 100 ns",
+        target: Some(Target::Below(100.0)),
     });
     let w = [0.1, 0.2, 0.3, 0.4];
     let ga = time_ns(|| {
@@ -243,7 +246,7 @@ pub fn report() -> String {
         what: "f64 log blend of 4 motors",
         ga,
         reference: None,
-        target: "< 400 ns",
+        target: Some(Target::Below(400.0)),
     });
     let ga = time_ns(|| {
         let ms = black_box(&motors);
@@ -257,7 +260,7 @@ pub fn report() -> String {
         what: "f64 linear blend of 4 motors",
         ga,
         reference: None,
-        target: "report",
+        target: None,
     });
     let ga = time_ns(|| {
         let ms = black_box(&motors);
@@ -270,7 +273,7 @@ pub fn report() -> String {
         what: "f64 interpolate(a, b, t)",
         ga,
         reference: None,
-        target: "report",
+        target: None,
     });
     let mut out_b32 = vec![cga::f32::Bivector::default(); N];
     let ga = time_ns(|| {
@@ -283,7 +286,7 @@ pub fn report() -> String {
         what: "f32 rigid log",
         ga,
         reference: None,
-        target: "report",
+        target: None,
     });
     let ga = time_ns(|| {
         for (o, b) in out_m32.iter_mut().zip(black_box(&logs32)) {
@@ -295,7 +298,7 @@ pub fn report() -> String {
         what: "f32 rigid exp",
         ga,
         reference: None,
-        target: "report",
+        target: None,
     });
     let w32 = [0.1f32, 0.2, 0.3, 0.4];
     let ga = time_ns(|| {
@@ -310,46 +313,36 @@ pub fn report() -> String {
         what: "f32 log blend of 4 motors",
         ga,
         reference: None,
-        target: "report",
+        target: None,
     });
 
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "cga speed report (ns per element, best of 5 rounds, N = {N})"
+        "cga speed report (ns per element, best of 5 rounds [range of the rounds], N = {N})"
     );
-    let _ = writeln!(
-        s,
-        "{:<32} {:>9}  {:<26} {:>9} {:>7}  target",
-        "GA operation", "ns", "reference", "ns", "ratio"
-    );
+    let mut tally = Tally::default();
     for r in rows {
         match r.reference {
             Some((name, ns)) => {
+                let ratio = r.ga.ratio(ns);
+                let _ = writeln!(s, "{}", tally.row(r.what, r.ga, "ns", None));
                 let _ = writeln!(
                     s,
-                    "{:<32} {:>9.2}  {:<26} {:>9.2} {:>7.2}  {}",
-                    r.what,
-                    r.ga,
-                    name,
-                    ns,
-                    r.ga / ns,
-                    r.target
+                    "{}",
+                    tally.row(&format!("  vs {name} ({ns} ns)"), ratio, "x", r.target)
                 );
             }
             None => {
-                let _ = writeln!(
-                    s,
-                    "{:<32} {:>9.2}  {:<26} {:>9} {:>7}  {}",
-                    r.what, r.ga, "-", "-", "-", r.target
-                );
+                let _ = writeln!(s, "{}", tally.row(r.what, r.ga, "ns", r.target));
             }
         }
     }
+    let _ = writeln!(s, "{}", tally.summary());
     s
 }
 
-fn gl_f64_batch(m: &glam::DMat4, pts: &[glam::DVec3], out: &mut [glam::DVec3]) -> f64 {
+fn gl_f64_batch(m: &glam::DMat4, pts: &[glam::DVec3], out: &mut [glam::DVec3]) -> Spread {
     time_ns(|| {
         let m = black_box(*m);
         for (o, p) in out.iter_mut().zip(black_box(pts)) {

@@ -3,6 +3,7 @@
 //! path and fused sandwich) against glam's `DMat4::transform_point3`, and the time and size of
 //! generating the CGA module. Ratios are measured side by side in one run.
 
+use crate::grade::{Spread, Tally, Target};
 use crate::timing::{time_ns, Lcg};
 use cga::Sandwich;
 use ga_codegen::Multivector;
@@ -23,7 +24,7 @@ fn pair<A: Copy, B: Copy, R>(
     to_mv_b: impl Fn(B) -> Multivector,
     generated: impl Fn(A, B) -> R,
     generic: impl Fn(&Multivector, &Multivector) -> Multivector,
-) -> (f64, f64) {
+) -> (Spread, Spread) {
     let budget = Duration::from_millis(150);
     let ga = time_ns(a.len(), budget, || {
         for (x, y) in black_box(a).iter().zip(black_box(b)) {
@@ -44,6 +45,7 @@ fn pair<A: Copy, B: Copy, R>(
 pub fn report() -> String {
     let mut rng = Lcg(0xC6A);
     let mut s = String::new();
+    let mut tally = Tally::default();
 
     // Generated vs generic.
     let motors: Vec<cga::Motor> = (0..N).map(|_| rng.motor()).collect();
@@ -63,7 +65,7 @@ pub fn report() -> String {
     let mvs: Vec<cga::Mv> = (0..N).map(|_| cga::Mv::from_array(rng.array())).collect();
     let mvs2: Vec<cga::Mv> = (0..N).map(|_| cga::Mv::from_array(rng.array())).collect();
 
-    let rows: Vec<(&str, (f64, f64))> = vec![
+    let rows: Vec<(&str, (Spread, Spread))> = vec![
         (
             "Motor * Motor",
             pair(
@@ -133,15 +135,16 @@ pub fn report() -> String {
     ];
     let _ = writeln!(
         s,
-        "generated CGA products vs the generic multivector (f64, ns per call; target: speedup >= 50x)"
-    );
-    let _ = writeln!(
-        s,
-        "{:<24} {:>11} {:>11} {:>9}",
-        "operation", "generated", "generic", "speedup"
+        "generated CGA products vs the generic multivector (f64, ns per call, best of 5 rounds [range])"
     );
     for (what, (ga, gen)) in &rows {
-        let _ = writeln!(s, "{what:<24} {ga:>11.2} {gen:>11.1} {:>8.0}x", gen / ga);
+        let speedup = ga.speedup_over(*gen);
+        let label = format!("{what}: generated {ga} ns, generic {gen} ns, speedup");
+        let _ = writeln!(
+            s,
+            "{}",
+            tally.row(&label, speedup, "x", Some(Target::AtLeast(50.0)))
+        );
     }
 
     // One unit motor on 1M points.
@@ -172,26 +175,26 @@ pub fn report() -> String {
         s,
         "\none unit motor on {POINTS} points (f64, ns per point, ratio to glam in the same run)"
     );
-    let _ = writeln!(s, "{:<40} {:>8} {:>7}  target", "path", "ns/pt", "ratio");
-    let _ = writeln!(
-        s,
-        "{:<40} {:>8.3} {:>7}  -",
-        "glam DMat4::transform_point3", glam_ns, "1.00"
-    );
-    let _ = writeln!(
-        s,
-        "{:<40} {:>8.3} {:>7.2}  <= 1.1",
-        "Motor::transform_points (point_matrix)",
-        matrix_ns,
-        matrix_ns / glam_ns
-    );
-    let _ = writeln!(
-        s,
-        "{:<40} {:>8.3} {:>7.2}  <= 2",
-        "Motor.sandwich(Point) per point (fused)",
-        sandwich_ns,
-        sandwich_ns / glam_ns
-    );
+    let rows = [
+        ("glam DMat4::transform_point3", glam_ns, None),
+        (
+            "Motor::transform_points (point_matrix)",
+            matrix_ns,
+            Some(Target::AtMost(1.1)),
+        ),
+        (
+            "Motor.sandwich(Point) per point (fused)",
+            sandwich_ns,
+            Some(Target::AtMost(2.0)),
+        ),
+    ];
+    for (label, ns, target) in rows {
+        let _ = writeln!(s, "{}", tally.row(label, ns, "ns/point", None));
+        if target.is_some() {
+            let ratio = ns.ratio(glam_ns);
+            let _ = writeln!(s, "{}", tally.row("  ratio to glam", ratio, "x", target));
+        }
+    }
 
     // Generating the CGA module.
     let spec_path = concat!(env!("CARGO_MANIFEST_DIR"), "/../algebras/cga.toml");
@@ -214,10 +217,16 @@ pub fn report() -> String {
             let secs = start.elapsed().as_secs_f64();
             match result {
                 Ok(g) => {
+                    let label = "generation (one run)";
+                    let time = Spread::exact(secs);
                     let _ = writeln!(
                         s,
-                        "{:.3} s, {} lines, {} types, {} operations ({} identically zero, not emitted)",
-                        secs,
+                        "{}",
+                        tally.row(label, time, "s", Some(Target::Below(2.0)))
+                    );
+                    let _ = writeln!(
+                        s,
+                        "{} lines, {} types, {} operations ({} identically zero, not emitted)",
                         g.lines(),
                         g.types.len(),
                         g.ops.len(),
@@ -225,6 +234,13 @@ pub fn report() -> String {
                     );
                 }
                 Err(e) => {
+                    let failed = Spread::exact(f64::NAN);
+                    let label = "generation (failed)";
+                    let _ = writeln!(
+                        s,
+                        "{}",
+                        tally.row(label, failed, "s", Some(Target::Below(2.0)))
+                    );
                     let _ = writeln!(s, "generation failed: {e}");
                 }
             }
@@ -233,5 +249,6 @@ pub fn report() -> String {
             let _ = writeln!(s, "cannot read {spec_path}: {e}");
         }
     }
+    let _ = writeln!(s, "{}", tally.summary());
     s
 }

@@ -1,5 +1,6 @@
 //! What both quick reports share: a deterministic input generator and a best-of-rounds timer.
 
+use crate::grade::Spread;
 use std::time::{Duration, Instant};
 
 /// A small deterministic generator (no dependency on `rand`).
@@ -40,19 +41,18 @@ impl Lcg {
 }
 
 /// Nanoseconds per item of `f`, which processes `per_call` items per call: the best of 5
-/// rounds that share `budget` (each round runs `f` at least once).
-pub fn time_ns(per_call: usize, budget: Duration, mut f: impl FnMut()) -> f64 {
+/// rounds that share `budget` (each round runs `f` at least once), with the range of the rounds.
+pub fn time_ns(per_call: usize, budget: Duration, mut f: impl FnMut()) -> Spread {
     f();
-    let mut best = f64::INFINITY;
-    for _ in 0..5 {
+    let mut rounds = [0.0; 5];
+    for round in &mut rounds {
         let start = Instant::now();
         let mut iters = 0u64;
         while iters == 0 || start.elapsed() < budget / 5 {
             f();
             iters += 1;
         }
-        let ns = start.elapsed().as_nanos() as f64 / (iters as f64 * per_call as f64);
-        best = best.min(ns);
+        *round = start.elapsed().as_nanos() as f64 / (iters as f64 * per_call as f64);
     }
-    best
+    Spread::best_of(&mut rounds)
 }

@@ -1,5 +1,11 @@
-//! What the benches and quick reports share: locating the data set, and median timings.
+//! What the benches and quick reports share: locating the data set, median timings with their
+//! spread, and the targets that grade them (`grade`).
 #![allow(dead_code)]
+
+#[path = "grade.rs"]
+pub mod grade;
+
+pub use grade::{Spread, Tally, Target};
 
 use std::path::PathBuf;
 use std::time::Instant;
@@ -21,15 +27,19 @@ pub fn data(rel: &str) -> Option<PathBuf> {
     Some(path)
 }
 
-/// Median wall time in milliseconds of `runs` calls.
-pub fn median_ms(runs: usize, mut f: impl FnMut()) -> f64 {
-    let mut t: Vec<f64> = (0..runs)
+/// Wall time in milliseconds of `runs` calls: the median, and the fastest and slowest call.
+pub fn spread_ms(runs: usize, mut f: impl FnMut()) -> Spread {
+    let mut t: Vec<f64> = (0..runs.max(1))
         .map(|_| {
             let s = Instant::now();
             f();
             s.elapsed().as_secs_f64() * 1e3
         })
         .collect();
-    t.sort_by(f64::total_cmp);
-    t[runs / 2]
+    Spread::median_of(&mut t)
+}
+
+/// Median wall time in milliseconds of `runs` calls.
+pub fn median_ms(runs: usize, f: impl FnMut()) -> f64 {
+    spread_ms(runs, f).value
 }

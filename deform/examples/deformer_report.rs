@@ -1,24 +1,32 @@
 //! Quick report of the deformers' speed on armadillo-50k and its 200k-vertex subdivision:
 //! bind time (harmonic fields and rest points), pose time per frame with both cores, and ns
 //! per vertex of the four blend methods on the same weights (4 cubic B-spline keys).
-//! Medians of repeated runs; the criterion bench `deformers` measures the same.
+//! Medians of repeated runs with their range `[fastest, slowest]`; rows with a target (the
+//! armadillo-50k rows of `deform/BENCH.md`) say `met` or `MISSED`. The criterion bench
+//! `deformers` measures the same.
 //!
 //! `cargo run --release -p deform --example deformer_report`
 
 #[path = "../benches/scenes.rs"]
 mod scenes;
 
-use scenes::measure::median_ms;
+use scenes::measure::{spread_ms, Tally, Target};
 
 use deform::{BlendMethod, Deformer, Mesh};
 use glam::DVec3;
 
-fn report(name: &str, mesh: &Mesh) {
+/// The targets of issue 10, set for armadillo-50k; the subdivision is reported for scaling.
+struct Targets {
+    bind_ms: Option<Target>,
+    pose_ms: Option<Target>,
+}
+
+fn report(name: &str, mesh: &Mesh, targets: &Targets, tally: &mut Tally) {
     let n = mesh.vertex_count();
-    let bind_spline = median_ms(3, || {
+    let bind_spline = spread_ms(3, || {
         std::hint::black_box(scenes::bind_spline(mesh));
     });
-    let bind_handles = median_ms(3, || {
+    let bind_handles = spread_ms(3, || {
         std::hint::black_box(scenes::bind_handles(mesh));
     });
     let spline = scenes::bind_spline(mesh);
@@ -29,44 +37,51 @@ fn report(name: &str, mesh: &Mesh) {
     for _ in 0..20 {
         spline.pose(&keys, &mut out).expect("pose");
     }
-    let pose_spline = median_ms(31, || spline.pose(&keys, &mut out).expect("pose"));
-    let pose_handles = median_ms(31, || handles.pose(&keys, &mut out).expect("pose"));
+    let pose_spline = spread_ms(31, || spline.pose(&keys, &mut out).expect("pose"));
+    let pose_handles = spread_ms(31, || handles.pose(&keys, &mut out).expect("pose"));
     println!(
         "{name} ({n} vertices, {} threads)",
         rayon::current_num_threads()
     );
-    println!(
-        "  {:<34} {:>9.1} ms",
-        "bind spline (field + rest points)", bind_spline
-    );
-    println!(
-        "  {:<34} {:>9.1} ms",
-        "bind 4 handles (fields + rest)", bind_handles
-    );
-    println!(
-        "  {:<34} {:>9.3} ms/frame",
-        "pose spline, 4 B-spline keys", pose_spline
-    );
-    println!(
-        "  {:<34} {:>9.3} ms/frame",
-        "pose 4 motor handles", pose_handles
-    );
+    let rows = [
+        (
+            "bind spline (field + rest points)",
+            bind_spline,
+            "ms",
+            targets.bind_ms,
+        ),
+        (
+            "bind 4 handles (fields + rest)",
+            bind_handles,
+            "ms",
+            targets.bind_ms,
+        ),
+        (
+            "pose spline, 4 B-spline keys",
+            pose_spline,
+            "ms/frame",
+            targets.pose_ms,
+        ),
+        (
+            "pose 4 motor handles",
+            pose_handles,
+            "ms/frame",
+            targets.pose_ms,
+        ),
+    ];
+    for (label, s, unit, target) in rows {
+        println!("{}", tally.row(&format!("  {label}"), s, unit, target));
+    }
     let rigid = scenes::rigid_keys(mesh, 4);
-    let mut base = 0.0;
+    let per_vertex = 1e6 / n as f64;
     for method in BlendMethod::ALL {
         let d = scenes::rebind_spline(mesh, &spline, method);
-        let rigid_ms = median_ms(31, || d.pose(&rigid, &mut out).expect("pose"));
-        let scaled_ms = median_ms(31, || d.pose(&keys, &mut out).expect("pose"));
-        if method == BlendMethod::Matrix {
-            base = rigid_ms;
-        }
-        println!(
-            "  blend {:<16} rigid keys {:>7.1} ns/vertex   scaled keys {:>7.1} ns/vertex",
-            method.name(),
-            rigid_ms * 1e6 / n as f64,
-            scaled_ms * 1e6 / n as f64
-        );
-        let _ = base;
+        let rigid_ns = spread_ms(31, || d.pose(&rigid, &mut out).expect("pose")).scale(per_vertex);
+        let scaled_ns = spread_ms(31, || d.pose(&keys, &mut out).expect("pose")).scale(per_vertex);
+        let label = format!("  blend {}, rigid keys", method.name());
+        println!("{}", tally.row(&label, rigid_ns, "ns/vertex", None));
+        let label = format!("  blend {}, scaled keys", method.name());
+        println!("{}", tally.row(&label, scaled_ns, "ns/vertex", None));
     }
 }
 
@@ -74,6 +89,21 @@ fn main() {
     let Some(arma) = scenes::armadillo() else {
         return;
     };
-    report("armadillo-50k", &arma);
-    report("armadillo-50k subdivided", &arma.subdivide_midpoint());
+    let mut tally = Tally::default();
+    let set = Targets {
+        bind_ms: Some(Target::AtMost(150.0)),
+        pose_ms: Some(Target::AtMost(2.0)),
+    };
+    report("armadillo-50k", &arma, &set, &mut tally);
+    let scaling = Targets {
+        bind_ms: None,
+        pose_ms: None,
+    };
+    report(
+        "armadillo-50k subdivided (no targets: scaling)",
+        &arma.subdivide_midpoint(),
+        &scaling,
+        &mut tally,
+    );
+    println!("{}", tally.summary());
 }

@@ -1,40 +1,37 @@
 //! Throughput and scaling of the Laplacian and harmonic-field pipeline:
 //! cactus-5k (5,261 vertices) -> armadillo-50k (49,999) -> armadillo-50k after one midpoint
-//! subdivision (199,990). Prints median times and vertices per second.
+//! subdivision (199,990). Prints median times and vertices per second, then grades the
+//! armadillo-50k targets of `deform/BENCH.md` (cotangent Laplacian < 20 ms, harmonic field
+//! < 120 ms, re-solve < 15 ms) with the range of the runs.
 //!
-//! `CARGO_TARGET_DIR=/work/target-deform cargo run --release -p deform --example scaling`
+//! `cargo run --release -p deform --example scaling`
+
+#[path = "../benches/measure.rs"]
+mod measure;
+
+use measure::{spread_ms, Spread, Tally, Target};
 
 use deform::{
     cotangent_laplacian, harmonic_system, validate, DirichletSolver, HarmonicOptions, Mesh,
     SolverOptions,
 };
-use std::path::PathBuf;
-use std::time::Instant;
 
-/// Median wall time in milliseconds of `runs` calls.
-fn time_ms<T>(runs: usize, mut f: impl FnMut() -> T) -> f64 {
-    let mut t: Vec<f64> = (0..runs)
-        .map(|_| {
-            let s = Instant::now();
-            std::hint::black_box(f());
-            s.elapsed().as_secs_f64() * 1e3
-        })
-        .collect();
-    t.sort_by(f64::total_cmp);
-    t[runs / 2]
+/// Median (with range) wall time in milliseconds of `runs` calls.
+fn time_ms<T>(runs: usize, mut f: impl FnMut() -> T) -> Spread {
+    spread_ms(runs, || {
+        std::hint::black_box(f());
+    })
 }
 
 fn main() -> Result<(), deform::Error> {
-    let dir = std::env::var_os("CGA_DATA_DIR")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../shared/data"))
-        .join("meshes");
-    if !dir.is_dir() {
-        eprintln!("skipped: {} not found (set CGA_DATA_DIR)", dir.display());
+    let (Some(cactus), Some(arma)) = (
+        measure::data("meshes/large/cactus-5k.off"),
+        measure::data("meshes/large/armadillo-50k.obj"),
+    ) else {
         return Ok(());
-    }
-    let cactus = deform::io::read_mesh(dir.join("large/cactus-5k.off"))?;
-    let arma = deform::io::read_mesh(dir.join("large/armadillo-50k.obj"))?;
+    };
+    let cactus = deform::io::read_mesh(cactus)?;
+    let arma = deform::io::read_mesh(arma)?;
     let arma4 = arma.subdivide_midpoint();
     let cases: [(&str, &Mesh); 3] = [
         ("cactus-5k", &cactus),
@@ -56,6 +53,7 @@ fn main() -> Result<(), deform::Error> {
         "harm Mv/s"
     );
     let opts = HarmonicOptions::default();
+    let mut graded = Vec::new();
     for (name, mesh) in cases {
         let n = mesh.vertex_count();
         let fixed = mesh.vertices_in_slab(1, 0.0, 0.05);
@@ -75,19 +73,26 @@ fn main() -> Result<(), deform::Error> {
         let s = DirichletSolver::new(&q, &constrained, SolverOptions::default())?;
         let bc: Vec<f64> = (0..constrained.len()).map(|i| (i % 3) as f64).collect();
         let t_res = time_ms(runs, || s.solve(&bc, 1));
+        if name == "armadillo-50k" {
+            graded = vec![
+                ("armadillo-50k cotangent Laplacian", t_cot, 20.0),
+                ("armadillo-50k harmonic field (k = 1)", t_harm, 120.0),
+                ("armadillo-50k re-solve, 1 column", t_res, 15.0),
+            ];
+        }
         println!(
             "{:<16} {:>7} {:>6} | {:>8.2} {:>8.2} {:>8.2} {:>8.2} {:>8.2} {:>8.2} | {:>9.2} {:>9.2}",
             name,
             n,
             constrained.len(),
-            t_val,
-            t_cot,
-            t_sys,
-            t_fac,
-            t_harm,
-            t_res,
-            n as f64 / t_cot / 1e3,
-            n as f64 / t_harm / 1e3,
+            t_val.value,
+            t_cot.value,
+            t_sys.value,
+            t_fac.value,
+            t_harm.value,
+            t_res.value,
+            n as f64 / t_cot.value / 1e3,
+            n as f64 / t_harm.value / 1e3,
         );
     }
     println!("times in ms (median); b = constrained vertices (5% slabs by y);");
@@ -95,5 +100,10 @@ fn main() -> Result<(), deform::Error> {
         "system = check_solvable + cotan + negate; factor = DirichletSolver::new (AMD + Cholesky);"
     );
     println!("harmonic = harmonic_field end to end; resolve = one solve with new boundary values");
+    let mut tally = Tally::default();
+    for (label, t, ms) in graded {
+        println!("{}", tally.row(label, t, "ms", Some(Target::Below(ms))));
+    }
+    println!("{}", tally.summary());
     Ok(())
 }

@@ -1,14 +1,16 @@
 //! Quick report of skinning speed: every backend on libigl's armadillo (5 weights), arm and
-//! CesiumMan, ms per frame (both cores) and ns per vertex, medians of repeated runs; and the
-//! time to sample CesiumMan's animation and build its motors. The criterion bench `skinning`
-//! measures the same.
+//! CesiumMan, ms per frame (both cores) and ns per vertex, medians of repeated runs with their
+//! range; the targets of `deform/BENCH.md` graded (`met` / `MISSED`): motor blending <= 1 ms on
+//! the armadillo and no slower than our dual quaternions, equation (17) within 1.2x of matrix
+//! LBS; and the time to sample CesiumMan's animation and build its motors. The criterion bench
+//! `skinning` measures the same.
 //!
 //! `cargo run --release -p deform --example skinning_report`
 
 #[path = "../benches/skin_scenes.rs"]
 mod skin_scenes;
 
-use skin_scenes::measure::median_ms;
+use skin_scenes::measure::{median_ms, spread_ms, Spread, Tally, Target};
 
 use deform::skinning::{KeyframeBlend, RigPose, Skinning};
 use deform::Deformer;
@@ -16,6 +18,7 @@ use glam::DVec3;
 
 fn main() {
     println!("skinning, {} threads", rayon::current_num_threads());
+    let mut tally = Tally::default();
     for s in skin_scenes::all() {
         let n = s.positions.len();
         println!(
@@ -30,29 +33,45 @@ fn main() {
             for _ in 0..20 {
                 d.pose(&s.keys, &mut out).expect("pose");
             }
-            let ms = median_ms(101, || d.pose(&s.keys, &mut out).expect("pose"));
+            let ms = spread_ms(101, || d.pose(&s.keys, &mut out).expect("pose"));
             times.push((method, ms));
-            println!(
-                "  {:<22} {:>8.3} ms/frame {:>8.1} ns/vertex",
-                method.name(),
-                ms,
-                ms * 1e6 / n as f64
-            );
+            let target = (s.name == "armadillo" && method == deform::BlendMethod::MotorLinear)
+                .then_some(Target::AtMost(1.0));
+            let label = format!("  {}", method.name());
+            println!("{}", tally.row(&label, ms, "ms/frame", target));
+            println!("  {:<42} {:.1} ns/vertex", "", ms.value * 1e6 / n as f64);
         }
         let get = |m| {
             times
                 .iter()
                 .find(|(k, _)| *k == m)
                 .map(|t| t.1)
-                .unwrap_or(f64::NAN)
+                .unwrap_or(Spread::exact(f64::NAN))
         };
         use deform::BlendMethod::*;
-        println!(
-            "  ratios: motor-linear / dual-quaternion {:.2}, conformal / matrix {:.2}, conformal-projected / conformal {:.2}",
-            get(MotorLinear) / get(DualQuaternion),
-            get(Conformal) / get(Matrix),
-            get(ConformalProjected) / get(Conformal)
-        );
+        let ratios = [
+            (
+                "motor-linear / dual-quaternion",
+                get(MotorLinear).ratio(get(DualQuaternion)),
+                Some(Target::AtMost(1.0)),
+            ),
+            (
+                "conformal / matrix",
+                get(Conformal).ratio(get(Matrix)),
+                Some(Target::AtMost(1.2)),
+            ),
+            (
+                "conformal-projected / conformal",
+                get(ConformalProjected).ratio(get(Conformal)),
+                None,
+            ),
+        ];
+        for (label, r, target) in ratios {
+            println!(
+                "{}",
+                tally.row(&format!("  {} {label}", s.name), r, "x", target)
+            );
+        }
     }
     if let Some(rig) = skin_scenes::cesium_rig() {
         let (t0, t1) = rig.animations[0].range();
@@ -74,4 +93,5 @@ fn main() {
             );
         }
     }
+    println!("{}", tally.summary());
 }

@@ -1,6 +1,6 @@
 //! Unit tests of the expansion, run outside the compiler (proc-macro2's fallback): the inline
 //! form expands to exactly the tokens of `ga_codegen::generate` on the equivalent TOML, and
-//! errors carry the messages the binary gives. Where errors point is checked by the trybuild
+//! errors carry the messages the binary gives. Where errors point is checked by the compile-fail
 //! tests in `tests/ui`.
 
 use crate::expand::expand;
