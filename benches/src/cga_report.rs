@@ -325,13 +325,10 @@ pub fn report() -> String {
     for r in rows {
         match r.reference {
             Some((name, ns)) => {
-                let ratio = r.ga.ratio(ns);
                 let _ = writeln!(s, "{}", tally.row(r.what, r.ga, "ns", None));
-                let _ = writeln!(
-                    s,
-                    "{}",
-                    tally.row(&format!("  vs {name} ({ns} ns)"), ratio, "x", r.target)
-                );
+                let _ = writeln!(s, "{}", tally.row(&format!("  {name}"), ns, "ns", None));
+                let label = format!("{} / reference", r.what);
+                let _ = writeln!(s, "{}", tally.row(&label, r.ga.ratio(ns), "x", r.target));
             }
             None => {
                 let _ = writeln!(s, "{}", tally.row(r.what, r.ga, "ns", r.target));

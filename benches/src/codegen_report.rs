@@ -138,8 +138,9 @@ pub fn report() -> String {
         "generated CGA products vs the generic multivector (f64, ns per call, best of 5 rounds [range])"
     );
     for (what, (ga, gen)) in &rows {
+        let _ = writeln!(s, "{what}: generated {ga} ns, generic {gen} ns");
+        let label = format!("{what}, speedup over generic");
         let speedup = ga.speedup_over(*gen);
-        let label = format!("{what}: generated {ga} ns, generic {gen} ns, speedup");
         let _ = writeln!(
             s,
             "{}",
@@ -192,7 +193,8 @@ pub fn report() -> String {
         let _ = writeln!(s, "{}", tally.row(label, ns, "ns/point", None));
         if target.is_some() {
             let ratio = ns.ratio(glam_ns);
-            let _ = writeln!(s, "{}", tally.row("  ratio to glam", ratio, "x", target));
+            let label = format!("{label} / glam");
+            let _ = writeln!(s, "{}", tally.row(&label, ratio, "x", target));
         }
     }
 

@@ -178,14 +178,14 @@ impl Tally {
     pub fn row(&mut self, label: &str, s: Spread, unit: &str, target: Option<Target>) -> String {
         let figure = format!("{s} {unit}");
         match target {
-            None => format!("{label:<44} {figure}"),
+            None => format!("{label:<48} {figure}"),
             Some(t) => {
                 let v = t.grade(s);
                 match v {
                     Verdict::Missed => self.missed.push(label.trim().to_string()),
                     _ => self.met += 1,
                 }
-                format!("{label:<44} {figure:<34} target {t} {unit}: {v}")
+                format!("{label:<48} {figure:<34} target {t} {unit}: {v}")
             }
         }
     }
