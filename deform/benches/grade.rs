@@ -209,25 +209,3 @@ impl Tally {
         self.missed.len()
     }
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn grades_by_value_and_qualifies_by_the_worst_run() {
-        let s = Spread {
-            value: 0.4,
-            low: 0.3,
-            high: 0.6,
-        };
-        assert_eq!(Target::Below(0.5).grade(s), Verdict::MetNotEveryRun);
-        assert_eq!(Target::Below(0.7).grade(s), Verdict::Met);
-        assert_eq!(Target::Below(0.35).grade(s), Verdict::Missed);
-        assert_eq!(Target::AtLeast(0.35).grade(s), Verdict::MetNotEveryRun);
-        assert_eq!(
-            Target::AtMost(0.4).grade(Spread::exact(f64::NAN)),
-            Verdict::Missed
-        );
-    }
-}

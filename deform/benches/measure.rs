@@ -5,6 +5,7 @@
 #[path = "grade.rs"]
 pub mod grade;
 
+#[allow(unused_imports)]
 pub use grade::{Spread, Tally, Target};
 
 use std::path::PathBuf;

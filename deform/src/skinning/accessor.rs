@@ -238,6 +238,13 @@ pub(crate) fn check_indices(root: &gltf::json::Root) -> Result<(), String> {
             for a in p.attributes.values().chain(p.indices.as_ref()) {
                 ok(format!("meshes[{i}].primitives[{k}]"), a.value(), accessors)?;
             }
+            for (t, target) in p.targets.iter().flatten().enumerate() {
+                let attributes = [&target.positions, &target.normals, &target.tangents];
+                for a in attributes.into_iter().flatten() {
+                    let what = format!("meshes[{i}].primitives[{k}].targets[{t}]");
+                    ok(what, a.value(), accessors)?;
+                }
+            }
             if matches!(p.mode, Checked::Invalid) {
                 return Err(format!("meshes[{i}].primitives[{k}].mode is invalid"));
             }

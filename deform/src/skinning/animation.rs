@@ -155,7 +155,8 @@ impl Channel {
     fn locate(&self, t: f64) -> (usize, f64) {
         let n = self.times.len();
         let (t0, t1) = self.range();
-        if n == 1 || t <= t0 {
+        // NaN is not after the first key: it gets the first key, never an index before it.
+        if n == 1 || t <= t0 || t.is_nan() {
             return (0, 0.0);
         }
         if t >= t1 {

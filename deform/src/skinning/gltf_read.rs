@@ -46,14 +46,20 @@ pub fn read_gltf(path: impl AsRef<Path>) -> crate::Result<Rig> {
 /// # Errors
 /// [`SkinError`] as above.
 pub fn parse_gltf(bytes: &[u8], name: &str, base: Option<&Path>) -> Result<Rig, SkinError> {
-    let gltf = gltf::Gltf::from_slice(bytes).map_err(|e| SkinError::Gltf {
-        name: name.to_string(),
-        message: e.to_string(),
-    })?;
-    super::accessor::check_indices(gltf.document.as_json()).map_err(|message| SkinError::Gltf {
+    let gltf_error = |message: String| SkinError::Gltf {
         name: name.to_string(),
         message,
-    })?;
+    };
+    // Every index is checked before the `gltf` crate follows one: its own validation indexes
+    // the POSITION accessor unchecked (gltf-json 1.4, `mesh.rs`) and panics on a missing one.
+    let raw =
+        gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| gltf_error(e.to_string()))?;
+    super::accessor::check_indices(raw.document.as_json()).map_err(gltf_error)?;
+    let gltf = gltf::Gltf {
+        document: gltf::Document::from_json(raw.document.into_json())
+            .map_err(|e| gltf_error(e.to_string()))?,
+        blob: raw.blob,
+    };
     let buffers = Buffers::load(&gltf.document, gltf.blob.as_deref(), base, name)?;
     let doc = &gltf.document;
     let mut report = LoadReport::default();

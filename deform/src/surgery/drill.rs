@@ -213,6 +213,13 @@ impl Surgery {
             let index = work.is_none().then_some(&*resolved.bvh);
             let near = faces_near_cylinder(&cyl, tris, fpos, index);
             let plan = plan(&cyl, tris, fpos, &near, options.snap);
+            // Every vertex inside: nothing would remain, whatever refinement did (refining
+            // first took tens of seconds and gigabytes on a drill wider than the model).
+            if work.is_none() && plan.sign.iter().all(|&s| s < 0) {
+                return Err(SurgeryError::BadTool(
+                    "the drill removes the whole mesh".into(),
+                ));
+            }
             let points = plan.crossings + plan.snapped;
             let needs = !plan.pierced.is_empty()
                 || !plan.two_root.is_empty()

@@ -73,6 +73,10 @@ pub enum SurgeryError {
     /// A plane, blade or cylinder that is not finite or degenerate.
     #[error("{0}")]
     BadTool(String),
+    /// The surgery's own bookkeeping broke an invariant (a bug in this crate, reported as an
+    /// error instead of a panic; please report it with the input).
+    #[error("internal error in the surgery's mesh bookkeeping: {0}")]
+    Broken(String),
     /// The tool does not reach the mesh: a plane with every vertex on one side (or on it), a
     /// drill with no vertex inside and no edge through it, a scalpel that does not touch the
     /// surface.

@@ -186,7 +186,10 @@ impl<'a> Soup<'a> {
 
     /// Split the edge opposite corner `k` of face `f` at the new vertex `v` (both faces of the
     /// edge are split in two).
-    pub fn split_edge(&mut self, f: u32, k: usize, v: u32) {
+    ///
+    /// # Errors
+    /// [`SurgeryError::Broken`] when the neighbour across the edge does not hold it.
+    pub fn split_edge(&mut self, f: u32, k: usize, v: u32) -> Result<(), SurgeryError> {
         let ([c, p, q], [g, b_nb, a_nb]) = self.rotated(f, k);
         self.mark(f);
         let f2 = self.new_face([c, v, q], [u32::MAX, b_nb, f], self.root(f));
@@ -200,9 +203,11 @@ impl<'a> Soup<'a> {
         if g != u32::MAX {
             self.mark(g);
             let tg = self.tris[g as usize];
-            let kg = (0..3)
-                .find(|&i| tg[i] != p && tg[i] != q)
-                .expect("the neighbour has a third corner");
+            let Some(kg) = (0..3).find(|&i| tg[i] != p && tg[i] != q) else {
+                return Err(SurgeryError::Broken(format!(
+                    "face {g}, across an edge of face {f}, has no third corner"
+                )));
+            };
             let ([c2, q2, p2], [_, b2, a2]) = self.rotated(g, kg);
             debug_assert!(q2 == q && p2 == p, "consistent orientation");
             // g = (c2, q, p) becomes (c2, q, v) and g2 = (c2, v, p).
@@ -214,6 +219,7 @@ impl<'a> Soup<'a> {
             self.nb[f2 as usize][0] = g;
             self.vf[c2 as usize] = g;
         }
+        Ok(())
     }
 
     /// Split face `f` into three at the new vertex `v` inside it.
@@ -238,38 +244,58 @@ impl<'a> Soup<'a> {
         self.vf[c as usize] = f2;
     }
 
+    /// The corner of face `f` that is vertex `v`.
+    ///
+    /// # Errors
+    /// [`SurgeryError::Broken`] when `f` does not hold `v` (a stale vertex-face or neighbour
+    /// link: a bug, reported rather than panicking).
+    pub fn corner(&self, f: u32, v: u32) -> Result<usize, SurgeryError> {
+        let t = self.tris[f as usize];
+        t.iter().position(|&x| x == v).ok_or_else(|| {
+            SurgeryError::Broken(format!("vertex {v} is not a corner of face {f} {t:?}"))
+        })
+    }
+
     /// The faces around vertex `v`, in order (one direction, then the other from a boundary).
-    pub fn fan(&self, v: u32) -> Vec<u32> {
+    ///
+    /// # Errors
+    /// [`SurgeryError::Broken`] when a link leads to a face without `v`.
+    pub fn fan(&self, v: u32) -> Result<Vec<u32>, SurgeryError> {
         let start = self.vf[v as usize];
         let mut out = Vec::new();
         if start == u32::MAX {
-            return out;
+            return Ok(out);
         }
         // Across the edge v -> next corner (opposite the corner after it).
-        let step = |f: u32, forward: bool| -> u32 {
-            let t = self.tris[f as usize];
-            let k = t.iter().position(|&x| x == v).expect("v in its fan");
+        let step = |f: u32, forward: bool| -> Result<u32, SurgeryError> {
+            let k = self.corner(f, v)?;
             let across = if forward { (k + 2) % 3 } else { (k + 1) % 3 };
-            self.nb[f as usize][across]
+            Ok(self.nb[f as usize][across])
         };
         let mut f = start;
         loop {
             out.push(f);
-            let g = step(f, true);
+            let g = step(f, true)?;
             if g == u32::MAX || g == start || out.len() > 4096 {
                 if g == start {
-                    return out;
+                    return Ok(out);
                 }
                 break;
             }
             f = g;
         }
-        let mut f = step(start, false);
+        let mut f = step(start, false)?;
         while f != u32::MAX && !out.contains(&f) && out.len() <= 4096 {
             out.push(f);
-            f = step(f, false);
+            f = step(f, false)?;
         }
-        out
+        Ok(out)
+    }
+
+    /// Faces `f` and `g` stop being neighbours (the edge between them became a boundary).
+    pub fn unlink(&mut self, f: u32, g: u32) {
+        self.repoint(f, g, u32::MAX);
+        self.repoint(g, f, u32::MAX);
     }
 }
 

@@ -73,6 +73,9 @@ enum Next {
     Edge { f: u32, k: usize, t: f64 },
 }
 
+/// The largest opening of a tear, in bounding-box diagonals of the model.
+pub const MAX_OPEN_PER_DIAGONAL: f64 = 100.0;
+
 impl Surgery {
     /// Tear along the scalpel positions (at least two); see the module documentation.
     ///
@@ -103,6 +106,15 @@ impl Surgery {
         check_snap(options.snap)?;
         if !options.open.is_finite() {
             return Err(SurgeryError::BadTool("the opening is not finite".into()));
+        }
+        // An opening far beyond the model's size would only push the lips out of range (and
+        // past what f64 and the f32 of a .glb hold); the model's scale bounds it.
+        if options.open.abs() > MAX_OPEN_PER_DIAGONAL * self.diagonal {
+            return Err(SurgeryError::BadTool(format!(
+                "the opening {:.3e} is over {MAX_OPEN_PER_DIAGONAL} times the model's size \
+                 (bounding-box diagonal {:.3e})",
+                options.open, self.diagonal
+            )));
         }
         let src = &self.mesh;
         let n0 = src.mesh.vertex_count();
@@ -265,7 +277,7 @@ fn insert_point(soup: &mut Soup, f0: u32, p: DVec3, snap: f64) -> Result<u32, Su
         let (i, j) = ((k + 1) % 3, (k + 2) % 3);
         let s = bary[i] + bary[j];
         let v = soup.add_vertex(p, &[(t[i], bary[i] / s), (t[j], bary[j] / s)])?;
-        soup.split_edge(f, k, v);
+        soup.split_edge(f, k, v)?;
         return Ok(v);
     }
     let v = soup.add_vertex(p, &[(t[0], bary[0]), (t[1], bary[1]), (t[2], bary[2])])?;
@@ -313,9 +325,9 @@ fn walk(
                 *best = Some((score, next));
             }
         };
-        for f in soup.fan(v) {
+        for f in soup.fan(v)? {
             let t = soup.tris[f as usize];
-            let k = t.iter().position(|&x| x == v).expect("v in its fan");
+            let k = soup.corner(f, v)?;
             let (a, b) = (t[(k + 1) % 3], t[(k + 2) % 3]);
             let mut s = |x: u32| {
                 *sd.entry(x)
@@ -360,7 +372,7 @@ fn walk(
                 let p = soup.at(a).lerp(soup.at(b), t);
                 let m = soup.add_vertex(p, &[(a, 1.0 - t), (b, t)])?;
                 sd.insert(m, 0.0);
-                soup.split_edge(f, k, m);
+                soup.split_edge(f, k, m)?;
                 m
             }
         };
@@ -397,7 +409,7 @@ fn open_incision(
     for j in 1..m - 1 {
         let v = incision[j];
         arc += soup.at(incision[j - 1]).distance(soup.at(v));
-        let fan = soup.fan(v);
+        let fan = soup.fan(v)?;
         // The left face: the one holding the half-edge v -> next.
         let next = incision[j + 1];
         let Some(&left) = fan.iter().find(|&&f| {
@@ -413,7 +425,7 @@ fn open_incision(
                 continue;
             }
             let t = soup.tris[f as usize];
-            let k = t.iter().position(|&x| x == v).expect("v in its fan");
+            let k = soup.corner(f, v)?;
             for (x, across) in [(t[(k + 1) % 3], (k + 2) % 3), (t[(k + 2) % 3], (k + 1) % 3)] {
                 if path_edges.contains(&(v.min(x), v.max(x))) {
                     continue;
@@ -437,6 +449,15 @@ fn open_incision(
                 }
             }
             soup.mark(f);
+        }
+        // The lips are no longer neighbours: a later fan of `v` (the incision may come back to
+        // it) stays on the left, one of `c` on the right.
+        for &f in &right {
+            for g in soup.nb[f as usize] {
+                if side.contains(&g) {
+                    soup.unlink(f, g);
+                }
+            }
         }
         soup.vf[c as usize] = right[0];
         soup.vf[v as usize] = left;

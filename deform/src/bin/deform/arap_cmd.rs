@@ -44,7 +44,7 @@ pub struct ArapArgs {
     #[arg(long, conflicts_with = "tolerance")]
     pub iterations: Option<usize>,
     /// Iterate until the energy's relative change is at most this (at most 1000 iterations).
-    #[arg(long)]
+    #[arg(long, value_parser = crate::numbers::non_negative)]
     pub tolerance: Option<f64>,
     /// The local rotation fit: the paper's rotor (Horn's 4x4 matrix) or the 3x3 SVD.
     #[arg(long, value_enum, default_value = "rotor")]
@@ -87,7 +87,15 @@ pub fn arap(a: &ArapArgs) -> Result<()> {
             max_iterations: MAX_ITERATIONS,
         },
         (Some(0), None) => bail!("--iterations must be at least 1"),
-        (Some(n), None) => Stop::Iterations(n),
+        (Some(n), None) => {
+            let what = format!("{n} iterations over {} vertices", mesh.vertex_count());
+            crate::budget::check(
+                "--iterations",
+                &what,
+                &[n as u64, mesh.vertex_count() as u64],
+            )?;
+            Stop::Iterations(n)
+        }
         (None, None) => Stop::Iterations(10),
     };
     let mut fixed = Vec::new();

@@ -10,6 +10,10 @@ use std::path::PathBuf;
 pub struct Cli {
     #[command(subcommand)]
     pub command: Command,
+    /// The work budget: the most elements (f64s of a buffer, grid nodes, vertices times frames
+    /// or iterations) any size asked for may come to; larger requests are refused up front.
+    #[arg(long, global = true, default_value_t = crate::budget::DEFAULT_MAX_WORK)]
+    pub max_work: u64,
 }
 
 #[derive(Subcommand, Debug)]
@@ -187,7 +191,7 @@ pub struct FabrikArgs {
     #[arg(long, default_value_t = 4)]
     pub controls: usize,
     /// FABRIK tolerance (distance of the end effector to the target).
-    #[arg(long, default_value_t = 1e-6)]
+    #[arg(long, default_value_t = 1e-6, value_parser = crate::numbers::positive)]
     pub tolerance: f64,
     /// FABRIK iteration cap.
     #[arg(long, default_value_t = 100)]

@@ -285,9 +285,21 @@ pub fn fabrik(a: &FabrikArgs) -> Result<()> {
             if a.joints < 2 {
                 bail!("--joints must be at least 2");
             }
+            let what = format!("a chain of {} joints", a.joints);
+            crate::budget::check("--joints", &what, &[a.joints as u64, 64])?;
             straight_chain(&mesh, &first, &last, a.joints)
         }
     };
+    let what = format!(
+        "{} FABRIK iterations over {} joints",
+        a.iterations,
+        joints.len()
+    );
+    crate::budget::check(
+        "--iterations",
+        &what,
+        &[a.iterations as u64, joints.len() as u64],
+    )?;
     let t = Instant::now();
     let d = with_progress(
         "binding (harmonic field)",

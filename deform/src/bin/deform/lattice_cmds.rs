@@ -35,6 +35,22 @@ fn read_checked(mesh: &Path, extra: &[&Path], out: &OutputArgs) -> Result<Mesh> 
 
 pub fn ffd(a: &FfdArgs) -> Result<()> {
     let mesh = read_checked(&a.mesh, &[a.motors.as_path()], &a.out)?;
+    // Per vertex: a weight per control point, and for Bernstein polynomials of degree L-1,
+    // M-1, N-1 their evaluation (quadratic in the degree).
+    let [l, m, n] = a.lattice.map(|c| c as u64);
+    let squares = [l, m, n]
+        .iter()
+        .try_fold(0u64, |acc, &d| acc.checked_add(d.checked_mul(d)?));
+    let per_vertex = crate::budget::product(&[l, m, n]).and_then(|points| match a.degree {
+        None => points.checked_add(squares?),
+        Some(_) => Some(points),
+    });
+    let what = format!(
+        "{l}x{m}x{n} control points for {} vertices",
+        mesh.vertex_count()
+    );
+    let factors = [per_vertex.unwrap_or(u64::MAX), mesh.vertex_count() as u64];
+    crate::budget::check("--lattice", &what, &factors)?;
     let count: usize = a.lattice.iter().product();
     let name = a.motors.display().to_string();
     let motors = parse_group_motors(&read_text(&a.motors)?, &name, count)?;
@@ -70,6 +86,13 @@ pub fn ffd(a: &FfdArgs) -> Result<()> {
 pub fn cage(a: &CageArgs) -> Result<()> {
     let mesh = read_checked(&a.mesh, &[a.cage.as_path(), a.motors.as_path()], &a.out)?;
     let cage = read_mesh(&a.cage)?;
+    if a.coords == CoordsArg::Harmonic {
+        let g = a.grid as u64;
+        let what = format!(
+            "a harmonic grid of {g} nodes per side (its factorisation grows as the 4th power)"
+        );
+        crate::budget::check("--grid", &what, &[g, g, g, g])?;
+    }
     let name = a.motors.display().to_string();
     let motors = parse_group_motors(&read_text(&a.motors)?, &name, cage.vertex_count())?;
     let options = CageOptions {

@@ -5,10 +5,12 @@
 
 mod arap_cmd;
 mod args;
+mod budget;
 mod commands;
 mod demo;
 mod lattice_cmds;
 mod lattice_demo;
+mod numbers;
 mod output;
 mod preview;
 mod skin_cmd;
@@ -30,6 +32,7 @@ fn main() -> ExitCode {
             };
         }
     };
+    budget::set(cli.max_work);
     let result = match cli.command {
         args::Command::Demo(a) => demo::run(&a),
         args::Command::Spline(a) => commands::spline(&a),

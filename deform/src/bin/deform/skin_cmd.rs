@@ -116,7 +116,7 @@ pub struct SkinArgs {
     #[arg(long)]
     pub animation: Option<String>,
     /// Time in seconds (clamped to the animation's keys).
-    #[arg(long, default_value_t = 0.0)]
+    #[arg(long, default_value_t = 0.0, value_parser = crate::numbers::finite, allow_hyphen_values = true)]
     pub time: f64,
     /// A time range T0:T1:N: N frames written as OUT_0000.obj, OUT_0001.obj, ...
     #[arg(long, value_parser = parse_range, conflicts_with = "time")]
@@ -235,6 +235,15 @@ pub fn skin(a: &SkinArgs) -> Result<()> {
         }
     };
     // The frames: (time, edits) pairs.
+    let vertex_work = 3 * rig.mesh.vertex_count() as u64;
+    if let Some((_, _, n)) = a.range {
+        let what = format!("{n} frames of {} vertices", rig.mesh.vertex_count());
+        crate::budget::check("--range", &what, &[n as u64, vertex_work])?;
+    }
+    if let Some(n) = a.in_betweens {
+        let what = format!("{n} in-betweens of {} vertices", rig.mesh.vertex_count());
+        crate::budget::check("--in-betweens", &what, &[n as u64, vertex_work.max(1)])?;
+    }
     let frames: Vec<(f64, Vec<JointEdit>)> = match (a.range, a.in_betweens) {
         (Some(_), Some(_)) => bail!("--range and --in-betweens cannot be combined"),
         (Some((t0, t1, n)), None) => (0..n)
@@ -271,6 +280,15 @@ pub fn skin(a: &SkinArgs) -> Result<()> {
     let sequence = frames.len() > 1;
     if glb && sequence {
         bail!("a frame sequence is written as OBJ files, not .glb");
+    }
+    if sequence {
+        // The generated names, as a set, before anything is written: none may name an input.
+        let names: Vec<PathBuf> = (0..frames.len())
+            .map(|k| numbered(&a.out.output, k))
+            .collect();
+        let mut outputs: Vec<&Path> = names.iter().map(PathBuf::as_path).collect();
+        outputs.extend(a.out.png.as_deref());
+        check_outputs(&inputs, &outputs)?;
     }
     let other = a
         .compare

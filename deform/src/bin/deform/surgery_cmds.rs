@@ -20,7 +20,7 @@ use std::time::Instant;
 pub struct ToolFrame {
     /// Give the tool in the posed world space at this time (of --animation, default the
     /// first) instead of the rest-pose mesh space.
-    #[arg(long)]
+    #[arg(long, value_parser = crate::numbers::finite, allow_hyphen_values = true)]
     pub time: Option<f64>,
     /// The animation for --time, by name or index.
     #[arg(long, requires = "time")]
@@ -39,7 +39,7 @@ pub struct CutArgs {
     pub cap: bool,
     /// Snap fraction: vertices closer to the plane than this fraction of a crossing edge are
     /// treated as on it.
-    #[arg(long, default_value_t = 0.02)]
+    #[arg(long, default_value_t = 0.02, value_parser = crate::numbers::non_negative)]
     pub snap: f64,
     #[command(flatten)]
     pub frame: ToolFrame,
@@ -267,7 +267,7 @@ pub struct DrillArgs {
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
     pub end: DVec3,
     /// The drill's radius.
-    #[arg(long)]
+    #[arg(long, value_parser = crate::numbers::positive)]
     pub radius: f64,
     #[command(flatten)]
     pub frame: ToolFrame,
@@ -311,7 +311,7 @@ pub struct TearArgs {
     #[arg(long = "scalpel", value_parser = parse_blade, allow_hyphen_values = true, required = true)]
     pub scalpel: Vec<(DVec3, DVec3)>,
     /// Pull the incision's lips apart by this much at its middle.
-    #[arg(long, default_value_t = 0.0)]
+    #[arg(long, default_value_t = 0.0, value_parser = crate::numbers::non_negative)]
     pub open: f64,
     #[command(flatten)]
     pub frame: ToolFrame,
