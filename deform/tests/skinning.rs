@@ -953,3 +953,14 @@ fn morph_targets_are_reported() {
         rig.report.notes
     );
 }
+
+/// A coordinate beyond the f32 range (issue 20: a vertex or joint at 1e300) is an error when
+/// writing `.glb`, not an accessor of infinities.
+#[test]
+fn glb_refuses_coordinates_beyond_single_precision() {
+    let mut rig = procedural_arm(6, 5);
+    assert!(glb_bytes(&rig, &GlbOptions::default()).is_ok());
+    rig.mesh.positions[3].x = 1e300;
+    let err = glb_bytes(&rig, &GlbOptions::default()).unwrap_err();
+    assert!(err.to_string().contains("POSITION: element 3"), "{err}");
+}

@@ -78,6 +78,10 @@ impl Bin {
     }
 
     /// `f32` elements of `dim` components (with min/max when `bounds`).
+    ///
+    /// # Errors
+    /// [`crate::Error::InvalidArgument`] when a value is not finite in single precision (a
+    /// coordinate beyond the f32 range, or NaN), naming `what`: glTF holds finite f32 only.
     fn floats(
         &mut self,
         v: &[f32],
@@ -85,7 +89,16 @@ impl Bin {
         kind: &str,
         target: Option<u32>,
         bounds: bool,
-    ) -> usize {
+        what: &str,
+    ) -> Result<usize> {
+        if let Some(i) = v.iter().position(|x| !x.is_finite()) {
+            return Err(crate::Error::InvalidArgument(format!(
+                "{what}: element {} is {} in single precision; glTF holds finite f32 values \
+                 only (coordinates beyond about 3.4e38, or NaN)",
+                i / dim,
+                v[i]
+            )));
+        }
         let bytes: Vec<u8> = v.iter().flat_map(|x| x.to_le_bytes()).collect();
         let mut a = json!({"componentType": 5126, "count": v.len() / dim, "type": kind});
         if bounds {
@@ -100,7 +113,7 @@ impl Bin {
             a["min"] = json!(lo);
             a["max"] = json!(hi);
         }
-        self.push(&bytes, target, a)
+        Ok(self.push(&bytes, target, a))
     }
 }
 
@@ -183,7 +196,7 @@ pub fn glb_bytes(rig: &Rig, options: &GlbOptions) -> Result<Vec<u8>> {
             .iter()
             .flat_map(|x| x.as_vec3().to_array())
             .collect();
-        let position = bin.floats(&pos, 3, "VEC3", Some(34962), true);
+        let position = bin.floats(&pos, 3, "VEC3", Some(34962), true, "POSITION")?;
         let idx: Vec<u8> = rig.mesh.triangles
             [p.triangle_offset..p.triangle_offset + p.triangle_count]
             .iter()
@@ -196,7 +209,7 @@ pub fn glb_bytes(rig: &Rig, options: &GlbOptions) -> Result<Vec<u8>> {
             json!({"componentType": 5125, "count": 3 * p.triangle_count, "type": "SCALAR"}),
         );
         let nrm: Vec<f32> = normals[range.clone()].iter().flatten().copied().collect();
-        let normal = bin.floats(&nrm, 3, "VEC3", Some(34962), false);
+        let normal = bin.floats(&nrm, 3, "VEC3", Some(34962), false, "NORMAL")?;
         let mut attributes = json!({"POSITION": position, "NORMAL": normal});
         for set in 0..width / 4 {
             let j: Vec<u8> = joints[range.clone()]
@@ -213,7 +226,7 @@ pub fn glb_bytes(rig: &Rig, options: &GlbOptions) -> Result<Vec<u8>> {
                 json!({"componentType": 5123, "count": p.vertex_count, "type": "VEC4"})
             ));
             attributes[format!("WEIGHTS_{set}")] =
-                json!(bin.floats(&w, 4, "VEC4", Some(34962), false));
+                json!(bin.floats(&w, 4, "VEC4", Some(34962), false, "WEIGHTS")?);
         }
         primitives.push(json!({"attributes": attributes, "indices": indices, "mode": 4}));
     }
@@ -222,7 +235,7 @@ pub fn glb_bytes(rig: &Rig, options: &GlbOptions) -> Result<Vec<u8>> {
         .iter()
         .flat_map(|m| m.as_mat4().to_cols_array())
         .collect();
-    let ibm = bin.floats(&ibm, 16, "MAT4", None, false);
+    let ibm = bin.floats(&ibm, 16, "MAT4", None, false, "inverse bind matrices")?;
     let mut nodes: Vec<Value> = rig
         .nodes
         .iter()
@@ -262,7 +275,7 @@ pub fn glb_bytes(rig: &Rig, options: &GlbOptions) -> Result<Vec<u8>> {
                 let mut channels = Vec::new();
                 for c in &a.channels {
                     let times: Vec<f32> = c.times.iter().map(|&t| t as f32).collect();
-                    let input = bin.floats(&times, 1, "SCALAR", None, true);
+                    let input = bin.floats(&times, 1, "SCALAR", None, true, "animation times")?;
                     let (dim, kind, path) = match c.property {
                         Property::Translation => (3, "VEC3", "translation"),
                         Property::Rotation => (4, "VEC4", "rotation"),
@@ -273,7 +286,7 @@ pub fn glb_bytes(rig: &Rig, options: &GlbOptions) -> Result<Vec<u8>> {
                         .iter()
                         .flat_map(|v| v.as_vec4().to_array()[..dim].to_vec())
                         .collect();
-                    let output = bin.floats(&values, dim, kind, None, false);
+                    let output = bin.floats(&values, dim, kind, None, false, "animation values")?;
                     let interpolation = match c.interpolation {
                         Interpolation::Linear => "LINEAR",
                         Interpolation::Step => "STEP",
@@ -282,9 +295,9 @@ pub fn glb_bytes(rig: &Rig, options: &GlbOptions) -> Result<Vec<u8>> {
                     channels.push(json!({"sampler": samplers.len(), "target": {"node": c.node, "path": path}}));
                     samplers.push(json!({"input": input, "output": output, "interpolation": interpolation}));
                 }
-                json!({"name": a.name, "channels": channels, "samplers": samplers})
+                Ok(json!({"name": a.name, "channels": channels, "samplers": samplers}))
             })
-            .collect()
+            .collect::<Result<Vec<_>>>()?
     };
     while !bin.data.len().is_multiple_of(4) {
         bin.data.push(0);

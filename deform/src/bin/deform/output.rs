@@ -73,6 +73,14 @@ pub fn write_atomic(path: &Path, write: impl FnOnce(&mut dyn Write) -> Result<()
 
 /// Write a mesh as OBJ (the vertex order and count as given).
 pub fn write_obj(path: &Path, mesh: &Mesh) -> Result<()> {
+    // Every command's result goes through here: a non-finite vertex is an error, never a file.
+    if let Some(i) = mesh.positions.iter().position(|p| !p.is_finite()) {
+        bail!(
+            "{}: not written: vertex {i} of the result is not finite ({})",
+            path.display(),
+            mesh.positions[i]
+        );
+    }
     write_atomic(path, |w| {
         deform::io::write_obj_to(mesh, w)?;
         Ok(())
