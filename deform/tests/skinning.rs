@@ -964,3 +964,52 @@ fn glb_refuses_coordinates_beyond_single_precision() {
     let err = glb_bytes(&rig, &GlbOptions::default()).unwrap_err();
     assert!(err.to_string().contains("POSITION: element 3"), "{err}");
 }
+
+/// External buffers (issue 20): a URI that leaves the model's folder is refused unless
+/// allowed, and only the declared `byteLength` is read from a longer file.
+#[test]
+fn external_buffers_stay_in_the_model_folder_and_within_their_length() {
+    use deform::skinning::{parse_gltf_with, GltfReadOptions};
+    let glb = glb_bytes(&procedural_arm(6, 5), &GlbOptions::default()).unwrap();
+    let u32_at = |i: usize| u32::from_le_bytes(glb[i..i + 4].try_into().unwrap()) as usize;
+    let json_len = u32_at(12);
+    let json: &[u8] = &glb[20..20 + json_len];
+    let bin_len = u32_at(20 + json_len);
+    let bin = &glb[28 + json_len..28 + json_len + bin_len];
+    let root = std::env::temp_dir().join(format!("deform-external-{}", std::process::id()));
+    let model = root.join("model");
+    std::fs::create_dir_all(&model).unwrap();
+    let mut longer = bin.to_vec();
+    longer.extend_from_slice(&[0xAB; 4096]);
+    std::fs::write(root.join("outside.bin"), bin).unwrap();
+    std::fs::write(model.join("inside.bin"), &longer).unwrap();
+    let with_uri = |uri: &str| {
+        let mut doc: serde_json::Value = serde_json::from_slice(json).unwrap();
+        doc["buffers"][0]["uri"] = uri.into();
+        doc.to_string().into_bytes()
+    };
+    let strict = GltfReadOptions::default();
+    let inside = parse_gltf_with(&with_uri("inside.bin"), "inside", Some(&model), &strict);
+    assert_eq!(
+        inside.unwrap().mesh.vertex_count(),
+        procedural_arm(6, 5).mesh.vertex_count()
+    );
+    let outside = with_uri("../outside.bin");
+    let err = parse_gltf_with(&outside, "outside", Some(&model), &strict).unwrap_err();
+    assert!(
+        err.to_string().contains("leaves the model's folder"),
+        "{err}"
+    );
+    let open = GltfReadOptions {
+        allow_external: true,
+        ..strict
+    };
+    assert!(parse_gltf_with(&outside, "outside", Some(&model), &open).is_ok());
+    let small = GltfReadOptions {
+        max_buffer_bytes: 16,
+        ..strict
+    };
+    let err = parse_gltf_with(&with_uri("inside.bin"), "small", Some(&model), &small).unwrap_err();
+    assert!(err.to_string().contains("over the limit"), "{err}");
+    let _ = std::fs::remove_dir_all(&root);
+}

@@ -19,13 +19,25 @@ impl Buffers {
         blob: Option<&[u8]>,
         base: Option<&Path>,
         name: &str,
+        options: &GltfReadOptions,
     ) -> Result<Buffers, SkinError> {
         let err = |message: String| SkinError::Data {
             name: name.to_string(),
             message,
         };
         let mut data = Vec::new();
+        let mut total = 0usize;
         for b in doc.buffers() {
+            total = total.saturating_add(b.length());
+            if total > options.max_buffer_bytes {
+                return Err(err(format!(
+                    "buffer {}: the buffers declare more than {} bytes in all, over the limit \
+                     of {} (GltfReadOptions::max_buffer_bytes)",
+                    b.index(),
+                    total,
+                    options.max_buffer_bytes
+                )));
+            }
             let bytes = match b.source() {
                 Source::Bin => blob
                     .ok_or_else(|| err(format!("buffer {}: no binary chunk", b.index())))?
@@ -45,10 +57,8 @@ impl Buffers {
                             b.index()
                         ))
                     })?;
-                    let path = base.join(uri);
-                    std::fs::read(&path).map_err(|e| {
-                        err(format!("buffer {}: {}: {e}", b.index(), path.display()))
-                    })?
+                    read_external(base, uri, b.length(), options.allow_external)
+                        .map_err(|e| err(format!("buffer {}: {e}", b.index())))?
                 }
             };
             if bytes.len() < b.length() {
@@ -176,6 +186,56 @@ fn component(t: DataType, b: &[u8], normalized: bool) -> f64 {
         DataType::U32 => u32::from_le_bytes([b[0], b[1], b[2], b[3]]) as f64,
         DataType::F32 => f32::from_le_bytes([b[0], b[1], b[2], b[3]]) as f64,
     }
+}
+
+/// What reading a glTF may touch beyond its own bytes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct GltfReadOptions {
+    /// Follow buffer URIs that leave the model's folder (`..`, absolute paths, links out of
+    /// it). Off by default: a model names files beside it.
+    pub allow_external: bool,
+    /// The most bytes all buffers together may declare (default 2 GiB).
+    pub max_buffer_bytes: usize,
+}
+
+impl Default for GltfReadOptions {
+    fn default() -> Self {
+        GltfReadOptions {
+            allow_external: false,
+            max_buffer_bytes: 1 << 31,
+        }
+    }
+}
+
+/// Reads the first `length` bytes of the external buffer `uri` beside the model in `base`:
+/// never more than declared, and only inside `base` unless `allow_external`.
+fn read_external(
+    base: &Path,
+    uri: &str,
+    length: usize,
+    allow_external: bool,
+) -> Result<Vec<u8>, String> {
+    use std::io::Read as _;
+    let path = base.join(uri);
+    let shown = path.display();
+    let real = path.canonicalize().map_err(|e| format!("{shown}: {e}"))?;
+    if !allow_external {
+        let folder = base
+            .canonicalize()
+            .map_err(|e| format!("{}: {e}", base.display()))?;
+        if !real.starts_with(&folder) {
+            return Err(format!(
+                "{uri:?} leaves the model's folder {} (allow it with --allow-external)",
+                folder.display()
+            ));
+        }
+    }
+    let file = std::fs::File::open(&real).map_err(|e| format!("{shown}: {e}"))?;
+    let mut bytes = Vec::new();
+    file.take(length as u64)
+        .read_to_end(&mut bytes)
+        .map_err(|e| format!("{shown}: {e}"))?;
+    Ok(bytes)
 }
 
 /// Check every index this crate follows (nodes, meshes, skins, accessors, views, buffers,

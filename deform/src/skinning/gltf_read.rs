@@ -1,6 +1,6 @@
 //! glTF 2.0 rigs in (`.gltf` with embedded or external buffers, `.glb`).
 
-use super::accessor::Buffers;
+use super::accessor::{Buffers, GltfReadOptions};
 use super::animation::{Animation, Channel, Interpolation, Property};
 use super::rig::{Influences, LoadReport, PrimitiveInfo, Rig, RigNode, Trs};
 use super::SkinError;
@@ -13,15 +13,31 @@ use std::path::Path;
 /// # Errors
 /// [`crate::Error::Io`] when the file cannot be read, and the errors of [`parse_gltf`].
 pub fn read_gltf(path: impl AsRef<Path>) -> crate::Result<Rig> {
+    read_gltf_with(path, &GltfReadOptions::default())
+}
+
+/// [`read_gltf`] with explicit [`GltfReadOptions`] (external buffers, the byte limit).
+///
+/// # Errors
+/// As [`read_gltf`].
+pub fn read_gltf_with(path: impl AsRef<Path>, options: &GltfReadOptions) -> crate::Result<Rig> {
     let path = path.as_ref();
     let bytes = std::fs::read(path).map_err(|source| crate::Error::Io {
         path: path.to_path_buf(),
         source,
     })?;
-    Ok(parse_gltf(
+    let base = path.parent().map(|p| {
+        if p.as_os_str().is_empty() {
+            Path::new(".")
+        } else {
+            p
+        }
+    });
+    Ok(parse_gltf_with(
         &bytes,
         &path.display().to_string(),
-        path.parent(),
+        base,
+        options,
     )?)
 }
 
@@ -46,6 +62,20 @@ pub fn read_gltf(path: impl AsRef<Path>) -> crate::Result<Rig> {
 /// # Errors
 /// [`SkinError`] as above.
 pub fn parse_gltf(bytes: &[u8], name: &str, base: Option<&Path>) -> Result<Rig, SkinError> {
+    parse_gltf_with(bytes, name, base, &GltfReadOptions::default())
+}
+
+/// [`parse_gltf`] with explicit [`GltfReadOptions`]: external buffers are read only inside
+/// `base` unless allowed, never past their declared `byteLength`, and within the byte limit.
+///
+/// # Errors
+/// As [`parse_gltf`].
+pub fn parse_gltf_with(
+    bytes: &[u8],
+    name: &str,
+    base: Option<&Path>,
+    options: &GltfReadOptions,
+) -> Result<Rig, SkinError> {
     let gltf_error = |message: String| SkinError::Gltf {
         name: name.to_string(),
         message,
@@ -60,7 +90,7 @@ pub fn parse_gltf(bytes: &[u8], name: &str, base: Option<&Path>) -> Result<Rig, 
             .map_err(|e| gltf_error(e.to_string()))?,
         blob: raw.blob,
     };
-    let buffers = Buffers::load(&gltf.document, gltf.blob.as_deref(), base, name)?;
+    let buffers = Buffers::load(&gltf.document, gltf.blob.as_deref(), base, name, options)?;
     let doc = &gltf.document;
     let mut report = LoadReport::default();
     let nodes = read_nodes(doc)?;

@@ -34,10 +34,11 @@ mod procedural;
 mod rig;
 mod skin;
 
+pub use accessor::GltfReadOptions;
 pub use animation::{Animation, Channel, Interpolation, KeyframeBlend, Property};
 pub use edit::{in_betweens, JointEdit};
 pub use glb_write::{glb_bytes, write_glb, GlbOptions};
-pub use gltf_read::{parse_gltf, read_gltf};
+pub use gltf_read::{parse_gltf, parse_gltf_with, read_gltf, read_gltf_with};
 pub use libigl_rig::{libigl_rig, read_libigl_animation, LibiglAnimation};
 pub use pose::RigPose;
 pub use procedural::procedural_arm;

@@ -10,8 +10,8 @@ use anyhow::{bail, Context, Result};
 use clap::{Args, ValueEnum};
 use deform::input::parse_motor;
 use deform::skinning::{
-    in_betweens, libigl_rig, read_gltf, write_glb, GlbOptions, JointEdit, KeyframeBlend, Rig,
-    RigPose, Skinning,
+    in_betweens, libigl_rig, read_gltf_with, write_glb, GlbOptions, GltfReadOptions, JointEdit,
+    KeyframeBlend, Rig, RigPose, Skinning,
 };
 use deform::{BlendMethod, Deformer, Mesh};
 use glam::DVec3;
@@ -72,6 +72,9 @@ pub struct RigInput {
     /// libigl weights (DMAT, vertices x bones) of a mesh model.
     #[arg(long, requires = "skeleton")]
     pub weights: Option<PathBuf>,
+    /// Follow glTF buffer URIs that leave the model's folder (refused by default).
+    #[arg(long)]
+    pub allow_external: bool,
 }
 
 impl RigInput {
@@ -92,7 +95,11 @@ impl RigInput {
             .unwrap_or("")
             .to_ascii_lowercase();
         if ext == "gltf" || ext == "glb" {
-            return Ok(read_gltf(&self.model)?);
+            let options = GltfReadOptions {
+                allow_external: self.allow_external,
+                ..GltfReadOptions::default()
+            };
+            return Ok(read_gltf_with(&self.model, &options)?);
         }
         let (Some(s), Some(w)) = (&self.skeleton, &self.weights) else {
             bail!(
