@@ -221,7 +221,7 @@ fn mutate_glb_json(rng: &mut Lcg, glb: &[u8]) -> Vec<u8> {
     let (a, b) = spans[rng.below(spans.len())];
     let with: &[&str] = &["99999", "4294967296", "-1", "0", "1e308", "3", "65535"];
     json.splice(a..b, with[rng.below(with.len())].bytes());
-    while json.len() % 4 != 0 {
+    while !json.len().is_multiple_of(4) {
         json.push(b' ');
     }
     let mut out = Vec::with_capacity(glb.len() + 16);
