@@ -41,7 +41,7 @@ const row = (p) => {
 let current = null;
 let label = '';
 for (const line of fs.readFileSync(logFile, 'utf8').split('\n')) {
-  const running = line.match(/^\s+Running (\S+) \((?:.*[\/\\])?([^\/\\)]+)\)/);
+  const running = line.match(/^\s+Running (.+?) \((?:.*[\/\\])?([^\/\\)]+)\)\s*$/);
   const doc = line.match(/^\s+Doc-tests (\S+)/);
   if (running) {
     current = binaryPackage.get(running[2]) ?? `(unknown: ${running[2]})`;
