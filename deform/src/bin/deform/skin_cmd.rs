@@ -308,6 +308,7 @@ pub fn skin(a: &SkinArgs) -> Result<()> {
         Keyframes::MotorLog => KeyframeBlend::MotorLog,
     };
     let mut pose = RigPose::default();
+    let mut finished: Vec<(PathBuf, Vec<DVec3>)> = Vec::with_capacity(frames.len());
     for (k, (time, frame_edits)) in frames.iter().enumerate() {
         let frame_motors;
         let motors = match &dmat {
@@ -341,7 +342,18 @@ pub fn skin(a: &SkinArgs) -> Result<()> {
             } else {
                 a.out.output.clone()
             };
-            write_obj(&path, &Mesh::new(posed.clone(), rig.mesh.triangles.clone()))?;
+            finished.push((path, posed.clone()));
+        }
+    }
+    // Written only once every frame is posed (a failing frame leaves no partial sequence);
+    // a failed write removes the frames this run wrote before it.
+    for (k, (path, positions)) in finished.iter().enumerate() {
+        let mesh = Mesh::new(positions.clone(), rig.mesh.triangles.clone());
+        if let Err(e) = write_obj(path, &mesh) {
+            for (written, _) in &finished[..k] {
+                let _ = std::fs::remove_file(written);
+            }
+            return Err(e);
         }
     }
     report.add("frames", frames.len());
