@@ -532,3 +532,61 @@ fn hostile_rig_inputs_exit_2_or_succeed_without_panicking() {
     );
     assert_eq!(std::fs::read_to_string(s.p("seq_0001.obj")).unwrap(), "{}");
 }
+
+/// Ctrl-C during a long frame sequence (issue 20): exit code 130, and neither frames nor
+/// temporary files are left behind.
+#[test]
+fn ctrl_c_stops_a_sequence_and_leaves_no_partial_output() {
+    use deform::skinning::{glb_bytes, procedural_arm, GlbOptions};
+    let s = Scene::new("interrupt");
+    let glb = glb_bytes(&procedural_arm(32, 80), &GlbOptions::default()).unwrap();
+    std::fs::write(s.p("arm.glb"), glb).unwrap();
+    let names = |dir: &Path| -> Vec<String> {
+        let mut v: Vec<String> = std::fs::read_dir(dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        v.sort();
+        v
+    };
+    let before = names(&s.dir);
+    let mut child = Command::new(env!("CARGO_BIN_EXE_deform"))
+        .args([
+            "skin",
+            &s.p("arm.glb"),
+            "--animation",
+            "0",
+            "--range",
+            "0:2:2000",
+        ])
+        .args(["-o", &s.p("seq.obj"), "--quiet"])
+        .stdin(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    // Wait until the sequence is being written, then interrupt.
+    let first = s.dir.join("seq_0000.obj");
+    let start = std::time::Instant::now();
+    while !first.exists() && start.elapsed().as_secs() < 60 {
+        assert!(
+            child.try_wait().unwrap().is_none(),
+            "finished before it could be interrupted"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    assert!(first.exists(), "no frame was written within 60 s");
+    let kill = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(kill.success());
+    let out = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(130), "{err}");
+    assert!(err.contains("interrupted"), "{err}");
+    let left: Vec<String> = names(&s.dir)
+        .into_iter()
+        .filter(|n| !before.contains(n))
+        .collect();
+    assert!(left.is_empty(), "left behind: {left:?}");
+}

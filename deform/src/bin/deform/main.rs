@@ -8,6 +8,7 @@ mod args;
 mod budget;
 mod commands;
 mod demo;
+mod interrupt;
 mod lattice_cmds;
 mod lattice_demo;
 mod numbers;
@@ -33,6 +34,7 @@ fn main() -> ExitCode {
         }
     };
     budget::set(cli.max_work);
+    interrupt::install();
     let result = match cli.command {
         args::Command::Demo(a) => demo::run(&a),
         args::Command::Spline(a) => commands::spline(&a),

@@ -55,6 +55,7 @@ pub fn write_atomic(path: &Path, write: impl FnOnce(&mut dyn Write) -> Result<()
         name.to_string_lossy(),
         std::process::id()
     ));
+    let _unfinished = crate::interrupt::pending(&[&tmp]);
     let result = (|| -> Result<()> {
         let file = std::fs::File::create(&tmp)
             .with_context(|| format!("{}: cannot create", tmp.display()))?;
@@ -128,4 +129,17 @@ pub fn read_selection(path: &Path, vertex_count: usize) -> Result<Selection> {
 /// Read a text file.
 pub fn read_text(path: &Path) -> Result<String> {
     std::fs::read_to_string(path).with_context(|| format!("{}: cannot read", path.display()))
+}
+
+/// Write a rig as `.glb`, atomically like every output (an interrupted run leaves nothing).
+pub fn write_glb(
+    path: &Path,
+    rig: &deform::skinning::Rig,
+    options: &deform::skinning::GlbOptions,
+) -> Result<()> {
+    let bytes = deform::skinning::glb_bytes(rig, options)?;
+    write_atomic(path, |w| {
+        w.write_all(&bytes)?;
+        Ok(())
+    })
 }

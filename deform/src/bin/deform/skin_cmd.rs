@@ -10,8 +10,8 @@ use anyhow::{bail, Context, Result};
 use clap::{Args, ValueEnum};
 use deform::input::parse_motor;
 use deform::skinning::{
-    in_betweens, libigl_rig, read_gltf_with, write_glb, GlbOptions, GltfReadOptions, JointEdit,
-    KeyframeBlend, Rig, RigPose, Skinning,
+    in_betweens, libigl_rig, read_gltf_with, GlbOptions, GltfReadOptions, JointEdit, KeyframeBlend,
+    Rig, RigPose, Skinning,
 };
 use deform::{BlendMethod, Deformer, Mesh};
 use glam::DVec3;
@@ -309,7 +309,17 @@ pub fn skin(a: &SkinArgs) -> Result<()> {
     };
     let mut pose = RigPose::default();
     let mut finished: Vec<(PathBuf, Vec<DVec3>)> = Vec::with_capacity(frames.len());
+    let progress = (sequence && !a.out.quiet).then(|| {
+        let bar = indicatif::ProgressBar::new(frames.len() as u64);
+        let style =
+            indicatif::ProgressStyle::with_template("posing frames {pos}/{len} {bar:30} {elapsed}");
+        bar.set_style(style.unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()));
+        bar
+    });
     for (k, (time, frame_edits)) in frames.iter().enumerate() {
+        if let Some(bar) = &progress {
+            bar.set_position(k as u64);
+        }
         let frame_motors;
         let motors = match &dmat {
             Some(anim) => {
@@ -347,8 +357,15 @@ pub fn skin(a: &SkinArgs) -> Result<()> {
     }
     // Written only once every frame is posed (a failing frame leaves no partial sequence);
     // a failed write removes the frames this run wrote before it.
+    if let Some(bar) = progress {
+        bar.finish_and_clear();
+    }
+    let mut unfinished = crate::interrupt::pending(&[]);
     for (k, (path, positions)) in finished.iter().enumerate() {
         let mesh = Mesh::new(positions.clone(), rig.mesh.triangles.clone());
+        if sequence {
+            unfinished.add(path);
+        }
         if let Err(e) = write_obj(path, &mesh) {
             for (written, _) in &finished[..k] {
                 let _ = std::fs::remove_file(written);
@@ -356,6 +373,7 @@ pub fn skin(a: &SkinArgs) -> Result<()> {
             return Err(e);
         }
     }
+    drop(unfinished); // the sequence is complete
     report.add("frames", frames.len());
     if let Some(b) = a.compare {
         let diag = Mesh::new(posed.clone(), Vec::new())
@@ -371,7 +389,7 @@ pub fn skin(a: &SkinArgs) -> Result<()> {
             node_transforms: Some(pose.locals.clone()),
             without_animations: false,
         };
-        write_glb(&rig, &options, &a.out.output)?;
+        crate::output::write_glb(&a.out.output, &rig, &options)?;
     }
     report.add("output", a.out.output.display().to_string());
     if let Some(png) = &a.out.png {

@@ -9,7 +9,7 @@ use crate::preview;
 use crate::skin_cmd::RigInput;
 use anyhow::{bail, Context, Result};
 use clap::Args;
-use deform::skinning::{write_glb, GlbOptions, Rig, Skinning};
+use deform::skinning::{GlbOptions, Rig, Skinning};
 use deform::surgery::{CutOptions, Frame, Surgery};
 use deform::{BlendMethod, Deformer, Mesh};
 use glam::{DAffine3, DVec3};
@@ -124,7 +124,7 @@ pub fn write_result(
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("glb"));
     if glb {
-        write_glb(&result, &GlbOptions::default(), &out.output)?;
+        crate::output::write_glb(&out.output, &result, &GlbOptions::default())?;
     } else {
         write_obj(&out.output, &result.mesh)?;
     }
