@@ -348,7 +348,17 @@ fn every_subcommand_survives_mutated_arguments_and_files() {
             code => Err(format!("exit {code:?}: {err}")),
         };
         if let Err(why) = verdict {
-            failures.push(format!("case {case}: deform {}\n  {why}", args.join(" ")));
+            // Keep the case's files (mutated inputs, output) to reproduce it.
+            let keep = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("cli-fuzz/case-{case}"));
+            let _ = std::fs::create_dir_all(&keep);
+            for e in std::fs::read_dir(&scratch).unwrap().flatten() {
+                let _ = std::fs::copy(e.path(), keep.join(e.file_name()));
+            }
+            failures.push(format!(
+                "case {case}: deform {}\n  {why}\n  files kept in {}",
+                args.join(" "),
+                keep.display()
+            ));
         }
         std::fs::remove_dir_all(&scratch).unwrap();
     }

@@ -175,9 +175,12 @@ fn read_nodes(doc: &gltf::Document) -> Result<Vec<RigNode>, SkinError> {
                     scale: DVec3::from(scale.map(f64::from)),
                 };
                 let q = trs.rotation.length();
+                // Values beyond the f32 range arrive as infinities: refused, as is a rotation
+                // whose norm is not a finite positive number.
                 if !trs.translation.is_finite()
                     || !trs.scale.is_finite()
-                    || q.is_nan()
+                    || !trs.rotation.is_finite()
+                    || !q.is_finite()
                     || q <= 1e-12
                 {
                     return Err(SkinError::BadTransform {
