@@ -505,6 +505,28 @@ fn hostile_rig_inputs_exit_2_or_succeed_without_panicking() {
         std::fs::remove_file(&out).unwrap();
     }
 
+    // An ordinary straight 4-blade scalpel along libigl's arm: a finite, opened tear.
+    let libigl = data.join("meshes/libigl");
+    let lib = |n: &str| libigl.join(n).to_string_lossy().into_owned();
+    let (arm, tgf, dmat) = (lib("arm.obj"), lib("arm.tgf"), lib("arm-weights.dmat"));
+    let mut args = vec![
+        "tear".to_string(),
+        arm,
+        "--skeleton".into(),
+        tgf,
+        "--weights".into(),
+        dmat,
+    ];
+    for (x, y) in [(-0.6, 0.215), (-0.3, 0.227), (0.0, 0.183), (0.3, 0.097)] {
+        args.push("--scalpel".into());
+        args.push(format!("{x},{y},0.6:{x},{y},-0.03"));
+    }
+    args.extend(["--open", "0.01", "-o", &out, "--quiet"].map(String::from));
+    let o = run(&args.iter().map(String::as_str).collect::<Vec<_>>());
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(read_obj(&out).positions.iter().all(|p| p.is_finite()));
+    std::fs::remove_file(&out).unwrap();
+
     // POSITION names an accessor that does not exist (the gltf crate's validation panicked).
     let mut json: serde_json::Value =
         serde_json::from_slice(&std::fs::read(&simple).unwrap()).unwrap();

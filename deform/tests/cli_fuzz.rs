@@ -5,7 +5,7 @@
 //! infinity, 1e308, -1 or a huge count. Every run must exit 0 or 2 without a panic; an exit 0
 //! must leave a readable output with finite positions; no input may change.
 //!
-//! `DEFORM_FUZZ_CASES` (default 600) and `DEFORM_FUZZ_SEED` (default 20) set the run.
+//! `DEFORM_FUZZ_CASES` (default 3000) and `DEFORM_FUZZ_SEED` (default 20) set the run.
 
 use deform::shapes::{icosphere, tube, tube_ring};
 use deform::skinning::{glb_bytes, procedural_arm, GlbOptions};
@@ -291,7 +291,7 @@ fn every_subcommand_survives_mutated_arguments_and_files() {
             .and_then(|v| v.parse().ok())
             .unwrap_or(d)
     };
-    let cases = env("DEFORM_FUZZ_CASES", 600) as usize;
+    let cases = env("DEFORM_FUZZ_CASES", 3000) as usize;
     let mut rng = Lcg(env("DEFORM_FUZZ_SEED", 20));
     let inputs = Inputs::new();
     let before = snapshot(&inputs.dir);
