@@ -82,6 +82,18 @@ impl Inputs {
             r#"{"0": {}, "*": {"rotate": {"axis": [0, 0, 1], "degrees": 30, "center": [5, 0, 0]}, "translate": [0, 2, 0]}}"#,
         )
         .unwrap();
+        // The bar as a libigl rig: a skeleton of two bones along it and linear weights.
+        let bar = tube(1.0, 10.0, sides, rings);
+        let tgf = "1 0 0 0\n2 5 0 0\n3 10 0 0\n#\n1 2\n2 3\n#\n";
+        std::fs::write(dir.join("bar.tgf"), tgf).unwrap();
+        let mut dmat = format!("2 {}\n", bar.vertex_count());
+        for bone in 0..2 {
+            for p in &bar.positions {
+                let t = (p.x / 10.0).clamp(0.0, 1.0);
+                dmat += &format!("{}\n", if bone == 0 { 1.0 - t } else { t });
+            }
+        }
+        std::fs::write(dir.join("bar.dmat"), dmat).unwrap();
         deform::io::write_obj(&icosphere(1.0, 1), dir.join("ball.obj")).unwrap();
         deform::io::write_obj(&icosphere(1.6, 1), dir.join("cage.obj")).unwrap();
         let arm = glb_bytes(&procedural_arm(8, 9), &GlbOptions::default()).unwrap();
@@ -109,6 +121,7 @@ impl Inputs {
             p("motors.json"),
         );
         let (ball, cage, arm) = (p("ball.obj"), p("cage.obj"), p("arm.glb"));
+        let (tgf, dmat) = (p("bar.tgf"), p("bar.dmat"));
         let edit = format!("1={}", p("edit.json"));
         vec![
             v(&["spline", &bar, "--select", &sel, "--keys", &keys]),
@@ -149,6 +162,30 @@ impl Inputs {
                 "2,0,2:2,0,0",
                 "--scalpel",
                 "3,0,2:3,0,0",
+            ]),
+            v(&[
+                "cut",
+                &bar,
+                "--skeleton",
+                &tgf,
+                "--weights",
+                &dmat,
+                "--plane",
+                "1,0,0,5",
+            ]),
+            v(&[
+                "drill",
+                &bar,
+                "--skeleton",
+                &tgf,
+                "--weights",
+                &dmat,
+                "--tip",
+                "5,0,-2",
+                "--end",
+                "5,0,2",
+                "--radius",
+                "0.3",
             ]),
         ]
     }
@@ -317,7 +354,8 @@ fn every_subcommand_survives_mutated_arguments_and_files() {
         std::fs::create_dir_all(&scratch).unwrap();
         let mut args = bases[case % bases.len()].clone();
         mutate(&mut rng, &mut args, &scratch);
-        let ext = if args[0] == "cut" || args[0] == "tear" || args[0] == "drill" {
+        let surgery = ["cut", "tear", "drill"].contains(&args[0].as_str());
+        let ext = if surgery {
             if rng.below(2) == 0 {
                 "glb"
             } else {

@@ -91,6 +91,11 @@ impl Bin {
         bounds: bool,
         what: &str,
     ) -> Result<usize> {
+        if v.is_empty() {
+            return Err(crate::Error::InvalidArgument(format!(
+                "{what}: no elements (a glTF accessor holds at least one)"
+            )));
+        }
         if let Some(i) = v.iter().position(|x| !x.is_finite()) {
             return Err(crate::Error::InvalidArgument(format!(
                 "{what}: element {} is {} in single precision; glTF holds finite f32 values \

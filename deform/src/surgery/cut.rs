@@ -106,7 +106,7 @@ impl Surgery {
     /// # Errors
     /// [`SurgeryError::BadTool`] for a non-finite plane, a snap fraction outside `[0, 0.5)`,
     /// or posed positions of the wrong length; [`SurgeryError::Misses`] when the plane leaves
-    /// every vertex on one side; [`SurgeryError::BadMesh`] when a new vertex cannot be mapped
+    /// every vertex, or every face, on one side; [`SurgeryError::BadMesh`] when a new vertex cannot be mapped
     /// back to the rest pose (a singular blended skin transform).
     pub fn cut(
         &self,
@@ -272,6 +272,11 @@ impl Surgery {
                 options.cap,
             )
         });
+        // Vertices on both sides but every face on one: nothing was cut (an empty piece would
+        // also be an empty glTF primitive, which the format does not allow).
+        if pieces.iter().any(|p| p.mesh.mesh.triangle_count() == 0) {
+            return Err(SurgeryError::Misses { vertices: n });
+        }
         Ok(CutResult {
             pieces,
             new_vertices: splitter.new_edges.len(),
