@@ -7,26 +7,13 @@
 //!
 //! `DEFORM_FUZZ_CASES` (default 3000) and `DEFORM_FUZZ_SEED` (default 20) set the run.
 
+mod common;
+
+use common::Lcg;
 use deform::shapes::{icosphere, tube, tube_ring};
 use deform::skinning::{glb_bytes, procedural_arm, GlbOptions};
 use std::path::{Path, PathBuf};
 use std::process::Command;
-
-/// A small deterministic generator (no dependency on `rand`).
-struct Lcg(u64);
-
-impl Lcg {
-    fn next(&mut self) -> u64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        self.0 >> 17
-    }
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n.max(1) as u64) as usize
-    }
-}
 
 /// Values a careless or hostile user gives to numeric flags.
 const HOSTILE: &[&str] = &[

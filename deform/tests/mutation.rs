@@ -6,6 +6,7 @@
 
 mod common;
 
+use common::Lcg;
 use deform::io::{parse_dmat, parse_medit, parse_obj, parse_off, parse_tgf};
 use deform::{cotangent_laplacian, harmonic_field, validate, HarmonicOptions, Mesh};
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -31,23 +32,6 @@ impl Format {
             "tgf" => Format::Tgf,
             _ => return None,
         })
-    }
-}
-
-/// A tiny linear congruential generator (Knuth's MMIX constants).
-struct Lcg(u64);
-
-impl Lcg {
-    fn next(&mut self) -> u64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        self.0 >> 33
-    }
-
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n.max(1) as u64) as usize
     }
 }
 

@@ -171,3 +171,22 @@ pub fn assert_oriented_manifold(triangles: &[[u32; 3]], vertex_count: usize) {
         .iter()
         .all(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2]));
 }
+
+/// A tiny deterministic generator for the mutation tests (Knuth's MMIX LCG constants).
+pub struct Lcg(pub u64);
+
+impl Lcg {
+    /// The next 31 random bits.
+    pub fn next(&mut self) -> u64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        self.0 >> 33
+    }
+
+    /// Uniform in `0..n` (0 when `n` is 0).
+    pub fn below(&mut self, n: usize) -> usize {
+        (self.next() % n.max(1) as u64) as usize
+    }
+}
