@@ -612,3 +612,23 @@ fn ctrl_c_stops_a_sequence_and_leaves_no_partial_output() {
         .collect();
     assert!(left.is_empty(), "left behind: {left:?}");
 }
+
+/// Issue 21's "wrong files under the asked name": an output extension the command does not
+/// write is refused before any work, not filled with another format's bytes.
+#[test]
+fn outputs_must_name_a_format_the_command_writes() {
+    let s = Scene::new("formats");
+    let (mesh, sel, keys) = (s.p("bar.obj"), s.p("sel.json"), s.p("keys.json"));
+    for out in ["x.glb", "x.ply", "x"] {
+        let out = s.p(out);
+        let args = [
+            "spline", &mesh, "--select", &sel, "--keys", &keys, "-o", &out,
+        ];
+        refused(&args, "this command writes .obj", &out);
+    }
+    let (out, png) = (s.p("x.obj"), s.p("x.jpg"));
+    let args = [
+        "spline", &mesh, "--select", &sel, "--keys", &keys, "-o", &out, "--png", &png,
+    ];
+    refused(&args, "--png writes PNG", &out);
+}

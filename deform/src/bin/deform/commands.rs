@@ -149,6 +149,7 @@ pub(crate) fn read_inputs(
         outputs.push(p.as_path());
     }
     check_outputs(&inputs, &outputs)?;
+    crate::output::check_formats(out, &["obj"])?;
     let m = read_mesh(mesh)?;
     let sel = read_selection(select, m.vertex_count())?;
     Ok((m, sel))

@@ -30,6 +30,7 @@ fn read_checked(mesh: &Path, extra: &[&Path], out: &OutputArgs) -> Result<Mesh> 
         outputs.push(p.as_path());
     }
     check_outputs(&inputs, &outputs)?;
+    crate::output::check_formats(out, &["obj"])?;
     read_mesh(mesh)
 }
 

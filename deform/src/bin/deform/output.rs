@@ -40,6 +40,35 @@ pub fn check_outputs(inputs: &[&Path], outputs: &[&Path]) -> Result<()> {
     Ok(())
 }
 
+/// Refuses an output whose extension names a format this command does not write (it would
+/// otherwise get another format's bytes under the asked name): `-o` must end in one of
+/// `formats`, `--png` in `.png`.
+pub fn check_formats(out: &crate::args::OutputArgs, formats: &[&str]) -> Result<()> {
+    let ext = |p: &Path| {
+        p.extension()
+            .map(|e| e.to_string_lossy().to_ascii_lowercase())
+            .unwrap_or_default()
+    };
+    let o = ext(&out.output);
+    if !formats.contains(&o.as_str()) {
+        let list: Vec<String> = formats.iter().map(|f| format!(".{f}")).collect();
+        bail!(
+            "{}: this command writes {}; give -o a name ending in one of them",
+            out.output.display(),
+            list.join(" or ")
+        );
+    }
+    if let Some(png) = &out.png {
+        if ext(png) != "png" {
+            bail!(
+                "{}: --png writes PNG; give it a name ending in .png",
+                png.display()
+            );
+        }
+    }
+    Ok(())
+}
+
 /// Write a file atomically: `write` fills a temporary file in the same folder, which is then
 /// renamed over `path`.
 pub fn write_atomic(path: &Path, write: impl FnOnce(&mut dyn Write) -> Result<()>) -> Result<()> {

@@ -193,6 +193,7 @@ pub fn skin(a: &SkinArgs) -> Result<()> {
     let mut outputs = vec![a.out.output.as_path()];
     outputs.extend(a.out.png.as_deref());
     check_outputs(&inputs, &outputs)?;
+    crate::output::check_formats(&a.out, &["obj", "glb"])?;
     let glb = a
         .out
         .output
@@ -217,7 +218,13 @@ pub fn skin(a: &SkinArgs) -> Result<()> {
     let bound = Skinning::bind(&rig, method)?;
     let bind_ms = t.elapsed().as_secs_f64() * 1e3;
     let mut report = Report::new("skin", &rig.mesh);
-    report.add("backend", method.name());
+    // The name given on the command line, and the blend method it selects.
+    let backend = a
+        .backend
+        .to_possible_value()
+        .map(|v| v.get_name().to_string());
+    report.add("backend", backend.unwrap_or_default());
+    report.add("blend_method", method.name());
     report.add("joints", rig.joints.len());
     report.add("animations", rig.animations.len());
     report.add("renormalised_vertices", rig.report.renormalised_vertices);

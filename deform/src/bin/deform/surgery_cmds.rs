@@ -162,6 +162,7 @@ fn prepare(rig: &RigInput, frame: &ToolFrame, out: &OutputArgs) -> Result<Prepar
     let mut outputs = vec![out.output.as_path()];
     outputs.extend(out.png.as_deref());
     check_outputs(&rig.paths(), &outputs)?;
+    crate::output::check_formats(out, &["obj", "glb"])?;
     let rig = rig.read()?;
     let posed = Posed::read(&rig, frame)?;
     let t = Instant::now();
