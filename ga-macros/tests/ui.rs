@@ -126,12 +126,21 @@ fn scratch_crate(root: &Path, manifest_dir: &Path, cases: &[Case]) -> Result<Pat
             c.source.display().to_string()
         );
     }
-    std::fs::write(dir.join("Cargo.toml"), toml).map_err(|e| e.to_string())?;
+    write_whole(&dir.join("Cargo.toml"), toml.as_bytes())?;
     let lock = manifest_dir.join("../Cargo.lock");
     if lock.is_file() {
-        std::fs::copy(&lock, dir.join("Cargo.lock")).map_err(|e| format!("Cargo.lock: {e}"))?;
+        let bytes = std::fs::read(&lock).map_err(|e| format!("Cargo.lock: {e}"))?;
+        write_whole(&dir.join("Cargo.lock"), &bytes)?;
     }
     Ok(dir)
+}
+
+/// Writes `path` through a temporary file and a rename, so a concurrent run never reads it
+/// half-written.
+fn write_whole(path: &Path, bytes: &[u8]) -> Result<(), String> {
+    let tmp = path.with_extension(format!("tmp-{}", std::process::id()));
+    std::fs::write(&tmp, bytes).map_err(|e| format!("{}: {e}", tmp.display()))?;
+    std::fs::rename(&tmp, path).map_err(|e| format!("{}: {e}", path.display()))
 }
 
 /// What `cargo check --message-format=json` said: the rendered diagnostics per bin, whether any
@@ -240,6 +249,7 @@ fn select(mut cases: Vec<Case>) -> (Vec<Case>, bool) {
 fn run() -> Result<usize, String> {
     let manifest_dir = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
     let root = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("ga-macros-ui");
+    let all = cases(&manifest_dir.join("tests/ui"))?;
     let (cases, list) = select(cases(&manifest_dir.join("tests/ui"))?);
     if list {
         for c in &cases {
@@ -258,7 +268,10 @@ fn run() -> Result<usize, String> {
     }
     let overwrite = std::env::var(MODE).as_deref() == Ok("overwrite");
     println!("\nrunning {} compile-fail cases", cases.len());
-    let dir = scratch_crate(&root, &manifest_dir, &cases)?;
+    // The scratch crate always holds every case, so runs of different selections at once (a
+    // runner that starts one process per case) write the same manifest; cargo's lock on the
+    // target folder serialises their builds.
+    let dir = scratch_crate(&root, &manifest_dir, &all)?;
     let checked = check(&dir, &root.join("target"), &manifest_dir)?;
     let mut failed = Vec::new();
     for c in &cases {
