@@ -106,8 +106,8 @@ impl Surgery {
     /// # Errors
     /// [`SurgeryError::BadTool`] for a non-finite plane, a snap fraction outside `[0, 0.5)`,
     /// or posed positions of the wrong length; [`SurgeryError::Misses`] when the plane leaves
-    /// every vertex, or every face, on one side; [`SurgeryError::BadMesh`] when a new vertex cannot be mapped
-    /// back to the rest pose (a singular blended skin transform).
+    /// every vertex, or every face, on one side; [`SurgeryError::BadMesh`] when a new vertex
+    /// cannot be mapped back to the rest pose (a singular blended skin transform).
     pub fn cut(
         &self,
         plane: &Plane,

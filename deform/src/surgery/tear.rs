@@ -82,8 +82,10 @@ impl Surgery {
     /// # Errors
     /// [`SurgeryError::BadTool`] for fewer than two positions, a non-finite or zero-length
     /// blade, a plane that is not defined (the blade moved along itself), an incision that
-    /// cannot be followed from one scalpel point to the next (steps too large for the mesh);
-    /// [`SurgeryError::Misses`] when a blade does not touch the surface.
+    /// cannot be followed from one scalpel point to the next (steps too large for the mesh),
+    /// an opening over [`MAX_OPEN_PER_DIAGONAL`] bounding-box diagonals;
+    /// [`SurgeryError::Misses`] when a blade does not touch the surface;
+    /// [`SurgeryError::Broken`] when the mesh bookkeeping breaks an invariant (a bug).
     pub fn tear(
         &self,
         scalpel: &[Scalpel],
