@@ -154,7 +154,7 @@ pub enum Error {
         /// Row, vertex or triangle where it happened.
         index: usize,
     },
-    /// Vertices with a coordinate beyond [`crate::validate::MAX_COORDINATE`] in magnitude,
+    /// Vertices with a coordinate beyond [`crate::mesh::validate::MAX_COORDINATE`] in magnitude,
     /// where edge vectors could overflow.
     #[error(
         "vertices {vertices} have coordinates beyond +-{limit:e} (edge vectors would overflow)"
@@ -184,16 +184,16 @@ pub enum Error {
     Solver(String),
     /// Bad keys, handle sets or parameters of a deformer.
     #[error(transparent)]
-    Keys(#[from] crate::deformer::KeyError),
+    Keys(#[from] crate::blend::deformer::KeyError),
     /// Constraint sets ARAP cannot work with.
     #[error(transparent)]
-    Arap(#[from] crate::arap::ArapError),
+    Arap(#[from] crate::deformers::arap::ArapError),
     /// A bad FFD lattice, or a vertex outside it.
     #[error(transparent)]
-    Ffd(#[from] crate::ffd::FfdError),
+    Ffd(#[from] crate::deformers::ffd::FfdError),
     /// A bad cage, or one that does not enclose the model.
     #[error(transparent)]
-    Cage(#[from] crate::cage::CageError),
+    Cage(#[from] crate::deformers::cage::CageError),
     /// A bad rig file, rig or animation request.
     #[error(transparent)]
     Skin(#[from] crate::skinning::SkinError),

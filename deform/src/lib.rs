@@ -23,32 +23,21 @@
 //! assert!(x[1] > 0.0 && x[1] < 1.0);
 //! ```
 
-pub mod adjacency;
-pub mod arap;
 pub mod blend;
-pub mod bspline;
-pub mod cage;
-pub mod control;
-pub mod deformer;
+pub mod deformers;
 mod error;
-pub mod fabrik;
-pub mod ffd;
-pub mod handles;
-pub mod harmonic;
 pub mod input;
-pub mod io;
-pub mod laplacian;
-pub mod mass;
 pub mod mesh;
+pub mod operators;
 pub mod render;
-pub mod shapes;
 pub mod skinning;
-pub mod solve;
-pub mod spline;
 pub mod surgery;
-mod triangle;
-mod union_find;
-pub mod validate;
+
+// The paths users had before the layers became folders.
+pub use blend::{control, deformer};
+pub use deformers::{arap, bspline, cage, fabrik, ffd, handles, spline};
+pub use mesh::{adjacency, io, shapes, validate};
+pub use operators::{harmonic, laplacian, mass, solve};
 
 pub use blend::{BlendMethod, BoundBlend, KeyWeights, PreparedKeys};
 pub use bspline::{
@@ -73,4 +62,4 @@ pub use mass::{mass_diagonal, mass_matrix, MassKind};
 pub use mesh::{Aabb, Mesh};
 pub use solve::{DirichletSolver, Parallelism, SolveScratch, SolverOptions};
 pub use spline::{SplineDeformer, SplineOptions, WeightScheme};
-pub use validate::{check_solvable, clean, validate, Cleaned, ValidationReport};
+pub use validate::{check_solvable, clean, Cleaned, ValidationReport};

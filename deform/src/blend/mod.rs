@@ -24,9 +24,11 @@
 //! The keys are prepared once per pose into buffers the bound deformer keeps
 //! ([`PreparedKeys`]), so posing does not allocate.
 
+pub mod control;
+pub mod deformer;
 mod keys;
 
-use crate::deformer::{check_key_count, check_positions, KeyError, MAX_KEYS};
+use crate::blend::deformer::{check_key_count, check_positions, KeyError, MAX_KEYS};
 use crate::Result;
 use cga::ScaledMotor;
 use glam::DVec3;

@@ -2,7 +2,7 @@
 //! or JSON `{"k": [vertex indices]}`.
 
 use super::InputError;
-use crate::io::Dmat;
+use crate::mesh::io::Dmat;
 use serde_json::Value;
 use std::collections::BTreeMap;
 

@@ -49,7 +49,7 @@ pub use image::{Image, CONTACT_SHEET_GAP, MAX_IMAGE_SIDE};
 
 use glam::DVec3;
 
-use crate::validate::MAX_COORDINATE;
+use crate::mesh::validate::MAX_COORDINATE;
 use crate::{Error, IndexList, Mesh, Result};
 use raster::{Paint, Target, Vertex};
 

@@ -2,7 +2,8 @@
 //! matrices), the node hierarchy and the animations, so any viewer shows and re-animates it.
 
 use super::animation::{Interpolation, Property};
-use super::rig::{Rig, Trs};
+use super::rig::Rig;
+use super::Trs;
 use crate::Result;
 use serde_json::{json, Value};
 use std::path::Path;

@@ -2,8 +2,9 @@
 
 use super::accessor::{Buffers, GltfReadOptions};
 use super::animation::{Animation, Channel, Interpolation, Property};
-use super::rig::{Influences, LoadReport, PrimitiveInfo, Rig, RigNode, Trs};
+use super::rig::{Influences, LoadReport, PrimitiveInfo, Rig, RigNode};
 use super::SkinError;
+use super::Trs;
 use crate::Mesh;
 use glam::{DMat4, DQuat, DVec3, DVec4};
 use std::path::Path;

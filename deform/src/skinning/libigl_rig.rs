@@ -1,9 +1,10 @@
 //! libigl rigs: a mesh, a TGF skeleton, DMAT weights (one column per bone), and DMAT
 //! animations (per frame, per bone, the 4x3 block `[A^T; t^T]` that `igl::lbs_matrix` uses).
 
-use super::rig::{Influences, LoadReport, PrimitiveInfo, Rig, RigNode, Trs};
+use super::rig::{Influences, LoadReport, PrimitiveInfo, Rig, RigNode};
 use super::SkinError;
-use crate::io::{Dmat, Skeleton};
+use super::Trs;
+use crate::mesh::io::{Dmat, Skeleton};
 use crate::Mesh;
 use cga::ScaledMotor;
 use glam::{DAffine3, DMat3, DMat4, DVec3};

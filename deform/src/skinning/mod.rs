@@ -33,6 +33,7 @@ mod pose;
 mod procedural;
 mod rig;
 mod skin;
+mod trs;
 
 pub use accessor::GltfReadOptions;
 pub use animation::{Animation, Channel, Interpolation, KeyframeBlend, Property};
@@ -42,8 +43,9 @@ pub use gltf_read::{parse_gltf, parse_gltf_with, read_gltf, read_gltf_with};
 pub use libigl_rig::{libigl_rig, read_libigl_animation, LibiglAnimation};
 pub use pose::RigPose;
 pub use procedural::procedural_arm;
-pub use rig::{Influences, LoadReport, PrimitiveInfo, Rig, RigNode, Trs};
+pub use rig::{Influences, LoadReport, PrimitiveInfo, Rig, RigNode};
 pub use skin::Skinning;
+pub use trs::Trs;
 
 /// What is wrong with a rig file, a rig or an animation request.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

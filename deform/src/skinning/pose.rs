@@ -3,8 +3,9 @@
 
 use super::animation::KeyframeBlend;
 use super::edit::JointEdit;
-use super::rig::{Rig, Trs};
+use super::rig::Rig;
 use super::SkinError;
+use super::Trs;
 use cga::ScaledMotor;
 use glam::{DAffine3, DMat4};
 

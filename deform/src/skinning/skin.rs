@@ -2,8 +2,8 @@
 //! motors of any frame with any backend.
 
 use super::{Influences, Rig};
+use crate::blend::deformer::deformer_via_blend;
 use crate::blend::{BlendMethod, BoundBlend, KeyWeights};
-use crate::deformer::deformer_via_blend;
 use crate::Result;
 use cga::ScaledMotor;
 use glam::DVec3;

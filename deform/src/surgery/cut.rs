@@ -2,7 +2,7 @@
 
 use super::cap::ear_clip;
 use super::split::{assemble, local_loops, new_vertex_data, Assembled, FaceFate, Splitter};
-use super::{check_snap, Frame, SkinnedMesh, Surgery, SurgeryError};
+use super::{check_snap, Frame, SkinnedMesh, Surgery, SurgeryError, VertexOrigin};
 use crate::skinning::Influences;
 use cga::Plane;
 use glam::DVec3;
@@ -26,35 +26,6 @@ impl Default for CutOptions {
             snap: 0.02,
             cap: false,
         }
-    }
-}
-
-/// Where a vertex of a piece comes from.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum VertexOrigin {
-    /// Input vertex `0`.
-    Original(u32),
-    /// A midpoint added by refinement (a drill thinner than the triangles).
-    Refined,
-    /// A point of a tear's incision (on the plane of its step), or where the scalpel enters.
-    Incision,
-    /// The second copy of incision vertex `0` of the result (the other lip of the tear).
-    Copy(u32),
-    /// A new vertex on the input edge `a b` at `a + t (b - a)` (in the frame of the cut).
-    Edge {
-        /// First end.
-        a: u32,
-        /// Second end.
-        b: u32,
-        /// Parameter from `a`.
-        t: f64,
-    },
-}
-
-impl VertexOrigin {
-    /// Whether the vertex is an input vertex (not made by a tool).
-    pub fn is_input(&self) -> bool {
-        matches!(self, VertexOrigin::Original(_))
     }
 }
 

@@ -334,8 +334,11 @@ impl Surgery {
                 local_loops(&self.topology, tris, fate, &changed, &[], &produced, 0).len()
             } else {
                 // Refined: the input's topology does not apply.
-                crate::adjacency::boundary_loops(&a.mesh.mesh.triangles, a.mesh.mesh.vertex_count())
-                    .len()
+                crate::mesh::adjacency::boundary_loops(
+                    &a.mesh.mesh.triangles,
+                    a.mesh.mesh.vertex_count(),
+                )
+                .len()
             };
             return Ok(DrillResult {
                 mesh: a.mesh,

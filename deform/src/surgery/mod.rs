@@ -46,8 +46,9 @@ mod weights;
 mod weld;
 
 pub use bvh::FaceBvh;
-pub use cut::{CutOptions, CutPiece, CutResult, VertexOrigin};
+pub use cut::{CutOptions, CutPiece, CutResult};
 pub use drill::{Drill, DrillOptions, DrillResult};
+pub use split::VertexOrigin;
 pub use tear::{Scalpel, TearOptions, TearResult};
 pub use weights::{push_interpolated, NEW_VERTEX_INFLUENCES};
 
@@ -152,7 +153,7 @@ impl Surgery {
                 "triangle {f} refers to a vertex past {n}"
             )));
         }
-        let edges = crate::adjacency::edges(&mesh.triangles, n);
+        let edges = crate::mesh::adjacency::edges(&mesh.triangles, n);
         let bad: Vec<usize> = edges.non_manifold().collect();
         if let Some(&e) = bad.first() {
             return Err(SurgeryError::NonManifold {

@@ -3,11 +3,40 @@
 //! crossing edge, shared by the faces on both sides of the edge; and assembling the result.
 
 use super::weights::{push_copy, push_interpolated};
-use super::{unskin, Frame, SkinnedMesh, SurgeryError, VertexOrigin};
+use super::{unskin, Frame, SkinnedMesh, SurgeryError};
 use crate::skinning::Influences;
 use crate::Mesh;
 use glam::DVec3;
 use std::collections::HashMap;
+
+/// Where a vertex of a piece comes from.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum VertexOrigin {
+    /// Input vertex `0`.
+    Original(u32),
+    /// A midpoint added by refinement (a drill thinner than the triangles).
+    Refined,
+    /// A point of a tear's incision (on the plane of its step), or where the scalpel enters.
+    Incision,
+    /// The second copy of incision vertex `0` of the result (the other lip of the tear).
+    Copy(u32),
+    /// A new vertex on the input edge `a b` at `a + t (b - a)` (in the frame of the cut).
+    Edge {
+        /// First end.
+        a: u32,
+        /// Second end.
+        b: u32,
+        /// Parameter from `a`.
+        t: f64,
+    },
+}
+
+impl VertexOrigin {
+    /// Whether the vertex is an input vertex (not made by a tool).
+    pub fn is_input(&self) -> bool {
+        matches!(self, VertexOrigin::Original(_))
+    }
+}
 
 /// New vertices on input edges, created as the faces are split.
 pub(crate) struct Splitter<'a> {
@@ -214,7 +243,7 @@ pub(crate) struct Topology {
 
 impl Topology {
     pub fn new(triangles: &[[u32; 3]], n: usize) -> Topology {
-        let edges = crate::adjacency::edges(triangles, n);
+        let edges = crate::mesh::adjacency::edges(triangles, n);
         let mut faces_of = vec![[u32::MAX; 2]; edges.edges.len()];
         for (f, fe) in edges.face_edges.iter().enumerate() {
             for &e in fe {
@@ -240,7 +269,7 @@ impl Topology {
             }
             neighbors.push(nb);
         }
-        let loops = crate::adjacency::boundary_loops(triangles, n).len();
+        let loops = crate::mesh::adjacency::boundary_loops(triangles, n).len();
         let mut vertex_face = vec![u32::MAX; n];
         for (f, t) in triangles.iter().enumerate() {
             for &v in t {

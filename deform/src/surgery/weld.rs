@@ -56,7 +56,7 @@ impl Weld {
                 }
             }
         }
-        if crate::adjacency::edges(&triangles, n)
+        if crate::mesh::adjacency::edges(&triangles, n)
             .non_manifold()
             .next()
             .is_some()

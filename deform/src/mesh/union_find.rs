@@ -1,7 +1,25 @@
 //! Disjoint sets over `0..n` (union-find with path halving), the one used for connected
 //! components of meshes, of matrix graphs and of the fans around a vertex.
 
-use crate::adjacency::Components;
+/// Connected components of the vertices (through triangle edges).
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct Components {
+    /// Component label of each vertex, `0..count`, numbered by their smallest vertex.
+    pub labels: Vec<u32>,
+    /// Number of components; each unreferenced vertex is a component of its own.
+    pub count: usize,
+}
+
+impl Components {
+    /// The vertices of each component, in increasing order.
+    pub fn members(&self) -> Vec<Vec<u32>> {
+        let mut out = vec![Vec::new(); self.count];
+        for (v, &c) in self.labels.iter().enumerate() {
+            out[c as usize].push(v as u32);
+        }
+        out
+    }
+}
 
 /// Union-find over `0..n`; every root is the smallest member of its set.
 #[derive(Debug, Clone)]

@@ -8,8 +8,8 @@
 //!
 //! Both are allocation-free and parallel over the vertices.
 
+use crate::blend::deformer::{check_key_count, check_positions, KeyError};
 use crate::blend::{BlendMethod, BoundBlend, KeyWeights};
-use crate::deformer::{check_key_count, check_positions, KeyError};
 use crate::Result;
 use cga::ScaledMotor;
 use glam::DVec3;

@@ -5,7 +5,7 @@
 //! the free vertices) or the Laplacian energy `x^T L M^-1 L x` (order 2: `L M^-1 L x = 0`),
 //! with prescribed values on the constrained vertex sets.
 
-use crate::laplacian::ensure_finite;
+use crate::operators::laplacian::ensure_finite;
 use crate::{
     check_solvable, laplacian, mass_diagonal, DirichletSolver, Error, IndexList, LaplacianKind,
     MassKind, Mesh, Result, SolverOptions,

@@ -8,13 +8,9 @@
 //! `A_i = sum w |e'|^2`, `B_i = sum w |e|^2` (fixed at bind) and the covariance `S_i`; the
 //! covariances the next local step needs give the energy of the last iterate for free.
 
-use super::local::Covariance;
-use super::system::Cells;
+use super::cells::{Cells, Covariance, CHUNK};
 use glam::{DMat3, DVec3};
 use rayon::prelude::*;
-
-/// Vertices (or triangles) per parallel task.
-pub(crate) const CHUNK: usize = 512;
 
 /// The covariance of every cell at positions `p` (`tri_cov` is scratch for spokes and rims).
 pub(crate) fn covariances(

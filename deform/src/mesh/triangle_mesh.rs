@@ -51,8 +51,6 @@ impl Aabb {
     }
 }
 
-pub use crate::triangle::is_degenerate_triangle;
-
 impl Mesh {
     /// A mesh from positions and triangles (not validated; see [`crate::validate()`]).
     pub fn new(positions: Vec<DVec3>, triangles: Vec<[u32; 3]>) -> Self {

@@ -1,52 +1,18 @@
 //! Bind-time work: the cells' weights and rest edges, the constrained vertex list, and the
 //! prefactored system `-L p' = b` (equation (13), a Poisson equation with Dirichlet rows).
 
+use super::cells::{Cells, Rims, Spokes};
 use super::rhs::Gather;
 use super::{ArapEnergy, ArapError, ArapOptions};
-use crate::laplacian::assemble;
-use crate::triangle::Frame;
-use crate::union_find::UnionFind;
+use crate::mesh::triangle::Frame;
+use crate::mesh::union_find::UnionFind;
+use crate::operators::laplacian::assemble;
 use crate::{
     check_solvable, cotangent_laplacian, DegeneratePolicy, DirichletSolver, Error, IndexList,
     KeyError, Mesh, Result,
 };
 use glam::DVec3;
 use rayon::prelude::*;
-
-/// One-ring (spokes) data: CSR rows of the Laplacian without the diagonal.
-#[derive(Debug, Clone)]
-pub(crate) struct Spokes {
-    /// Row `i` is `ptr[i]..ptr[i + 1]`.
-    pub ptr: Vec<usize>,
-    /// Neighbour `j` of each entry.
-    pub col: Vec<u32>,
-    /// Weight `w_ij`.
-    pub w: Vec<f64>,
-    /// `w_ij (p_i - p_j)` at rest.
-    pub we: Vec<DVec3>,
-}
-
-/// Spokes-and-rims data: per-triangle weights and edges, and the triangles around each vertex.
-#[derive(Debug, Clone)]
-pub(crate) struct Rims {
-    /// The mesh's triangles.
-    pub tris: Vec<[u32; 3]>,
-    /// `c[t][k]`: the (half-cotangent) weight of the edge opposite corner `k`.
-    pub c: Vec<[f64; 3]>,
-    /// `c[t][k] * e[t][k]` with `e[t][k] = p[k + 2] - p[k + 1]` at rest.
-    pub ce: Vec<[DVec3; 3]>,
-    /// Incident triangles of vertex `i`: `inc[ptr[i]..ptr[i + 1]]`.
-    pub ptr: Vec<usize>,
-    /// The triangle of each incidence.
-    pub inc: Vec<u32>,
-}
-
-/// The cells' data for the chosen energy.
-#[derive(Debug, Clone)]
-pub(crate) enum Cells {
-    Spokes(Spokes),
-    Rims(Rims),
-}
 
 /// Everything bind computes.
 #[derive(Debug)]

@@ -8,7 +8,7 @@
 //! and `h_ij` computed at bind ([`Gather::spokes`], [`Gather::rims`]): one gather of the
 //! neighbours' rotations per vertex and no per-triangle pass.
 
-use super::energy::CHUNK;
+use super::cells::CHUNK;
 use crate::Result;
 use glam::{DMat3, DVec3};
 use rayon::prelude::*;

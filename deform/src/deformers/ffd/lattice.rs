@@ -4,9 +4,9 @@
 //! vertices' local lattice coordinates.
 
 use super::FfdError;
+use crate::blend::deformer::MAX_KEYS;
 use crate::blend::KeyWeights;
-use crate::bspline::bspline_basis;
-use crate::deformer::MAX_KEYS;
+use crate::deformers::bspline::bspline_basis;
 use crate::Result;
 use glam::DVec3;
 
@@ -206,7 +206,7 @@ pub fn bernstein(n: usize, t: f64, out: &mut [f64]) {
 /// The Greville abscissae of the clamped uniform knot vector of degree `p` over `n` control
 /// points: the averages of `p` consecutive interior knots (`k / (n - 1)` for `p = n - 1`).
 fn greville(n: usize, p: usize) -> Vec<f64> {
-    let knot = |k: usize| crate::bspline::knot(k, n, p);
+    let knot = |k: usize| crate::deformers::bspline::knot(k, n, p);
     (0..n)
         .map(|j| (1..=p).map(|k| knot(j + k)).sum::<f64>() / p as f64)
         .collect()

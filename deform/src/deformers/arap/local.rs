@@ -21,66 +21,9 @@
 // `!(x > y)` is deliberate: NaN must fail every check.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
-use glam::{DMat3, DQuat, DVec3};
+use super::cells::{Covariance, CHUNK};
+use glam::{DMat3, DQuat};
 use nalgebra::{Matrix3, Matrix4, SymmetricEigen};
-
-/// A cell's covariance and the sums the energy and the eigenvalue bound need.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub(crate) struct Covariance {
-    /// `s[3 r + c] = sum_j w_j e_j[r] e'_j[c]`.
-    pub s: [f64; 9],
-    /// `sum_j w_j |e'_j|^2`.
-    pub a: f64,
-    /// `sum_j |w_j| |e'_j|^2`.
-    pub a_abs: f64,
-}
-
-impl Covariance {
-    /// Adds `w e e'^T` (`we = w e`).
-    #[inline(always)]
-    pub fn add(&mut self, w: f64, we: DVec3, e1: DVec3) {
-        let s = &mut self.s;
-        s[0] += we.x * e1.x;
-        s[1] += we.x * e1.y;
-        s[2] += we.x * e1.z;
-        s[3] += we.y * e1.x;
-        s[4] += we.y * e1.y;
-        s[5] += we.y * e1.z;
-        s[6] += we.z * e1.x;
-        s[7] += we.z * e1.y;
-        s[8] += we.z * e1.z;
-        let l2 = e1.length_squared();
-        self.a += w * l2;
-        self.a_abs += w.abs() * l2;
-    }
-
-    /// Adds another covariance.
-    #[inline(always)]
-    pub fn add_cov(&mut self, o: &Covariance) {
-        for (a, b) in self.s.iter_mut().zip(&o.s) {
-            *a += b;
-        }
-        self.a += o.a;
-        self.a_abs += o.a_abs;
-    }
-
-    /// `tr(R S)`.
-    #[inline]
-    pub fn trace_with(&self, r: &DMat3) -> f64 {
-        // tr(R S) = sum_{r,c} R[r][c] S[c][r]; glam stores columns: R[r][c] = r.col(c)[r].
-        let s = &self.s;
-        let (c0, c1, c2) = (r.x_axis, r.y_axis, r.z_axis);
-        c0.x * s[0]
-            + c1.x * s[3]
-            + c2.x * s[6]
-            + c0.y * s[1]
-            + c1.y * s[4]
-            + c2.y * s[7]
-            + c0.z * s[2]
-            + c1.z * s[5]
-            + c2.z * s[8]
-    }
-}
 
 /// Horn's symmetric matrix `P` of the paper's equation (12), row-major, traceless.
 #[inline]
@@ -291,7 +234,6 @@ pub(crate) fn fit_all(
     rots: &mut [DMat3],
 ) {
     use rayon::prelude::*;
-    const CHUNK: usize = super::energy::CHUNK;
     quats
         .par_chunks_mut(CHUNK)
         .zip(rots.par_chunks_mut(CHUNK))
@@ -314,6 +256,7 @@ pub(crate) fn fit_all(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glam::DVec3;
 
     /// A deterministic pseudo-random generator for the tests.
     fn rng(seed: &mut u64) -> f64 {

@@ -6,7 +6,8 @@
 //! All of them assume the triangle indices are in range (check with [`crate::validate()`]
 //! first); they panic otherwise.
 
-use crate::union_find::UnionFind;
+pub use crate::mesh::union_find::Components;
+use crate::mesh::union_find::UnionFind;
 use crate::Mesh;
 
 /// Compressed rows of `u32` items (one row per vertex).
@@ -73,26 +74,6 @@ impl Edges {
     /// Indices of the non-manifold edges (more than two incident triangles).
     pub fn non_manifold(&self) -> impl Iterator<Item = usize> + '_ {
         (0..self.edges.len()).filter(|&e| self.face_count[e] > 2)
-    }
-}
-
-/// Connected components of the vertices (through triangle edges).
-#[derive(Debug, Clone, PartialEq, Eq, Default)]
-pub struct Components {
-    /// Component label of each vertex, `0..count`, numbered by their smallest vertex.
-    pub labels: Vec<u32>,
-    /// Number of components; each unreferenced vertex is a component of its own.
-    pub count: usize,
-}
-
-impl Components {
-    /// The vertices of each component, in increasing order.
-    pub fn members(&self) -> Vec<Vec<u32>> {
-        let mut out = vec![Vec::new(); self.count];
-        for (v, &c) in self.labels.iter().enumerate() {
-            out[c as usize].push(v as u32);
-        }
-        out
     }
 }
 

@@ -44,6 +44,7 @@
 //! assert!(report.energies.windows(2).all(|e| e[1] <= e[0] + 1e-12));
 //! ```
 
+mod cells;
 mod energy;
 mod local;
 mod rhs;
@@ -51,13 +52,13 @@ mod system;
 
 pub use local::{fit_rotor, fit_svd, LocalStep};
 
-use crate::deformer::{check_key_count, check_positions, Deformer, KeyError};
+use crate::blend::deformer::{check_key_count, check_positions, Deformer, KeyError};
 use crate::{CotangentOptions, Error, IndexList, Mesh, Result, SolveScratch, SolverOptions};
+use cells::{Cells, Covariance};
 use cga::{Rotor, ScaledMotor};
 use glam::{DMat3, DQuat, DVec3};
-use local::Covariance;
 use std::sync::{Mutex, MutexGuard};
-use system::{Cells, System};
+use system::System;
 
 /// The rigidity energy.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

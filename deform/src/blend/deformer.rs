@@ -108,7 +108,7 @@ pub enum KeyError {
 /// bound form with the same `vertex_count`, `key_count` and `pose`).
 macro_rules! deformer_via_blend {
     ($t:ty, $field:ident) => {
-        impl $crate::deformer::Deformer for $t {
+        impl $crate::blend::deformer::Deformer for $t {
             fn vertex_count(&self) -> usize {
                 self.$field.vertex_count()
             }

@@ -7,8 +7,8 @@
 //! elimination tree) and the numeric factor are computed once; solves for new boundary values
 //! or right-hand sides (any number of columns) only do triangular solves.
 
-use crate::laplacian::ensure_finite;
-use crate::union_find::UnionFind;
+use crate::mesh::union_find::UnionFind;
+use crate::operators::laplacian::ensure_finite;
 use crate::{Error, IndexList, Result};
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::cholesky::llt::factor::LltError;

@@ -22,7 +22,7 @@ mod lattice;
 
 pub use lattice::{bernstein, Lattice, LatticeBasis, OUTSIDE_TOLERANCE};
 
-use crate::control::{ControlBinding, ControlForm};
+use crate::blend::control::{ControlBinding, ControlForm};
 use crate::{Mesh, Result};
 use glam::DVec3;
 
@@ -122,4 +122,4 @@ impl Ffd {
     }
 }
 
-crate::deformer::deformer_via_blend!(Ffd, binding);
+crate::blend::deformer::deformer_via_blend!(Ffd, binding);

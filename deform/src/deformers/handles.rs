@@ -3,8 +3,8 @@
 //! coordinates, a partition of unity), and `M_i = exp(sum_j lambda_j^i log R_j)`. Each handle
 //! can rotate, translate and scale; its vertices follow its motor exactly.
 
+use crate::blend::deformer::{deformer_via_blend, KeyError, MAX_KEYS};
 use crate::blend::{BlendMethod, BoundBlend, KeyWeights};
-use crate::deformer::{deformer_via_blend, KeyError, MAX_KEYS};
 use crate::{Harmonic, HarmonicOptions, LaplacianKind, Mesh, Result};
 use cga::ScaledMotor;
 

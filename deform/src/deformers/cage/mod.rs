@@ -36,8 +36,8 @@ pub use containment::{
 pub use harmonic::{harmonic_cage_coordinates, HarmonicGrid};
 pub use mvc::{coordinates_and_winding, mean_value_coordinates};
 
+use crate::blend::control::{ControlBinding, ControlForm};
 use crate::blend::KeyWeights;
-use crate::control::{ControlBinding, ControlForm};
 use crate::{IndexList, Mesh, Result};
 
 /// What is wrong with a cage.
@@ -196,4 +196,4 @@ impl CageDeformer {
     }
 }
 
-crate::deformer::deformer_via_blend!(CageDeformer, binding);
+crate::blend::deformer::deformer_via_blend!(CageDeformer, binding);

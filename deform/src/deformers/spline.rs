@@ -9,9 +9,9 @@
 //! are brought into one hemisphere, and what happens near a half-turn, is said in
 //! [`crate::blend`].
 
+use crate::blend::deformer::{deformer_via_blend, KeyError, MAX_KEYS};
 use crate::blend::{BlendMethod, BoundBlend, KeyWeights};
-use crate::bspline::{bspline_basis, bspline_degree};
-use crate::deformer::{deformer_via_blend, KeyError, MAX_KEYS};
+use crate::deformers::bspline::{bspline_basis, bspline_degree};
 use crate::{Harmonic, HarmonicOptions, LaplacianKind, Mesh, Result};
 use cga::ScaledMotor;
 use glam::DVec3;

@@ -13,7 +13,7 @@
 //!
 //! Triangle indices must be in range (see [`crate::validate()`]).
 
-use crate::triangle::Frame;
+use crate::mesh::triangle::Frame;
 use crate::{Error, IndexList, Mesh, Result};
 use rayon::prelude::*;
 use sprs::CsMat;

@@ -2,9 +2,9 @@
 //! paper's Fig. 5 pipeline: the joint frames of the solved chain are key motors `Q_i`, a
 //! cubic B-spline is fitted to them (section III.C) and drives a spline-aligned deformation.
 
-use crate::bspline::{fit_bspline, BsplineFit};
-use crate::deformer::{deformer_via_blend, Deformer, KeyError};
-use crate::spline::{SplineDeformer, SplineOptions, WeightScheme};
+use crate::blend::deformer::{deformer_via_blend, Deformer, KeyError};
+use crate::deformers::bspline::{fit_bspline, BsplineFit};
+use crate::deformers::spline::{SplineDeformer, SplineOptions, WeightScheme};
 use crate::{Mesh, Result};
 use cga::ScaledMotor;
 use glam::{DQuat, DVec3};

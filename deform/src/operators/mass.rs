@@ -1,6 +1,6 @@
 //! Lumped (diagonal) mass matrices.
 
-use crate::triangle::Frame;
+use crate::mesh::triangle::Frame;
 use crate::{Error, Mesh, Result};
 use sprs::CsMat;
 

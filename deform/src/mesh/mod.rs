@@ -1,0 +1,25 @@
+//! The mesh foundation: the [`Mesh`] type, its adjacency, validation and cleaning, procedural
+//! shapes and mesh files.
+//!
+//! * [`Mesh`] and [`Aabb`] ([`triangle_mesh`]), with on-demand [`adjacency`];
+//! * [`validate()`](validate::validate) and [`clean()`](validate::clean) with the offending
+//!   indices;
+//! * [`shapes`]: procedural meshes (tube, sphere) for demos, tests and benches;
+//! * [`io`]: OBJ, OFF, MEDIT, libigl DMAT and TGF files.
+//!
+//! **May use**: `glam`, `cga` (nothing else of this crate). **Must not use**: any other layer
+//! (operators, blend, deformers, skinning, surgery, render, input) or the crate-level
+//! `Error`; its errors are [`MeshError`].
+
+pub mod adjacency;
+pub mod io;
+pub mod shapes;
+pub(crate) mod triangle;
+pub mod triangle_mesh;
+pub(crate) mod union_find;
+pub mod validate;
+
+pub use triangle::is_degenerate_triangle;
+pub use triangle_mesh::{Aabb, Mesh};
+pub use union_find::Components;
+pub use validate::{clean, validate, Cleaned, ValidationReport};
