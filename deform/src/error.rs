@@ -1,202 +1,90 @@
-//! The crate's error type.
+//! The crate's error: every layer's error converts into it with `?`.
 
-use std::fmt;
-use std::path::PathBuf;
+use crate::blend::{BlendError, KeyError};
+use crate::deformers::arap::ArapError;
+use crate::deformers::cage::CageError;
+use crate::deformers::ffd::FfdError;
+use crate::deformers::DeformError;
+use crate::input::InputError;
+use crate::mesh::MeshError;
+use crate::operators::SolveError;
+use crate::skinning::SkinError;
+use crate::surgery::SurgeryError;
 
-/// A list of vertex (or face) indices carried by an error; its `Display` shows at most ten.
-#[derive(Debug, Clone, PartialEq, Eq, Default)]
-pub struct IndexList(pub Vec<u32>);
-
-impl fmt::Display for IndexList {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        const SHOWN: usize = 10;
-        write!(f, "[")?;
-        for (k, i) in self.0.iter().take(SHOWN).enumerate() {
-            if k > 0 {
-                write!(f, ", ")?;
-            }
-            write!(f, "{i}")?;
-        }
-        if self.0.len() > SHOWN {
-            write!(f, ", ... ({} in all)", self.0.len())?;
-        }
-        write!(f, "]")
-    }
-}
-
-impl From<Vec<u32>> for IndexList {
-    fn from(v: Vec<u32>) -> Self {
-        IndexList(v)
-    }
-}
-
-/// Everything that can go wrong in `deform`: reading files, bad meshes, bad constraints,
-/// singular systems.
+/// Everything that can go wrong in `deform`. Each layer reports its own error
+/// ([`MeshError`], [`SolveError`], [`BlendError`], [`DeformError`], [`SkinError`],
+/// [`SurgeryError`], [`InputError`]); all convert into this one with `?`, the wrappers
+/// flattened (a [`SolveError::Mesh`] is an [`Error::Mesh`], a [`DeformError::Keys`] an
+/// [`Error::Keys`]), so one `match` sees every case with its offending indices.
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
-    /// The file could not be opened or read.
-    #[error("{path}: {source}")]
-    Io {
-        /// The file.
-        path: PathBuf,
-        /// The underlying error.
-        source: std::io::Error,
-    },
-    /// The file's content is malformed.
-    #[error("{path}:{line}: {message}")]
-    Parse {
-        /// The file (or `<memory>`).
-        path: String,
-        /// 1-based line number (0 when not line-oriented).
-        line: usize,
-        /// What was wrong.
-        message: String,
-    },
-    /// The file extension is not one of the known mesh formats.
-    #[error("unsupported mesh file extension {0:?} (known: obj, off, mesh)")]
-    UnsupportedFormat(String),
-    /// The mesh has no vertices or no triangles.
-    #[error("the mesh is empty ({vertices} vertices, {triangles} triangles)")]
-    EmptyMesh {
-        /// Number of vertices.
-        vertices: usize,
-        /// Number of triangles.
-        triangles: usize,
-    },
-    /// Triangles refer to vertices that do not exist.
-    #[error("triangles {faces} refer to vertices outside 0..{vertex_count}")]
-    FaceIndexOutOfRange {
-        /// Offending triangles.
-        faces: IndexList,
-        /// Number of vertices of the mesh.
-        vertex_count: usize,
-    },
-    /// Vertices with NaN or infinite coordinates.
-    #[error("vertices {vertices} have non-finite coordinates")]
-    NonFinite {
-        /// Offending vertices.
-        vertices: IndexList,
-    },
-    /// Edges shared by more than two triangles, or vertices whose triangles form several fans.
-    #[error("non-manifold mesh: vertices {vertices} (non-manifold edges touch {edge_vertices})")]
-    NonManifold {
-        /// Non-manifold vertices (bow-ties).
-        vertices: IndexList,
-        /// Endpoints of edges with more than two triangles.
-        edge_vertices: IndexList,
-    },
-    /// Triangles whose area is (numerically) zero, where the caller asked for an error.
-    #[error("degenerate (zero-area) triangles {faces}")]
-    DegenerateTriangles {
-        /// Offending triangles.
-        faces: IndexList,
-    },
-    /// Constraint (handle or fixed) indices outside the mesh.
-    #[error(
-        "constraint vertices {vertices} are out of range (the mesh has {vertex_count} vertices)"
-    )]
-    ConstraintOutOfRange {
-        /// Offending indices.
-        vertices: IndexList,
-        /// Number of vertices of the mesh.
-        vertex_count: usize,
-    },
-    /// A vertex appears in two constraint sets (or twice in one).
-    #[error("vertices {vertices} appear in more than one constraint set (or twice)")]
-    OverlappingConstraints {
-        /// Offending vertices.
-        vertices: IndexList,
-    },
-    /// The system is singular: some connected components contain no constrained vertex.
-    #[error("singular system: {components} connected component(s) have no constrained vertex; unconstrained vertices {vertices}")]
-    Unconstrained {
-        /// Number of unconstrained components.
-        components: usize,
-        /// Vertices of those components.
-        vertices: IndexList,
-    },
-    /// The reduced matrix is not numerically positive definite.
-    #[error("the constrained system is not positive definite (factorisation failed: {0})")]
-    NotPositiveDefinite(String),
-    /// Sizes of inputs do not match.
-    #[error("dimension mismatch for {what}: expected {expected}, got {got}")]
-    DimensionMismatch {
-        /// Which input.
-        what: &'static str,
-        /// Expected length.
-        expected: usize,
-        /// Actual length.
-        got: usize,
-    },
-    /// A matrix given to [`crate::DirichletSolver::update_values`] has a different sparsity pattern.
-    #[error("the matrix's sparsity pattern differs from the one the solver was built with")]
-    PatternChanged,
-    /// Vertices with zero mass (only in degenerate triangles) where the mass is inverted.
-    #[error("vertices {vertices} have zero mass")]
-    ZeroMass {
-        /// Offending vertices.
-        vertices: IndexList,
-    },
-    /// Vertices asked for after [`crate::clean()`] removed them (they were unreferenced).
-    #[error("vertices {vertices} were removed by cleaning (unreferenced)")]
-    RemovedVertices {
-        /// Offending (original) indices.
-        vertices: IndexList,
-    },
-    /// A computed quantity left the `f64` range (overflow to infinity or NaN, or underflow to
-    /// zero where zero is invalid); rescale the input.
-    #[error(
-        "{what} at index {index} is outside the floating-point range (overflow); rescale the input"
-    )]
-    Overflow {
-        /// What was computed.
-        what: &'static str,
-        /// Row, vertex or triangle where it happened.
-        index: usize,
-    },
-    /// Vertices with a coordinate beyond [`crate::mesh::validate::MAX_COORDINATE`] in magnitude,
-    /// where edge vectors could overflow.
-    #[error(
-        "vertices {vertices} have coordinates beyond +-{limit:e} (edge vectors would overflow)"
-    )]
-    CoordinateRange {
-        /// Offending vertices.
-        vertices: IndexList,
-        /// The largest usable magnitude.
-        limit: f64,
-    },
-    /// Forming a matrix product would need too many nonzeros (e.g. `L M^-1 L` on a mesh with a
-    /// vertex of huge valence, such as a fan-triangulated polygon with thousands of corners).
-    #[error("{what} would have up to {estimated} nonzeros (limit {limit}); a vertex of very high valence makes it dense: split large polygons")]
-    TooDense {
-        /// Which matrix.
-        what: &'static str,
-        /// Upper bound of its nonzeros.
-        estimated: usize,
-        /// The limit.
-        limit: usize,
-    },
-    /// Parameters outside their domain.
-    #[error("invalid argument: {0}")]
-    InvalidArgument(String),
-    /// A faer routine failed (out of memory, index overflow).
-    #[error("sparse solver error: {0}")]
-    Solver(String),
+    /// A bad mesh, file, index list or size.
+    #[error(transparent)]
+    Mesh(MeshError),
+    /// A system that cannot be built or solved.
+    #[error(transparent)]
+    Solve(SolveError),
     /// Bad keys, handle sets or parameters of a deformer.
     #[error(transparent)]
-    Keys(#[from] crate::blend::deformer::KeyError),
+    Keys(KeyError),
     /// Constraint sets ARAP cannot work with.
     #[error(transparent)]
-    Arap(#[from] crate::deformers::arap::ArapError),
+    Arap(ArapError),
     /// A bad FFD lattice, or a vertex outside it.
     #[error(transparent)]
-    Ffd(#[from] crate::deformers::ffd::FfdError),
+    Ffd(FfdError),
     /// A bad cage, or one that does not enclose the model.
     #[error(transparent)]
-    Cage(#[from] crate::deformers::cage::CageError),
+    Cage(CageError),
     /// A bad rig file, rig or animation request.
     #[error(transparent)]
-    Skin(#[from] crate::skinning::SkinError),
+    Skin(#[from] SkinError),
+    /// A cut, tear or drill that cannot be made.
+    #[error(transparent)]
+    Surgery(#[from] SurgeryError),
+    /// A bad motor or selection file.
+    #[error(transparent)]
+    Input(#[from] InputError),
+}
+
+impl From<MeshError> for Error {
+    fn from(e: MeshError) -> Self {
+        Error::Mesh(e)
+    }
+}
+
+impl From<SolveError> for Error {
+    fn from(e: SolveError) -> Self {
+        match e {
+            SolveError::Mesh(m) => Error::Mesh(m),
+            e => Error::Solve(e),
+        }
+    }
+}
+
+impl From<KeyError> for Error {
+    fn from(e: KeyError) -> Self {
+        Error::Keys(e)
+    }
+}
+
+impl From<BlendError> for Error {
+    fn from(e: BlendError) -> Self {
+        DeformError::from(e).into()
+    }
+}
+
+impl From<DeformError> for Error {
+    fn from(e: DeformError) -> Self {
+        match e {
+            DeformError::Mesh(m) => Error::Mesh(m),
+            DeformError::Solve(s) => Error::Solve(s),
+            DeformError::Keys(k) => Error::Keys(k),
+            DeformError::Arap(a) => Error::Arap(a),
+            DeformError::Ffd(f) => Error::Ffd(f),
+            DeformError::Cage(c) => Error::Cage(c),
+        }
+    }
 }
 
 /// `Result` with [`Error`].

@@ -34,17 +34,25 @@ pub mod skinning;
 pub mod surgery;
 
 // The paths users had before the layers became folders.
-pub use blend::{control, deformer};
+pub use blend::control;
 pub use deformers::{arap, bspline, cage, fabrik, ffd, handles, spline};
 pub use mesh::{adjacency, io, shapes, validate};
 pub use operators::{harmonic, laplacian, mass, solve};
 
+/// The shape every deformer shares (the path it had before the layers; see
+/// [`deformers::deformer`]).
+pub mod deformer {
+    pub use crate::blend::{KeyError, MAX_KEYS};
+    pub use crate::deformers::deformer::{Deformer, PoseScratch, Poser};
+}
+
+pub use blend::{BlendError, KeyError, MAX_KEYS};
 pub use blend::{BlendMethod, BoundBlend, KeyWeights, PreparedKeys};
 pub use bspline::{
     bspline_basis, bspline_degree, bspline_motor, fit_bspline, BsplineFit, FitSolver,
 };
-pub use deformer::{Deformer, KeyError, MAX_KEYS};
-pub use error::{Error, IndexList, Result};
+pub use deformers::{DeformError, Deformer, PoseScratch, Poser};
+pub use error::{Error, Result};
 pub use fabrik::{
     chain_key_motors, chain_parameters, fabrik, ChainDeformer, ChainPose, FabrikOptions,
     FabrikSolution, FabrikStatus,
@@ -60,6 +68,8 @@ pub use laplacian::{
 };
 pub use mass::{mass_diagonal, mass_matrix, MassKind};
 pub use mesh::{Aabb, Mesh};
+pub use mesh::{IndexList, MeshError};
+pub use operators::SolveError;
 pub use solve::{DirichletSolver, Parallelism, SolveScratch, SolverOptions};
 pub use spline::{SplineDeformer, SplineOptions, WeightScheme};
 pub use validate::{check_solvable, clean, Cleaned, ValidationReport};

@@ -8,12 +8,12 @@
 //!
 //! Both are allocation-free and parallel over the vertices.
 
-use crate::blend::deformer::{check_key_count, check_positions, KeyError};
-use crate::blend::{BlendMethod, BoundBlend, KeyWeights};
-use crate::Result;
+use crate::blend::Result;
+use crate::blend::{check_key_count, check_positions, KeyError};
+use crate::blend::{BlendMethod, BoundBlend, KeyWeights, PreparedKeys};
+use crate::mesh::MeshError;
 use cga::ScaledMotor;
 use glam::DVec3;
-use std::sync::Mutex;
 
 /// How control keys deform the mesh.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -40,18 +40,14 @@ impl ControlForm {
     }
 }
 
-#[derive(Debug)]
+#[derive(Debug, Clone)]
 enum Inner {
-    Positional {
-        weights: KeyWeights,
-        /// The moved control points of the last pose (reused, so posing does not allocate).
-        moved: Mutex<Vec<DVec3>>,
-    },
+    Positional { weights: KeyWeights },
     Motor(BoundBlend),
 }
 
 /// A mesh bound to control points with per-vertex weights.
-#[derive(Debug)]
+#[derive(Debug, Clone)]
 pub struct ControlBinding {
     rest: Vec<DVec3>,
     vertices: usize,
@@ -59,30 +55,12 @@ pub struct ControlBinding {
     inner: Inner,
 }
 
-impl Clone for ControlBinding {
-    fn clone(&self) -> Self {
-        let inner = match &self.inner {
-            Inner::Positional { weights, .. } => Inner::Positional {
-                weights: weights.clone(),
-                moved: Mutex::new(Vec::new()),
-            },
-            Inner::Motor(b) => Inner::Motor(b.clone()),
-        };
-        ControlBinding {
-            rest: self.rest.clone(),
-            vertices: self.vertices,
-            form: self.form,
-            inner,
-        }
-    }
-}
-
 impl ControlBinding {
     /// Bind `positions` to the control points `rest` (one weight column per point) in `form`;
     /// rest motors are the identity.
     ///
     /// # Errors
-    /// [`crate::Error::DimensionMismatch`] when the weights do not match the positions or the
+    /// [`MeshError::DimensionMismatch`] when the weights do not match the positions or the
     /// control points, and the errors of [`BoundBlend::bind`].
     pub fn bind(
         positions: &[DVec3],
@@ -93,10 +71,7 @@ impl ControlBinding {
         check_positions(weights.vertex_count(), positions.len())?;
         check_key_count("the control points", weights.key_count(), rest.len())?;
         let inner = match form {
-            ControlForm::Positional => Inner::Positional {
-                weights,
-                moved: Mutex::new(Vec::with_capacity(rest.len())),
-            },
+            ControlForm::Positional => Inner::Positional { weights },
             ControlForm::Motor(method) => {
                 let identity = vec![ScaledMotor::IDENTITY; rest.len()];
                 Inner::Motor(BoundBlend::bind(positions, weights, &identity, method)?)
@@ -132,15 +107,15 @@ impl ControlBinding {
     /// (whatever the bound form).
     ///
     /// # Errors
-    /// [`crate::Error::DimensionMismatch`] for slices of the wrong length,
-    /// [`crate::Error::InvalidArgument`] for a control point that is not finite.
+    /// [`MeshError::DimensionMismatch`] for slices of the wrong length,
+    /// [`MeshError::InvalidArgument`] for a control point that is not finite.
     pub fn pose_points(&self, control: &[DVec3], out: &mut [DVec3]) -> Result<()> {
         check_key_count("the control points", self.rest.len(), control.len())?;
         check_positions(self.vertices, out.len())?;
         if let Some(j) = control.iter().position(|p| !p.is_finite()) {
-            return Err(crate::Error::InvalidArgument(format!(
-                "control point {j} is not finite"
-            )));
+            return Err(
+                MeshError::InvalidArgument(format!("control point {j} is not finite")).into(),
+            );
         }
         let weights = self.weights();
         crate::blend::for_each_vertex(out, |i| {
@@ -152,33 +127,57 @@ impl ControlBinding {
     }
 }
 
-impl crate::Deformer for ControlBinding {
-    fn vertex_count(&self) -> usize {
+/// The per-pose buffers of a [`ControlBinding`]: the prepared keys and the moved control
+/// points. Made by [`ControlBinding::scratch`], owned by the caller.
+#[derive(Debug, Clone, Default)]
+pub struct ControlScratch {
+    keys: PreparedKeys,
+    moved: Vec<DVec3>,
+}
+
+impl ControlBinding {
+    /// Number of vertices it poses.
+    pub fn vertex_count(&self) -> usize {
         self.vertices
     }
 
-    fn key_count(&self) -> usize {
-        self.rest.len()
+    /// Fresh per-pose buffers.
+    pub fn scratch(&self) -> ControlScratch {
+        ControlScratch {
+            keys: PreparedKeys::default(),
+            moved: Vec::with_capacity(self.rest.len()),
+        }
     }
 
-    fn pose(&self, keys: &[ScaledMotor], positions: &mut [DVec3]) -> Result<()> {
+    /// Pose with motors at the control points (one per point), using the caller's `scratch`:
+    /// no allocation once the scratch has served one pose.
+    ///
+    /// # Errors
+    /// [`KeyError`] for a bad key or a key list of the wrong length,
+    /// [`MeshError::DimensionMismatch`] for `positions` of the wrong length.
+    pub fn pose_using(
+        &self,
+        keys: &[ScaledMotor],
+        scratch: &mut ControlScratch,
+        positions: &mut [DVec3],
+    ) -> Result<()> {
         match &self.inner {
-            Inner::Motor(b) => b.pose(keys, positions),
-            Inner::Positional { moved, .. } => {
+            Inner::Motor(b) => b.pose_using(keys, &mut scratch.keys, positions),
+            Inner::Positional { .. } => {
                 check_key_count("this deformer", self.rest.len(), keys.len())?;
                 check_positions(self.vertices, positions.len())?;
                 for (index, k) in keys.iter().enumerate() {
                     k.try_log()
                         .map_err(|source| KeyError::Invalid { index, source })?;
                 }
-                let mut moved = moved.lock().unwrap_or_else(|e| e.into_inner());
+                let moved = &mut scratch.moved;
                 moved.clear();
                 moved.extend(
                     keys.iter()
                         .zip(&self.rest)
                         .map(|(k, &p)| k.transform_point(p)),
                 );
-                self.pose_points(&moved, positions)
+                self.pose_points(moved, positions)
             }
         }
     }

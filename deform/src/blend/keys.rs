@@ -1,8 +1,8 @@
 //! The keys of one pose, prepared in the form a blend method needs.
 
 use super::{BlendMethod, Row};
-use crate::blend::deformer::{KeyError, MAX_KEYS};
-use crate::Result;
+use crate::blend::Result;
+use crate::blend::{KeyError, MAX_KEYS};
 use cga::{Bivector, Motor, ScaledMotor};
 use glam::{Affine3A, DAffine3, DMat3, DQuat, DVec3, Vec3A};
 

@@ -25,16 +25,16 @@
 //! ([`PreparedKeys`]), so posing does not allocate.
 
 pub mod control;
-pub mod deformer;
+mod error;
 mod keys;
 
-use crate::blend::deformer::{check_key_count, check_positions, KeyError, MAX_KEYS};
-use crate::Result;
+use crate::mesh::MeshError;
 use cga::ScaledMotor;
+pub(crate) use error::{check_key_count, check_positions};
+pub use error::{BlendError, KeyError, Result, MAX_KEYS};
 use glam::DVec3;
 pub use keys::{ConformalKey, PreparedKeys};
 use rayon::prelude::*;
-use std::sync::Mutex;
 
 /// How the per-vertex transform is blended from the keys.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -151,15 +151,16 @@ impl KeyWeights {
     /// Rows of `width` weights starting at key `first[i]`; `weights` is vertex-major.
     ///
     /// # Errors
-    /// [`crate::Error::DimensionMismatch`] for inconsistent lengths, [`KeyError::TooMany`],
-    /// [`crate::Error::InvalidArgument`] for a run past the last key or a non-finite weight.
+    /// [`MeshError::DimensionMismatch`] for inconsistent lengths, [`KeyError::TooMany`],
+    /// [`MeshError::InvalidArgument`] for a run past the last key or a non-finite weight.
     pub fn new(key_count: usize, width: usize, first: Vec<u32>, weights: Vec<f64>) -> Result<Self> {
         if let Some(v) = first.iter().position(|&f| f as usize + width > key_count) {
-            return Err(crate::Error::InvalidArgument(format!(
+            return Err(MeshError::InvalidArgument(format!(
                 "vertex {v}: key run {}..{} past the {key_count} keys",
                 first[v],
                 first[v] as usize + width
-            )));
+            ))
+            .into());
         }
         Self::checked(KeyWeights {
             key_count,
@@ -175,7 +176,7 @@ impl KeyWeights {
     ///
     /// # Errors
     /// As [`KeyWeights::new`]; a key index past the last key is
-    /// [`crate::Error::InvalidArgument`].
+    /// [`MeshError::InvalidArgument`].
     pub fn gathered(
         key_count: usize,
         width: usize,
@@ -183,18 +184,20 @@ impl KeyWeights {
         weights: Vec<f64>,
     ) -> Result<Self> {
         if keys.len() != weights.len() {
-            return Err(crate::Error::DimensionMismatch {
+            return Err(MeshError::DimensionMismatch {
                 what: "key indices",
                 expected: weights.len(),
                 got: keys.len(),
-            });
+            }
+            .into());
         }
         if let Some(k) = keys.iter().position(|&k| k as usize >= key_count) {
-            return Err(crate::Error::InvalidArgument(format!(
+            return Err(MeshError::InvalidArgument(format!(
                 "vertex {}: key {} past the {key_count} keys",
                 k / width.max(1),
                 keys[k]
-            )));
+            ))
+            .into());
         }
         let n = weights.len().checked_div(width).unwrap_or(0);
         Self::checked(KeyWeights {
@@ -215,17 +218,19 @@ impl KeyWeights {
             .into());
         }
         if w.weights.len() != w.first.len() * w.width {
-            return Err(crate::Error::DimensionMismatch {
+            return Err(MeshError::DimensionMismatch {
                 what: "key weights",
                 expected: w.first.len() * w.width,
                 got: w.weights.len(),
-            });
+            }
+            .into());
         }
         if let Some(k) = w.weights.iter().position(|x| !x.is_finite()) {
-            return Err(crate::Error::InvalidArgument(format!(
+            return Err(MeshError::InvalidArgument(format!(
                 "vertex {}: non-finite weight",
                 k / w.width.max(1)
-            )));
+            ))
+            .into());
         }
         Ok(w)
     }
@@ -237,11 +242,12 @@ impl KeyWeights {
     pub fn from_columns(columns: &[Vec<f64>]) -> Result<Self> {
         let n = columns.first().map_or(0, Vec::len);
         if let Some(c) = columns.iter().find(|c| c.len() != n) {
-            return Err(crate::Error::DimensionMismatch {
+            return Err(MeshError::DimensionMismatch {
                 what: "weight columns",
                 expected: n,
                 got: c.len(),
-            });
+            }
+            .into());
         }
         let m = columns.len();
         let mut weights = vec![0.0; n * m];
@@ -304,25 +310,12 @@ pub(crate) fn for_each_vertex(out: &mut [DVec3], f: impl Fn(usize) -> DVec3 + Sy
 
 /// A mesh bound to key weights: the rest points in the frame of their rest transform, ready to
 /// be posed by any keys. The shared core of the spline and handle deformers.
-#[derive(Debug)]
+#[derive(Debug, Clone)]
 pub struct BoundBlend {
     weights: KeyWeights,
     /// `p'_i = M_i^-1 p_i`, with `M_i` the blend of the rest keys.
     local: Vec<DVec3>,
     method: BlendMethod,
-    /// The keys of the last pose, their buffers reused by the next.
-    prepared: Mutex<PreparedKeys>,
-}
-
-impl Clone for BoundBlend {
-    fn clone(&self) -> Self {
-        BoundBlend {
-            weights: self.weights.clone(),
-            local: self.local.clone(),
-            method: self.method,
-            prepared: Mutex::new(PreparedKeys::default()),
-        }
-    }
 }
 
 impl BoundBlend {
@@ -330,8 +323,8 @@ impl BoundBlend {
     /// the blend of the rest keys at vertex `i`.
     ///
     /// # Errors
-    /// [`crate::Error::DimensionMismatch`], [`KeyError`] for bad rest keys,
-    /// [`crate::Error::InvalidArgument`] when a blended rest transform is singular (possible
+    /// [`MeshError::DimensionMismatch`], [`KeyError`] for bad rest keys,
+    /// [`MeshError::InvalidArgument`] when a blended rest transform is singular (possible
     /// only with [`BlendMethod::Matrix`]).
     pub fn bind(
         positions: &[DVec3],
@@ -348,15 +341,15 @@ impl BoundBlend {
             .map(|(i, &p)| keys.affine(weights.row(i)).inverse().transform_point3(p))
             .collect();
         if let Some(i) = local.iter().position(|p| !p.is_finite()) {
-            return Err(crate::Error::InvalidArgument(format!(
+            return Err(MeshError::InvalidArgument(format!(
                 "vertex {i}: the blended rest transform is singular or overflows"
-            )));
+            ))
+            .into());
         }
         Ok(BoundBlend {
             weights,
             local,
             method,
-            prepared: Mutex::new(keys),
         })
     }
 
@@ -380,15 +373,37 @@ impl BoundBlend {
         self.weights.key_count()
     }
 
-    /// `p_i = M_i p'_i` with `M_i` the blend of `keys` at vertex `i`: parallel, no allocation.
+    /// Fresh per-pose buffers (the prepared keys) for [`BoundBlend::pose_using`].
+    pub fn scratch(&self) -> PreparedKeys {
+        PreparedKeys::default()
+    }
+
+    /// `p_i = M_i p'_i` with `M_i` the blend of `keys` at vertex `i`, with a fresh scratch
+    /// (one allocation of the prepared keys per call; pose loops use
+    /// [`BoundBlend::pose_using`]).
     ///
     /// # Errors
-    /// As [`crate::Deformer::pose`].
+    /// As [`BoundBlend::pose_using`].
     pub fn pose(&self, keys: &[ScaledMotor], out: &mut [DVec3]) -> Result<()> {
+        self.pose_using(keys, &mut self.scratch(), out)
+    }
+
+    /// `p_i = M_i p'_i` with `M_i` the blend of `keys` at vertex `i`, preparing the keys in
+    /// the caller's `prepared`: parallel, no allocation once `prepared` has served a pose
+    /// with as many keys.
+    ///
+    /// # Errors
+    /// [`KeyError`] for a bad key or a key list of the wrong length,
+    /// [`MeshError::DimensionMismatch`] for `out` of the wrong length; `out` is then
+    /// untouched.
+    pub fn pose_using(
+        &self,
+        keys: &[ScaledMotor],
+        prepared: &mut PreparedKeys,
+        out: &mut [DVec3],
+    ) -> Result<()> {
         check_key_count("this deformer", self.key_count(), keys.len())?;
         check_positions(self.vertex_count(), out.len())?;
-        // A pose that panicked elsewhere leaves only stale keys behind: they are re-prepared.
-        let mut prepared = self.prepared.lock().unwrap_or_else(|e| e.into_inner());
         prepared.prepare(keys, self.method)?;
         let prepared = &*prepared;
         for_each_vertex(out, |i| {

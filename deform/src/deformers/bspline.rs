@@ -6,8 +6,8 @@
 //! times), `k / (n - p)` for `k = 1 .. n - p - 1`, and `1` (`p + 1` times), so it starts at the
 //! first control point and ends at the last: `S(0) = R_0`, `S(1) = R_{n-1}` exactly.
 
-use crate::blend::deformer::KeyError;
-use crate::Result;
+use crate::blend::KeyError;
+use crate::deformers::Result;
 use cga::{Bivector, ScaledMotor};
 use nalgebra::{DMatrix, DVector};
 

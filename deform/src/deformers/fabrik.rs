@@ -2,10 +2,12 @@
 //! paper's Fig. 5 pipeline: the joint frames of the solved chain are key motors `Q_i`, a
 //! cubic B-spline is fitted to them (section III.C) and drives a spline-aligned deformation.
 
-use crate::blend::deformer::{deformer_via_blend, Deformer, KeyError};
+use crate::blend::KeyError;
 use crate::deformers::bspline::{fit_bspline, BsplineFit};
+use crate::deformers::deformer::{deformer_via_blend, Deformer};
 use crate::deformers::spline::{SplineDeformer, SplineOptions, WeightScheme};
-use crate::{Mesh, Result};
+use crate::deformers::Result;
+use crate::mesh::Mesh;
 use cga::ScaledMotor;
 use glam::{DQuat, DVec3};
 

@@ -3,9 +3,14 @@
 //! coordinates, a partition of unity), and `M_i = exp(sum_j lambda_j^i log R_j)`. Each handle
 //! can rotate, translate and scale; its vertices follow its motor exactly.
 
-use crate::blend::deformer::{deformer_via_blend, KeyError, MAX_KEYS};
 use crate::blend::{BlendMethod, BoundBlend, KeyWeights};
-use crate::{Harmonic, HarmonicOptions, LaplacianKind, Mesh, Result};
+use crate::blend::{KeyError, MAX_KEYS};
+use crate::deformers::deformer::deformer_via_blend;
+use crate::deformers::Result;
+use crate::mesh::Mesh;
+use crate::operators::harmonic::Harmonic;
+use crate::operators::harmonic::HarmonicOptions;
+use crate::operators::laplacian::LaplacianKind;
 use cga::ScaledMotor;
 
 /// Options of [`MotorHandles::bind_with`].

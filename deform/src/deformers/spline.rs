@@ -9,10 +9,15 @@
 //! are brought into one hemisphere, and what happens near a half-turn, is said in
 //! [`crate::blend`].
 
-use crate::blend::deformer::{deformer_via_blend, KeyError, MAX_KEYS};
 use crate::blend::{BlendMethod, BoundBlend, KeyWeights};
+use crate::blend::{KeyError, MAX_KEYS};
 use crate::deformers::bspline::{bspline_basis, bspline_degree};
-use crate::{Harmonic, HarmonicOptions, LaplacianKind, Mesh, Result};
+use crate::deformers::deformer::deformer_via_blend;
+use crate::deformers::Result;
+use crate::mesh::Mesh;
+use crate::operators::harmonic::Harmonic;
+use crate::operators::harmonic::HarmonicOptions;
+use crate::operators::laplacian::LaplacianKind;
 use cga::ScaledMotor;
 use glam::DVec3;
 
@@ -150,7 +155,7 @@ impl WeightScheme {
         for (l, row) in lambda.iter().zip(weights.chunks_mut(width)) {
             first.push(self.weights(n, *l, row) as u32);
         }
-        KeyWeights::new(n, width, first, weights)
+        Ok(KeyWeights::new(n, width, first, weights)?)
     }
 }
 
@@ -223,7 +228,7 @@ impl SplineDeformer {
     /// # Errors
     /// [`KeyError::WrongCount`] for a key list of the wrong length for the scheme,
     /// [`KeyError::ParameterOutOfRange`], [`KeyError::Invalid`] for a rest key that is not a
-    /// scaled motor, [`crate::Error::DimensionMismatch`].
+    /// scaled motor, [`MeshError::DimensionMismatch`].
     pub fn bind_with_lambda(
         positions: &[DVec3],
         lambda: Vec<f64>,

@@ -2,13 +2,13 @@
 //! connected components and the fans around each vertex.
 //!
 //! Every function takes index slices (`triangles` and `vertex_count`), so callers such as
-//! [`crate::validate()`] need no [`Mesh`]; the `Mesh` methods of the same names forward here.
-//! All of them assume the triangle indices are in range (check with [`crate::validate()`]
+//! [`crate::mesh::validate()`] need no [`Mesh`]; the `Mesh` methods of the same names forward here.
+//! All of them assume the triangle indices are in range (check with [`crate::mesh::validate()`]
 //! first); they panic otherwise.
 
 pub use crate::mesh::union_find::Components;
 use crate::mesh::union_find::UnionFind;
-use crate::Mesh;
+use crate::mesh::Mesh;
 
 /// Compressed rows of `u32` items (one row per vertex).
 #[derive(Debug, Clone, PartialEq, Eq, Default)]

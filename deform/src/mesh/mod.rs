@@ -12,6 +12,7 @@
 //! `Error`; its errors are [`MeshError`].
 
 pub mod adjacency;
+mod error;
 pub mod io;
 pub mod shapes;
 pub(crate) mod triangle;
@@ -19,6 +20,7 @@ pub mod triangle_mesh;
 pub(crate) mod union_find;
 pub mod validate;
 
+pub use error::{IndexList, MeshError, Result};
 pub use triangle::is_degenerate_triangle;
 pub use triangle_mesh::{Aabb, Mesh};
 pub use union_find::Components;

@@ -1,7 +1,7 @@
 //! Procedural meshes for demos, tests and benches (no files needed): a capped tube (a round
 //! bar) and a subdivided sphere.
 
-use crate::Mesh;
+use crate::mesh::Mesh;
 use glam::DVec3;
 use std::f64::consts::TAU;
 

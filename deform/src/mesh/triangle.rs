@@ -7,7 +7,7 @@
 //! tangents of half angles, the degenerate test) are therefore the same for a triangle scaled
 //! by `1e-300` or `1e300` and never overflow; results with units (areas, lengths) are scaled
 //! back by [`Frame::unscale`] and may leave the `f64` range, which callers report as
-//! [`crate::Error::Overflow`].
+//! [`MeshError::Overflow`].
 
 use glam::DVec3;
 

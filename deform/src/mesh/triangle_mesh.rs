@@ -52,7 +52,7 @@ impl Aabb {
 }
 
 impl Mesh {
-    /// A mesh from positions and triangles (not validated; see [`crate::validate()`]).
+    /// A mesh from positions and triangles (not validated; see [`crate::mesh::validate()`]).
     pub fn new(positions: Vec<DVec3>, triangles: Vec<[u32; 3]>) -> Self {
         Mesh {
             positions,

@@ -2,7 +2,10 @@
 
 use crate::adjacency;
 use crate::mesh::is_degenerate_triangle;
-use crate::{Error, IndexList, Mesh, Result};
+use crate::mesh::IndexList;
+use crate::mesh::Mesh;
+use crate::mesh::MeshError;
+use crate::mesh::Result;
 
 /// The largest coordinate magnitude [`ValidationReport::check_solvable`] accepts: below it
 /// every edge vector (a difference of two positions) is finite. Angles are computed
@@ -61,24 +64,24 @@ impl ValidationReport {
     /// degenerate triangles; unconstrained parts are caught by the solver).
     pub fn check_solvable(&self) -> Result<()> {
         if self.vertex_count == 0 || self.triangle_count == 0 {
-            return Err(Error::EmptyMesh {
+            return Err(MeshError::EmptyMesh {
                 vertices: self.vertex_count,
                 triangles: self.triangle_count,
             });
         }
         if !self.out_of_range_faces.is_empty() {
-            return Err(Error::FaceIndexOutOfRange {
+            return Err(MeshError::FaceIndexOutOfRange {
                 faces: IndexList(self.out_of_range_faces.clone()),
                 vertex_count: self.vertex_count,
             });
         }
         if !self.non_finite_vertices.is_empty() {
-            return Err(Error::NonFinite {
+            return Err(MeshError::NonFinite {
                 vertices: IndexList(self.non_finite_vertices.clone()),
             });
         }
         if !self.huge_vertices.is_empty() {
-            return Err(Error::CoordinateRange {
+            return Err(MeshError::CoordinateRange {
                 vertices: IndexList(self.huge_vertices.clone()),
                 limit: MAX_COORDINATE,
             });
@@ -87,7 +90,7 @@ impl ValidationReport {
             let mut ev: Vec<u32> = self.non_manifold_edges.iter().flatten().copied().collect();
             ev.sort_unstable();
             ev.dedup();
-            return Err(Error::NonManifold {
+            return Err(MeshError::NonManifold {
                 vertices: IndexList(self.non_manifold_vertices.clone()),
                 edge_vertices: IndexList(ev),
             });
@@ -231,7 +234,7 @@ impl Cleaned {
             .filter(|&v| v as usize >= self.old_to_new.len())
             .collect();
         if !bad.is_empty() {
-            return Err(Error::ConstraintOutOfRange {
+            return Err(MeshError::ConstraintOutOfRange {
                 vertices: IndexList(bad),
                 vertex_count: self.old_to_new.len(),
             });
@@ -242,7 +245,7 @@ impl Cleaned {
             .filter(|&v| self.old_to_new[v as usize].is_none())
             .collect();
         if !removed.is_empty() {
-            return Err(Error::RemovedVertices {
+            return Err(MeshError::RemovedVertices {
                 vertices: IndexList(removed),
             });
         }

@@ -5,11 +5,19 @@
 //! the free vertices) or the Laplacian energy `x^T L M^-1 L x` (order 2: `L M^-1 L x = 0`),
 //! with prescribed values on the constrained vertex sets.
 
+use crate::mesh::validate::check_solvable;
+use crate::mesh::IndexList;
+use crate::mesh::Mesh;
+use crate::mesh::MeshError;
 use crate::operators::laplacian::ensure_finite;
-use crate::{
-    check_solvable, laplacian, mass_diagonal, DirichletSolver, Error, IndexList, LaplacianKind,
-    MassKind, Mesh, Result, SolverOptions,
-};
+use crate::operators::laplacian::laplacian;
+use crate::operators::laplacian::LaplacianKind;
+use crate::operators::mass::mass_diagonal;
+use crate::operators::mass::MassKind;
+use crate::operators::solve::DirichletSolver;
+use crate::operators::solve::SolverOptions;
+use crate::operators::Result;
+use crate::operators::SolveError;
 use sprs::CsMat;
 
 /// Options for [`Harmonic`].
@@ -46,14 +54,14 @@ pub const BIHARMONIC_FILL_FLOOR: usize = 1 << 20;
 /// The symmetric positive semi-definite system matrix: `-L` for order 1, a positive multiple
 /// of `L M^-1 L` for order 2 (`L` and `M` are divided by their largest entries first, which
 /// keeps the product in floating-point range at any mesh scale and leaves the minimiser
-/// unchanged). Checks the mesh first ([`crate::check_solvable`]).
+/// unchanged). Checks the mesh first ([`crate::mesh::validate::check_solvable`]).
 ///
-/// Errors, besides the mesh checks: [`Error::ZeroMass`] (order 2, a vertex whose triangles
-/// are all degenerate), [`Error::TooDense`] (order 2, when an upper bound of the nonzeros of
+/// Errors, besides the mesh checks: [`SolveError::ZeroMass`] (order 2, a vertex whose triangles
+/// are all degenerate), [`SolveError::TooDense`] (order 2, when an upper bound of the nonzeros of
 /// `L M^-1 L`, the sum over vertices of the squared row lengths of `L`, exceeds
 /// [`BIHARMONIC_FILL_PER_NONZERO`] times the nonzeros of `L` and [`BIHARMONIC_FILL_FLOOR`]:
 /// a fan-triangulated polygon with thousands of corners would make it dense),
-/// [`Error::Overflow`] (a non-finite entry).
+/// [`MeshError::Overflow`] (a non-finite entry).
 pub fn harmonic_system(mesh: &Mesh, options: &HarmonicOptions) -> Result<CsMat<f64>> {
     check_solvable(mesh)?;
     let mut l = laplacian(mesh, options.laplacian)?;
@@ -66,7 +74,7 @@ pub fn harmonic_system(mesh: &Mesh, options: &HarmonicOptions) -> Result<CsMat<f
             let estimated: usize = l.outer_iterator().map(|r| r.nnz() * r.nnz()).sum();
             let limit = (BIHARMONIC_FILL_PER_NONZERO * l.nnz()).max(BIHARMONIC_FILL_FLOOR);
             if estimated > limit {
-                return Err(Error::TooDense {
+                return Err(SolveError::TooDense {
                     what: "the biharmonic matrix L M^-1 L",
                     estimated,
                     limit,
@@ -91,7 +99,7 @@ pub fn harmonic_system(mesh: &Mesh, options: &HarmonicOptions) -> Result<CsMat<f
                 })
                 .collect();
             if !zero.is_empty() {
-                return Err(Error::ZeroMass {
+                return Err(SolveError::ZeroMass {
                     vertices: IndexList(zero),
                 });
             }
@@ -112,9 +120,9 @@ pub fn harmonic_system(mesh: &Mesh, options: &HarmonicOptions) -> Result<CsMat<f
             ensure_finite(&q, "biharmonic matrix row")?;
             Ok(q)
         }
-        k => Err(Error::InvalidArgument(format!(
-            "harmonic order {k} (supported: 1, 2)"
-        ))),
+        k => {
+            Err(MeshError::InvalidArgument(format!("harmonic order {k} (supported: 1, 2)")).into())
+        }
     }
 }
 
@@ -141,11 +149,11 @@ pub struct Harmonic {
 impl Harmonic {
     /// Validates the mesh and the sets, builds the system and factorises it.
     ///
-    /// Errors: [`Error::EmptyMesh`], [`Error::FaceIndexOutOfRange`], [`Error::NonFinite`],
-    /// [`Error::NonManifold`], [`Error::ConstraintOutOfRange`],
-    /// [`Error::OverlappingConstraints`] (a vertex in two sets or twice in one),
-    /// [`Error::Unconstrained`] (a component without constrained vertices, e.g. unreferenced
-    /// vertices: run [`crate::clean()`]), [`Error::NotPositiveDefinite`].
+    /// Errors: [`MeshError::EmptyMesh`], [`MeshError::FaceIndexOutOfRange`], [`MeshError::NonFinite`],
+    /// [`MeshError::NonManifold`], [`MeshError::ConstraintOutOfRange`],
+    /// [`MeshError::OverlappingConstraints`] (a vertex in two sets or twice in one),
+    /// [`SolveError::Unconstrained`] (a component without constrained vertices, e.g. unreferenced
+    /// vertices: run [`crate::mesh::validate::clean()`]), [`SolveError::NotPositiveDefinite`].
     pub fn new(mesh: &Mesh, sets: &[&[u32]], options: HarmonicOptions) -> Result<Self> {
         let n = mesh.positions.len();
         let bad: Vec<u32> = sets
@@ -154,10 +162,11 @@ impl Harmonic {
             .filter(|&v| v as usize >= n)
             .collect();
         if !bad.is_empty() {
-            return Err(Error::ConstraintOutOfRange {
+            return Err(MeshError::ConstraintOutOfRange {
                 vertices: IndexList(bad),
                 vertex_count: n,
-            });
+            }
+            .into());
         }
         let constrained: Vec<u32> = sets.iter().flat_map(|s| s.iter().copied()).collect();
         let mut seen = vec![false; n];
@@ -169,9 +178,10 @@ impl Harmonic {
         if !overlap.is_empty() {
             overlap.sort_unstable();
             overlap.dedup();
-            return Err(Error::OverlappingConstraints {
+            return Err(MeshError::OverlappingConstraints {
                 vertices: IndexList(overlap),
-            });
+            }
+            .into());
         }
         let q = harmonic_system(mesh, &options)?;
         let solver = DirichletSolver::new(&q, &constrained, options.solver)?;
@@ -197,11 +207,12 @@ impl Harmonic {
     fn expand(&self, values: &[f64], ncols: usize) -> Result<Vec<f64>> {
         let m = self.set_count();
         if values.len() != m * ncols {
-            return Err(Error::DimensionMismatch {
+            return Err(MeshError::DimensionMismatch {
                 what: "values per set",
                 expected: m * ncols,
                 got: values.len(),
-            });
+            }
+            .into());
         }
         let nc = self.solver.constrained().len();
         let mut bc = vec![0.0; nc * ncols];

@@ -3,18 +3,21 @@
 //! All three follow libigl's sign convention: `L_ij = w_ij >= 0`-ish off the diagonal for
 //! every edge `ij`, `L_ii = -sum_j L_ij`, so every row sums to zero, constants are in the
 //! null space and `-L` is positive semi-definite. Nothing is divided by area (use
-//! [`crate::mass_matrix`] for that). The sparsity pattern is always the diagonal plus every
+//! [`crate::operators::mass::mass_matrix`] for that). The sparsity pattern is always the diagonal plus every
 //! mesh edge (entries may be zero), so matrices of the same mesh share one pattern.
 //!
 //! Angles are computed scale-invariantly (see [`crate::mesh::is_degenerate_triangle`]): the
 //! cotangent Laplacian of a mesh scaled by `1e-300` or `1e300` is the same matrix. The
 //! mean-value weights have units of 1/length and are checked after assembly; a matrix with a
-//! non-finite entry is [`Error::Overflow`], never `Ok`.
+//! non-finite entry is [`MeshError::Overflow`], never `Ok`.
 //!
-//! Triangle indices must be in range (see [`crate::validate()`]).
+//! Triangle indices must be in range (see [`crate::mesh::validate()`]).
 
 use crate::mesh::triangle::Frame;
-use crate::{Error, IndexList, Mesh, Result};
+use crate::mesh::IndexList;
+use crate::mesh::Mesh;
+use crate::mesh::MeshError;
+use crate::operators::Result;
 use rayon::prelude::*;
 use sprs::CsMat;
 
@@ -28,7 +31,7 @@ pub enum DegeneratePolicy {
     /// reports it as unconstrained.
     #[default]
     Skip,
-    /// Fail with [`Error::DegenerateTriangles`] naming them.
+    /// Fail with [`MeshError::DegenerateTriangles`] naming them.
     Error,
 }
 
@@ -98,9 +101,10 @@ pub fn cotangent_laplacian(mesh: &Mesh, options: CotangentOptions) -> Result<CsM
         .map(|w| w.unwrap_or([0.0; 3]).map(|w| [w, w]))
         .collect();
     if options.degenerate == DegeneratePolicy::Error && !degenerate.is_empty() {
-        return Err(Error::DegenerateTriangles {
+        return Err(MeshError::DegenerateTriangles {
             faces: IndexList(degenerate),
-        });
+        }
+        .into());
     }
     let mut l = assemble(mesh.positions.len(), &mesh.triangles, &weights);
     if options.clamp_negative {
@@ -172,13 +176,13 @@ fn mean_value(mesh: &Mesh, symmetric: bool) -> Result<CsMat<f64>> {
     Ok(l)
 }
 
-/// [`Error::Overflow`] naming the first row of `m` with a non-finite entry.
+/// [`MeshError::Overflow`] naming the first row of `m` with a non-finite entry.
 pub(crate) fn ensure_finite(m: &CsMat<f64>, what: &'static str) -> Result<()> {
     match m
         .outer_iterator()
         .position(|r| r.data().iter().any(|x| !x.is_finite()))
     {
-        Some(index) => Err(Error::Overflow { what, index }),
+        Some(index) => Err(MeshError::Overflow { what, index }.into()),
         None => Ok(()),
     }
 }

@@ -1,7 +1,9 @@
 //! Lumped (diagonal) mass matrices.
 
 use crate::mesh::triangle::Frame;
-use crate::{Error, Mesh, Result};
+use crate::mesh::Mesh;
+use crate::mesh::MeshError;
+use crate::operators::Result;
 use sprs::CsMat;
 
 /// How a triangle's area is shared among its corners.
@@ -22,7 +24,7 @@ pub enum MassKind {
 /// Shares are computed in each triangle's normalised frame (see
 /// [`crate::mesh::is_degenerate_triangle`]) and scaled back to real units; masses are areas,
 /// so coordinates beyond about `1e150` (or below `1e-160`) can leave the `f64` range: that
-/// is [`Error::Overflow`] (a non-degenerate triangle whose area overflows or underflows to
+/// is [`MeshError::Overflow`] (a non-degenerate triangle whose area overflows or underflows to
 /// zero, or a vertex whose sum overflows), never an infinite or zero mass.
 ///
 /// ```
@@ -47,19 +49,21 @@ pub fn mass_diagonal(mesh: &Mesh, kind: MassKind) -> Result<Vec<f64>> {
         for k in 0..3 {
             let s = frame.unscale(share[k], 2);
             if !s.is_finite() || s <= 0.0 {
-                return Err(Error::Overflow {
+                return Err(MeshError::Overflow {
                     what: "triangle area",
                     index: f,
-                });
+                }
+                .into());
             }
             m[t[k] as usize] += s;
         }
     }
     if let Some(index) = m.iter().position(|x| !x.is_finite()) {
-        return Err(Error::Overflow {
+        return Err(MeshError::Overflow {
             what: "vertex mass",
             index,
-        });
+        }
+        .into());
     }
     Ok(m)
 }

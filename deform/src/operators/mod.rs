@@ -11,7 +11,10 @@
 //! **May use**: the mesh foundation ([`crate::mesh`]). **Must not use**: blend, deformers,
 //! skinning, surgery, render, input, or the crate-level `Error`.
 
+mod error;
 pub mod harmonic;
 pub mod laplacian;
 pub mod mass;
 pub mod solve;
+
+pub use error::{Result, SolveError};

@@ -8,8 +8,11 @@
 //! or right-hand sides (any number of columns) only do triangular solves.
 
 use crate::mesh::union_find::UnionFind;
+use crate::mesh::IndexList;
+use crate::mesh::MeshError;
 use crate::operators::laplacian::ensure_finite;
-use crate::{Error, IndexList, Result};
+use crate::operators::Result;
+use crate::operators::SolveError;
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::cholesky::llt::factor::LltError;
 use faer::linalg::cholesky::llt::factor::LltRegularization;
@@ -48,7 +51,7 @@ pub struct SolverOptions {
     pub parallelism: Parallelism,
     /// Before factorising, check that every connected component of `Q`'s graph contains a
     /// constrained row and report the vertices of those that do not
-    /// ([`Error::Unconstrained`]). Right for Laplacian-like `Q` (whose null space is the
+    /// ([`SolveError::Unconstrained`]). Right for Laplacian-like `Q` (whose null space is the
     /// constants on each component); turn off for a `Q` that is definite on its own.
     pub check_components: bool,
 }
@@ -104,18 +107,19 @@ impl DirichletSolver {
     /// Analyses and factorises `Q_ff` for the given constrained rows (their order is the order
     /// of the boundary values passed to [`Self::solve`]). `q` must be square and symmetric.
     ///
-    /// Errors: [`Error::DimensionMismatch`] (non-square), [`Error::Overflow`] (a non-finite
-    /// entry of `q` or of its factor), [`Error::ConstraintOutOfRange`],
-    /// [`Error::OverlappingConstraints`] (an index listed twice), [`Error::Unconstrained`]
-    /// (see [`SolverOptions::check_components`]), [`Error::NotPositiveDefinite`].
+    /// Errors: [`MeshError::DimensionMismatch`] (non-square), [`MeshError::Overflow`] (a non-finite
+    /// entry of `q` or of its factor), [`MeshError::ConstraintOutOfRange`],
+    /// [`MeshError::OverlappingConstraints`] (an index listed twice), [`SolveError::Unconstrained`]
+    /// (see [`SolverOptions::check_components`]), [`SolveError::NotPositiveDefinite`].
     pub fn new(q: &CsMat<f64>, constrained: &[u32], options: SolverOptions) -> Result<Self> {
         let n = q.rows();
         if q.cols() != n {
-            return Err(Error::DimensionMismatch {
+            return Err(MeshError::DimensionMismatch {
                 what: "columns of the system matrix",
                 expected: n,
                 got: q.cols(),
-            });
+            }
+            .into());
         }
         let q = ensure_csr(q);
         ensure_finite(&q, "system matrix row")?;
@@ -132,17 +136,19 @@ impl DirichletSolver {
             }
         }
         if !out_of_range.is_empty() {
-            return Err(Error::ConstraintOutOfRange {
+            return Err(MeshError::ConstraintOutOfRange {
                 vertices: IndexList(out_of_range),
                 vertex_count: n,
-            });
+            }
+            .into());
         }
         if !repeated.is_empty() {
             repeated.sort_unstable();
             repeated.dedup();
-            return Err(Error::OverlappingConstraints {
+            return Err(MeshError::OverlappingConstraints {
                 vertices: IndexList(repeated),
-            });
+            }
+            .into());
         }
         let indptr = q.indptr().into_raw_storage().to_vec();
         let indices = q.indices().to_vec();
@@ -190,7 +196,7 @@ impl DirichletSolver {
             SymmetricOrdering::Amd,
             Default::default(),
         )
-        .map_err(|e| Error::Solver(format!("{e:?}")))?;
+        .map_err(|e| SolveError::Solver(format!("{e:?}")))?;
         let data = q.data();
         let mut s = DirichletSolver {
             n,
@@ -230,7 +236,7 @@ impl DirichletSolver {
             self.symbolic
                 .factorize_numeric_llt_scratch::<f64>(par, Default::default()),
         )
-        .map_err(|_| Error::Solver("out of memory".into()))?;
+        .map_err(|_| SolveError::Solver("out of memory".into()))?;
         let res = self.symbolic.factorize_numeric_llt(
             &mut self.l_values,
             a,
@@ -242,10 +248,11 @@ impl DirichletSolver {
         );
         match res {
             Ok(_) => match self.l_values.iter().position(|x| !x.is_finite()) {
-                Some(index) => Err(Error::Overflow {
+                Some(index) => Err(MeshError::Overflow {
                     what: "Cholesky factor value",
                     index,
-                }),
+                }
+                .into()),
                 None => Ok(()),
             },
             Err(LltError::NonPositivePivot { index }) => {
@@ -260,7 +267,7 @@ impl DirichletSolver {
                     None => Some(index),
                 };
                 let vertex = local.and_then(|i| self.free.get(i));
-                Err(Error::NotPositiveDefinite(match vertex {
+                Err(SolveError::NotPositiveDefinite(match vertex {
                     Some(v) => format!("non-positive pivot at free vertex {v}"),
                     None => format!("non-positive pivot {index}"),
                 }))
@@ -290,7 +297,7 @@ impl DirichletSolver {
 
     /// Refactors after the *values* of `Q` changed but not its sparsity pattern (nor the
     /// constrained set): the symbolic analysis is reused. Errors with
-    /// [`Error::PatternChanged`] when the pattern differs.
+    /// [`SolveError::PatternChanged`] when the pattern differs.
     pub fn update_values(&mut self, q: &CsMat<f64>) -> Result<()> {
         let q = ensure_csr(q);
         if q.rows() != self.n
@@ -298,7 +305,7 @@ impl DirichletSolver {
             || q.indptr().into_raw_storage() != self.q_indptr.as_slice()
             || q.indices() != self.q_indices.as_slice()
         {
-            return Err(Error::PatternChanged);
+            return Err(SolveError::PatternChanged);
         }
         ensure_finite(&q, "system matrix row")?;
         let data = q.data();
@@ -323,12 +330,13 @@ impl DirichletSolver {
     /// valid until [`Self::set_constrained`]; [`Self::update_values`] keeps it valid.
     pub fn scratch(&self, ncols: usize) -> Result<SolveScratch> {
         let nf = self.free.len();
-        let len = nf.checked_mul(ncols).ok_or(Error::Overflow {
+        let len = nf.checked_mul(ncols).ok_or(MeshError::Overflow {
             what: "scratch size",
             index: ncols,
         })?;
         let req = self.solve_req(ncols);
-        let mem = MemBuffer::try_new(req).map_err(|_| Error::Solver("out of memory".into()))?;
+        let mem =
+            MemBuffer::try_new(req).map_err(|_| SolveError::Solver("out of memory".into()))?;
         Ok(SolveScratch {
             y: vec![0.0; len],
             mem,
@@ -365,9 +373,9 @@ impl DirichletSolver {
     /// [`Self::scratch`] (with at least `ncols` columns). Allocation-free with
     /// [`Parallelism::Sequential`]. Gives bit-for-bit the result of [`Self::solve`].
     ///
-    /// Errors: [`Error::DimensionMismatch`] (buffer sizes, or a scratch too small or made
-    /// for another constrained set), [`Error::NonFinite`] (a boundary value),
-    /// [`Error::NotPositiveDefinite`] (a non-finite solution).
+    /// Errors: [`MeshError::DimensionMismatch`] (buffer sizes, or a scratch too small or made
+    /// for another constrained set), [`MeshError::NonFinite`] (a boundary value),
+    /// [`SolveError::NotPositiveDefinite`] (a non-finite solution).
     pub fn solve_into(
         &self,
         rhs: Option<&[f64]>,
@@ -381,7 +389,7 @@ impl DirichletSolver {
             if expected == got {
                 Ok(())
             } else {
-                Err(Error::DimensionMismatch {
+                Err(MeshError::DimensionMismatch {
                     what,
                     expected,
                     got,
@@ -395,25 +403,28 @@ impl DirichletSolver {
         }
         check("free rows of the scratch", nf, scratch.free)?;
         if ncols > scratch.ncols {
-            return Err(Error::DimensionMismatch {
+            return Err(MeshError::DimensionMismatch {
                 what: "columns of the scratch",
                 expected: ncols,
                 got: scratch.ncols,
-            });
+            }
+            .into());
         }
         let req = self.solve_req(ncols);
         if req.size_bytes() > scratch.size || req.align_bytes() > scratch.align {
-            return Err(Error::DimensionMismatch {
+            return Err(MeshError::DimensionMismatch {
                 what: "bytes of the scratch",
                 expected: req.size_bytes(),
                 got: scratch.size,
-            });
+            }
+            .into());
         }
         if let Some(i) = boundary.iter().position(|x| !x.is_finite()) {
             let v = self.constrained[i % nc.max(1)];
-            return Err(Error::NonFinite {
+            return Err(MeshError::NonFinite {
                 vertices: IndexList(vec![v]),
-            });
+            }
+            .into());
         }
         // Reduced right-hand side b_f - Q_fc x_c, column-major nf x ncols.
         let y = &mut scratch.y[..nf * ncols];
@@ -451,7 +462,7 @@ impl DirichletSolver {
             }
         }
         if let Some(i) = out.iter().position(|x| !x.is_finite()) {
-            return Err(Error::NotPositiveDefinite(format!(
+            return Err(SolveError::NotPositiveDefinite(format!(
                 "non-finite solution at vertex {}",
                 i % n.max(1)
             )));
@@ -532,7 +543,7 @@ fn check_components(
     let vertices: Vec<u32> = (0..n as u32)
         .filter(|&v| !anchored[comps.labels[v as usize] as usize])
         .collect();
-    Err(Error::Unconstrained {
+    Err(SolveError::Unconstrained {
         components: unanchored,
         vertices: IndexList(vertices),
     })

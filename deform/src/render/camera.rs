@@ -2,7 +2,7 @@
 
 use glam::DVec3;
 
-use crate::Aabb;
+use crate::mesh::Aabb;
 
 /// Fraction of the image's shorter side left free on each side by [`Camera::framing`].
 pub const FRAME_MARGIN: f64 = 0.05;

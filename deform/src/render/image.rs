@@ -3,7 +3,8 @@
 use std::io::Write;
 use std::path::PathBuf;
 
-use crate::{Error, Result};
+use crate::mesh::MeshError;
+use crate::mesh::Result;
 
 /// The largest image side [`Image::check_size`] (and so every render) accepts.
 pub const MAX_IMAGE_SIDE: u32 = 8192;
@@ -41,7 +42,7 @@ impl Image {
     /// `Ok` when a `width x height` render is allowed: both sides in `1..=MAX_IMAGE_SIDE`.
     pub fn check_size(width: u32, height: u32) -> Result<()> {
         if width == 0 || height == 0 || width > MAX_IMAGE_SIDE || height > MAX_IMAGE_SIDE {
-            return Err(Error::InvalidArgument(format!(
+            return Err(MeshError::InvalidArgument(format!(
                 "image size {width}x{height}: both sides must be in 1..={MAX_IMAGE_SIDE}"
             )));
         }
@@ -78,12 +79,12 @@ impl Image {
     }
 
     /// Encodes the image as an 8-bit RGB PNG into any writer. Errors from the writer (and a
-    /// zero-sized or inconsistent image, which PNG cannot hold) are [`Error::Io`] with the
+    /// zero-sized or inconsistent image, which PNG cannot hold) are [`MeshError::Io`] with the
     /// path `<png>`.
     pub fn write_png_to(&self, w: impl Write) -> Result<()> {
         let expected = 3 * self.width as usize * self.height as usize;
         if self.rgb.len() != expected {
-            return Err(Error::DimensionMismatch {
+            return Err(MeshError::DimensionMismatch {
                 what: "image bytes",
                 expected,
                 got: self.rgb.len(),
@@ -151,12 +152,12 @@ fn sheet_side(n: usize, cell: u32) -> u32 {
     u32::try_from(side).expect("contact sheet side exceeds u32::MAX pixels")
 }
 
-fn png_error(e: png::EncodingError) -> Error {
+fn png_error(e: png::EncodingError) -> MeshError {
     let source = match e {
         png::EncodingError::IoError(io) => io,
         other => std::io::Error::other(other.to_string()),
     };
-    Error::Io {
+    MeshError::Io {
         path: PathBuf::from("<png>"),
         source,
     }

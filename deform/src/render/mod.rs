@@ -50,7 +50,10 @@ pub use image::{Image, CONTACT_SHEET_GAP, MAX_IMAGE_SIDE};
 use glam::DVec3;
 
 use crate::mesh::validate::MAX_COORDINATE;
-use crate::{Error, IndexList, Mesh, Result};
+use crate::mesh::IndexList;
+use crate::mesh::Mesh;
+use crate::mesh::MeshError;
+use crate::mesh::Result;
 use raster::{Paint, Target, Vertex};
 
 /// The light that reaches faces seen edge-on; faces facing the camera get 1.
@@ -130,7 +133,7 @@ impl Default for RenderOptions {
 impl RenderOptions {
     /// The camera these options give for a box (see [`Camera::framing_with`]).
     #[must_use]
-    pub fn camera(&self, bounds: &crate::Aabb) -> Camera {
+    pub fn camera(&self, bounds: &crate::mesh::Aabb) -> Camera {
         Camera::framing_with(
             bounds,
             self.yaw_degrees,
@@ -149,7 +152,7 @@ impl RenderOptions {
 pub fn render(mesh: &Mesh, coloring: Coloring, options: &RenderOptions) -> Result<Image> {
     Image::check_size(options.width, options.height)?;
     check_mesh(mesh)?;
-    let bounds = mesh.bounding_box().ok_or(Error::EmptyMesh {
+    let bounds = mesh.bounding_box().ok_or(MeshError::EmptyMesh {
         vertices: 0,
         triangles: mesh.triangles.len(),
     })?;
@@ -160,13 +163,13 @@ pub fn render(mesh: &Mesh, coloring: Coloring, options: &RenderOptions) -> Resul
 /// Parts of the mesh outside the camera's view are simply not drawn.
 ///
 /// # Errors
-/// * [`Error::InvalidArgument`]: an image side of 0 or above [`MAX_IMAGE_SIDE`], a camera with
+/// * [`MeshError::InvalidArgument`]: an image side of 0 or above [`MAX_IMAGE_SIDE`], a camera with
 ///   non-finite numbers, a non-finite scalar value or range, or `min > max`;
-/// * [`Error::EmptyMesh`]: no vertices or no triangles;
-/// * [`Error::NonFinite`]: vertices with NaN or infinite coordinates;
-/// * [`Error::CoordinateRange`]: coordinates beyond [`MAX_COORDINATE`] in magnitude;
-/// * [`Error::FaceIndexOutOfRange`]: triangles referring to missing vertices;
-/// * [`Error::DimensionMismatch`]: scalar values not one per vertex.
+/// * [`MeshError::EmptyMesh`]: no vertices or no triangles;
+/// * [`MeshError::NonFinite`]: vertices with NaN or infinite coordinates;
+/// * [`MeshError::CoordinateRange`]: coordinates beyond [`MAX_COORDINATE`] in magnitude;
+/// * [`MeshError::FaceIndexOutOfRange`]: triangles referring to missing vertices;
+/// * [`MeshError::DimensionMismatch`]: scalar values not one per vertex.
 pub fn render_with_camera(
     mesh: &Mesh,
     coloring: Coloring,
@@ -178,7 +181,7 @@ pub fn render_with_camera(
     check_mesh(mesh)?;
     check_coloring(mesh, &coloring)?;
     if !camera.is_finite() {
-        return Err(Error::InvalidArgument(
+        return Err(MeshError::InvalidArgument(
             "the camera has non-finite parameters (did it frame a non-finite box?)".into(),
         ));
     }
@@ -268,7 +271,7 @@ fn shade(c: f64, intensity: f64) -> u8 {
 /// Empty mesh, non-finite or huge coordinates, out-of-range indices.
 fn check_mesh(mesh: &Mesh) -> Result<()> {
     if mesh.is_empty() {
-        return Err(Error::EmptyMesh {
+        return Err(MeshError::EmptyMesh {
             vertices: mesh.positions.len(),
             triangles: mesh.triangles.len(),
         });
@@ -282,12 +285,12 @@ fn check_mesh(mesh: &Mesh) -> Result<()> {
         }
     }
     if !non_finite.is_empty() {
-        return Err(Error::NonFinite {
+        return Err(MeshError::NonFinite {
             vertices: IndexList(non_finite),
         });
     }
     if !huge.is_empty() {
-        return Err(Error::CoordinateRange {
+        return Err(MeshError::CoordinateRange {
             vertices: IndexList(huge),
             limit: MAX_COORDINATE,
         });
@@ -297,7 +300,7 @@ fn check_mesh(mesh: &Mesh) -> Result<()> {
         .filter(|&f| mesh.triangles[f as usize].iter().any(|&v| v as usize >= n))
         .collect();
     if !bad.is_empty() {
-        return Err(Error::FaceIndexOutOfRange {
+        return Err(MeshError::FaceIndexOutOfRange {
             faces: IndexList(bad),
             vertex_count: n,
         });
@@ -311,20 +314,20 @@ fn check_coloring(mesh: &Mesh, coloring: &Coloring) -> Result<()> {
         return Ok(());
     };
     if values.len() != mesh.positions.len() {
-        return Err(Error::DimensionMismatch {
+        return Err(MeshError::DimensionMismatch {
             what: "scalar values (one per vertex)",
             expected: mesh.positions.len(),
             got: values.len(),
         });
     }
     if let Some(v) = values.iter().position(|s| !s.is_finite()) {
-        return Err(Error::InvalidArgument(format!(
+        return Err(MeshError::InvalidArgument(format!(
             "scalar value {} at vertex {v} is not finite",
             values[v]
         )));
     }
     if !(min.is_finite() && max.is_finite() && min <= max) {
-        return Err(Error::InvalidArgument(format!(
+        return Err(MeshError::InvalidArgument(format!(
             "scalar range [{min}, {max}] must be finite with min <= max"
         )));
     }

@@ -3,8 +3,10 @@
 
 use super::animation::{Interpolation, Property};
 use super::rig::Rig;
+use super::SkinError;
 use super::Trs;
-use crate::Result;
+
+type Result<T, E = SkinError> = std::result::Result<T, E>;
 use serde_json::{json, Value};
 use std::path::Path;
 
@@ -21,23 +23,23 @@ pub struct GlbOptions {
 /// Write [`glb_bytes`] to `path` atomically (a temporary file renamed over the target).
 ///
 /// # Errors
-/// [`crate::Error::Io`]; [`crate::Error::InvalidArgument`] as [`glb_bytes`].
+/// [`SkinError::Io`]; [`SkinError::InvalidArgument`] as [`glb_bytes`].
 pub fn write_glb(rig: &Rig, options: &GlbOptions, path: impl AsRef<Path>) -> Result<()> {
     let path = path.as_ref();
     let bytes = glb_bytes(rig, options)?;
     let tmp = path.with_extension("glb.partial");
-    let io = |source| crate::Error::Io {
+    let io = |source: std::io::Error| SkinError::Io {
         path: path.to_path_buf(),
-        source,
+        message: source.to_string(),
     };
     std::fs::write(&tmp, bytes).map_err(io)?;
     std::fs::rename(&tmp, path).map_err(io)
 }
 
-/// Smooth vertex normals of the bind-pose mesh ([`crate::Mesh::vertex_normals`], area
+/// Smooth vertex normals of the bind-pose mesh ([`crate::mesh::Mesh::vertex_normals`], area
 /// weighted), unit length in single precision as glTF requires. Without them a viewer must
 /// shade the mesh flat. A vertex with no non-degenerate face gets `+z`.
-fn unit_normals(mesh: &crate::Mesh) -> Vec<[f32; 3]> {
+fn unit_normals(mesh: &crate::mesh::Mesh) -> Vec<[f32; 3]> {
     mesh.vertex_normals()
         .into_iter()
         .map(|n| {
@@ -81,7 +83,7 @@ impl Bin {
     /// `f32` elements of `dim` components (with min/max when `bounds`).
     ///
     /// # Errors
-    /// [`crate::Error::InvalidArgument`] when a value is not finite in single precision (a
+    /// [`SkinError::InvalidArgument`] when a value is not finite in single precision (a
     /// coordinate beyond the f32 range, or NaN), naming `what`: glTF holds finite f32 only.
     fn floats(
         &mut self,
@@ -93,17 +95,19 @@ impl Bin {
         what: &str,
     ) -> Result<usize> {
         if v.is_empty() {
-            return Err(crate::Error::InvalidArgument(format!(
+            return Err(SkinError::InvalidArgument(format!(
                 "{what}: no elements (a glTF accessor holds at least one)"
-            )));
+            ))
+            .into());
         }
         if let Some(i) = v.iter().position(|x| !x.is_finite()) {
-            return Err(crate::Error::InvalidArgument(format!(
+            return Err(SkinError::InvalidArgument(format!(
                 "{what}: element {} is {} in single precision; glTF holds finite f32 values \
                  only (coordinates beyond about 3.4e38, or NaN)",
                 i / dim,
                 v[i]
-            )));
+            ))
+            .into());
         }
         let bytes: Vec<u8> = v.iter().flat_map(|x| x.to_le_bytes()).collect();
         let mut a = json!({"componentType": 5126, "count": v.len() / dim, "type": kind});
@@ -167,27 +171,30 @@ fn compact_influences(rig: &Rig) -> (usize, Vec<[u16; 8]>, Vec<[f32; 8]>) {
 /// stores them. Up to 8 influences per vertex are kept (the largest, renormalised).
 ///
 /// # Errors
-/// [`crate::Error::InvalidArgument`] for a mesh without triangles, more than 65536 joints or
+/// [`SkinError::InvalidArgument`] for a mesh without triangles, more than 65536 joints or
 /// `node_transforms` of the wrong length.
 pub fn glb_bytes(rig: &Rig, options: &GlbOptions) -> Result<Vec<u8>> {
     if rig.mesh.triangle_count() == 0 {
-        return Err(crate::Error::InvalidArgument(
+        return Err(SkinError::InvalidArgument(
             "the rig's mesh has no triangles: nothing to write".into(),
-        ));
+        )
+        .into());
     }
     if rig.joints.len() > u16::MAX as usize + 1 {
-        return Err(crate::Error::InvalidArgument(format!(
+        return Err(SkinError::InvalidArgument(format!(
             "{} joints: glTF joint indices are 16-bit here",
             rig.joints.len()
-        )));
+        ))
+        .into());
     }
     let locals: Vec<Trs> = match &options.node_transforms {
         Some(t) if t.len() != rig.nodes.len() => {
-            return Err(crate::Error::InvalidArgument(format!(
+            return Err(SkinError::InvalidArgument(format!(
                 "{} node transforms for {} nodes",
                 t.len(),
                 rig.nodes.len()
-            )))
+            ))
+            .into())
         }
         Some(t) => t.clone(),
         None => rig.nodes.iter().map(|n| n.rest).collect(),
@@ -323,7 +330,7 @@ pub fn glb_bytes(rig: &Rig, options: &GlbOptions) -> Result<Vec<u8>> {
         doc["animations"] = json!(animations);
     }
     let mut text =
-        serde_json::to_vec(&doc).map_err(|e| crate::Error::InvalidArgument(e.to_string()))?;
+        serde_json::to_vec(&doc).map_err(|e| SkinError::InvalidArgument(e.to_string()))?;
     while !text.len().is_multiple_of(4) {
         text.push(b' ');
     }

@@ -5,15 +5,15 @@ use super::animation::{Animation, Channel, Interpolation, Property};
 use super::rig::{Influences, LoadReport, PrimitiveInfo, Rig, RigNode};
 use super::SkinError;
 use super::Trs;
-use crate::Mesh;
+use crate::mesh::Mesh;
 use glam::{DMat4, DQuat, DVec3, DVec4};
 use std::path::Path;
 
 /// Read a glTF 2.0 rig (`.gltf` or `.glb`); see [`parse_gltf`].
 ///
 /// # Errors
-/// [`crate::Error::Io`] when the file cannot be read, and the errors of [`parse_gltf`].
-pub fn read_gltf(path: impl AsRef<Path>) -> crate::Result<Rig> {
+/// [`SkinError::Io`] when the file cannot be read, and the errors of [`parse_gltf`].
+pub fn read_gltf(path: impl AsRef<Path>) -> Result<Rig, SkinError> {
     read_gltf_with(path, &GltfReadOptions::default())
 }
 
@@ -21,11 +21,11 @@ pub fn read_gltf(path: impl AsRef<Path>) -> crate::Result<Rig> {
 ///
 /// # Errors
 /// As [`read_gltf`].
-pub fn read_gltf_with(path: impl AsRef<Path>, options: &GltfReadOptions) -> crate::Result<Rig> {
+pub fn read_gltf_with(path: impl AsRef<Path>, options: &GltfReadOptions) -> Result<Rig, SkinError> {
     let path = path.as_ref();
-    let bytes = std::fs::read(path).map_err(|source| crate::Error::Io {
+    let bytes = std::fs::read(path).map_err(|source| SkinError::Io {
         path: path.to_path_buf(),
-        source,
+        message: source.to_string(),
     })?;
     let base = path.parent().map(|p| {
         if p.as_os_str().is_empty() {

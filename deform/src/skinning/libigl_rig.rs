@@ -5,7 +5,7 @@ use super::rig::{Influences, LoadReport, PrimitiveInfo, Rig, RigNode};
 use super::SkinError;
 use super::Trs;
 use crate::mesh::io::{Dmat, Skeleton};
-use crate::Mesh;
+use crate::mesh::Mesh;
 use cga::ScaledMotor;
 use glam::{DAffine3, DMat3, DMat4, DVec3};
 

@@ -1,6 +1,6 @@
 //! Skinned, animated models (second paper, sections 2-4.1): rigs read from glTF 2.0 or
 //! libigl files, sampled animations, joint transforms as motors with dilators, and skinning
-//! by any [`crate::BlendMethod`] (matrix LBS, dual quaternions, the paper's equation (17) in
+//! by any [`crate::blend::BlendMethod`] (matrix LBS, dual quaternions, the paper's equation (17) in
 //! both evaluation orders, motor blending).
 //!
 //! * [`Rig`]: the node hierarchy, the skin (joints and inverse bind matrices), the rest mesh
@@ -50,6 +50,17 @@ pub use trs::Trs;
 /// What is wrong with a rig file, a rig or an animation request.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SkinError {
+    /// The file could not be read or written.
+    #[error("{}: {message}", path.display())]
+    Io {
+        /// The file.
+        path: std::path::PathBuf,
+        /// What the system said.
+        message: String,
+    },
+    /// A value that cannot be written (not finite in single precision, too many joints).
+    #[error("invalid argument: {0}")]
+    InvalidArgument(String),
     /// The file is not valid glTF (truncated, corrupt, or failing the glTF schema checks).
     #[error("{name}: not a valid glTF file: {message}")]
     Gltf {

@@ -1,7 +1,7 @@
 //! The rig: node hierarchy, skin, rest mesh with influences, animations.
 
 use super::{Animation, SkinError, Trs};
-use crate::Mesh;
+use crate::mesh::Mesh;
 use cga::ScaledMotor;
 use glam::DMat4;
 

@@ -2,9 +2,9 @@
 //! motors of any frame with any backend.
 
 use super::{Influences, Rig};
-use crate::blend::deformer::deformer_via_blend;
 use crate::blend::{BlendMethod, BoundBlend, KeyWeights};
-use crate::Result;
+use crate::deformers::deformer::deformer_via_blend;
+use crate::deformers::Result;
 use cga::ScaledMotor;
 use glam::DVec3;
 
@@ -45,9 +45,9 @@ impl Skinning {
     /// Bind rest positions with per-vertex influences over `joint_count` joints.
     ///
     /// # Errors
-    /// [`crate::Error::DimensionMismatch`] when the influences do not match the positions,
-    /// [`crate::Error::InvalidArgument`] for a joint index past `joint_count` or a non-finite
-    /// weight, [`crate::KeyError::TooMany`] for too many joints.
+    /// [`MeshError::DimensionMismatch`] when the influences do not match the positions,
+    /// [`MeshError::InvalidArgument`] for a joint index past `joint_count` or a non-finite
+    /// weight, [`crate::blend::KeyError::TooMany`] for too many joints.
     pub fn bind_influences(
         positions: &[DVec3],
         influences: &Influences,

@@ -1,7 +1,8 @@
 //! A bounding-volume hierarchy over a mesh's triangles: the spatial index that lets cut, tear
 //! and drill find the faces a plane, a blade or a cylinder reaches without scanning every face.
 
-use crate::{Aabb, Mesh};
+use crate::mesh::Aabb;
+use crate::mesh::Mesh;
 use glam::DVec3;
 
 /// Triangles per leaf at most.

@@ -14,7 +14,7 @@
 use super::refine::Work;
 use super::split::{assemble, local_loops, new_vertex_data, FaceFate, Splitter};
 use super::{check_snap, Frame, SkinnedMesh, Surgery, SurgeryError, VertexOrigin};
-use crate::Mesh;
+use crate::mesh::Mesh;
 use glam::DVec3;
 
 /// A drill: a cylinder from its `tip` to its `end`, of `radius`.

@@ -52,8 +52,8 @@ pub use split::VertexOrigin;
 pub use tear::{Scalpel, TearOptions, TearResult};
 pub use weights::{push_interpolated, NEW_VERTEX_INFLUENCES};
 
+use crate::mesh::Mesh;
 use crate::skinning::Influences;
-use crate::Mesh;
 use glam::{DAffine3, DVec3};
 
 /// What is wrong with a surgery's input.

@@ -4,8 +4,8 @@
 
 use super::weights::{push_copy, push_interpolated};
 use super::{unskin, Frame, SkinnedMesh, SurgeryError};
+use crate::mesh::Mesh;
 use crate::skinning::Influences;
-use crate::Mesh;
 use glam::DVec3;
 use std::collections::HashMap;
 

@@ -14,7 +14,7 @@
 use super::soup::Soup;
 use super::split::{local_loops, FaceFate};
 use super::{check_snap, Frame, SkinnedMesh, Surgery, SurgeryError, VertexOrigin};
-use crate::Mesh;
+use crate::mesh::Mesh;
 use glam::DVec3;
 use std::collections::{HashMap, HashSet};
 

@@ -6,7 +6,7 @@
 //! maps through them).
 
 use super::split::Topology;
-use crate::Mesh;
+use crate::mesh::Mesh;
 use std::collections::{HashMap, HashSet};
 
 /// The mesh with every vertex replaced by the first vertex at its position.

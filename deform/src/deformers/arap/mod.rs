@@ -12,14 +12,14 @@
 //!    the classic 3x3 SVD with the reflection fix ([`LocalStep::Svd`]); both give the same
 //!    rotations to rounding;
 //! 2. the **global step**: the Poisson system `-L p' = b(R)` with the constrained vertices as
-//!    Dirichlet rows (equation (13)), prefactored once at bind by [`crate::DirichletSolver`].
+//!    Dirichlet rows (equation (13)), prefactored once at bind by [`crate::operators::solve::DirichletSolver`].
 //!
 //! Energies: [`ArapEnergy::Spokes`] (Sorkine and Alexa's, the paper's) and
 //! [`ArapEnergy::SpokesAndRims`] (libigl's default for triangle meshes; Chao et al. 2010).
 //! Weights are libigl's raw cotangent weights (`cotmatrix`, half cotangents, negative for
-//! obtuse angles) unless [`crate::CotangentOptions::clamp_negative`] clamps them to zero as
+//! obtuse angles) unless [`crate::operators::laplacian::CotangentOptions::clamp_negative`] clamps them to zero as
 //! CGAL does: the edge sums for spokes, each triangle's share for spokes and rims. Zero-area
-//! triangles follow [`crate::CotangentOptions::degenerate`].
+//! triangles follow [`crate::operators::laplacian::CotangentOptions::degenerate`].
 //!
 //! Constraints: fixed vertices, which stay at rest (or at given targets), and handle groups,
 //! moved as a whole by one motor each (the paper's handle metaphor, [`Targets::Motors`]) or
@@ -52,12 +52,18 @@ mod system;
 
 pub use local::{fit_rotor, fit_svd, LocalStep};
 
-use crate::blend::deformer::{check_key_count, check_positions, Deformer, KeyError};
-use crate::{CotangentOptions, Error, IndexList, Mesh, Result, SolveScratch, SolverOptions};
+use crate::blend::{check_key_count, check_positions, KeyError};
+use crate::deformers::deformer::{Deformer, PoseScratch};
+use crate::deformers::Result;
+use crate::mesh::IndexList;
+use crate::mesh::Mesh;
+use crate::mesh::MeshError;
+use crate::operators::laplacian::CotangentOptions;
+use crate::operators::solve::SolveScratch;
+use crate::operators::solve::SolverOptions;
 use cells::{Cells, Covariance};
 use cga::{Rotor, ScaledMotor};
 use glam::{DMat3, DQuat, DVec3};
-use std::sync::{Mutex, MutexGuard};
 use system::System;
 
 /// The rigidity energy.
@@ -112,9 +118,10 @@ impl Stop {
             } => (max_iterations, tolerance),
         };
         if max == 0 || tol.is_nan() || tol < 0.0 || tol.is_infinite() {
-            return Err(Error::InvalidArgument(format!(
+            return Err(MeshError::InvalidArgument(format!(
                 "ARAP stop rule {self:?}: needs at least one iteration and a finite tolerance >= 0"
-            )));
+            ))
+            .into());
         }
         Ok(max)
     }
@@ -178,9 +185,11 @@ pub enum ArapError {
     },
 }
 
-/// Per-pose buffers, reused from pose to pose.
+/// The per-pose buffers of an [`Arap`], owned by the caller (one per thread that poses):
+/// made by [`Arap::scratch`], reused by every [`Arap::pose_using`] it is given. It also keeps
+/// the rotations of the last iteration of its last pose ([`ArapScratch::rotors`]).
 #[derive(Debug)]
-struct Workspace {
+pub struct ArapScratch {
     quats: Vec<DQuat>,
     rots: Vec<DMat3>,
     cov: Vec<Covariance>,
@@ -193,13 +202,28 @@ struct Workspace {
     scratch: SolveScratch,
 }
 
+impl ArapScratch {
+    /// The rotation of every cell used by the last iteration of the last pose, as rotors
+    /// (identities before the first pose).
+    pub fn rotors(&self) -> Vec<Rotor> {
+        self.rots
+            .iter()
+            .map(|m| Rotor::from_quat(DQuat::from_mat3(m).normalize()))
+            .collect()
+    }
+
+    /// The rotation matrices of the last iteration (see [`ArapScratch::rotors`]).
+    pub fn rotation_matrices(&self) -> &[DMat3] {
+        &self.rots
+    }
+}
+
 /// A mesh bound for ARAP: weights, cells and the prefactored system; see the
 /// [module docs](self).
 #[derive(Debug)]
 pub struct Arap {
     system: System,
     options: ArapOptions,
-    work: Mutex<Workspace>,
 }
 
 impl Arap {
@@ -208,13 +232,13 @@ impl Arap {
     /// vertices (in that order, see [`Arap::constrained`]).
     ///
     /// # Errors
-    /// The mesh checks of [`crate::check_solvable`]; [`ArapError::NoConstraints`];
-    /// [`KeyError::EmptyHandle`]; [`Error::ConstraintOutOfRange`];
-    /// [`Error::OverlappingConstraints`] (a vertex fixed and in a handle, in two handles, or
+    /// The mesh checks of [`crate::mesh::validate::check_solvable`]; [`ArapError::NoConstraints`];
+    /// [`KeyError::EmptyHandle`]; [`MeshError::ConstraintOutOfRange`];
+    /// [`MeshError::OverlappingConstraints`] (a vertex fixed and in a handle, in two handles, or
     /// listed twice); [`ArapError::NothingToDeform`] (a component whose every vertex is
-    /// constrained, such as a handle covering a whole component); [`Error::Unconstrained`]
-    /// (a component without constraints); [`Error::DegenerateTriangles`] with
-    /// [`crate::DegeneratePolicy::Error`]; the solver's errors.
+    /// constrained, such as a handle covering a whole component); [`SolveError::Unconstrained`]
+    /// (a component without constraints); [`MeshError::DegenerateTriangles`] with
+    /// [`crate::operators::laplacian::DegeneratePolicy::Error`]; the solver's errors.
     pub fn bind(
         mesh: &Mesh,
         fixed: &[u32],
@@ -223,13 +247,27 @@ impl Arap {
     ) -> Result<Self> {
         options.stop.max_iterations()?;
         let system = System::new(mesh, fixed, handles, &options)?;
+        let arap = Arap { system, options };
+        // The first scratch proves the solve's buffers fit in memory.
+        arap.scratch()?;
+        Ok(arap)
+    }
+
+    /// Fresh per-pose buffers for [`Arap::pose_using`] (about `30 n` doubles and the sparse
+    /// solve's scratch).
+    ///
+    /// # Errors
+    /// [`crate::operators::SolveError::Solver`] when the solve's scratch does not fit in
+    /// memory.
+    pub fn scratch(&self) -> Result<ArapScratch> {
+        let system = &self.system;
         let n = system.len();
         let triangles = match &system.cells {
             Cells::Rims(r) => r.tris.len(),
             Cells::Spokes(_) => 0,
         };
         let nc = system.constrained.len();
-        let work = Workspace {
+        Ok(ArapScratch {
             quats: vec![DQuat::IDENTITY; n],
             rots: vec![DMat3::IDENTITY; n],
             cov: vec![Covariance::default(); n],
@@ -240,11 +278,6 @@ impl Arap {
             boundary: vec![0.0; 3 * nc],
             positions: vec![DVec3::ZERO; n],
             scratch: system.solver.scratch(3)?,
-        };
-        Ok(Arap {
-            system,
-            options,
-            work: Mutex::new(work),
         })
     }
 
@@ -279,25 +312,6 @@ impl Arap {
         self.system.constrained.get(a..b)
     }
 
-    /// The rotation of every cell used by the last iteration of the last pose, as rotors
-    /// (identities before the first pose).
-    pub fn rotors(&self) -> Vec<Rotor> {
-        let w = self.lock();
-        w.rots
-            .iter()
-            .map(|m| Rotor::from_quat(DQuat::from_mat3(m).normalize()))
-            .collect()
-    }
-
-    /// The rotation matrices of the last iteration (see [`Arap::rotors`]).
-    pub fn rotation_matrices(&self) -> Vec<DMat3> {
-        self.lock().rots.clone()
-    }
-
-    fn lock(&self) -> MutexGuard<'_, Workspace> {
-        self.work.lock().unwrap_or_else(|e| e.into_inner())
-    }
-
     /// Iterates from `positions` (the warm start, e.g. the rest pose or the previous result)
     /// until `stop`, moving the constrained vertices to `targets`, and writes the result
     /// into `positions`. The constrained vertices are first set to their targets (as libigl's
@@ -305,10 +319,10 @@ impl Arap {
     /// and solves for new ones.
     ///
     /// # Errors
-    /// [`Error::DimensionMismatch`] (`positions` or a target list of the wrong length,
-    /// a motor list without one motor per handle group), [`Error::NonFinite`] (non-finite
+    /// [`MeshError::DimensionMismatch`] (`positions` or a target list of the wrong length,
+    /// a motor list without one motor per handle group), [`MeshError::NonFinite`] (non-finite
     /// starting positions or targets, naming the vertices), [`KeyError::Invalid`] (a motor
-    /// that is not finite or not a motor), [`Error::InvalidArgument`] (a bad [`Stop`]).
+    /// that is not finite or not a motor), [`MeshError::InvalidArgument`] (a bad [`Stop`]).
     /// Input errors leave `positions` untouched; a numerical failure of the solve (not
     /// expected once the input is valid) leaves the last complete iterate.
     pub fn pose(
@@ -323,8 +337,9 @@ impl Arap {
         Ok(report)
     }
 
-    /// [`Arap::pose`] calling `on_iteration(k, energy)` after iteration `k` (from 1) instead of
-    /// collecting a report; returns whether [`Stop::RelativeChange`] was met.
+    /// [`Arap::pose_using`] with a fresh scratch (allocated per call; pose loops keep an
+    /// [`ArapScratch`]), calling `on_iteration(k, energy)` after iteration `k` (from 1)
+    /// instead of collecting a report; returns whether [`Stop::RelativeChange`] was met.
     ///
     /// # Errors
     /// As [`Arap::pose`].
@@ -335,18 +350,58 @@ impl Arap {
         positions: &mut [DVec3],
         on_iteration: impl FnMut(usize, f64),
     ) -> Result<bool> {
+        let mut scratch = self.scratch()?;
+        self.pose_using(targets, stop, &mut scratch, positions, on_iteration)
+    }
+
+    /// [`Arap::pose_with`] in the caller's `scratch` (from [`Arap::scratch`] of this
+    /// deformer): no allocation, and any number of threads can pose one bound `Arap` at
+    /// once, each with its own scratch.
+    ///
+    /// # Errors
+    /// As [`Arap::pose`], and [`crate::mesh::MeshError::DimensionMismatch`] for a scratch
+    /// made by another `Arap`.
+    pub fn pose_using(
+        &self,
+        targets: &Targets<'_>,
+        stop: Stop,
+        scratch: &mut ArapScratch,
+        positions: &mut [DVec3],
+        on_iteration: impl FnMut(usize, f64),
+    ) -> Result<bool> {
+        self.check_scratch(scratch)?;
         check_positions(self.vertex_count(), positions.len())?;
         let bad: Vec<u32> = (0..positions.len() as u32)
             .filter(|&i| !positions[i as usize].is_finite())
             .collect();
         if !bad.is_empty() {
-            return Err(Error::NonFinite {
+            return Err(MeshError::NonFinite {
                 vertices: IndexList(bad),
-            });
+            }
+            .into());
         }
-        let mut w = self.lock();
-        self.fill_boundary(targets, &mut w.boundary)?;
-        self.run(&mut w, stop, positions, on_iteration)
+        self.fill_boundary(targets, &mut scratch.boundary)?;
+        self.run(scratch, stop, positions, on_iteration)
+    }
+
+    /// A scratch of another `Arap` (other sizes) is refused.
+    fn check_scratch(&self, w: &ArapScratch) -> Result<()> {
+        let triangles = match &self.system.cells {
+            Cells::Rims(r) => r.tris.len(),
+            Cells::Spokes(_) => 0,
+        };
+        let fits = w.quats.len() == self.system.len()
+            && w.tri_cov.len() == triangles
+            && w.boundary.len() == 3 * self.system.constrained.len();
+        if !fits {
+            return Err(MeshError::DimensionMismatch {
+                what: "ARAP scratch (made by another Arap)",
+                expected: self.system.len(),
+                got: w.quats.len(),
+            }
+            .into());
+        }
+        Ok(())
     }
 
     /// Writes the boundary values (column-major, `constrained().len()` rows) for `targets`.
@@ -361,20 +416,22 @@ impl Arap {
         match targets {
             Targets::Positions(t) => {
                 if t.len() != nc {
-                    return Err(Error::DimensionMismatch {
+                    return Err(MeshError::DimensionMismatch {
                         what: "ARAP target positions",
                         expected: nc,
                         got: t.len(),
-                    });
+                    }
+                    .into());
                 }
                 let bad: Vec<u32> = (0..nc)
                     .filter(|&k| !t[k].is_finite())
                     .map(|k| s.constrained[k])
                     .collect();
                 if !bad.is_empty() {
-                    return Err(Error::NonFinite {
+                    return Err(MeshError::NonFinite {
                         vertices: IndexList(bad),
-                    });
+                    }
+                    .into());
                 }
                 for (k, &p) in t.iter().enumerate() {
                     put(k, p);
@@ -401,9 +458,10 @@ impl Arap {
                     }
                 }
                 if !bad.is_empty() {
-                    return Err(Error::NonFinite {
+                    return Err(MeshError::NonFinite {
                         vertices: IndexList(bad),
-                    });
+                    }
+                    .into());
                 }
             }
         }
@@ -413,7 +471,7 @@ impl Arap {
     /// The iterations; `w.boundary` is filled.
     fn run(
         &self,
-        w: &mut Workspace,
+        w: &mut ArapScratch,
         stop: Stop,
         positions: &mut [DVec3],
         mut on_iteration: impl FnMut(usize, f64),
@@ -476,10 +534,20 @@ impl Deformer for Arap {
         self.handle_count()
     }
 
-    fn pose(&self, keys: &[ScaledMotor], positions: &mut [DVec3]) -> Result<()> {
+    fn scratch(&self) -> PoseScratch {
+        // Made on the first pose, where a failure to allocate the solve's scratch is an error.
+        PoseScratch::default()
+    }
+
+    fn pose_using(
+        &self,
+        keys: &[ScaledMotor],
+        scratch: &mut PoseScratch,
+        positions: &mut [DVec3],
+    ) -> Result<()> {
         check_positions(self.vertex_count(), positions.len())?;
-        let mut guard = self.lock();
-        let w = &mut *guard;
+        let w = scratch.get_or_try(|| self.scratch())?;
+        self.check_scratch(w)?;
         self.fill_boundary(&Targets::Motors(keys), &mut w.boundary)?;
         let mut p = std::mem::take(&mut w.positions);
         p.copy_from_slice(&self.system.rest);

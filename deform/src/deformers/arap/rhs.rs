@@ -9,7 +9,8 @@
 //! neighbours' rotations per vertex and no per-triangle pass.
 
 use super::cells::CHUNK;
-use crate::Result;
+use crate::deformers::Result;
+use crate::mesh::MeshError;
 use glam::{DMat3, DVec3};
 use rayon::prelude::*;
 use sprs::CsMat;
@@ -57,9 +58,9 @@ impl Gather {
                 g[i] += share;
                 for j in [t[(m + 1) % 3], t[(m + 2) % 3]] {
                     let row = &col[ptr[i]..ptr[i + 1]];
-                    let k = row.binary_search(&j).map_err(|_| {
-                        crate::Error::InvalidArgument(format!("edge {i}-{j} missing"))
-                    })?;
+                    let k = row
+                        .binary_search(&j)
+                        .map_err(|_| MeshError::InvalidArgument(format!("edge {i}-{j} missing")))?;
                     h[ptr[i] + k] += share;
                 }
             }

@@ -4,13 +4,18 @@
 use super::cells::{Cells, Rims, Spokes};
 use super::rhs::Gather;
 use super::{ArapEnergy, ArapError, ArapOptions};
+use crate::blend::KeyError;
+use crate::deformers::Result;
 use crate::mesh::triangle::Frame;
 use crate::mesh::union_find::UnionFind;
+use crate::mesh::validate::check_solvable;
+use crate::mesh::IndexList;
+use crate::mesh::Mesh;
+use crate::mesh::MeshError;
 use crate::operators::laplacian::assemble;
-use crate::{
-    check_solvable, cotangent_laplacian, DegeneratePolicy, DirichletSolver, Error, IndexList,
-    KeyError, Mesh, Result,
-};
+use crate::operators::laplacian::cotangent_laplacian;
+use crate::operators::laplacian::DegeneratePolicy;
+use crate::operators::solve::DirichletSolver;
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -54,10 +59,11 @@ fn constraints(n: usize, fixed: &[u32], handles: &[&[u32]]) -> Result<(Vec<u32>,
         .filter(|&v| v as usize >= n)
         .collect();
     if !out.is_empty() {
-        return Err(Error::ConstraintOutOfRange {
+        return Err(MeshError::ConstraintOutOfRange {
             vertices: IndexList(out),
             vertex_count: n,
-        });
+        }
+        .into());
     }
     let mut seen = vec![false; n];
     let mut repeated = Vec::new();
@@ -69,9 +75,10 @@ fn constraints(n: usize, fixed: &[u32], handles: &[&[u32]]) -> Result<(Vec<u32>,
     if !repeated.is_empty() {
         repeated.sort_unstable();
         repeated.dedup();
-        return Err(Error::OverlappingConstraints {
+        return Err(MeshError::OverlappingConstraints {
             vertices: IndexList(repeated),
-        });
+        }
+        .into());
     }
     Ok((constrained, starts))
 }
@@ -121,9 +128,10 @@ fn triangle_weights(mesh: &Mesh, options: &ArapOptions) -> Result<Vec<[f64; 3]>>
             .filter(|&f| per[f as usize].is_none())
             .collect();
         if !bad.is_empty() {
-            return Err(Error::DegenerateTriangles {
+            return Err(MeshError::DegenerateTriangles {
                 faces: IndexList(bad),
-            });
+            }
+            .into());
         }
     }
     let clamp = options.cotangent.clamp_negative;

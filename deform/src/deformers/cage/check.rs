@@ -2,7 +2,9 @@
 //! coordinates and no degenerate (zero-area) faces.
 
 use super::CageError;
-use crate::{IndexList, Mesh, Result};
+use crate::deformers::Result;
+use crate::mesh::IndexList;
+use crate::mesh::Mesh;
 use std::collections::HashMap;
 
 /// Faces whose area is below this fraction of the squared bounding-box diagonal are

@@ -3,7 +3,8 @@
 //! Strackee's formula) is 1 inside, 0 outside (for a consistently oriented, outward cage).
 
 use super::CageError;
-use crate::{Mesh, Result};
+use crate::deformers::Result;
+use crate::mesh::Mesh;
 use glam::DVec3;
 use rayon::prelude::*;
 use std::f64::consts::PI;

@@ -9,12 +9,15 @@
 //! and every grid edge leaving the inside ends at a boundary node); nodes reached from the
 //! grid's border without crossing that band are outside; the rest are interior, where the
 //! 7-point Laplace equation is solved for every cage vertex at once with one sparse Cholesky
-//! factorisation ([`crate::DirichletSolver`]). The coordinates reproduce the model's vertices to
+//! factorisation ([`crate::operators::solve::DirichletSolver`]). The coordinates reproduce the model's vertices to
 //! a fraction of a grid spacing (0.28 spacings for the armadillo at 64 nodes). The discrete maximum principle keeps the coordinates in
 //! `[0, 1]`; rounding residues are clamped and each row renormalised to sum to one.
 
 use super::CageError;
-use crate::{DirichletSolver, Mesh, Result, SolverOptions};
+use crate::deformers::Result;
+use crate::mesh::Mesh;
+use crate::operators::solve::DirichletSolver;
+use crate::operators::solve::SolverOptions;
 use glam::DVec3;
 use rayon::prelude::*;
 use sprs::TriMat;

@@ -4,7 +4,7 @@
 //! vertex crosses the other. Faces sharing an edge, touching contacts and coplanar overlaps
 //! are not reported.
 
-use crate::Mesh;
+use crate::mesh::Mesh;
 use glam::DVec3;
 
 /// `det(b - a, c - a, d - a)`: positive when `d` is above the plane of `a b c`.

@@ -38,7 +38,9 @@ pub use mvc::{coordinates_and_winding, mean_value_coordinates};
 
 use crate::blend::control::{ControlBinding, ControlForm};
 use crate::blend::KeyWeights;
-use crate::{IndexList, Mesh, Result};
+use crate::deformers::Result;
+use crate::mesh::IndexList;
+use crate::mesh::Mesh;
 
 /// What is wrong with a cage.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -196,4 +198,4 @@ impl CageDeformer {
     }
 }
 
-crate::blend::deformer::deformer_via_blend!(CageDeformer, binding);
+crate::deformers::deformer::deformer_via_blend!(CageDeformer, binding);

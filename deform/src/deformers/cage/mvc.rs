@@ -15,7 +15,8 @@
 //! precision); inside a non-convex cage some may be negative.
 
 use super::CageError;
-use crate::{Mesh, Result};
+use crate::deformers::Result;
+use crate::mesh::Mesh;
 use glam::DVec3;
 use rayon::prelude::*;
 use std::f64::consts::PI;

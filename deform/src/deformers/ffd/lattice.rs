@@ -4,10 +4,10 @@
 //! vertices' local lattice coordinates.
 
 use super::FfdError;
-use crate::blend::deformer::MAX_KEYS;
 use crate::blend::KeyWeights;
+use crate::blend::MAX_KEYS;
 use crate::deformers::bspline::bspline_basis;
-use crate::Result;
+use crate::deformers::Result;
 use glam::DVec3;
 
 /// How far (relative to the box's extent) a vertex may lie outside the box and still be
@@ -186,7 +186,7 @@ impl Lattice {
                 }
             }
         }
-        KeyWeights::gathered(self.len(), width, keys, weights)
+        Ok(KeyWeights::gathered(self.len(), width, keys, weights)?)
     }
 }
 

@@ -23,14 +23,16 @@ mod lattice;
 pub use lattice::{bernstein, Lattice, LatticeBasis, OUTSIDE_TOLERANCE};
 
 use crate::blend::control::{ControlBinding, ControlForm};
-use crate::{Mesh, Result};
+use crate::deformers::Result;
+use crate::mesh::Mesh;
+use crate::mesh::MeshError;
 use glam::DVec3;
 
 /// What is wrong with a lattice or the mesh inside it.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum FfdError {
     /// An axis with fewer than 2 control points, or too many points in all.
-    #[error("lattice {dims:?}: every axis needs at least 2 control points (at most {max} in all)", max = crate::MAX_KEYS)]
+    #[error("lattice {dims:?}: every axis needs at least 2 control points (at most {max} in all)", max = crate::blend::MAX_KEYS)]
     Dims {
         /// Control points per axis.
         dims: [usize; 3],
@@ -80,7 +82,7 @@ impl Ffd {
     ///
     /// # Errors
     /// The [`FfdError`]s of [`Lattice::new`] and [`Lattice::local`] (wrapped in
-    /// [`crate::Error::Ffd`]), [`crate::Error::EmptyMesh`] for a mesh without vertices.
+    /// [`crate::Error::Ffd`]), [`MeshError::EmptyMesh`] for a mesh without vertices.
     pub fn bind(
         mesh: &Mesh,
         dims: [usize; 3],
@@ -90,7 +92,7 @@ impl Ffd {
         let (min, max) = match bounds {
             Some(b) => b,
             None => {
-                let b = mesh.bounding_box().ok_or(crate::Error::EmptyMesh {
+                let b = mesh.bounding_box().ok_or(MeshError::EmptyMesh {
                     vertices: 0,
                     triangles: mesh.triangle_count(),
                 })?;
@@ -122,4 +124,4 @@ impl Ffd {
     }
 }
 
-crate::blend::deformer::deformer_via_blend!(Ffd, binding);
+crate::deformers::deformer::deformer_via_blend!(Ffd, binding);

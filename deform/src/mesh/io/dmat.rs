@@ -4,7 +4,8 @@
 //! `0 0` marks a binary file: a second line holds `cols rows`, then raw little-endian `f64`s.
 
 use super::{capacity, read_bytes, Ctx};
-use crate::{Error, Result};
+use crate::mesh::MeshError;
+use crate::mesh::Result;
 use std::io::Write;
 use std::path::Path;
 
@@ -40,18 +41,18 @@ impl Dmat {
     /// Rows of a one-column selection whose value is `group`, e.g. libigl tutorial selections
     /// (`-1` free, `0, 1, 2..` handle groups). Values are compared after rounding.
     ///
-    /// Errors: [`Error::DimensionMismatch`] unless the matrix has exactly one column (a
+    /// Errors: [`MeshError::DimensionMismatch`] unless the matrix has exactly one column (a
     /// `5x0` matrix, read from `0 5`, is not a selection) holding `rows` values.
     pub fn rows_equal_to(&self, group: i64) -> Result<Vec<u32>> {
         if self.cols != 1 {
-            return Err(Error::DimensionMismatch {
+            return Err(MeshError::DimensionMismatch {
                 what: "columns of a selection matrix",
                 expected: 1,
                 got: self.cols,
             });
         }
         if self.data.len() != self.rows || self.rows > u32::MAX as usize {
-            return Err(Error::DimensionMismatch {
+            return Err(MeshError::DimensionMismatch {
                 what: "values of a selection matrix",
                 expected: self.rows,
                 got: self.data.len(),
@@ -134,7 +135,7 @@ pub fn parse_dmat(bytes: &[u8], name: &str) -> Result<Dmat> {
         }
     }
     if data.len() != len {
-        return Err(Error::Parse {
+        return Err(MeshError::Parse {
             path: name.to_string(),
             line: 0,
             message: format!("{} values, expected {len} for {rows}x{cols}", data.len()),
@@ -146,7 +147,7 @@ pub fn parse_dmat(bytes: &[u8], name: &str) -> Result<Dmat> {
 /// Writes an ASCII DMAT file.
 pub fn write_dmat(m: &Dmat, path: impl AsRef<Path>) -> Result<()> {
     let path = path.as_ref();
-    let io = |source| Error::Io {
+    let io = |source| MeshError::Io {
         path: path.to_path_buf(),
         source,
     };

@@ -1,7 +1,9 @@
 //! INRIA MEDIT meshes (`.mesh`, ASCII): vertices, triangles, tetrahedra.
 
 use super::{capacity, read_text, Ctx};
-use crate::{Error, Mesh, Result};
+use crate::mesh::Mesh;
+use crate::mesh::MeshError;
+use crate::mesh::Result;
 use glam::DVec3;
 use std::path::Path;
 
@@ -36,7 +38,7 @@ pub fn read_medit(path: impl AsRef<Path>) -> Result<MeditMesh> {
 /// `Triangles`, `Quadrilaterals` (split into two triangles), `Tetrahedra`, `Edges`, each a
 /// count followed by entries with a trailing reference label; `End` stops. Coordinates must
 /// be finite and tetrahedra must refer to existing vertices (nothing else checks them);
-/// triangle indices past the last vertex are kept and reported by [`crate::validate()`].
+/// triangle indices past the last vertex are kept and reported by [`crate::mesh::validate()`].
 ///
 /// ```
 /// let t = "MeshVersionFormatted 1\nDimension 3\nVertices\n3\n0 0 0 0\n1 0 0 0\n0 1 0 0\nTriangles\n1\n1 2 3 0\nEnd\n";
@@ -118,7 +120,7 @@ pub fn parse_medit(text: &str, name: &str) -> Result<MeditMesh> {
         .iter()
         .position(|e| e.iter().any(|&v| v as usize >= n))
     {
-        return Err(Error::Parse {
+        return Err(MeshError::Parse {
             path: name.to_string(),
             line: 0,
             message: format!(

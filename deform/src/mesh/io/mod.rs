@@ -12,7 +12,9 @@ pub use obj::{parse_obj, read_obj, write_obj, write_obj_to};
 pub use off::{parse_off, read_off};
 pub use tgf::{parse_tgf, read_tgf, Skeleton};
 
-use crate::{Error, Mesh, Result};
+use crate::mesh::Mesh;
+use crate::mesh::MeshError;
+use crate::mesh::Result;
 use std::path::Path;
 
 /// Reads a triangle mesh, choosing the format by extension (`obj`, `off`, `mesh`; any case).
@@ -29,12 +31,12 @@ pub fn read_mesh(path: impl AsRef<Path>) -> Result<Mesh> {
         "obj" => read_obj(path),
         "off" => read_off(path),
         "mesh" => Ok(read_medit(path)?.surface()),
-        _ => Err(Error::UnsupportedFormat(ext)),
+        _ => Err(MeshError::UnsupportedFormat(ext)),
     }
 }
 
 pub(crate) fn read_bytes(path: &Path) -> Result<Vec<u8>> {
-    std::fs::read(path).map_err(|source| Error::Io {
+    std::fs::read(path).map_err(|source| MeshError::Io {
         path: path.to_path_buf(),
         source,
     })
@@ -42,7 +44,7 @@ pub(crate) fn read_bytes(path: &Path) -> Result<Vec<u8>> {
 
 pub(crate) fn read_text(path: &Path) -> Result<String> {
     let bytes = read_bytes(path)?;
-    String::from_utf8(bytes).map_err(|e| Error::Parse {
+    String::from_utf8(bytes).map_err(|e| MeshError::Parse {
         path: path.display().to_string(),
         line: 0,
         message: format!("not UTF-8: {e}"),
@@ -57,8 +59,8 @@ pub(crate) struct Ctx<'a> {
 }
 
 impl Ctx<'_> {
-    pub(crate) fn err(&self, message: impl Into<String>) -> Error {
-        Error::Parse {
+    pub(crate) fn err(&self, message: impl Into<String>) -> MeshError {
+        MeshError::Parse {
             path: self.name.to_string(),
             line: self.line,
             message: message.into(),

@@ -5,7 +5,9 @@
 //! and the vertex counts of raw scans.
 
 use super::{push_fan, read_text, Ctx};
-use crate::{Mesh, Result};
+use crate::mesh::Mesh;
+use crate::mesh::MeshError;
+use crate::mesh::Result;
 use glam::DVec3;
 use std::io::Write;
 use std::path::Path;
@@ -20,7 +22,7 @@ pub fn read_obj(path: impl AsRef<Path>) -> Result<Mesh> {
 /// corners may be `v`, `v/t`, `v//n` or `v/t/n`, with negative (relative) indices allowed;
 /// polygons become triangle fans. Texture coordinates, normals, groups, materials, lines and
 /// points are ignored. Coordinates must be finite. Indices past the last vertex are kept and
-/// reported by [`crate::validate()`].
+/// reported by [`crate::mesh::validate()`].
 ///
 /// ```
 /// let m = deform::io::parse_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n", "quad").unwrap();
@@ -87,7 +89,7 @@ pub fn write_obj_to(mesh: &Mesh, mut w: impl Write) -> std::io::Result<()> {
 /// Writes an OBJ file.
 pub fn write_obj(mesh: &Mesh, path: impl AsRef<Path>) -> Result<()> {
     let path = path.as_ref();
-    let io = |source| crate::Error::Io {
+    let io = |source| MeshError::Io {
         path: path.to_path_buf(),
         source,
     };

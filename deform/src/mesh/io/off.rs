@@ -1,7 +1,8 @@
 //! Object File Format (`OFF`, also `COFF`/`NOFF` headers; extra per-vertex values ignored).
 
 use super::{capacity, push_fan, read_text, Ctx};
-use crate::{Mesh, Result};
+use crate::mesh::Mesh;
+use crate::mesh::Result;
 use glam::DVec3;
 use std::path::Path;
 
@@ -15,7 +16,7 @@ pub fn read_off(path: impl AsRef<Path>) -> Result<Mesh> {
 /// `V F E`, `V` vertex lines, then `F` face lines `n i_0 .. i_{n-1}` (0-based, polygons are
 /// fan-triangulated, trailing colour values ignored). `#` starts a comment. Coordinates
 /// must be finite; indices past the last vertex are kept and reported by
-/// [`crate::validate()`].
+/// [`crate::mesh::validate()`].
 ///
 /// ```
 /// let m = deform::io::parse_off("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "tri").unwrap();

@@ -1,7 +1,7 @@
 //! libigl's Trivial Graph Format skeletons (`.tgf`).
 
 use super::{read_text, Ctx};
-use crate::Result;
+use crate::mesh::Result;
 use glam::DVec3;
 use std::path::Path;
 

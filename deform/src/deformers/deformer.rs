@@ -1,0 +1,253 @@
+//! The shape every deformer shares: bind once, pose many times.
+//!
+//! A deformer has two phases:
+//!
+//! * `bind(mesh, ..., options) -> Bound`: every precomputation (harmonic fields, per-vertex
+//!   weights, the rest points expressed in the frame of their rest motor). Fallible: bad
+//!   meshes, bad handle sets, key lists of the wrong length are typed errors here.
+//! * [`Deformer::pose_using`]`(&keys, &mut scratch, &mut positions)`: cheap,
+//!   allocation-free, parallel over the vertices with rayon; fallible only on bad keys (a key
+//!   that is not finite or not a motor, the wrong number of keys, an output slice of the
+//!   wrong length). The positions are written only when every key is valid, so an error
+//!   leaves them as they were.
+//!
+//! The per-pose buffers live in a [`PoseScratch`] the caller owns (one per thread), never in
+//! the bound deformer: a bound deformer is immutable after `bind`, so any number of threads
+//! pose it at once. A [`Poser`] pairs a deformer with its scratch;
+//! [`Deformer::pose`] is the one-off form that makes a fresh scratch each call.
+//!
+//! Spline-aligned deformation ([`crate::SplineDeformer`]), motor handles
+//! ([`crate::MotorHandles`]) and every later deformer implement [`Deformer`], so tools (the
+//! `deform` program, benches) drive them the same way.
+//!
+//! ```
+//! use deform::{Deformer, MotorHandles, HarmonicOptions, Mesh};
+//! use cga::ScaledMotor;
+//! use glam::{DQuat, DVec3};
+//! // A strip of 2 x 4 vertices; the left end is handle 0, the right end handle 1.
+//! let p: Vec<DVec3> = (0..8).map(|i| DVec3::new((i % 4) as f64, (i / 4) as f64, 0.0)).collect();
+//! let t = vec![[0, 1, 5], [0, 5, 4], [1, 2, 6], [1, 6, 5], [2, 3, 7], [2, 7, 6]];
+//! let mesh = Mesh::new(p, t);
+//! let bound = MotorHandles::bind(&mesh, &[&[0, 4], &[3, 7]], HarmonicOptions::default()).unwrap();
+//! let lift = ScaledMotor::from_scale_rotation_translation(1.0, DQuat::IDENTITY, DVec3::Z);
+//! let mut out = vec![DVec3::ZERO; 8];
+//! let mut poser = bound.poser(); // per-pose buffers, reused by every pose of this thread
+//! poser.pose(&[ScaledMotor::IDENTITY, lift], &mut out).unwrap();
+//! assert!((out[3] - DVec3::new(3.0, 0.0, 1.0)).length() < 1e-12); // handle 1 moved rigidly
+//! assert!(out[0].abs_diff_eq(DVec3::ZERO, 1e-12)); // handle 0 stayed
+//! assert!(out[1].z > 0.0 && out[1].z < out[2].z); // the rest follows smoothly
+//! ```
+
+use super::error::{DeformError, Result};
+use crate::blend::control::{ControlBinding, ControlScratch};
+use cga::ScaledMotor;
+use glam::DVec3;
+use std::any::Any;
+use std::fmt;
+
+/// A deformer after `bind`: poses its mesh from a list of keys.
+///
+/// Immutable once bound (`Send + Sync`): the buffers a pose needs are the caller's
+/// [`PoseScratch`].
+pub trait Deformer: Send + Sync {
+    /// The number of vertices it poses.
+    fn vertex_count(&self) -> usize;
+
+    /// The number of keys [`Deformer::pose`] takes.
+    fn key_count(&self) -> usize;
+
+    /// Fresh per-pose buffers for this deformer (allocated here, reused by every
+    /// [`Deformer::pose_using`] that gets them).
+    fn scratch(&self) -> PoseScratch;
+
+    /// Write the posed positions into `positions` (length [`Deformer::vertex_count`]), using
+    /// the caller's `scratch`: no allocation once the scratch has served one pose. A scratch
+    /// made by another deformer is replaced (with an allocation), never misread.
+    ///
+    /// # Errors
+    /// [`DeformError::Keys`] for a bad key or a key list of the wrong length,
+    /// [`DeformError::Mesh`] with [`crate::mesh::MeshError::DimensionMismatch`] when
+    /// `positions` has the wrong length. On error the positions are left untouched.
+    fn pose_using(
+        &self,
+        keys: &[ScaledMotor],
+        scratch: &mut PoseScratch,
+        positions: &mut [DVec3],
+    ) -> Result<()>;
+
+    /// [`Deformer::pose_using`] with a fresh scratch: one allocation of the per-pose buffers
+    /// per call. Pose loops use a [`Poser`].
+    ///
+    /// # Errors
+    /// As [`Deformer::pose_using`].
+    fn pose(&self, keys: &[ScaledMotor], positions: &mut [DVec3]) -> Result<()> {
+        let mut scratch = self.scratch();
+        self.pose_using(keys, &mut scratch, positions)
+    }
+
+    /// This deformer with its own scratch, for a pose loop on one thread.
+    fn poser(&self) -> Poser<'_, Self>
+    where
+        Self: Sized,
+    {
+        Poser::new(self)
+    }
+}
+
+/// The per-pose buffers of a deformer, owned by the caller: one per thread that poses.
+/// Made by [`Deformer::scratch`]; its content is private to the deformer that made it.
+#[derive(Default)]
+pub struct PoseScratch(Option<Box<dyn Any + Send>>);
+
+impl PoseScratch {
+    /// A scratch holding `buffers`.
+    pub(crate) fn of<T: Any + Send>(buffers: T) -> Self {
+        PoseScratch(Some(Box::new(buffers)))
+    }
+
+    /// The buffers as a `T`, made by the fallible `make` when the scratch is empty or holds
+    /// another type.
+    pub(crate) fn get_or_try<T: Any + Send, E>(
+        &mut self,
+        make: impl FnOnce() -> Result<T, E>,
+    ) -> Result<&mut T, E> {
+        if !self.0.as_ref().is_some_and(|b| b.is::<T>()) {
+            self.0 = Some(Box::new(make()?));
+        }
+        Ok(self
+            .0
+            .as_mut()
+            .and_then(|b| b.downcast_mut::<T>())
+            .expect("the scratch holds a T"))
+    }
+
+    /// The buffers as a `T`, made by `make` when the scratch is empty or holds another type
+    /// (the scratch of another kind of deformer).
+    pub(crate) fn get<T: Any + Send>(&mut self, make: impl FnOnce() -> T) -> &mut T {
+        if !self.0.as_ref().is_some_and(|b| b.is::<T>()) {
+            self.0 = Some(Box::new(make()));
+        }
+        self.0
+            .as_mut()
+            .and_then(|b| b.downcast_mut::<T>())
+            .expect("the scratch holds a T")
+    }
+}
+
+impl fmt::Debug for PoseScratch {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(if self.0.is_some() {
+            "PoseScratch(..)"
+        } else {
+            "PoseScratch(empty)"
+        })
+    }
+}
+
+/// A deformer and a scratch of its own: the form for a pose loop. Make one per thread;
+/// the deformer itself is shared.
+///
+/// ```
+/// # use deform::{Deformer, Mesh, MotorHandles, HarmonicOptions};
+/// # use cga::ScaledMotor;
+/// # use glam::DVec3;
+/// # let p: Vec<DVec3> = (0..8).map(|i| DVec3::new((i % 4) as f64, (i / 4) as f64, 0.0)).collect();
+/// # let t = vec![[0, 1, 5], [0, 5, 4], [1, 2, 6], [1, 6, 5], [2, 3, 7], [2, 7, 6]];
+/// # let bound = MotorHandles::bind(&Mesh::new(p, t), &[&[0, 4], &[3, 7]], HarmonicOptions::default()).unwrap();
+/// let keys = [ScaledMotor::IDENTITY; 2];
+/// std::thread::scope(|s| {
+///     for _ in 0..2 {
+///         s.spawn(|| {
+///             let mut poser = bound.poser();
+///             let mut out = vec![DVec3::ZERO; bound.vertex_count()];
+///             poser.pose(&keys, &mut out).unwrap();
+///         });
+///     }
+/// });
+/// ```
+#[derive(Debug)]
+pub struct Poser<'a, D: Deformer + ?Sized> {
+    deformer: &'a D,
+    scratch: PoseScratch,
+}
+
+impl<'a, D: Deformer + ?Sized> Poser<'a, D> {
+    /// `deformer` with a fresh scratch (works for `dyn Deformer` too).
+    pub fn new(deformer: &'a D) -> Self {
+        Poser {
+            deformer,
+            scratch: deformer.scratch(),
+        }
+    }
+
+    /// The deformer.
+    pub fn deformer(&self) -> &'a D {
+        self.deformer
+    }
+
+    /// Pose into `positions`; no allocation after the first pose.
+    ///
+    /// # Errors
+    /// As [`Deformer::pose_using`].
+    pub fn pose(&mut self, keys: &[ScaledMotor], positions: &mut [DVec3]) -> Result<()> {
+        self.deformer.pose_using(keys, &mut self.scratch, positions)
+    }
+}
+
+/// `impl Deformer for $t` by delegating to its field `$field`, a
+/// [`BoundBlend`](crate::blend::BoundBlend).
+macro_rules! deformer_via_blend {
+    ($t:ty, $field:ident) => {
+        impl $crate::deformers::deformer::Deformer for $t {
+            fn vertex_count(&self) -> usize {
+                self.$field.vertex_count()
+            }
+
+            fn key_count(&self) -> usize {
+                self.$field.key_count()
+            }
+
+            fn scratch(&self) -> $crate::deformers::deformer::PoseScratch {
+                $crate::deformers::deformer::PoseScratch::of(self.$field.scratch())
+            }
+
+            fn pose_using(
+                &self,
+                keys: &[cga::ScaledMotor],
+                scratch: &mut $crate::deformers::deformer::PoseScratch,
+                positions: &mut [glam::DVec3],
+            ) -> $crate::deformers::Result<()> {
+                let prepared = scratch.get(|| self.$field.scratch());
+                Ok(self.$field.pose_using(keys, prepared, positions)?)
+            }
+        }
+    };
+}
+pub(crate) use deformer_via_blend;
+
+/// Cages and lattices: control points moved by motors (or by the motors' action on the
+/// points, in the positional form).
+impl Deformer for ControlBinding {
+    fn vertex_count(&self) -> usize {
+        ControlBinding::vertex_count(self)
+    }
+
+    fn key_count(&self) -> usize {
+        self.rest_points().len()
+    }
+
+    fn scratch(&self) -> PoseScratch {
+        PoseScratch::of(ControlBinding::scratch(self))
+    }
+
+    fn pose_using(
+        &self,
+        keys: &[ScaledMotor],
+        scratch: &mut PoseScratch,
+        positions: &mut [DVec3],
+    ) -> Result<()> {
+        let work: &mut ControlScratch = scratch.get(|| ControlBinding::scratch(self));
+        self.pose_using(keys, work, positions)
+            .map_err(DeformError::from)
+    }
+}
