@@ -85,6 +85,31 @@ impl BlendMethod {
     }
 }
 
+/// A blend method by its [`BlendMethod::name`]: `"motor-log".parse()`.
+impl std::str::FromStr for BlendMethod {
+    type Err = UnknownBlendMethod;
+
+    fn from_str(s: &str) -> std::result::Result<BlendMethod, UnknownBlendMethod> {
+        BlendMethod::ALL
+            .into_iter()
+            .find(|m| m.name() == s)
+            .ok_or_else(|| UnknownBlendMethod {
+                given: s.to_string(),
+            })
+    }
+}
+
+/// A name that is no [`BlendMethod::name`]; the message lists the known names.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error(
+    "unknown blend method {given:?} (known: {})",
+    BlendMethod::ALL.map(BlendMethod::name).join(", ")
+)]
+pub struct UnknownBlendMethod {
+    /// The name given.
+    pub given: String,
+}
+
 /// Per-vertex weights over keys: vertex `i` blends `width` keys with weights `row(i)`, either
 /// a contiguous run `first(i) .. first(i) + width` (splines, dense handle coordinates) or an
 /// explicit list of key indices per vertex (lattice blocks of a B-spline FFD, the few largest

@@ -3,8 +3,9 @@
 //! opened) and drilled, each result re-animated at the end of the arm's animation. Every rig
 //! is also written as `.glb` (mesh, skin, animations), so any glTF viewer replays it.
 
-use crate::commands::time_pose;
-use crate::lattice_demo::DemoScene;
+use super::scene::DemoScene;
+use crate::finish::displacement;
+use crate::timing::{ms, time_pose};
 use anyhow::Result;
 use cga::ScaledMotor;
 use deform::skinning::{procedural_arm, write_glb, GlbOptions, JointEdit, Rig, Skinning};
@@ -37,7 +38,6 @@ fn made(origin: &[VertexOrigin]) -> Vec<f64> {
 pub fn scenes(out: &Path) -> Result<Vec<DemoScene>> {
     let rig = procedural_arm(24, 81);
     let mut scenes = Vec::new();
-    let ms = |t: Instant| t.elapsed().as_secs_f64() * 1e3;
 
     let edit = [JointEdit {
         joint: 1,
@@ -45,11 +45,7 @@ pub fn scenes(out: &Path) -> Result<Vec<DemoScene>> {
     }];
     let t = Instant::now();
     let (posed, pose_ms) = animate(&rig, 2.0, &edit, &out.join("skin-arm.glb"))?;
-    let moved = posed
-        .iter()
-        .zip(&rig.mesh.positions)
-        .map(|(p, q)| p.distance(*q))
-        .collect();
+    let moved = displacement(&rig.mesh, &posed);
     scenes.push(DemoScene {
         name: "skin-arm",
         method: "3-joint rig, animation + dilated elbow / equation (17)".into(),

@@ -3,7 +3,9 @@
 //! a tube-shaped cage bent a quarter turn by motors on the cage vertices that turn each ring
 //! about a common axis (motor-valued mean value coordinates).
 
-use crate::commands::time_pose;
+use super::scene::DemoScene;
+use crate::finish::displacement;
+use crate::timing::{ms, time_pose};
 use anyhow::Result;
 use cga::ScaledMotor;
 use deform::cage::{CageDeformer, CageOptions};
@@ -14,27 +16,8 @@ use deform::{BlendMethod, Deformer, Mesh};
 use glam::{DQuat, DVec3};
 use std::time::Instant;
 
-/// One scene's meshes and times.
-pub struct DemoScene {
-    pub name: &'static str,
-    pub method: String,
-    pub rest: Mesh,
-    pub posed: Vec<DVec3>,
-    pub scalar: Vec<f64>,
-    pub bind_ms: f64,
-    pub pose_ms: f64,
-}
-
 fn rotation_about(center: DVec3, q: DQuat) -> ScaledMotor {
     ScaledMotor::from_scale_rotation_translation(1.0, q, center - q * center)
-}
-
-fn moved(rest: &Mesh, posed: &[DVec3]) -> Vec<f64> {
-    posed
-        .iter()
-        .zip(&rest.positions)
-        .map(|(p, q)| p.distance(*q))
-        .collect()
 }
 
 fn run(
@@ -46,13 +29,13 @@ fn run(
 ) -> Result<DemoScene> {
     let t = Instant::now();
     let d = bind()?;
-    let bind_ms = t.elapsed().as_secs_f64() * 1e3;
+    let bind_ms = ms(t);
     let mut posed = vec![DVec3::ZERO; rest.vertex_count()];
     let pose_ms = time_pose(d.as_ref(), keys, &mut posed)?;
     Ok(DemoScene {
         name,
         method,
-        scalar: moved(rest, &posed),
+        scalar: displacement(rest, &posed),
         rest: rest.clone(),
         posed,
         bind_ms,

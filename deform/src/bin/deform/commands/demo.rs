@@ -1,12 +1,18 @@
 //! `deform demo`: every method on procedural meshes (no files needed). Writes one OBJ and one
 //! PNG per scene and a contact sheet of them all, and prints a table of bind and pose times.
 
-use crate::args::DemoArgs;
-use crate::commands::{straight_chain, time_pose};
-use crate::output::{write_obj, write_png};
+mod lattice;
+mod scene;
+mod surgery;
+
+use crate::finish::displacement;
+use crate::output_files::{write_obj, write_png};
 use crate::preview;
+use crate::spline_ends::straight_chain;
+use crate::timing::{ms, time_pose};
 use anyhow::{Context, Result};
 use cga::{Motor, ScaledMotor};
+use clap::Args;
 use deform::shapes::{icosphere, tube, tube_ring};
 use deform::{
     BlendMethod, ChainDeformer, FabrikOptions, HandleOptions, Mesh, MotorHandles, SplineDeformer,
@@ -14,11 +20,25 @@ use deform::{
 };
 use glam::{DQuat, DVec3};
 use std::f64::consts::PI;
+use std::path::PathBuf;
 use std::time::Instant;
 
 const LENGTH: f64 = 10.0;
 const SIDES: usize = 4;
 const RINGS: usize = 81;
+
+#[derive(Args, Debug)]
+pub struct DemoArgs {
+    /// Where the OBJ files and PNG previews go.
+    #[arg(long, default_value = "deform-demo")]
+    pub out: PathBuf,
+    /// Print nothing but errors.
+    #[arg(long, short)]
+    pub quiet: bool,
+    /// Print the table as JSON.
+    #[arg(long)]
+    pub json: bool,
+}
 
 /// One scene's result.
 struct Row {
@@ -126,10 +146,6 @@ fn spline_scenes() -> Vec<SplineScene> {
     ]
 }
 
-fn ms(t: Instant) -> f64 {
-    t.elapsed().as_secs_f64() * 1e3
-}
-
 pub fn run(a: &DemoArgs) -> Result<()> {
     std::fs::create_dir_all(&a.out)
         .with_context(|| format!("{}: cannot create", a.out.display()))?;
@@ -197,8 +213,8 @@ pub fn run(a: &DemoArgs) -> Result<()> {
     });
 
     // FFD twists (motor vs positional lattice) and a bar bent by motors on its cage's
-    // vertices (lattice_demo.rs).
-    for s in crate::lattice_demo::scenes(LENGTH)? {
+    // vertices (demo/lattice.rs).
+    for s in lattice::scenes(LENGTH)? {
         save(s.name, &s.rest, s.posed, &s.scalar)?;
         rows.push(Row {
             name: s.name,
@@ -239,11 +255,7 @@ pub fn run(a: &DemoArgs) -> Result<()> {
     ];
     let mut out = vec![DVec3::ZERO; ball.vertex_count()];
     let pose_ms = time_pose(&handles, &keys, &mut out)?;
-    let moved: Vec<f64> = out
-        .iter()
-        .zip(&ball.positions)
-        .map(|(p, q)| p.distance(*q))
-        .collect();
+    let moved = displacement(&ball, &out);
     save("handles-sphere", &ball, out, &moved)?;
     rows.push(Row {
         name: "handles-sphere",
@@ -279,11 +291,7 @@ pub fn run(a: &DemoArgs) -> Result<()> {
             &mut out,
         )?;
         let pose_ms = ms(t);
-        let moved: Vec<f64> = out
-            .iter()
-            .zip(&beam.positions)
-            .map(|(p, q)| p.distance(*q))
-            .collect();
+        let moved = displacement(&beam, &out);
         save("arap-beam", &beam, out, &moved)?;
         rows.push(Row {
             name: "arap-beam",
@@ -299,8 +307,8 @@ pub fn run(a: &DemoArgs) -> Result<()> {
     }
 
     // Skinning, then cutting, tearing and drilling the rigged arm, re-animated after each
-    // (surgery_demo.rs); every rig is also written as .glb.
-    for s in crate::surgery_demo::scenes(&a.out)? {
+    // (demo/surgery.rs); every rig is also written as .glb.
+    for s in surgery::scenes(&a.out)? {
         save(s.name, &s.rest, s.posed, &s.scalar)?;
         rows.push(Row {
             name: s.name,

@@ -1,9 +1,9 @@
-//! Reading inputs and writing outputs safely: an output path that names an input is refused,
-//! and every file is written to a temporary file beside it and renamed, so a failure never
-//! leaves a half-written file.
+//! Writing outputs safely: an output path that names an input is refused, an output must end
+//! in a format the command writes, and every file is written to a temporary file beside it
+//! and renamed, so a failure never leaves a half-written file.
 
+use crate::shared_args::OutputArgs;
 use anyhow::{bail, Context, Result};
-use deform::input::{parse_selection_json, selection_from_dmat, Selection};
 use deform::Mesh;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -43,7 +43,7 @@ pub fn check_outputs(inputs: &[&Path], outputs: &[&Path]) -> Result<()> {
 /// Refuses an output whose extension names a format this command does not write (it would
 /// otherwise get another format's bytes under the asked name): `-o` must end in one of
 /// `formats`, `--png` in `.png`.
-pub fn check_formats(out: &crate::args::OutputArgs, formats: &[&str]) -> Result<()> {
+pub fn check_formats(out: &OutputArgs, formats: &[&str]) -> Result<()> {
     let ext = |p: &Path| {
         p.extension()
             .map(|e| e.to_string_lossy().to_ascii_lowercase())
@@ -123,41 +123,6 @@ pub fn write_png(path: &Path, image: &deform::render::Image) -> Result<()> {
         image.write_png_to(w)?;
         Ok(())
     })
-}
-
-/// Read a mesh, validated for deformation.
-pub fn read_mesh(path: &Path) -> Result<Mesh> {
-    let mesh = deform::io::read_mesh(path)?;
-    deform::check_solvable(&mesh)
-        .with_context(|| format!("{}: not a usable mesh", path.display()))?;
-    Ok(mesh)
-}
-
-/// Read a selection: `.dmat` (libigl) or `.json`.
-pub fn read_selection(path: &Path, vertex_count: usize) -> Result<Selection> {
-    let name = path.display().to_string();
-    let ext = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase);
-    let sel = match ext.as_deref() {
-        Some("dmat") => {
-            let m = deform::io::read_dmat(path)?;
-            selection_from_dmat(&m, vertex_count, &name)?
-        }
-        Some("json") => {
-            let text =
-                std::fs::read_to_string(path).with_context(|| format!("{name}: cannot read"))?;
-            parse_selection_json(&text, vertex_count, &name)?
-        }
-        _ => bail!("{name}: a selection is a .dmat (libigl) or .json file"),
-    };
-    Ok(sel)
-}
-
-/// Read a text file.
-pub fn read_text(path: &Path) -> Result<String> {
-    std::fs::read_to_string(path).with_context(|| format!("{}: cannot read", path.display()))
 }
 
 /// Write a rig as `.glb`, atomically like every output (an interrupted run leaves nothing).

@@ -2,53 +2,80 @@
 //! its animations, with joint edits, by any skinning backend; write OBJ (one file, or a
 //! sequence for a time range or generated in-betweens) or the whole rig as `.glb`.
 
-use crate::args::OutputArgs;
-use crate::commands::{time_pose, Report};
-use crate::output::{check_outputs, read_text, write_obj, write_png};
+use crate::finish::displacement;
+use crate::input_files::{read_rig, read_text};
+use crate::output_files::{check_formats, check_outputs, write_glb, write_obj, write_png};
 use crate::preview;
+use crate::report::Report;
+use crate::shared_args::{OutputArgs, RigInput};
+use crate::timing::{ms, time_pose};
 use anyhow::{bail, Context, Result};
+use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::{Args, ValueEnum};
 use deform::input::parse_motor;
-use deform::skinning::{
-    in_betweens, libigl_rig, read_gltf_with, GlbOptions, GltfReadOptions, JointEdit, KeyframeBlend,
-    Rig, RigPose, Skinning,
-};
+use deform::skinning::{in_betweens, GlbOptions, JointEdit, KeyframeBlend, RigPose, Skinning};
 use deform::{BlendMethod, Deformer, Mesh};
 use glam::DVec3;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-/// Skinning backends by their usual names.
-#[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
-pub enum Backend {
-    /// Matrix linear blend skinning (f64).
-    Lbs,
-    /// Matrix linear blend skinning in single precision (glam SIMD).
-    LbsF32,
-    /// Dual-quaternion skinning (Kavan).
-    Dqs,
-    /// The paper's equation (17), adding conformal points then down-projecting.
-    Cga,
-    /// Equation (17), down-projecting each term then adding.
-    CgaProjected,
-    /// Motor blending: the normalised weighted motor sum, scale blended geometrically.
-    Motor,
-    /// Log blending of the skin motors, exp(sum w log M).
-    MotorLog,
+/// The skinning backends by their usual names: the name, the blend method it selects and
+/// its help (the one table from `--backend` names to [`BlendMethod`]s).
+const BACKENDS: [(&str, BlendMethod, &str); 7] = [
+    (
+        "lbs",
+        BlendMethod::Matrix,
+        "Matrix linear blend skinning (f64)",
+    ),
+    (
+        "lbs-f32",
+        BlendMethod::MatrixF32,
+        "Matrix linear blend skinning in single precision (glam SIMD)",
+    ),
+    (
+        "dqs",
+        BlendMethod::DualQuaternion,
+        "Dual-quaternion skinning (Kavan)",
+    ),
+    (
+        "cga",
+        BlendMethod::Conformal,
+        "The paper's equation (17), adding conformal points then down-projecting",
+    ),
+    (
+        "cga-projected",
+        BlendMethod::ConformalProjected,
+        "Equation (17), down-projecting each term then adding",
+    ),
+    (
+        "motor",
+        BlendMethod::MotorLinear,
+        "Motor blending: the normalised weighted motor sum, scale blended geometrically",
+    ),
+    (
+        "motor-log",
+        BlendMethod::MotorLog,
+        "Log blending of the skin motors, exp(sum w log M)",
+    ),
+];
+
+/// A skinning backend: its name as given and the blend method it selects.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub struct Backend {
+    pub name: &'static str,
+    pub method: BlendMethod,
 }
 
-impl Backend {
-    pub fn method(self) -> BlendMethod {
-        match self {
-            Backend::Lbs => BlendMethod::Matrix,
-            Backend::LbsF32 => BlendMethod::MatrixF32,
-            Backend::Dqs => BlendMethod::DualQuaternion,
-            Backend::Cga => BlendMethod::Conformal,
-            Backend::CgaProjected => BlendMethod::ConformalProjected,
-            Backend::Motor => BlendMethod::MotorLinear,
-            Backend::MotorLog => BlendMethod::MotorLog,
-        }
-    }
+/// A backend by one of the [`BACKENDS`] names (clap's possible values, with their help).
+fn backend() -> impl TypedValueParser<Value = Backend> {
+    let names = BACKENDS.map(|(name, _, help)| PossibleValue::new(name).help(help));
+    PossibleValuesParser::new(names).try_map(|given: String| {
+        BACKENDS
+            .iter()
+            .find(|(name, _, _)| *name == given)
+            .map(|&(name, method, _)| Backend { name, method })
+            .ok_or_else(|| format!("unknown backend {given:?}"))
+    })
 }
 
 /// Keyframe blending.
@@ -58,61 +85,6 @@ pub enum Keyframes {
     Gltf,
     /// `M_1 exp(a log(M_1^-1 M_2))` between a node's neighbouring keyframes.
     MotorLog,
-}
-
-/// A rigged model on the command line.
-#[derive(Args, Debug)]
-pub struct RigInput {
-    /// The rigged model: glTF 2.0 (.gltf, .glb), or a mesh (OBJ, OFF) with --skeleton and
-    /// --weights.
-    pub model: PathBuf,
-    /// libigl skeleton (TGF) of a mesh model.
-    #[arg(long, requires = "weights")]
-    pub skeleton: Option<PathBuf>,
-    /// libigl weights (DMAT, vertices x bones) of a mesh model.
-    #[arg(long, requires = "skeleton")]
-    pub weights: Option<PathBuf>,
-    /// Follow glTF buffer URIs that leave the model's folder (refused by default).
-    #[arg(long)]
-    pub allow_external: bool,
-}
-
-impl RigInput {
-    /// The input files.
-    pub fn paths(&self) -> Vec<&Path> {
-        let mut v = vec![self.model.as_path()];
-        v.extend(self.skeleton.as_deref());
-        v.extend(self.weights.as_deref());
-        v
-    }
-
-    /// Read the rig: glTF by extension, else a libigl mesh with skeleton and weights.
-    pub fn read(&self) -> Result<Rig> {
-        let ext = self
-            .model
-            .extension()
-            .and_then(|e| e.to_str())
-            .unwrap_or("")
-            .to_ascii_lowercase();
-        if ext == "gltf" || ext == "glb" {
-            let options = GltfReadOptions {
-                allow_external: self.allow_external,
-                ..GltfReadOptions::default()
-            };
-            return Ok(read_gltf_with(&self.model, &options)?);
-        }
-        let (Some(s), Some(w)) = (&self.skeleton, &self.weights) else {
-            bail!(
-                "{}: a mesh model needs --skeleton and --weights (or give a .gltf/.glb)",
-                self.model.display()
-            );
-        };
-        let mesh = crate::output::read_mesh(&self.model)?;
-        let skeleton = deform::io::read_tgf(s)?;
-        let weights = deform::io::read_dmat(w)?;
-        libigl_rig(mesh, &skeleton, &weights)
-            .with_context(|| format!("{}: cannot rig", self.model.display()))
-    }
 }
 
 #[derive(Args, Debug)]
@@ -137,7 +109,7 @@ pub struct SkinArgs {
     #[arg(long, value_enum, default_value_t = Keyframes::Gltf)]
     pub keyframes: Keyframes,
     /// The skinning backend.
-    #[arg(long, value_enum, default_value_t = Backend::Cga)]
+    #[arg(long, value_parser = backend(), default_value = "cga")]
     pub backend: Backend,
     /// A joint edit JOINT=MOTOR.json (joint name or skin joint index; the motor acts in the
     /// joint's own frame: rotate or dilate about its pivot, translate along its axes).
@@ -146,7 +118,7 @@ pub struct SkinArgs {
     /// Also skin with this backend and report the l-infinity distance between the two, as a
     /// percentage of the bounding-box diagonal (the paper's Fig. 2: `--backend cga --compare
     /// dqs` with a slight edit of the neck).
-    #[arg(long, value_enum)]
+    #[arg(long, value_parser = backend())]
     pub compare: Option<Backend>,
     /// Generate N in-between frames from the unedited pose to the edited one (linear
     /// blending), written as an OBJ sequence.
@@ -186,22 +158,20 @@ fn numbered(path: &Path, k: usize) -> PathBuf {
     path.with_file_name(format!("{stem}_{k:04}.obj"))
 }
 
-pub fn skin(a: &SkinArgs) -> Result<()> {
+pub fn run(a: &SkinArgs) -> Result<()> {
     let mut inputs = a.rig.paths();
     inputs.extend(a.dmat_animation.as_deref());
     inputs.extend(a.edits.iter().map(|(_, p)| p.as_path()));
-    let mut outputs = vec![a.out.output.as_path()];
-    outputs.extend(a.out.png.as_deref());
-    check_outputs(&inputs, &outputs)?;
-    crate::output::check_formats(&a.out, &["obj", "glb"])?;
+    check_outputs(&inputs, &a.out.paths())?;
+    check_formats(&a.out, &["obj", "glb"])?;
     let glb = a
         .out
         .output
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("glb"));
     let t = Instant::now();
-    let rig = a.rig.read()?;
-    let load_ms = t.elapsed().as_secs_f64() * 1e3;
+    let rig = read_rig(&a.rig)?;
+    let load_ms = ms(t);
     let animation = a
         .animation
         .as_deref()
@@ -213,17 +183,13 @@ pub fn skin(a: &SkinArgs) -> Result<()> {
         let motor = parse_motor(&read_text(path)?, &path.display().to_string())?;
         edits.push(JointEdit { joint: j, motor });
     }
-    let method = a.backend.method();
+    let method = a.backend.method;
     let t = Instant::now();
     let bound = Skinning::bind(&rig, method)?;
-    let bind_ms = t.elapsed().as_secs_f64() * 1e3;
+    let bind_ms = ms(t);
     let mut report = Report::new("skin", &rig.mesh);
     // The name given on the command line, and the blend method it selects.
-    let backend = a
-        .backend
-        .to_possible_value()
-        .map(|v| v.get_name().to_string());
-    report.add("backend", backend.unwrap_or_default());
+    report.add("backend", a.backend.name);
     report.add("blend_method", method.name());
     report.add("joints", rig.joints.len());
     report.add("animations", rig.animations.len());
@@ -306,7 +272,7 @@ pub fn skin(a: &SkinArgs) -> Result<()> {
     }
     let other = a
         .compare
-        .map(|b| Skinning::bind(&rig, b.method()))
+        .map(|b| Skinning::bind(&rig, b.method))
         .transpose()?;
     let mut other_posed = vec![DVec3::ZERO; rig.mesh.vertex_count()];
     let mut linf: f64 = 0.0;
@@ -316,13 +282,7 @@ pub fn skin(a: &SkinArgs) -> Result<()> {
     };
     let mut pose = RigPose::default();
     let mut finished: Vec<(PathBuf, Vec<DVec3>)> = Vec::with_capacity(frames.len());
-    let progress = (sequence && !a.out.quiet).then(|| {
-        let bar = indicatif::ProgressBar::new(frames.len() as u64);
-        let style =
-            indicatif::ProgressStyle::with_template("posing frames {pos}/{len} {bar:30} {elapsed}");
-        bar.set_style(style.unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()));
-        bar
-    });
+    let progress = crate::progress::frames(frames.len(), sequence && !a.out.quiet);
     for (k, (time, frame_edits)) in frames.iter().enumerate() {
         if let Some(bar) = &progress {
             bar.set_position(k as u64);
@@ -386,7 +346,7 @@ pub fn skin(a: &SkinArgs) -> Result<()> {
         let diag = Mesh::new(posed.clone(), Vec::new())
             .bounding_box()
             .map_or(f64::NAN, |b| b.diagonal());
-        report.add("compared_with", b.method().name());
+        report.add("compared_with", b.method.name());
         report.add("linf_difference_percent_of_diagonal", 100.0 * linf / diag);
     }
     report.add("pose_ms", pose_ms / frames.len() as f64);
@@ -396,7 +356,7 @@ pub fn skin(a: &SkinArgs) -> Result<()> {
             node_transforms: Some(pose.locals.clone()),
             without_animations: false,
         };
-        crate::output::write_glb(&a.out.output, &rig, &options)?;
+        write_glb(&a.out.output, &rig, &options)?;
     }
     report.add("output", a.out.output.display().to_string());
     if let Some(png) = &a.out.png {
@@ -410,11 +370,7 @@ pub fn skin(a: &SkinArgs) -> Result<()> {
                 .collect(),
             rig.mesh.triangles.clone(),
         );
-        let moved: Vec<f64> = posed
-            .iter()
-            .zip(&rest_mesh.positions)
-            .map(|(p, q)| p.distance(*q))
-            .collect();
+        let moved = displacement(&rest_mesh, &posed);
         let image = preview::before_after(
             &rest_mesh,
             &Mesh::new(posed, rig.mesh.triangles.clone()),

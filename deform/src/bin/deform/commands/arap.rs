@@ -3,9 +3,12 @@
 //! selected group stays fixed; iterations start from the rest pose and the energy is printed
 //! after each one.
 
-use crate::args::{MeshInput, OutputArgs};
-use crate::commands::{finish, read_inputs, with_progress, Report};
-use crate::output::read_text;
+use crate::finish::{displacement, finish};
+use crate::input_files::{read_mesh_input, read_text};
+use crate::progress::with_progress;
+use crate::report::Report;
+use crate::shared_args::{MeshInput, OutputArgs};
+use crate::timing::ms;
 use anyhow::{bail, Context, Result};
 use clap::{Args, ValueEnum};
 use deform::arap::{Arap, ArapEnergy, ArapOptions, LocalStep, Stop, Targets};
@@ -72,8 +75,8 @@ fn moved_groups(text: &str, name: &str, groups: usize) -> Result<Vec<bool>> {
     Ok(moved)
 }
 
-pub fn arap(a: &ArapArgs) -> Result<()> {
-    let (mesh, sel) = read_inputs(&a.input, &[a.motors.as_path()], &a.out)?;
+pub fn run(a: &ArapArgs) -> Result<()> {
+    let (mesh, sel) = read_mesh_input(&a.input, &[a.motors.as_path()], &a.out)?;
     let name = a.motors.display().to_string();
     let text = read_text(&a.motors)?;
     let motors = parse_group_motors(&text, &name, sel.groups.len())?;
@@ -128,7 +131,7 @@ pub fn arap(a: &ArapArgs) -> Result<()> {
         || Arap::bind(&mesh, &fixed, &handles, options),
     )
     .with_context(|| format!("{}: cannot bind", a.input.mesh.display()))?;
-    let bind_ms = t.elapsed().as_secs_f64() * 1e3;
+    let bind_ms = ms(t);
     let mut posed = mesh.positions.clone();
     let chatty = !a.out.quiet && !a.out.json;
     let mut energies = Vec::new();
@@ -141,7 +144,7 @@ pub fn arap(a: &ArapArgs) -> Result<()> {
             energies.push(e);
         })
         .with_context(|| format!("{name}: cannot pose"))?;
-    let pose_ms = t.elapsed().as_secs_f64() * 1e3;
+    let pose_ms = ms(t);
     let mut report = Report::new("arap", &mesh);
     report.add("energy_kind", options.energy.name());
     report.add(
@@ -165,10 +168,6 @@ pub fn arap(a: &ArapArgs) -> Result<()> {
     }
     report.add("bind_ms", bind_ms);
     report.add("pose_ms", pose_ms);
-    let moved: Vec<f64> = posed
-        .iter()
-        .zip(&mesh.positions)
-        .map(|(p, q)| p.distance(*q))
-        .collect();
+    let moved = displacement(&mesh, &posed);
     finish(&mesh, posed, &moved, &a.out, &mut report)
 }

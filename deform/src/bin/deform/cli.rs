@@ -1,0 +1,86 @@
+//! The command line (clap): the program, its global options and its subcommands, each with
+//! its arguments in its own file under `commands/` (the groups they share are in
+//! `shared_args.rs`). Every subcommand shares the motor JSON format, the selection format,
+//! `-o`, `--png`, `--json` and `--quiet`.
+
+use crate::commands::{arap, cage, cut, demo, drill, fabrik, ffd, handles, skin, spline, tear};
+use clap::{Parser, Subcommand};
+
+/// Mesh deformation with conformal geometric algebra motors.
+#[derive(Parser, Debug)]
+#[command(name = "deform", version, about, long_about = None)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+    /// The work budget: the most elements (f64s of a buffer, grid nodes, vertices times frames
+    /// or iterations) any size asked for may come to; larger requests are refused up front.
+    #[arg(long, global = true, default_value_t = crate::budget::DEFAULT_MAX_WORK)]
+    pub max_work: u64,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Bend, twist and stretch procedural meshes with every scheme, fit a spline to a FABRIK
+    /// chain, move motor handles; write OBJ files, PNG previews and a contact sheet, and
+    /// print a table of bind and pose times.
+    Demo(demo::DemoArgs),
+    /// Spline-aligned deformation: group 0 of the selection is H_1 (lambda = 0), the highest
+    /// group H_n (lambda = 1); keys are posed relative to the rest pose (rest keys are the
+    /// identity unless --rest-keys is given).
+    Spline(spline::SplineArgs),
+    /// Motor handles: one harmonic field per selection group, one motor per group.
+    Handles(handles::HandlesArgs),
+    /// Inverse kinematics driving a spline: a chain of joints (JSON array of [x, y, z],
+    /// root first; default: a straight chain of --joints joints from the centroid of group 0
+    /// to the centroid of the highest group) is solved by FABRIK for its end effector to reach
+    /// --target; its joint frames are fitted by a cubic B-spline of --controls motors, which
+    /// deforms the mesh (the first paper's Fig. 5). An unreachable target stretches the chain
+    /// towards it and says so.
+    Fabrik(fabrik::FabrikArgs),
+    /// Free-form deformation: a lattice of L x M x N control points over the mesh's box (or
+    /// --box), one motor per control point (index u + L*(v + M*w), "*" the rest); motor FFD
+    /// (the paper's equations (7)-(8)) or classic positional FFD (--positional).
+    Ffd(ffd::FfdArgs),
+    /// Cage deformation: mean value or harmonic coordinates of the mesh in a closed cage, one
+    /// motor per cage vertex ("*" the rest); motor-valued or positional (--positional). A cage
+    /// that does not enclose the mesh is an error (exit code 2).
+    Cage(cage::CageArgs),
+    /// As-rigid-as-possible deformation (the paper's rotors): selection groups with a motor
+    /// in --motors are handles moved rigidly by it, the other groups stay fixed; iterates
+    /// from the rest pose and prints the energy after each iteration.
+    Arap(arap::ArapArgs),
+    /// Skinning: pose a rigged model (glTF, or a mesh with --skeleton TGF and --weights DMAT)
+    /// at --time of --animation, with joint edits, by any --backend; write OBJ (world space by
+    /// the glTF skinning formula, one vertex per glTF vertex, primitives concatenated in
+    /// document order), an OBJ sequence (--range, --in-betweens) or the whole rig as .glb.
+    Skin(skin::SkinArgs),
+    /// Cut a rigged model by the plane n.x = d (the second paper's Algorithm 1): both pieces
+    /// stay skinned and animatable; .glb keeps the rig (one primitive per piece), OBJ writes
+    /// the rest mesh. Coordinates are rest-pose mesh space unless --time is given.
+    Cut(cut::CutArgs),
+    /// Drill a hole with a finite cylinder from --tip to --end of --radius (Algorithm 3);
+    /// the result stays skinned and animatable.
+    Drill(drill::DrillArgs),
+    /// Tear the skin with a scalpel given at successive time steps (Algorithm 2): the
+    /// incision opens (--open pulls its lips apart); the result stays skinned and animatable.
+    Tear(tear::TearArgs),
+}
+
+impl Command {
+    /// Runs the subcommand.
+    pub fn run(&self) -> anyhow::Result<()> {
+        match self {
+            Command::Demo(a) => demo::run(a),
+            Command::Spline(a) => spline::run(a),
+            Command::Handles(a) => handles::run(a),
+            Command::Fabrik(a) => fabrik::run(a),
+            Command::Ffd(a) => ffd::run(a),
+            Command::Cage(a) => cage::run(a),
+            Command::Arap(a) => arap::run(a),
+            Command::Skin(a) => skin::run(a),
+            Command::Cut(a) => cut::run(a),
+            Command::Drill(a) => drill::run(a),
+            Command::Tear(a) => tear::run(a),
+        }
+    }
+}

@@ -1,0 +1,103 @@
+//! `deform cage`: cage deformation by mean value or harmonic coordinates of the mesh in a
+//! closed cage, one motor per cage vertex, in motor or positional form: read, bind, pose
+//! (timed), write, report.
+
+use crate::finish::pose_and_finish;
+use crate::input_files::{read_mesh, read_mesh_checked, read_text};
+use crate::progress::with_progress;
+use crate::report::Report;
+use crate::shared_args::{FormArgs, OutputArgs};
+use crate::timing::ms;
+use anyhow::Result;
+use clap::{Args, ValueEnum};
+use deform::cage::{CageCoordinates, CageDeformer, CageOptions, HarmonicGrid};
+use deform::input::parse_group_motors;
+use std::path::PathBuf;
+use std::time::Instant;
+
+#[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
+pub enum CoordsArg {
+    Mvc,
+    Harmonic,
+}
+
+#[derive(Args, Debug)]
+pub struct CageArgs {
+    /// The mesh (OBJ, OFF or MEDIT).
+    pub mesh: PathBuf,
+    /// The closed triangle cage around it.
+    #[arg(long)]
+    pub cage: PathBuf,
+    /// Mean value or harmonic coordinates.
+    #[arg(long, value_enum, default_value = "mvc")]
+    pub coords: CoordsArg,
+    /// Grid nodes along the cage's longest side (harmonic coordinates).
+    #[arg(long, default_value_t = 64)]
+    pub grid: usize,
+    /// Accept a cage whose faces cross each other (refused by default).
+    #[arg(long)]
+    pub allow_self_intersecting: bool,
+    /// Per-cage-vertex motors: JSON {"index": motor, "*": motor for the rest}.
+    #[arg(long)]
+    pub motors: PathBuf,
+    #[command(flatten)]
+    pub form: FormArgs,
+    #[command(flatten)]
+    pub out: OutputArgs,
+}
+
+pub fn run(a: &CageArgs) -> Result<()> {
+    let mesh = read_mesh_checked(&a.mesh, &[a.cage.as_path(), a.motors.as_path()], &a.out)?;
+    let cage = read_mesh(&a.cage)?;
+    if a.coords == CoordsArg::Harmonic {
+        let g = a.grid as u64;
+        let what = format!(
+            "a harmonic grid of {g} nodes per side (its factorisation grows as the 4th power)"
+        );
+        crate::budget::check("--grid", &what, &[g, g, g, g])?;
+    }
+    let name = a.motors.display().to_string();
+    let motors = parse_group_motors(&read_text(&a.motors)?, &name, cage.vertex_count())?;
+    let options = CageOptions {
+        coordinates: match a.coords {
+            CoordsArg::Mvc => CageCoordinates::MeanValue,
+            CoordsArg::Harmonic => CageCoordinates::Harmonic(HarmonicGrid { resolution: a.grid }),
+        },
+        form: a.form.form(),
+        allow_self_intersecting: a.allow_self_intersecting,
+    };
+    let t = Instant::now();
+    let d = with_progress(
+        "binding (cage coordinates)",
+        mesh.vertex_count() * cage.vertex_count() / 20,
+        a.out.quiet,
+        || CageDeformer::bind(&mesh, &cage, options),
+    )
+    .map_err(|e| {
+        let hint = if matches!(
+            e,
+            deform::Error::Cage(deform::cage::CageError::SelfIntersecting { .. })
+        ) {
+            " (--allow-self-intersecting accepts it)"
+        } else {
+            ""
+        };
+        anyhow::Error::new(e).context(format!(
+            "{}: cannot bind to the cage {}{hint}",
+            a.mesh.display(),
+            a.cage.display()
+        ))
+    })?;
+    let mut report = Report::new("cage", &mesh);
+    report.add("bind_ms", ms(t));
+    report.add("cage_vertices", cage.vertex_count());
+    report.add(
+        "coords",
+        match a.coords {
+            CoordsArg::Mvc => "mvc",
+            CoordsArg::Harmonic => "harmonic",
+        },
+    );
+    report.add("form", options.form.name());
+    pose_and_finish(&d, &mesh, &motors, &a.out, report)
+}

@@ -1,0 +1,57 @@
+//! `deform drill`: drill a hole with a finite cylinder (the second paper's Algorithm 3); the
+//! result stays skinned and animatable, written as `.glb` or OBJ.
+
+use crate::report::Report;
+use crate::shared_args::{OutputArgs, RigInput, ToolFrame};
+use crate::surgery_io::{prepare, write_one, Posed, Prepared};
+use crate::timing::ms;
+use anyhow::Result;
+use clap::Args;
+use glam::DVec3;
+use std::time::Instant;
+
+#[derive(Args, Debug)]
+pub struct DrillArgs {
+    #[command(flatten)]
+    pub rig: RigInput,
+    /// The drill's tip A as X,Y,Z.
+    #[arg(long, value_parser = crate::numbers::point, allow_hyphen_values = true)]
+    pub tip: DVec3,
+    /// The drill's end B as X,Y,Z.
+    #[arg(long, value_parser = crate::numbers::point, allow_hyphen_values = true)]
+    pub end: DVec3,
+    /// The drill's radius.
+    #[arg(long, value_parser = crate::numbers::positive)]
+    pub radius: f64,
+    #[command(flatten)]
+    pub frame: ToolFrame,
+    #[command(flatten)]
+    pub out: OutputArgs,
+}
+
+pub fn run(a: &DrillArgs) -> Result<()> {
+    use deform::surgery::{Drill, DrillOptions};
+    let Prepared {
+        rig,
+        posed,
+        surgery,
+        index_ms,
+    } = prepare(&a.rig, &a.frame, &a.out)?;
+    let d = Drill {
+        tip: a.tip,
+        end: a.end,
+        radius: a.radius,
+    };
+    let t = Instant::now();
+    let r = surgery.drill(&d, Posed::frame(&posed), &DrillOptions::default())?;
+    let drill_ms = ms(t);
+    let mut report = Report::new("drill", &rig.mesh);
+    report.add("index_ms", index_ms);
+    report.add("drill_ms", drill_ms);
+    report.add("new_vertices", r.new_vertices);
+    report.add("removed_faces", r.removed_faces);
+    report.add("refined_faces", r.refined_faces);
+    report.add("holes", r.holes);
+    report.add("boundary_loops", r.boundary_loops);
+    write_one(&rig, &r.mesh, &r.origin, &a.out, &mut report)
+}

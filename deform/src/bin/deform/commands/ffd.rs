@@ -1,0 +1,89 @@
+//! `deform ffd`: free-form deformation by a lattice of control points over the mesh's box,
+//! one motor per control point, in motor or positional form: read, bind, pose (timed),
+//! write, report.
+
+use crate::finish::pose_and_finish;
+use crate::input_files::{read_mesh_checked, read_text};
+use crate::report::Report;
+use crate::shared_args::{FormArgs, OutputArgs};
+use crate::timing::ms;
+use anyhow::{Context, Result};
+use clap::Args;
+use deform::ffd::{Ffd, FfdOptions, LatticeBasis};
+use deform::input::parse_group_motors;
+use glam::DVec3;
+use std::path::PathBuf;
+use std::time::Instant;
+
+#[derive(Args, Debug)]
+pub struct FfdArgs {
+    /// The mesh (OBJ, OFF or MEDIT).
+    pub mesh: PathBuf,
+    /// Control points per axis: LxMxN (each at least 2).
+    #[arg(long, value_parser = crate::numbers::dims)]
+    pub lattice: [usize; 3],
+    /// Clamped uniform B-spline basis of this degree (1 to 3) instead of Bernstein
+    /// polynomials of degree L-1, M-1, N-1.
+    #[arg(long)]
+    pub degree: Option<usize>,
+    /// The lattice box MINX,MINY,MINZ,MAXX,MAXY,MAXZ (default: the mesh's bounding box).
+    #[arg(long = "box", value_parser = crate::numbers::bounds, allow_hyphen_values = true)]
+    pub bounds: Option<[f64; 6]>,
+    /// Per-control-point motors: JSON {"index": motor, "*": motor for the rest}.
+    #[arg(long)]
+    pub motors: PathBuf,
+    #[command(flatten)]
+    pub form: FormArgs,
+    #[command(flatten)]
+    pub out: OutputArgs,
+}
+
+pub fn run(a: &FfdArgs) -> Result<()> {
+    let mesh = read_mesh_checked(&a.mesh, &[a.motors.as_path()], &a.out)?;
+    // Per vertex: a weight per control point, and for Bernstein polynomials of degree L-1,
+    // M-1, N-1 their evaluation (quadratic in the degree).
+    let [l, m, n] = a.lattice.map(|c| c as u64);
+    let squares = [l, m, n]
+        .iter()
+        .try_fold(0u64, |acc, &d| acc.checked_add(d.checked_mul(d)?));
+    let per_vertex = crate::budget::product(&[l, m, n]).and_then(|points| match a.degree {
+        None => points.checked_add(squares?),
+        Some(_) => Some(points),
+    });
+    let what = format!(
+        "{l}x{m}x{n} control points for {} vertices",
+        mesh.vertex_count()
+    );
+    let factors = [per_vertex.unwrap_or(u64::MAX), mesh.vertex_count() as u64];
+    crate::budget::check("--lattice", &what, &factors)?;
+    let count: usize = a.lattice.iter().product();
+    let name = a.motors.display().to_string();
+    let motors = parse_group_motors(&read_text(&a.motors)?, &name, count)?;
+    let options = FfdOptions {
+        basis: a
+            .degree
+            .map_or(LatticeBasis::Bernstein, LatticeBasis::BSpline),
+        form: a.form.form(),
+    };
+    let bounds = a
+        .bounds
+        .map(|b| (DVec3::new(b[0], b[1], b[2]), DVec3::new(b[3], b[4], b[5])));
+    let t = Instant::now();
+    let d = Ffd::bind(&mesh, a.lattice, bounds, options)
+        .with_context(|| format!("{}: cannot bind to the lattice", a.mesh.display()))?;
+    let mut report = Report::new("ffd", &mesh);
+    report.add("bind_ms", ms(t));
+    report.add(
+        "lattice",
+        format!("{}x{}x{}", a.lattice[0], a.lattice[1], a.lattice[2]),
+    );
+    report.add(
+        "basis",
+        match options.basis {
+            LatticeBasis::Bernstein => "bernstein".to_string(),
+            LatticeBasis::BSpline(p) => format!("bspline-{p}"),
+        },
+    );
+    report.add("form", options.form.name());
+    pose_and_finish(&d, &mesh, &motors, &a.out, report)
+}

@@ -1,0 +1,53 @@
+//! `deform handles`: motor handles, one harmonic field and one motor per selection group:
+//! read, bind, pose, write, report.
+
+use crate::finish::pose_and_finish;
+use crate::input_files::{read_mesh_input, read_text};
+use crate::progress::with_progress;
+use crate::report::Report;
+use crate::shared_args::{BlendingArgs, MeshInput, OutputArgs};
+use crate::timing::ms;
+use anyhow::{Context, Result};
+use clap::Args;
+use deform::input::parse_group_motors;
+use deform::{HandleOptions, MotorHandles};
+use std::path::PathBuf;
+use std::time::Instant;
+
+#[derive(Args, Debug)]
+pub struct HandlesArgs {
+    #[command(flatten)]
+    pub input: MeshInput,
+    /// Per-group motors: JSON {"k": motor, "*": motor for the rest}.
+    #[arg(long)]
+    pub motors: PathBuf,
+    #[command(flatten)]
+    pub blending: BlendingArgs,
+    #[command(flatten)]
+    pub out: OutputArgs,
+}
+
+pub fn run(a: &HandlesArgs) -> Result<()> {
+    let (mesh, sel) = read_mesh_input(&a.input, &[a.motors.as_path()], &a.out)?;
+    let name = a.motors.display().to_string();
+    let motors = parse_group_motors(&read_text(&a.motors)?, &name, sel.groups.len())?;
+    let options = HandleOptions {
+        harmonic: a.blending.harmonic(),
+        method: a.blending.blend,
+    };
+    let rest = vec![cga::ScaledMotor::IDENTITY; sel.groups.len()];
+    let t = Instant::now();
+    let d = with_progress(
+        "binding (harmonic fields)",
+        mesh.vertex_count(),
+        a.out.quiet,
+        || MotorHandles::bind_with(&mesh, &sel.sets(), &rest, options),
+    )
+    .with_context(|| format!("{}: cannot bind", a.input.mesh.display()))?;
+    let bind_ms = ms(t);
+    let mut report = Report::new("handles", &mesh);
+    report.add("handles", sel.groups.len());
+    report.add("blend", options.method.name());
+    report.add("bind_ms", bind_ms);
+    pose_and_finish(&d, &mesh, &motors, &a.out, report)
+}

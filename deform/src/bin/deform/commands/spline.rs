@@ -1,0 +1,98 @@
+//! `deform spline`: spline-aligned deformation of a mesh between its first and last
+//! selection groups by key motors: read, bind, pose, write, report.
+
+use crate::finish::finish;
+use crate::input_files::{read_mesh_input, read_text};
+use crate::progress::with_progress;
+use crate::report::Report;
+use crate::shared_args::{BlendingArgs, MeshInput, OutputArgs};
+use crate::spline_ends::ends;
+use crate::timing::{ms, time_pose};
+use anyhow::{bail, Context, Result};
+use clap::{Args, ValueEnum};
+use deform::input::parse_key_list;
+use deform::{SplineDeformer, SplineOptions, WeightScheme};
+use glam::DVec3;
+use std::path::PathBuf;
+use std::time::Instant;
+
+#[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
+pub enum SchemeArg {
+    Linear,
+    Quadratic,
+    Bezier,
+    Bspline,
+}
+
+impl SchemeArg {
+    fn scheme(self) -> WeightScheme {
+        match self {
+            SchemeArg::Linear => WeightScheme::Linear,
+            SchemeArg::Quadratic => WeightScheme::Quadratic,
+            SchemeArg::Bezier => WeightScheme::Bezier,
+            SchemeArg::Bspline => WeightScheme::BSpline,
+        }
+    }
+}
+
+#[derive(Args, Debug)]
+pub struct SplineArgs {
+    #[command(flatten)]
+    pub input: MeshInput,
+    /// The key motors: a JSON array of motors.
+    #[arg(long)]
+    pub keys: PathBuf,
+    /// The rest key motors (default: the identity for every key).
+    #[arg(long)]
+    pub rest_keys: Option<PathBuf>,
+    /// The basis functions.
+    #[arg(long, value_enum, default_value = "bspline")]
+    pub scheme: SchemeArg,
+    #[command(flatten)]
+    pub blending: BlendingArgs,
+    #[command(flatten)]
+    pub out: OutputArgs,
+}
+
+pub fn run(a: &SplineArgs) -> Result<()> {
+    let mut extra = vec![a.keys.as_path()];
+    if let Some(r) = &a.rest_keys {
+        extra.push(r.as_path());
+    }
+    let (mesh, sel) = read_mesh_input(&a.input, &extra, &a.out)?;
+    let (first, last) = ends(&sel, &a.input.select)?;
+    let name = a.keys.display().to_string();
+    let keys = parse_key_list(&read_text(&a.keys)?, &name)?;
+    let rest = match &a.rest_keys {
+        Some(r) => parse_key_list(&read_text(r)?, &r.display().to_string())?,
+        None => vec![cga::ScaledMotor::IDENTITY; keys.len()],
+    };
+    if rest.len() != keys.len() {
+        bail!("{} rest keys but {} keys", rest.len(), keys.len());
+    }
+    let options = SplineOptions {
+        scheme: a.scheme.scheme(),
+        harmonic: a.blending.harmonic(),
+        method: a.blending.blend,
+    };
+    let t = Instant::now();
+    let d = with_progress(
+        "binding (harmonic field)",
+        mesh.vertex_count(),
+        a.out.quiet,
+        || SplineDeformer::bind(&mesh, &first, &last, &rest, options),
+    )
+    .with_context(|| format!("{}: cannot bind", a.input.mesh.display()))?;
+    let bind_ms = ms(t);
+    let mut posed = vec![DVec3::ZERO; mesh.vertex_count()];
+    let pose_ms =
+        time_pose(&d, &keys, &mut posed).with_context(|| format!("{name}: cannot pose"))?;
+    let mut report = Report::new("spline", &mesh);
+    report.add("scheme", options.scheme.name());
+    report.add("blend", options.method.name());
+    report.add("keys", keys.len());
+    report.add("bind_ms", bind_ms);
+    report.add("pose_ms", pose_ms);
+    let lambda = d.lambda().to_vec();
+    finish(&mesh, posed, &lambda, &a.out, &mut report)
+}

@@ -1,0 +1,59 @@
+//! The last steps of every mesh deformer command: pose and time, refuse a non-finite result,
+//! write the OBJ and the preview, print the report.
+
+use crate::output_files::{write_obj, write_png};
+use crate::preview;
+use crate::report::Report;
+use crate::shared_args::OutputArgs;
+use crate::timing::time_pose;
+use anyhow::{bail, Context, Result};
+use deform::{Deformer, Mesh};
+use glam::DVec3;
+
+/// Write the posed mesh and its preview (the posed mesh coloured by `scalar`), then print the
+/// report.
+pub fn finish(
+    mesh: &Mesh,
+    posed: Vec<DVec3>,
+    scalar: &[f64],
+    out: &OutputArgs,
+    report: &mut Report,
+) -> Result<()> {
+    if let Some(i) = posed.iter().position(|p| !p.is_finite()) {
+        bail!("vertex {i}: the deformation produced a non-finite position");
+    }
+    let posed = Mesh::new(posed, mesh.triangles.clone());
+    write_obj(&out.output, &posed)?;
+    report.add("output", out.output.display().to_string());
+    if let Some(png) = &out.png {
+        let image = preview::before_after(mesh, &posed, scalar, 30.0, 20.0)?;
+        write_png(png, &image)?;
+        report.add("png", png.display().to_string());
+    }
+    report.print(out);
+    Ok(())
+}
+
+/// How far each vertex moved from `rest` to `posed`.
+pub fn displacement(rest: &Mesh, posed: &[DVec3]) -> Vec<f64> {
+    posed
+        .iter()
+        .zip(&rest.positions)
+        .map(|(p, q)| p.distance(*q))
+        .collect()
+}
+
+/// Pose, time, report and write, the preview coloured by displacement.
+pub fn pose_and_finish(
+    d: &dyn Deformer,
+    mesh: &Mesh,
+    motors: &[cga::ScaledMotor],
+    out: &OutputArgs,
+    mut report: Report,
+) -> Result<()> {
+    let mut posed = vec![DVec3::ZERO; mesh.vertex_count()];
+    let pose_ms = time_pose(d, motors, &mut posed).context("cannot pose")?;
+    report.add("pose_ms", pose_ms);
+    let moved = displacement(mesh, &posed);
+    finish(mesh, posed, &moved, out, &mut report)
+}

@@ -1,0 +1,173 @@
+//! The argument groups several subcommands share: the mesh and its selection, the rigged
+//! model, where a surgery tool is given, how weights are computed and motors blended, and
+//! `-o`, `--png`, `--json`, `--quiet`.
+
+use clap::builder::{PossibleValuesParser, TypedValueParser};
+use clap::{Args, ValueEnum};
+use deform::control::ControlForm;
+use deform::{BlendMethod, HarmonicOptions, LaplacianKind};
+use std::path::{Path, PathBuf};
+
+/// Options every command that writes files shares.
+#[derive(Args, Debug, Clone)]
+pub struct OutputArgs {
+    /// The deformed mesh (OBJ; the input's vertex order and count are kept).
+    #[arg(short = 'o', long = "output")]
+    pub output: PathBuf,
+    /// A PNG preview: the rest mesh beside the deformed one.
+    #[arg(long)]
+    pub png: Option<PathBuf>,
+    /// Print timings and counts as one JSON object on stdout.
+    #[arg(long)]
+    pub json: bool,
+    /// Print nothing but errors.
+    #[arg(long, short)]
+    pub quiet: bool,
+}
+
+impl OutputArgs {
+    /// The files this run writes: `-o` and `--png`.
+    pub fn paths(&self) -> Vec<&Path> {
+        let mut outputs = vec![self.output.as_path()];
+        outputs.extend(self.png.as_deref());
+        outputs
+    }
+}
+
+/// The mesh and its handle groups, read by every subcommand.
+#[derive(Args, Debug)]
+pub struct MeshInput {
+    /// The mesh (OBJ, OFF or MEDIT).
+    pub mesh: PathBuf,
+    /// Handle groups: a libigl DMAT (-1 free, k >= 0 group) or JSON {"k": [vertices]}.
+    #[arg(long)]
+    pub select: PathBuf,
+}
+
+#[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
+pub enum LaplacianArg {
+    MeanValue,
+    Cotangent,
+}
+
+/// A blend method by its library name ([`BlendMethod::name`]), parsed by its `FromStr`; the
+/// names are clap's possible values (listed in the help and in the error for any other).
+pub fn blend_method() -> impl TypedValueParser<Value = BlendMethod> {
+    PossibleValuesParser::new(BlendMethod::ALL.map(BlendMethod::name))
+        .try_map(|name| name.parse::<BlendMethod>())
+}
+
+/// How weights are computed and motors blended.
+#[derive(Args, Debug)]
+pub struct BlendingArgs {
+    /// The Laplacian of the harmonic fields.
+    #[arg(long, value_enum, default_value = "mean-value")]
+    pub laplacian: LaplacianArg,
+    /// How the key motors are blended.
+    #[arg(long, value_parser = blend_method(), default_value = "motor-log")]
+    pub blend: BlendMethod,
+}
+
+impl BlendingArgs {
+    /// The harmonic fields' options for `--laplacian`.
+    pub fn harmonic(&self) -> HarmonicOptions {
+        HarmonicOptions {
+            laplacian: match self.laplacian {
+                LaplacianArg::MeanValue => LaplacianKind::MeanValue,
+                LaplacianArg::Cotangent => LaplacianKind::Default,
+            },
+            ..HarmonicOptions::default()
+        }
+    }
+}
+
+/// Positional or motor-valued posing of control points.
+#[derive(Args, Debug)]
+pub struct FormArgs {
+    /// Classic positional form: each control point moves by its motor, vertices follow the
+    /// weighted sum of the points.
+    #[arg(long)]
+    pub positional: bool,
+    /// How the motors are blended in the motor form.
+    #[arg(long, value_parser = blend_method(), default_value = "motor-log")]
+    pub blend: BlendMethod,
+}
+
+impl FormArgs {
+    /// The form the flags select.
+    pub fn form(&self) -> ControlForm {
+        if self.positional {
+            ControlForm::Positional
+        } else {
+            ControlForm::Motor(self.blend)
+        }
+    }
+}
+
+/// A rigged model on the command line.
+#[derive(Args, Debug)]
+pub struct RigInput {
+    /// The rigged model: glTF 2.0 (.gltf, .glb), or a mesh (OBJ, OFF) with --skeleton and
+    /// --weights.
+    pub model: PathBuf,
+    /// libigl skeleton (TGF) of a mesh model.
+    #[arg(long, requires = "weights")]
+    pub skeleton: Option<PathBuf>,
+    /// libigl weights (DMAT, vertices x bones) of a mesh model.
+    #[arg(long, requires = "skeleton")]
+    pub weights: Option<PathBuf>,
+    /// Follow glTF buffer URIs that leave the model's folder (refused by default).
+    #[arg(long)]
+    pub allow_external: bool,
+}
+
+impl RigInput {
+    /// The input files.
+    pub fn paths(&self) -> Vec<&Path> {
+        let mut v = vec![self.model.as_path()];
+        v.extend(self.skeleton.as_deref());
+        v.extend(self.weights.as_deref());
+        v
+    }
+}
+
+/// Where the tool's coordinates are given.
+#[derive(Args, Debug)]
+pub struct ToolFrame {
+    /// Give the tool in the posed world space at this time (of --animation, default the
+    /// first) instead of the rest-pose mesh space.
+    #[arg(long, value_parser = crate::numbers::finite, allow_hyphen_values = true)]
+    pub time: Option<f64>,
+    /// The animation for --time, by name or index.
+    #[arg(long, requires = "time")]
+    pub animation: Option<String>,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn blend_names_round_trip_and_others_are_refused() {
+        for m in BlendMethod::ALL {
+            assert_eq!(m.name().parse::<BlendMethod>(), Ok(m));
+        }
+        let e = "Matrix".parse::<BlendMethod>().unwrap_err();
+        assert_eq!(e.given, "Matrix");
+        let message = e.to_string();
+        for m in BlendMethod::ALL {
+            assert!(message.contains(m.name()), "{message}");
+        }
+    }
+
+    #[test]
+    fn the_blend_parser_lists_every_name() {
+        let names: Vec<String> = blend_method()
+            .possible_values()
+            .into_iter()
+            .flatten()
+            .map(|v| v.get_name().to_string())
+            .collect();
+        assert_eq!(names, BlendMethod::ALL.map(|m| m.name().to_string()));
+    }
+}

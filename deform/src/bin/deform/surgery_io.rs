@@ -1,0 +1,141 @@
+//! What `cut`, `drill` and `tear` share: reading the rig for surgery (refusing outputs that
+//! are inputs), posing it in the frame the tool is given in, and writing what it becomes:
+//! the new rig as `.glb` (its mesh, skin and animations) or its rest mesh as OBJ, and a
+//! preview.
+
+use crate::input_files::read_rig;
+use crate::output_files::{check_formats, check_outputs, write_glb, write_obj, write_png};
+use crate::preview;
+use crate::report::Report;
+use crate::shared_args::{OutputArgs, RigInput, ToolFrame};
+use crate::timing::ms;
+use anyhow::{Context, Result};
+use deform::skinning::{GlbOptions, Rig, Skinning};
+use deform::surgery::{Frame, Surgery};
+use deform::{BlendMethod, Deformer, Mesh};
+use glam::{DAffine3, DVec3};
+use std::time::Instant;
+
+/// The posed positions and skin matrices of the frame the tool is given in (none: rest).
+pub struct Posed {
+    pub positions: Vec<DVec3>,
+    pub skin: Vec<DAffine3>,
+}
+
+impl Posed {
+    pub fn read(rig: &Rig, f: &ToolFrame) -> Result<Option<Posed>> {
+        let Some(t) = f.time else { return Ok(None) };
+        let animation = match &f.animation {
+            Some(a) => Some(rig.animation_index(a)?),
+            None => (!rig.animations.is_empty()).then_some(0),
+        };
+        let pose = rig.pose(animation, t, &[])?;
+        let lbs = Skinning::bind(rig, BlendMethod::Matrix)?;
+        let mut positions = vec![DVec3::ZERO; rig.mesh.vertex_count()];
+        lbs.pose(pose.skin_motors()?, &mut positions)?;
+        Ok(Some(Posed {
+            positions,
+            skin: pose.skin_matrices.clone(),
+        }))
+    }
+
+    pub fn frame(p: &Option<Posed>) -> Frame<'_> {
+        match p {
+            None => Frame::Rest,
+            Some(p) => Frame::Posed {
+                positions: &p.positions,
+                skin: &p.skin,
+            },
+        }
+    }
+}
+
+/// Write the new rig (`.glb`) or its rest mesh (OBJ), and a preview of the parts moved by
+/// `away(part)`, coloured by part, or by `marks` (one value per vertex of a single part).
+pub fn write_result(
+    rig: &Rig,
+    parts: &[(&Mesh, &deform::skinning::Influences)],
+    out: &OutputArgs,
+    away: impl Fn(usize) -> DVec3,
+    marks: Option<Vec<f64>>,
+    report: &mut Report,
+) -> Result<()> {
+    let result = rig
+        .with_parts(parts)
+        .context("the result is not a valid rig")?;
+    let glb = out
+        .output
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("glb"));
+    if glb {
+        write_glb(&out.output, &result, &GlbOptions::default())?;
+    } else {
+        write_obj(&out.output, &result.mesh)?;
+    }
+    report.add("output", out.output.display().to_string());
+    if let Some(png) = &out.png {
+        let mut shown = result.mesh.clone();
+        let mut part_of = vec![0.0; shown.vertex_count()];
+        for (k, p) in result.primitives.iter().enumerate() {
+            let shift = away(k);
+            let r = p.vertex_offset..p.vertex_offset + p.vertex_count;
+            shown.positions[r.clone()]
+                .iter_mut()
+                .for_each(|x| *x += shift);
+            part_of[r].iter_mut().for_each(|x| *x = k as f64);
+        }
+        let scalar = marks.unwrap_or(part_of);
+        let image = preview::before_after(&rig.mesh, &shown, &scalar, 30.0, 50.0)?;
+        write_png(png, &image)?;
+        report.add("png", png.display().to_string());
+    }
+    report.print(out);
+    Ok(())
+}
+
+/// What every surgery command reads first: the rig (refusing outputs that are inputs), the
+/// posed frame of --time, the bound surgery and the time its index took.
+pub struct Prepared {
+    pub rig: Rig,
+    pub posed: Option<Posed>,
+    pub surgery: Surgery,
+    pub index_ms: f64,
+}
+
+pub fn prepare(rig: &RigInput, frame: &ToolFrame, out: &OutputArgs) -> Result<Prepared> {
+    check_outputs(&rig.paths(), &out.paths())?;
+    check_formats(out, &["obj", "glb"])?;
+    let rig = read_rig(rig)?;
+    let posed = Posed::read(&rig, frame)?;
+    let t = Instant::now();
+    let surgery = Surgery::new(&rig.mesh, &rig.influences)?;
+    let index_ms = ms(t);
+    Ok(Prepared {
+        rig,
+        posed,
+        surgery,
+        index_ms,
+    })
+}
+
+/// [`write_result`] for a tool with one result mesh, its new vertices marked in the preview.
+pub fn write_one(
+    rig: &Rig,
+    mesh: &deform::surgery::SkinnedMesh,
+    origin: &[deform::surgery::VertexOrigin],
+    out: &OutputArgs,
+    report: &mut Report,
+) -> Result<()> {
+    let marks = origin
+        .iter()
+        .map(|o| if o.is_input() { 0.0 } else { 1.0 })
+        .collect();
+    write_result(
+        rig,
+        &[(&mesh.mesh, &mesh.influences)],
+        out,
+        |_| DVec3::ZERO,
+        Some(marks),
+        report,
+    )
+}
