@@ -13,8 +13,9 @@
 //! [`f32::Motor`] with `Vec3`/`Quat`/`Mat4`/`Affine3A`. The crate root re-exports the `f64`
 //! types, so `cga::Motor` is `cga::f64::Motor`.
 //!
-//! Conventions (see `DESIGN.md`): basis `eo, e1, e2, e3, ei` with `eo.ei = -1`; a point is
-//! `X = x + 0.5 |x|^2 ei + eo`; a rotor is `R = cos(a/2) - sin(a/2) n I3`; a translator
+//! Conventions (see `ARCHITECTURE.md` at the repository root): basis `eo, e1, e2, e3, ei`
+//! with `eo.ei = -1`; a point is `X = x + 0.5 |x|^2 ei + eo`; a rotor is
+//! `R = cos(a/2) - sin(a/2) n I3`; a translator
 //! `T = 1 - 0.5 t ei`; a motor `M = T R` acts as `M X ~M`; a dilator scales by `d > 0` about the
 //! origin; a scaled motor is `T R D`. `Translator::new`/`Dilator::new` are the generated
 //! coefficient constructors, so the geometric ones are [`Translator::from_translation`] and

@@ -27,6 +27,8 @@ pub mod blend;
 pub mod deformers;
 mod error;
 pub mod input;
+#[cfg(test)]
+mod layering;
 pub mod mesh;
 pub mod operators;
 pub mod render;

@@ -1,6 +1,6 @@
 //! Mesh validation (with the offending indices) and cleaning of raw scans.
 
-use crate::adjacency;
+use crate::mesh::adjacency;
 use crate::mesh::is_degenerate_triangle;
 use crate::mesh::IndexList;
 use crate::mesh::Mesh;

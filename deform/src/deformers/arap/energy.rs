@@ -70,10 +70,9 @@ pub(crate) fn covariances(
 }
 
 /// `sum_i A_i + B_i - 2 tr(R_i S_i)`, summed in a fixed order (the same result on any number
-/// of threads).
-pub(crate) fn energy(cov: &[Covariance], b: &[f64], rots: &[DMat3]) -> f64 {
-    let partial: Vec<f64> = cov
-        .par_chunks(CHUNK)
+/// of threads); `partial` holds the per-chunk sums (scratch, reused).
+pub(crate) fn energy(cov: &[Covariance], b: &[f64], rots: &[DMat3], partial: &mut Vec<f64>) -> f64 {
+    cov.par_chunks(CHUNK)
         .zip(b.par_chunks(CHUNK))
         .zip(rots.par_chunks(CHUNK))
         .map(|((c, b), r)| {
@@ -83,6 +82,6 @@ pub(crate) fn energy(cov: &[Covariance], b: &[f64], rots: &[DMat3]) -> f64 {
                 .map(|((c, b), r)| c.a + b - 2.0 * c.trace_with(r))
                 .sum::<f64>()
         })
-        .collect();
+        .collect_into_vec(partial);
     partial.iter().sum()
 }

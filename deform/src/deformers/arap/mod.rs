@@ -199,6 +199,8 @@ pub struct ArapScratch {
     sol: Vec<f64>,
     boundary: Vec<f64>,
     positions: Vec<DVec3>,
+    /// Per-chunk sums of the energy.
+    partial: Vec<f64>,
     scratch: SolveScratch,
 }
 
@@ -277,6 +279,7 @@ impl Arap {
             sol: vec![0.0; 3 * n],
             boundary: vec![0.0; 3 * nc],
             positions: vec![DVec3::ZERO; n],
+            partial: Vec::with_capacity(n.div_ceil(cells::CHUNK)),
             scratch: system.solver.scratch(3)?,
         })
     }
@@ -510,7 +513,7 @@ impl Arap {
                 *p = DVec3::new(w.sol[i], w.sol[n + i], w.sol[2 * n + i]);
             }
             energy::covariances(&s.cells, positions, &mut w.cov, &mut w.tri_cov);
-            let e = energy::energy(&w.cov, &s.b, &w.rots);
+            let e = energy::energy(&w.cov, &s.b, &w.rots, &mut w.partial);
             on_iteration(k, e);
             if let (Stop::RelativeChange { tolerance, .. }, Some(prev)) = (stop, previous) {
                 if (prev - e).abs() <= tolerance * prev.abs().max(floor) {

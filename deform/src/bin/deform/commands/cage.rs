@@ -76,7 +76,7 @@ pub fn run(a: &CageArgs) -> Result<()> {
     .map_err(|e| {
         let hint = if matches!(
             e,
-            deform::Error::Cage(deform::cage::CageError::SelfIntersecting { .. })
+            deform::DeformError::Cage(deform::cage::CageError::SelfIntersecting { .. })
         ) {
             " (--allow-self-intersecting accepts it)"
         } else {
