@@ -1,6 +1,6 @@
 //! The hostile-input findings of issue 9: each is a typed error or a correct result.
 
-mod common;
+use crate::common;
 
 use deform::io::{parse_dmat, parse_medit, parse_obj, parse_tgf};
 use deform::{

@@ -1,6 +1,6 @@
 //! Mesh geometry, adjacency, validation and cleaning.
 
-mod common;
+use crate::common;
 
 use common::grid;
 use deform::{clean, validate, Mesh};

@@ -7,7 +7,7 @@
 //!
 //! `DEFORM_FUZZ_CASES` (default 3000) and `DEFORM_FUZZ_SEED` (default 20) set the run.
 
-mod common;
+use crate::common;
 
 use common::Lcg;
 use deform::shapes::{icosphere, tube, tube_ring};

@@ -4,7 +4,7 @@
 //! valid and small, turned into a Laplacian and a harmonic field. No mutant may panic, and
 //! every `Ok` must hold finite values. Runs in a few seconds.
 
-mod common;
+use crate::common;
 
 use common::Lcg;
 use deform::io::{parse_dmat, parse_medit, parse_obj, parse_off, parse_tgf};

@@ -2,7 +2,7 @@
 //! 2,338 positions). Vertex by vertex the model is a set of open patches; the cut finds its
 //! loops and caps over coincident vertices welded, so both pieces close.
 
-mod common;
+use crate::common;
 
 use cga::Plane;
 use deform::skinning::read_gltf;

@@ -1,6 +1,6 @@
 //! Laplacians and mass matrices against closed-form cases.
 
-mod common;
+use crate::common;
 
 use common::{grid, mul};
 use deform::{

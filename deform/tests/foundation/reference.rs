@@ -1,6 +1,6 @@
 //! Agreement with libigl 2.6.3 (`../shared/reference/libigl_*.json`) to 1e-10.
 
-mod common;
+use crate::common;
 
 use deform::{cotangent_laplacian, harmonic_field, validate, HarmonicOptions};
 

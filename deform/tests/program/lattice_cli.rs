@@ -2,7 +2,7 @@
 //! identity motors reproduce the input, a cage that does not enclose the mesh and a motor for
 //! a control point that does not exist exit with code 2.
 
-mod common;
+use crate::common;
 
 use deform::shapes::{icosphere, tube};
 use std::path::PathBuf;

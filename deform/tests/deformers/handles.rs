@@ -1,7 +1,7 @@
 //! Motor handles on harmonic coordinates (first paper, section IV), on the libigl Max Planck
 //! bust with its selection file.
 
-mod common;
+use crate::common;
 
 use cga::ScaledMotor;
 use deform::io::{read_dmat, read_mesh};

@@ -1,6 +1,6 @@
 //! Harmonic fields and coordinates on real data, and bad input.
 
-mod common;
+use crate::common;
 
 use common::{grid, mul};
 use deform::io::{read_dmat, read_mesh};

@@ -1,7 +1,7 @@
 //! Cage coordinates: identity, partition of unity, linear precision of MVC, harmonic
 //! coordinates in [0, 1], rigid motions, the shared model/cage pairs, bad cages.
 
-mod common;
+use crate::common;
 
 use cga::ScaledMotor;
 use deform::cage::{

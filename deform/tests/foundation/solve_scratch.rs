@@ -1,7 +1,7 @@
 //! `DirichletSolver::solve_into` with a reused scratch: the allocating solve's result, and no
 //! allocation at all (counted by a global allocator in this test binary only).
 
-mod common;
+use crate::common;
 
 use deform::{cotangent_laplacian, DirichletSolver, Error, SolverOptions};
 use std::alloc::{GlobalAlloc, Layout, System};

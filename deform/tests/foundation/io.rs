@@ -1,6 +1,6 @@
 //! Readers and writers, on the shared data set and on small inline files.
 
-mod common;
+use crate::common;
 
 use deform::io::{self, read_dmat, read_medit, read_mesh, read_tgf};
 use deform::{Error, Mesh};

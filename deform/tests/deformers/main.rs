@@ -1,0 +1,11 @@
+//! The deformers: motor blending, handles, splines, lattices (FFD), cages and ARAP.
+
+#[path = "../common/mod.rs"]
+mod common;
+
+mod arap;
+mod blend;
+mod cage;
+mod ffd;
+mod handles;
+mod spline;
