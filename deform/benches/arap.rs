@@ -18,7 +18,9 @@ use glam::{DQuat, DVec3};
 use std::hint::black_box;
 use std::time::Duration;
 
-mod scenes;
+mod support;
+
+use support::scenes;
 
 /// Fixed bottom, handle top.
 fn sets(mesh: &Mesh) -> (Vec<u32>, Vec<u32>) {

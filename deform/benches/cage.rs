@@ -18,7 +18,9 @@ use glam::{DQuat, DVec3};
 use std::hint::black_box;
 use std::time::Duration;
 
-mod scenes;
+mod support;
+
+use support::scenes;
 
 /// A mesh of the data set (see `scenes::mesh`).
 fn read(rel: &str) -> Option<Mesh> {

@@ -7,7 +7,9 @@
 //!
 //! `cargo bench -p deform --bench deformers`
 
-mod scenes;
+mod support;
+
+use support::scenes;
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use deform::{BlendMethod, Deformer};

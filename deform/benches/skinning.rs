@@ -8,7 +8,9 @@
 //! `cargo bench -p deform --bench skinning`; quick: `cargo run --release -p deform --example
 //! skinning_report`.
 
-mod skin_scenes;
+mod support;
+
+use support::skin_scenes;
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use deform::skinning::{KeyframeBlend, RigPose, Skinning};

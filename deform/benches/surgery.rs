@@ -6,7 +6,9 @@
 //!
 //! `cargo bench -p deform --bench surgery`
 
-mod surgery_scenes;
+mod support;
+
+use support::surgery_scenes;
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use deform::surgery::{CutOptions, DrillOptions, Frame, Surgery, TearOptions};

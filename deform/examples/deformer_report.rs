@@ -7,10 +7,11 @@
 //!
 //! `cargo run --release -p deform --example deformer_report`
 
-#[path = "../benches/scenes.rs"]
+#[path = "../benches/support/scenes.rs"]
 mod scenes;
 
-use scenes::measure::{spread_ms, Tally, Target};
+use devkit::grade::{Tally, Target};
+use devkit::measure::spread_ms;
 
 use deform::{BlendMethod, Deformer, Mesh};
 use glam::DVec3;

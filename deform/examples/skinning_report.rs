@@ -7,10 +7,11 @@
 //!
 //! `cargo run --release -p deform --example skinning_report`
 
-#[path = "../benches/skin_scenes.rs"]
+#[path = "../benches/support/skin_scenes.rs"]
 mod skin_scenes;
 
-use skin_scenes::measure::{median_ms, spread_ms, Spread, Tally, Target};
+use devkit::grade::{Spread, Tally, Target};
+use devkit::measure::{median_ms, spread_ms};
 
 use deform::skinning::{KeyframeBlend, RigPose, Skinning};
 use deform::Deformer;

@@ -9,9 +9,7 @@ use cga::ScaledMotor;
 use deform::skinning::{read_gltf, Influences, Rig};
 use glam::{DQuat, DVec3};
 
-#[path = "measure.rs"]
-pub mod measure;
-use measure::data;
+use devkit::shared::data_file;
 
 /// A skinning scene: rest positions, influences, joint count, and the keys of one frame.
 pub struct SkinScene {
@@ -55,8 +53,9 @@ fn dense(w: &deform::io::Dmat) -> Influences {
 
 /// libigl's armadillo with its 5 weights.
 pub fn armadillo() -> Option<SkinScene> {
-    let mesh = deform::io::read_mesh(data("meshes/libigl/armadillo.obj")?).expect("mesh");
-    let w = deform::io::read_dmat(data("meshes/libigl/armadillo-weights.dmat")?).expect("weights");
+    let mesh = deform::io::read_mesh(data_file("meshes/libigl/armadillo.obj")?).expect("mesh");
+    let w =
+        deform::io::read_dmat(data_file("meshes/libigl/armadillo-weights.dmat")?).expect("weights");
     Some(SkinScene {
         name: "armadillo",
         keys: rigid_keys(&mesh.positions, w.cols),
@@ -68,8 +67,8 @@ pub fn armadillo() -> Option<SkinScene> {
 
 /// libigl's arm with its 4 bone weights.
 pub fn arm() -> Option<SkinScene> {
-    let mesh = deform::io::read_mesh(data("meshes/libigl/arm.obj")?).expect("mesh");
-    let w = deform::io::read_dmat(data("meshes/libigl/arm-weights.dmat")?).expect("weights");
+    let mesh = deform::io::read_mesh(data_file("meshes/libigl/arm.obj")?).expect("mesh");
+    let w = deform::io::read_dmat(data_file("meshes/libigl/arm-weights.dmat")?).expect("weights");
     Some(SkinScene {
         name: "arm",
         keys: rigid_keys(&mesh.positions, w.cols),
@@ -81,7 +80,7 @@ pub fn arm() -> Option<SkinScene> {
 
 /// CesiumMan.
 pub fn cesium_rig() -> Option<Rig> {
-    Some(read_gltf(data("gltf/CesiumMan.glb")?).expect("CesiumMan loads"))
+    Some(read_gltf(data_file("gltf/CesiumMan.glb")?).expect("CesiumMan loads"))
 }
 
 /// CesiumMan at mid-walk.

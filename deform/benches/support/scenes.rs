@@ -9,14 +9,13 @@ use cga::ScaledMotor;
 use deform::{
     BlendMethod, HandleOptions, Mesh, MotorHandles, SplineDeformer, SplineOptions, WeightScheme,
 };
+use devkit::shared::data_file;
 use glam::{DQuat, DVec3};
-#[path = "measure.rs"]
-pub mod measure;
 
 /// A mesh of the data set, e.g. `mesh("large/armadillo-50k.obj")`, from `$CGA_DATA_DIR/meshes`
 /// (else `../shared/data/meshes`); `None` when absent (a panic under `CI=true`).
 pub fn mesh(rel: &str) -> Option<Mesh> {
-    let path = measure::data(&format!("meshes/{rel}"))?;
+    let path = data_file(&format!("meshes/{rel}"))?;
     Some(deform::io::read_mesh(&path).expect("mesh loads"))
 }
 

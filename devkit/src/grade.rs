@@ -1,9 +1,7 @@
 //! Targets that grade themselves: each quick report prints, for every row that has a target, the
 //! target, `met` or `MISSED`, and the spread of the runs behind the figure, then a tally.
 //!
-//! Plain `std`, shared by the `benches` crate's `bench-report` and the `deform` examples (both
-//! include this file by path).
-#![allow(dead_code)]
+//! Shared by the `benches` crate's `bench-report` and the `deform` examples.
 
 use std::fmt;
 

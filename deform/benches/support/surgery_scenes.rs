@@ -11,9 +11,7 @@ use deform::skinning::{libigl_rig, read_gltf, Rig};
 use deform::surgery::{Drill, Scalpel};
 use glam::DVec3;
 
-#[path = "measure.rs"]
-pub mod measure;
-use measure::data;
+use devkit::shared::data_file;
 
 /// A rig and its three tools.
 pub struct SurgeryScene {
@@ -67,9 +65,9 @@ fn scene(name: &'static str, rig: Rig) -> SurgeryScene {
 /// libigl's arm with its skeleton and weights.
 pub fn arm() -> Option<SurgeryScene> {
     let lib = "meshes/libigl/";
-    let mesh = deform::io::read_mesh(data(&format!("{lib}arm.obj"))?).expect("mesh");
-    let sk = deform::io::read_tgf(data(&format!("{lib}arm.tgf"))?).expect("skeleton");
-    let w = deform::io::read_dmat(data(&format!("{lib}arm-weights.dmat"))?).expect("weights");
+    let mesh = deform::io::read_mesh(data_file(&format!("{lib}arm.obj"))?).expect("mesh");
+    let sk = deform::io::read_tgf(data_file(&format!("{lib}arm.tgf"))?).expect("skeleton");
+    let w = deform::io::read_dmat(data_file(&format!("{lib}arm-weights.dmat"))?).expect("weights");
     Some(scene("arm", libigl_rig(mesh, &sk, &w).expect("rig")))
 }
 
@@ -77,7 +75,7 @@ pub fn arm() -> Option<SurgeryScene> {
 pub fn cesium_man() -> Option<SurgeryScene> {
     Some(scene(
         "CesiumMan",
-        read_gltf(data("gltf/CesiumMan.glb")?).expect("CesiumMan loads"),
+        read_gltf(data_file("gltf/CesiumMan.glb")?).expect("CesiumMan loads"),
     ))
 }
 
