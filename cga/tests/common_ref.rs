@@ -8,18 +8,14 @@ use std::path::PathBuf;
 /// The reference directory: `$CGA_REFERENCE_DIR`, else `<workspace>/../shared/reference`.
 /// `None` (with a message) when absent; under `CI=true` absence is a failure.
 pub fn reference_dir() -> Option<PathBuf> {
-    let dir = match std::env::var_os("CGA_REFERENCE_DIR") {
-        Some(d) => PathBuf::from(d),
-        None => PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../shared/reference"),
-    };
+    let dir = devkit::shared::shared_dir(devkit::shared::REFERENCE_VAR, "reference");
     if dir.join("cga_oracle_seed2.json").is_file() {
         return Some(dir);
     }
-    if std::env::var("CI").as_deref() == Ok("true") {
-        panic!("reference data missing at {} (CI=true)", dir.display());
-    }
-    eprintln!("skipped: reference data not found at {}", dir.display());
-    None
+    devkit::shared::missing(
+        format_args!("reference data missing at {} (CI=true)", dir.display()),
+        format_args!("reference data not found at {}", dir.display()),
+    )
 }
 
 pub fn load_oracle() -> Option<serde_json::Value> {
