@@ -1,5 +1,5 @@
 //! criterion benches of the motor deformers on armadillo-50k (49,999 vertices) and its
-//! 200k-vertex subdivision (scenes in `scenes.rs`): bind (harmonic fields and rest points),
+//! 200k-vertex subdivision (scenes in `support/scenes.rs`): bind (harmonic fields and rest points),
 //! pose per frame (both cores), and the four blend methods on the same weights (per-vertex
 //! cost = time / vertices). Targets (issue 10): pose <= 2 ms per frame, bind <= 150 ms on
 //! armadillo-50k. `cargo run --release -p deform --example deformer_report` prints the same

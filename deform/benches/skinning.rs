@@ -1,5 +1,5 @@
 //! criterion benches of skinning (issue 12): every backend on the same rig and frame
-//! (`skin_scenes.rs`: libigl's armadillo with 5 weights, arm, CesiumMan), both cores; per
+//! (`support/skin_scenes.rs`: libigl's armadillo with 5 weights, arm, CesiumMan), both cores; per
 //! vertex = time / vertices. Targets: on armadillo, CGA motor blending (`motor-linear`) at most
 //! 1.0 ms and no slower than dual-quaternion skinning; equation (17) (`conformal`) within
 //! 1.2x of matrix LBS (`matrix`). Also: sampling CesiumMan's animation and building its global
