@@ -207,3 +207,30 @@ impl Tally {
         self.missed.len()
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn spreads_take_the_median_or_the_best_run_with_the_range() {
+        let s = Spread::median_of(&mut [3.0, 1.0, 2.0]);
+        assert_eq!((s.value, s.low, s.high), (2.0, 1.0, 3.0));
+        assert_eq!(Spread::best_of(&mut [3.0, 1.0, 2.0]).value, 1.0);
+        assert!(Spread::median_of(&mut []).value.is_nan());
+        let r = Spread::exact(4.0).ratio(Spread::median_of(&mut [1.0, 2.0, 4.0]));
+        assert_eq!((r.value, r.low, r.high), (2.0, 1.0, 4.0));
+        assert_eq!(format!("{}", Spread::exact(1.5)), "1.500");
+        assert_eq!(format!("{s}"), "2.000 [1.000, 3.000]");
+    }
+
+    #[test]
+    fn the_tally_counts_met_and_names_missed_rows() {
+        let mut t = Tally::default();
+        t.row("fast", Spread::exact(1.0), "ms", Some(Target::Below(2.0)));
+        t.row("slow", Spread::exact(3.0), "ms", Some(Target::AtMost(2.0)));
+        t.row("untargeted", Spread::exact(3.0), "ms", None);
+        assert_eq!(t.missed(), 1);
+        assert_eq!(t.summary(), "targets: 1 met, 1 MISSED (slow)");
+    }
+}

@@ -71,3 +71,19 @@ pub fn data_file(rel: &str) -> Option<PathBuf> {
         format_args!("{} not found (set {DATA_VAR})", path.display()),
     )
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_default_is_the_shared_folder_next_to_the_workspace() {
+        let dir = shared_dir("DEVKIT_TEST_VARIABLE_NEVER_SET", "data");
+        assert!(dir.ends_with("../shared/data"), "{}", dir.display());
+        let workspace = Path::new(env!("CARGO_MANIFEST_DIR")).parent().unwrap();
+        assert_eq!(
+            dir.canonicalize().ok(),
+            workspace.join("../shared/data").canonicalize().ok()
+        );
+    }
+}
