@@ -2,8 +2,7 @@
 //! (`cargo run --release -p benches --bin bench-report`).
 pub mod cga_report;
 pub mod codegen_report;
-#[path = "../../deform/benches/grade.rs"]
-pub mod grade;
+pub use devkit::grade;
 pub mod timing;
 
 #[cfg(test)]

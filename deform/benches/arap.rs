@@ -18,7 +18,9 @@ use glam::{DQuat, DVec3};
 use std::hint::black_box;
 use std::time::Duration;
 
-mod scenes;
+mod support;
+
+use support::scenes;
 
 /// Fixed bottom, handle top.
 fn sets(mesh: &Mesh) -> (Vec<u32>, Vec<u32>) {
@@ -89,13 +91,21 @@ fn benches(c: &mut Criterion) {
         arap.pose(&Targets::Motors(&keys), Stop::Iterations(3), &mut warm)
             .expect("pose");
         let mut p = warm.clone();
+        let mut scratch = arap.scratch().expect("scratch");
         g.sample_size(20).measurement_time(Duration::from_secs(5));
         for k in [1, 5] {
             g.bench_function(format!("pose_{k}_iterations"), |b| {
                 b.iter(|| {
                     p.copy_from_slice(&warm);
-                    arap.pose(&Targets::Motors(&keys), Stop::Iterations(k), &mut p)
-                        .expect("pose")
+                    let targets = Targets::Motors(&keys);
+                    arap.pose_using(
+                        &targets,
+                        Stop::Iterations(k),
+                        &mut scratch,
+                        &mut p,
+                        |_, _| {},
+                    )
+                    .expect("pose")
                 })
             });
         }

@@ -18,7 +18,9 @@ use glam::{DQuat, DVec3};
 use std::hint::black_box;
 use std::time::Duration;
 
-mod scenes;
+mod support;
+
+use support::scenes;
 
 /// A mesh of the data set (see `scenes::mesh`).
 fn read(rel: &str) -> Option<Mesh> {
@@ -73,8 +75,9 @@ fn benches(c: &mut Criterion) {
             },
         )
         .expect("bind");
+        let mut poser = d.poser();
         g.bench_function(format!("pose_mvc_{}", form.name()), |b| {
-            b.iter(|| d.pose(black_box(&k), &mut out).expect("pose"))
+            b.iter(|| poser.pose(black_box(&k), &mut out).expect("pose"))
         });
     }
     g.sample_size(10).measurement_time(Duration::from_secs(20));
@@ -101,8 +104,9 @@ fn benches(c: &mut Criterion) {
         });
         let d = Ffd::bind(&model, [4, 4, 4], None, options).expect("bind");
         let k = keys(d.binding().rest_points());
+        let mut poser = d.poser();
         g.bench_function(format!("pose_4x4x4_{}", form.name()), |b| {
-            b.iter(|| d.pose(black_box(&k), &mut out).expect("pose"))
+            b.iter(|| poser.pose(black_box(&k), &mut out).expect("pose"))
         });
     }
     g.finish();

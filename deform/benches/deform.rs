@@ -11,7 +11,9 @@ use deform::{cotangent_laplacian, harmonic_field, Harmonic, HarmonicOptions};
 use std::hint::black_box;
 use std::time::Duration;
 
-mod scenes;
+mod support;
+
+use support::scenes;
 
 use scenes::armadillo;
 

@@ -1,5 +1,5 @@
 //! criterion benches of the motor deformers on armadillo-50k (49,999 vertices) and its
-//! 200k-vertex subdivision (scenes in `scenes.rs`): bind (harmonic fields and rest points),
+//! 200k-vertex subdivision (scenes in `support/scenes.rs`): bind (harmonic fields and rest points),
 //! pose per frame (both cores), and the four blend methods on the same weights (per-vertex
 //! cost = time / vertices). Targets (issue 10): pose <= 2 ms per frame, bind <= 150 ms on
 //! armadillo-50k. `cargo run --release -p deform --example deformer_report` prints the same
@@ -7,7 +7,9 @@
 //!
 //! `cargo bench -p deform --bench deformers`
 
-mod scenes;
+mod support;
+
+use support::scenes;
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use deform::{BlendMethod, Deformer};
@@ -39,16 +41,22 @@ fn benches(c: &mut Criterion) {
         let keys = scenes::keys(mesh, 4);
         let rigid = scenes::rigid_keys(mesh, 4);
         let mut out = vec![DVec3::ZERO; n];
+        let (mut spline_poser, mut handles_poser) = (spline.poser(), handles.poser());
         g.bench_function("pose_spline_4_bspline_keys", |b| {
-            b.iter(|| spline.pose(black_box(&keys), &mut out).expect("pose"))
+            b.iter(|| spline_poser.pose(black_box(&keys), &mut out).expect("pose"))
         });
         g.bench_function("pose_4_handles", |b| {
-            b.iter(|| handles.pose(black_box(&keys), &mut out).expect("pose"))
+            b.iter(|| {
+                handles_poser
+                    .pose(black_box(&keys), &mut out)
+                    .expect("pose")
+            })
         });
         for method in BlendMethod::ALL {
             let d = scenes::rebind_spline(mesh, &spline, method);
+            let mut poser = d.poser();
             g.bench_function(format!("blend_{}_rigid", method.name()), |b| {
-                b.iter(|| d.pose(black_box(&rigid), &mut out).expect("pose"))
+                b.iter(|| poser.pose(black_box(&rigid), &mut out).expect("pose"))
             });
         }
         g.finish();

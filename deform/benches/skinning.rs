@@ -1,5 +1,5 @@
 //! criterion benches of skinning (issue 12): every backend on the same rig and frame
-//! (`skin_scenes.rs`: libigl's armadillo with 5 weights, arm, CesiumMan), both cores; per
+//! (`support/skin_scenes.rs`: libigl's armadillo with 5 weights, arm, CesiumMan), both cores; per
 //! vertex = time / vertices. Targets: on armadillo, CGA motor blending (`motor-linear`) at most
 //! 1.0 ms and no slower than dual-quaternion skinning; equation (17) (`conformal`) within
 //! 1.2x of matrix LBS (`matrix`). Also: sampling CesiumMan's animation and building its global
@@ -8,7 +8,9 @@
 //! `cargo bench -p deform --bench skinning`; quick: `cargo run --release -p deform --example
 //! skinning_report`.
 
-mod skin_scenes;
+mod support;
+
+use support::skin_scenes;
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use deform::skinning::{KeyframeBlend, RigPose, Skinning};
@@ -27,8 +29,9 @@ fn benches(c: &mut Criterion) {
         for method in skin_scenes::BACKENDS {
             let d = Skinning::bind_influences(&s.positions, &s.influences, s.joints, method)
                 .expect("bind");
+            let mut poser = d.poser();
             g.bench_function(method.name(), |b| {
-                b.iter(|| d.pose(black_box(&s.keys), &mut out).expect("pose"))
+                b.iter(|| poser.pose(black_box(&s.keys), &mut out).expect("pose"))
             });
         }
         g.finish();

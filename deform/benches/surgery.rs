@@ -1,12 +1,14 @@
 //! criterion benches of cut, tear and drill (issue 14) with the face index built (scenes in
-//! `surgery_scenes.rs`: libigl's arm, 16.6k faces, and CesiumMan), plus the index build on its
-//! own. Targets on the arm and CesiumMan: cut under 1 ms, one tear step under 0.5 ms, drill
+//! `support/surgery_scenes.rs`: libigl's arm, 16.6k faces, and CesiumMan), plus the index build
+//! on its own. Targets on the arm and CesiumMan: cut under 1 ms, one tear step under 0.5 ms, drill
 //! under 0.5 ms. `cargo run --release -p deform --example surgery_report` prints the same
 //! figures and the ratios to the paper's Python timings.
 //!
 //! `cargo bench -p deform --bench surgery`
 
-mod surgery_scenes;
+mod support;
+
+use support::surgery_scenes;
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use deform::surgery::{CutOptions, DrillOptions, Frame, Surgery, TearOptions};

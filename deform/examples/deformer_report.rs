@@ -7,10 +7,11 @@
 //!
 //! `cargo run --release -p deform --example deformer_report`
 
-#[path = "../benches/scenes.rs"]
+#[path = "../benches/support/scenes.rs"]
 mod scenes;
 
-use scenes::measure::{spread_ms, Tally, Target};
+use devkit::grade::{Tally, Target};
+use devkit::measure::spread_ms;
 
 use deform::{BlendMethod, Deformer, Mesh};
 use glam::DVec3;
@@ -34,11 +35,13 @@ fn report(name: &str, mesh: &Mesh, targets: &Targets, tally: &mut Tally) {
     let keys = scenes::keys(mesh, 4);
     let mut out = vec![DVec3::ZERO; n];
     // Warm up (page in the output, wake the thread pool) before measuring.
+    let (mut spline_poser, mut handles_poser) = (spline.poser(), handles.poser());
     for _ in 0..20 {
-        spline.pose(&keys, &mut out).expect("pose");
+        spline_poser.pose(&keys, &mut out).expect("pose");
+        handles_poser.pose(&keys, &mut out).expect("pose");
     }
-    let pose_spline = spread_ms(31, || spline.pose(&keys, &mut out).expect("pose"));
-    let pose_handles = spread_ms(31, || handles.pose(&keys, &mut out).expect("pose"));
+    let pose_spline = spread_ms(31, || spline_poser.pose(&keys, &mut out).expect("pose"));
+    let pose_handles = spread_ms(31, || handles_poser.pose(&keys, &mut out).expect("pose"));
     println!(
         "{name} ({n} vertices, {} threads)",
         rayon::current_num_threads()
@@ -76,8 +79,11 @@ fn report(name: &str, mesh: &Mesh, targets: &Targets, tally: &mut Tally) {
     let per_vertex = 1e6 / n as f64;
     for method in BlendMethod::ALL {
         let d = scenes::rebind_spline(mesh, &spline, method);
-        let rigid_ns = spread_ms(31, || d.pose(&rigid, &mut out).expect("pose")).scale(per_vertex);
-        let scaled_ns = spread_ms(31, || d.pose(&keys, &mut out).expect("pose")).scale(per_vertex);
+        let mut poser = d.poser();
+        let rigid_ns =
+            spread_ms(31, || poser.pose(&rigid, &mut out).expect("pose")).scale(per_vertex);
+        let scaled_ns =
+            spread_ms(31, || poser.pose(&keys, &mut out).expect("pose")).scale(per_vertex);
         let label = format!("  blend {}, rigid keys", method.name());
         println!("{}", tally.row(&label, rigid_ns, "ns/vertex", None));
         let label = format!("  blend {}, scaled keys", method.name());

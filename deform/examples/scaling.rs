@@ -6,10 +6,9 @@
 //!
 //! `cargo run --release -p deform --example scaling`
 
-#[path = "../benches/measure.rs"]
-mod measure;
-
-use measure::{spread_ms, Spread, Tally, Target};
+use devkit::grade::{Spread, Tally, Target};
+use devkit::measure::spread_ms;
+use devkit::shared::data_file;
 
 use deform::{
     cotangent_laplacian, harmonic_system, validate, DirichletSolver, HarmonicOptions, Mesh,
@@ -25,8 +24,8 @@ fn time_ms<T>(runs: usize, mut f: impl FnMut() -> T) -> Spread {
 
 fn main() -> Result<(), deform::Error> {
     let (Some(cactus), Some(arma)) = (
-        measure::data("meshes/large/cactus-5k.off"),
-        measure::data("meshes/large/armadillo-50k.obj"),
+        data_file("meshes/large/cactus-5k.off"),
+        data_file("meshes/large/armadillo-50k.obj"),
     ) else {
         return Ok(());
     };

@@ -7,10 +7,11 @@
 //!
 //! `cargo run --release -p deform --example skinning_report`
 
-#[path = "../benches/skin_scenes.rs"]
+#[path = "../benches/support/skin_scenes.rs"]
 mod skin_scenes;
 
-use skin_scenes::measure::{median_ms, spread_ms, Spread, Tally, Target};
+use devkit::grade::{Spread, Tally, Target};
+use devkit::measure::{median_ms, spread_ms};
 
 use deform::skinning::{KeyframeBlend, RigPose, Skinning};
 use deform::Deformer;
@@ -30,10 +31,11 @@ fn main() {
         for method in skin_scenes::BACKENDS {
             let d = Skinning::bind_influences(&s.positions, &s.influences, s.joints, method)
                 .expect("bind");
+            let mut poser = d.poser();
             for _ in 0..20 {
-                d.pose(&s.keys, &mut out).expect("pose");
+                poser.pose(&s.keys, &mut out).expect("pose");
             }
-            let ms = spread_ms(101, || d.pose(&s.keys, &mut out).expect("pose"));
+            let ms = spread_ms(101, || poser.pose(&s.keys, &mut out).expect("pose"));
             times.push((method, ms));
             let target = (s.name == "armadillo" && method == deform::BlendMethod::MotorLinear)
                 .then_some(Target::AtMost(1.0));

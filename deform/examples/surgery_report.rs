@@ -5,10 +5,11 @@
 //!
 //! `cargo run --release -p deform --example surgery_report`
 
-#[path = "../benches/surgery_scenes.rs"]
+#[path = "../benches/support/surgery_scenes.rs"]
 mod surgery_scenes;
 
-use surgery_scenes::measure::{spread_ms, Tally, Target};
+use devkit::grade::{Tally, Target};
+use devkit::measure::spread_ms;
 
 use deform::surgery::{CutOptions, DrillOptions, Frame, Surgery, TearOptions};
 

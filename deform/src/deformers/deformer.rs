@@ -211,6 +211,8 @@ macro_rules! deformer_via_blend {
                 $crate::deformers::deformer::PoseScratch::of(self.$field.scratch())
             }
 
+            // `BoundBlend` reports a `BlendError`, a wrapped deformer a `DeformError`.
+            #[allow(clippy::needless_question_mark)]
             fn pose_using(
                 &self,
                 keys: &[cga::ScaledMotor],

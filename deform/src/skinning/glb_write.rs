@@ -97,8 +97,7 @@ impl Bin {
         if v.is_empty() {
             return Err(SkinError::InvalidArgument(format!(
                 "{what}: no elements (a glTF accessor holds at least one)"
-            ))
-            .into());
+            )));
         }
         if let Some(i) = v.iter().position(|x| !x.is_finite()) {
             return Err(SkinError::InvalidArgument(format!(
@@ -106,8 +105,7 @@ impl Bin {
                  only (coordinates beyond about 3.4e38, or NaN)",
                 i / dim,
                 v[i]
-            ))
-            .into());
+            )));
         }
         let bytes: Vec<u8> = v.iter().flat_map(|x| x.to_le_bytes()).collect();
         let mut a = json!({"componentType": 5126, "count": v.len() / dim, "type": kind});
@@ -177,15 +175,13 @@ pub fn glb_bytes(rig: &Rig, options: &GlbOptions) -> Result<Vec<u8>> {
     if rig.mesh.triangle_count() == 0 {
         return Err(SkinError::InvalidArgument(
             "the rig's mesh has no triangles: nothing to write".into(),
-        )
-        .into());
+        ));
     }
     if rig.joints.len() > u16::MAX as usize + 1 {
         return Err(SkinError::InvalidArgument(format!(
             "{} joints: glTF joint indices are 16-bit here",
             rig.joints.len()
-        ))
-        .into());
+        )));
     }
     let locals: Vec<Trs> = match &options.node_transforms {
         Some(t) if t.len() != rig.nodes.len() => {
@@ -193,8 +189,7 @@ pub fn glb_bytes(rig: &Rig, options: &GlbOptions) -> Result<Vec<u8>> {
                 "{} node transforms for {} nodes",
                 t.len(),
                 rig.nodes.len()
-            ))
-            .into())
+            )))
         }
         Some(t) => t.clone(),
         None => rig.nodes.iter().map(|n| n.rest).collect(),

@@ -34,12 +34,7 @@ pub fn read_gltf_with(path: impl AsRef<Path>, options: &GltfReadOptions) -> Resu
             p
         }
     });
-    Ok(parse_gltf_with(
-        &bytes,
-        &path.display().to_string(),
-        base,
-        options,
-    )?)
+    parse_gltf_with(&bytes, &path.display().to_string(), base, options)
 }
 
 /// Parse a glTF 2.0 rig from its bytes (`.gltf` JSON or `.glb`); `base` is the folder that

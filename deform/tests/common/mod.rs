@@ -1,35 +1,13 @@
-//! Shared helpers: locating the shared data and reference directories.
+//! Shared helpers: the shared data and reference directories (located by `devkit`), libigl
+//! references, small meshes and checks.
 #![allow(dead_code)]
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
-fn locate(var: &str, default: &str, what: &str) -> Option<PathBuf> {
-    let dir = std::env::var_os(var)
-        .map(PathBuf::from)
-        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join(default));
-    if dir.is_dir() {
-        return Some(dir);
-    }
-    if std::env::var("CI").as_deref() == Ok("true") {
-        panic!("{what} directory {} is missing (CI=true)", dir.display());
-    }
-    eprintln!(
-        "skipped: {what} directory {} not found (set {var})",
-        dir.display()
-    );
-    None
-}
-
-/// `$CGA_DATA_DIR`, else `../shared/data` next to the workspace; `None` (test skipped) when
-/// absent, a panic under `CI=true`.
-pub fn data_dir() -> Option<PathBuf> {
-    locate("CGA_DATA_DIR", "../../shared/data", "test data")
-}
-
-/// `$CGA_REFERENCE_DIR`, else `../shared/reference`.
-pub fn reference_dir() -> Option<PathBuf> {
-    locate("CGA_REFERENCE_DIR", "../../shared/reference", "reference")
-}
+/// The shared data and reference folders (`devkit::shared`): `$CGA_DATA_DIR`, else
+/// `../shared/data`; `$CGA_REFERENCE_DIR`, else `../shared/reference`. `None` (test skipped)
+/// when absent, a panic under `CI=true`.
+pub use devkit::shared::{data_dir, reference_dir};
 
 /// A file of the mesh data set, e.g. `mesh("libigl/decimated-knight.off")`.
 pub fn mesh_path(rel: &str) -> Option<PathBuf> {

@@ -135,14 +135,23 @@ pub fn run(a: &ArapArgs) -> Result<()> {
     let mut posed = mesh.positions.clone();
     let chatty = !a.out.quiet && !a.out.json;
     let mut energies = Vec::new();
+    let mut scratch = arap
+        .scratch()
+        .with_context(|| format!("{name}: cannot pose"))?;
     let t = Instant::now();
     let converged = arap
-        .pose_with(&Targets::Motors(&keys), stop, &mut posed, |k, e| {
-            if chatty {
-                println!("iteration {k:>4}: energy {e:.9e}");
-            }
-            energies.push(e);
-        })
+        .pose_using(
+            &Targets::Motors(&keys),
+            stop,
+            &mut scratch,
+            &mut posed,
+            |k, e| {
+                if chatty {
+                    println!("iteration {k:>4}: energy {e:.9e}");
+                }
+                energies.push(e);
+            },
+        )
         .with_context(|| format!("{name}: cannot pose"))?;
     let pose_ms = ms(t);
     let mut report = Report::new("arap", &mesh);

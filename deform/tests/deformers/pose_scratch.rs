@@ -1,0 +1,198 @@
+//! Explicit pose scratch: a bound deformer is shared by threads that each pose it
+//! with their own scratch, and a warm scratch makes `pose` allocation-free.
+
+use cga::ScaledMotor;
+use deform::arap::{Arap, ArapOptions};
+use deform::control::ControlForm;
+use deform::ffd::{Ffd, FfdOptions, LatticeBasis};
+use deform::shapes::{tube, tube_ring};
+use deform::skinning::{procedural_arm, Skinning};
+use deform::{BlendMethod, Deformer, Mesh, MotorHandles, Poser};
+use glam::{DQuat, DVec3};
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::cell::Cell;
+
+/// Counts the allocations of the current thread (so tests running at the same time on other
+/// threads do not count).
+struct CountingAllocator;
+
+thread_local! {
+    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
+}
+
+unsafe impl GlobalAlloc for CountingAllocator {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        ALLOCATIONS.with(|c| c.set(c.get() + 1));
+        unsafe { System.alloc(layout) }
+    }
+
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        unsafe { System.dealloc(ptr, layout) }
+    }
+
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        ALLOCATIONS.with(|c| c.set(c.get() + 1));
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: CountingAllocator = CountingAllocator;
+
+fn allocations() -> usize {
+    ALLOCATIONS.with(Cell::get)
+}
+
+const SIDES: usize = 12;
+const RINGS: usize = 24;
+
+fn bar() -> Mesh {
+    tube(1.0, 10.0, SIDES, RINGS)
+}
+
+/// A twist of `angle` about the bar's axis, lifted along `z`.
+fn twist(angle: f64) -> ScaledMotor {
+    ScaledMotor::from_scale_rotation_translation(
+        1.0,
+        DQuat::from_rotation_x(angle),
+        DVec3::new(0.0, 0.0, 0.3 * angle),
+    )
+}
+
+/// Every kind of bound deformer, by name, each with a key list maker.
+type Keys = Box<dyn Fn(f64) -> Vec<ScaledMotor> + Sync>;
+
+fn deformers() -> Vec<(String, Box<dyn Deformer>, Keys)> {
+    let mesh = bar();
+    let first = tube_ring(SIDES, 0);
+    let last = tube_ring(SIDES, RINGS - 1);
+    let mut all: Vec<(String, Box<dyn Deformer>, Keys)> = Vec::new();
+    let two: Keys = Box::new(|t| vec![ScaledMotor::IDENTITY, twist(t)]);
+    let handles = MotorHandles::bind(&mesh, &[&first, &last], Default::default()).expect("bind");
+    all.push(("motor handles".into(), Box::new(handles), two));
+    let arap = Arap::bind(&mesh, &first, &[&last], ArapOptions::default()).expect("bind");
+    all.push(("arap".into(), Box::new(arap), Box::new(|t| vec![twist(t)])));
+    for (name, form) in [
+        ("ffd positional", ControlForm::Positional),
+        ("ffd motor-log", ControlForm::Motor(BlendMethod::MotorLog)),
+    ] {
+        let options = FfdOptions {
+            basis: LatticeBasis::BSpline(2),
+            form,
+        };
+        let ffd = Ffd::bind(&mesh, [4, 3, 3], None, options).expect("bind");
+        let n = ffd.key_count();
+        all.push((
+            name.into(),
+            Box::new(ffd),
+            Box::new(move |t| (0..n).map(|k| twist(t * k as f64 / n as f64)).collect()),
+        ));
+    }
+    let rig = procedural_arm(8, 12);
+    for method in BlendMethod::ALL {
+        let skin = Skinning::bind(&rig, method).expect("bind");
+        let rig = rig.clone();
+        all.push((
+            format!("skinning {}", method.name()),
+            Box::new(skin),
+            Box::new(move |t| {
+                let pose = rig.pose(Some(0), t.abs().min(2.0), &[]).expect("pose");
+                pose.skin_motors().expect("motors").to_vec()
+            }),
+        ));
+    }
+    all
+}
+
+#[test]
+fn one_bound_deformer_poses_from_several_threads_at_once() {
+    for (name, d, keys) in deformers() {
+        let times: Vec<f64> = (0..8).map(|k| 0.1 + 0.2 * k as f64).collect();
+        // The truth: one thread, one fresh scratch per pose.
+        let expected: Vec<Vec<DVec3>> = times
+            .iter()
+            .map(|&t| {
+                let mut out = vec![DVec3::ZERO; d.vertex_count()];
+                d.pose(&keys(t), &mut out).expect("pose");
+                out
+            })
+            .collect();
+        let start = std::sync::Barrier::new(4);
+        std::thread::scope(|s| {
+            for thread in 0..4 {
+                let (d, keys, times, expected, start) = (&*d, &keys, &times, &expected, &start);
+                let name = &name;
+                s.spawn(move || {
+                    let mut poser = Poser::new(d);
+                    let mut out = vec![DVec3::ZERO; d.vertex_count()];
+                    start.wait();
+                    for round in 0..3 {
+                        for k in 0..times.len() {
+                            // Each thread walks the poses in its own order.
+                            let k = (k * (thread + 1) + round) % times.len();
+                            poser.pose(&keys(times[k]), &mut out).expect("pose");
+                            let worst = out
+                                .iter()
+                                .zip(&expected[k])
+                                .map(|(a, b)| (*a - *b).length())
+                                .fold(0.0, f64::max);
+                            assert!(
+                                worst <= 1e-12,
+                                "{name}: thread {thread}, pose {k}: off by {worst:e}"
+                            );
+                        }
+                    }
+                });
+            }
+        });
+    }
+}
+
+#[test]
+fn a_warm_scratch_poses_without_allocating() {
+    // One worker thread, so every allocation of a pose happens on the thread that counts.
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .expect("pool");
+    for (name, d, keys) in deformers() {
+        let key_lists: Vec<Vec<ScaledMotor>> = (0..3).map(|k| keys(0.3 + 0.4 * k as f64)).collect();
+        let counted = pool.install(|| {
+            let mut poser = Poser::new(&*d);
+            let mut out = vec![DVec3::ZERO; d.vertex_count()];
+            poser.pose(&key_lists[0], &mut out).expect("pose");
+            let before = allocations();
+            for k in &key_lists {
+                poser.pose(k, &mut out).expect("pose");
+            }
+            allocations() - before
+        });
+        assert_eq!(counted, 0, "{name}: {counted} allocations in 3 warm poses");
+    }
+}
+
+#[test]
+fn the_counter_counts() {
+    let before = allocations();
+    let v: Vec<u64> = std::hint::black_box(vec![1, 2, 3]);
+    assert!(allocations() > before, "{v:?}");
+}
+
+#[test]
+fn a_scratch_of_another_deformer_is_replaced_not_misread() {
+    let all = deformers();
+    let (_, handles, handle_keys) = &all[0];
+    let (_, arap, arap_keys) = &all[1];
+    let mut scratch = handles.scratch();
+    let mut out = vec![DVec3::ZERO; handles.vertex_count()];
+    handles
+        .pose_using(&handle_keys(0.5), &mut scratch, &mut out)
+        .expect("pose");
+    // The handles' scratch given to ARAP: ARAP makes its own and poses correctly.
+    let mut posed = vec![DVec3::ZERO; arap.vertex_count()];
+    arap.pose_using(&arap_keys(0.5), &mut scratch, &mut posed)
+        .expect("pose");
+    let mut expected = vec![DVec3::ZERO; arap.vertex_count()];
+    arap.pose(&arap_keys(0.5), &mut expected).expect("pose");
+    assert_eq!(posed, expected);
+}

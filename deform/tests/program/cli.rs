@@ -1,0 +1,397 @@
+//! The `deform` program end to end on small meshes: outputs exist and parse back with the
+//! input's counts, previews decode, bad arguments and bad input exit with code 2 and a message
+//! naming what and where, and nothing is half-written or overwritten.
+
+use deform::shapes::{tube, tube_ring};
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+mod refusals;
+
+const SIDES: usize = 8;
+const RINGS: usize = 11;
+
+fn run(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_deform"))
+        .args(args)
+        .output()
+        .expect("run deform")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// A scratch folder with a small bar, its selection and keys.
+struct Scene {
+    dir: PathBuf,
+}
+
+impl Scene {
+    fn new(name: &str) -> Scene {
+        let dir = std::env::temp_dir().join(format!("deform-cli-{}-{name}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let bar = tube(1.0, 10.0, SIDES, RINGS);
+        deform::io::write_obj(&bar, dir.join("bar.obj")).unwrap();
+        let sel = format!(
+            "{{\"0\": {:?}, \"1\": {:?}}}",
+            tube_ring(SIDES, 0),
+            tube_ring(SIDES, RINGS - 1)
+        );
+        std::fs::write(dir.join("sel.json"), sel).unwrap();
+        let mut dmat = format!("1 {}\n", bar.vertex_count());
+        for v in 0..bar.vertex_count() {
+            let g = if v < SIDES {
+                0
+            } else if v / SIDES == RINGS - 1 && v < SIDES * RINGS {
+                1
+            } else {
+                -1
+            };
+            dmat.push_str(&format!("{g}\n"));
+        }
+        std::fs::write(dir.join("sel.dmat"), dmat).unwrap();
+        std::fs::write(
+            dir.join("keys.json"),
+            r#"[{}, {"translate": [0, 1, 0]}, {"rotate": {"axis": [1, 0, 0], "degrees": 90, "center": [10, 0, 0]}, "scale": 1.5}, {}]"#,
+        )
+        .unwrap();
+        std::fs::write(
+            dir.join("motors.json"),
+            r#"{"0": {}, "*": {"rotate": {"axis": [0, 0, 1], "degrees": 30, "center": [10, 0, 0]}, "translate": [0, 2, 0]}}"#,
+        )
+        .unwrap();
+        Scene { dir }
+    }
+    fn p(&self, name: &str) -> String {
+        self.dir.join(name).to_string_lossy().into_owned()
+    }
+}
+
+impl Drop for Scene {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.dir);
+    }
+}
+
+fn read_obj(path: &str) -> deform::Mesh {
+    deform::io::read_obj(Path::new(path)).expect("output parses back")
+}
+
+#[test]
+fn demo_writes_meshes_previews_and_a_table() {
+    let s = Scene::new("demo");
+    let out = s.p("demo");
+    let o = run(&["demo", "--out", &out]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let table = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        table.contains("bind ms") && table.contains("twist-matrix"),
+        "{table}"
+    );
+    for name in [
+        "bend-linear",
+        "twist-motor",
+        "twist-matrix",
+        "fabrik-chain",
+        "handles-sphere",
+        "arap-beam",
+    ] {
+        let m = read_obj(&format!("{out}/{name}.obj"));
+        assert!(m.vertex_count() > 100);
+        let png = std::fs::read(format!("{out}/{name}.png")).unwrap();
+        assert_eq!(&png[1..4], b"PNG");
+    }
+    assert!(Path::new(&format!("{out}/contact-sheet.png")).exists());
+    let o = run(&["demo", "--out", &out, "--json"]);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    // One row per scene, one OBJ per scene.
+    let objs = std::fs::read_dir(&out)
+        .unwrap()
+        .filter(|e| e.as_ref().unwrap().path().extension() == Some("obj".as_ref()))
+        .count();
+    assert_eq!(v["scenes"].as_array().unwrap().len(), objs);
+    assert!(objs >= 12, "{objs} scenes");
+}
+
+#[test]
+fn spline_handles_and_fabrik_write_meshes_with_the_input_counts() {
+    let s = Scene::new("ok");
+    let bar = read_obj(&s.p("bar.obj"));
+    let (mesh, keys, sel_json, sel_dmat) = (
+        s.p("bar.obj"),
+        s.p("keys.json"),
+        s.p("sel.json"),
+        s.p("sel.dmat"),
+    );
+    let (out, png) = (s.p("out.obj"), s.p("out.png"));
+    let o = run(&[
+        "spline", &mesh, "--select", &sel_json, "--keys", &keys, "-o", &out, "--png", &png,
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["vertices"], bar.vertex_count());
+    assert_eq!(v["scheme"], "bspline");
+    let posed = read_obj(&out);
+    assert_eq!(
+        (posed.vertex_count(), posed.triangles),
+        (bar.vertex_count(), bar.triangles.clone())
+    );
+    // The last ring follows the last key (identity): it stays.
+    for v in tube_ring(SIDES, RINGS - 1) {
+        assert!(posed.positions[v as usize].distance(bar.positions[v as usize]) < 1e-9);
+    }
+    assert!(Path::new(&png).exists());
+
+    let o = run(&[
+        "handles",
+        &mesh,
+        "--select",
+        &sel_dmat,
+        "--motors",
+        &s.p("motors.json"),
+        "-o",
+        &out,
+        "--quiet",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(o.stdout.is_empty());
+    let posed = read_obj(&out);
+    let ring0 = tube_ring(SIDES, 0);
+    assert!(ring0
+        .iter()
+        .all(|&v| posed.positions[v as usize] == bar.positions[v as usize]));
+
+    let o = run(&[
+        "fabrik", &mesh, "--select", &sel_json, "--target", "6,5,0", "-o", &out, "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["status"], "reached");
+    assert_eq!(read_obj(&out).vertex_count(), bar.vertex_count());
+    let o = run(&[
+        "fabrik", &mesh, "--select", &sel_json, "--target", "0,40,0", "-o", &out, "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["status"], "unreachable");
+}
+
+#[test]
+fn bad_arguments_and_input_exit_2_and_leave_no_file() {
+    let s = Scene::new("bad");
+    let (mesh, keys, sel) = (s.p("bar.obj"), s.p("keys.json"), s.p("sel.json"));
+    let out = s.p("never.obj");
+    let expect_2 = |args: &[&str], needle: &str| {
+        let o = run(args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        assert!(
+            stderr(&o).contains(needle),
+            "{args:?}: {:?} lacks {needle:?}",
+            stderr(&o)
+        );
+        assert!(!Path::new(&out).exists(), "{args:?} left an output");
+    };
+    expect_2(&["spline", &mesh, "--select", &sel, "-o", &out], "--keys");
+    expect_2(
+        &[
+            "spline", &mesh, "--select", &sel, "--keys", &keys, "-o", &out, "--scheme", "cubic",
+        ],
+        "cubic",
+    );
+    expect_2(
+        &[
+            "spline",
+            &mesh,
+            "--select",
+            &sel,
+            "--keys",
+            &keys,
+            "-o",
+            &out,
+            "--scheme",
+            "quadratic",
+        ],
+        "quadratic takes exactly 3 keys",
+    );
+    expect_2(&["frobnicate"], "frobnicate");
+    let before = std::fs::read(&mesh).unwrap();
+    let o = run(&[
+        "spline", &mesh, "--select", &sel, "--keys", &keys, "-o", &mesh,
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("refusing to overwrite an input"),
+        "{}",
+        stderr(&o)
+    );
+    assert_eq!(std::fs::read(&mesh).unwrap(), before);
+
+    std::fs::write(
+        s.p("bad-keys.json"),
+        r#"[{}, {"rotate": {"axis": [0, 0, 0], "degrees": 10}}]"#,
+    )
+    .unwrap();
+    expect_2(
+        &[
+            "spline",
+            &mesh,
+            "--select",
+            &sel,
+            "--keys",
+            &s.p("bad-keys.json"),
+            "-o",
+            &out,
+        ],
+        "key 1",
+    );
+    std::fs::write(s.p("shape.json"), r#"{"rotate": 3}"#).unwrap();
+    expect_2(
+        &[
+            "spline",
+            &mesh,
+            "--select",
+            &sel,
+            "--keys",
+            &s.p("shape.json"),
+            "-o",
+            &out,
+        ],
+        "expected an array",
+    );
+    std::fs::write(s.p("far.json"), r#"{"0": [0, 1], "1": [99999]}"#).unwrap();
+    expect_2(
+        &[
+            "spline",
+            &mesh,
+            "--select",
+            &s.p("far.json"),
+            "--keys",
+            &keys,
+            "-o",
+            &out,
+        ],
+        "vertex 99999 does not exist",
+    );
+    std::fs::write(s.p("one.json"), r#"{"0": [0, 1]}"#).unwrap();
+    expect_2(
+        &[
+            "spline",
+            &mesh,
+            "--select",
+            &s.p("one.json"),
+            "--keys",
+            &keys,
+            "-o",
+            &out,
+        ],
+        "at least two groups",
+    );
+    std::fs::write(s.p("m.json"), r#"{"7": {}}"#).unwrap();
+    expect_2(
+        &[
+            "handles",
+            &mesh,
+            "--select",
+            &sel,
+            "--motors",
+            &s.p("m.json"),
+            "-o",
+            &out,
+        ],
+        "group \"7\"",
+    );
+    expect_2(
+        &[
+            "fabrik", &mesh, "--select", &sel, "--target", "1,2", "-o", &out,
+        ],
+        "three finite numbers",
+    );
+    expect_2(
+        &[
+            "spline",
+            &s.p("missing.obj"),
+            "--select",
+            &sel,
+            "--keys",
+            &keys,
+            "-o",
+            &out,
+        ],
+        "missing.obj",
+    );
+    std::fs::write(s.p("broken.obj"), "v 0 0 0\nv 1 0 nan\nf 1 2 3\n").unwrap();
+    expect_2(
+        &[
+            "spline",
+            &s.p("broken.obj"),
+            "--select",
+            &sel,
+            "--keys",
+            &keys,
+            "-o",
+            &out,
+        ],
+        "broken.obj",
+    );
+}
+
+/// Ctrl-C during a long frame sequence (issue 20): exit code 130, and neither frames nor
+/// temporary files are left behind.
+#[test]
+fn ctrl_c_stops_a_sequence_and_leaves_no_partial_output() {
+    use deform::skinning::{glb_bytes, procedural_arm, GlbOptions};
+    let s = Scene::new("interrupt");
+    let glb = glb_bytes(&procedural_arm(32, 80), &GlbOptions::default()).unwrap();
+    std::fs::write(s.p("arm.glb"), glb).unwrap();
+    let names = |dir: &Path| -> Vec<String> {
+        let mut v: Vec<String> = std::fs::read_dir(dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        v.sort();
+        v
+    };
+    let before = names(&s.dir);
+    let mut child = Command::new(env!("CARGO_BIN_EXE_deform"))
+        .args([
+            "skin",
+            &s.p("arm.glb"),
+            "--animation",
+            "0",
+            "--range",
+            "0:2:2000",
+        ])
+        .args(["-o", &s.p("seq.obj"), "--quiet"])
+        .stdin(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    // Wait until the sequence is being written, then interrupt.
+    let first = s.dir.join("seq_0000.obj");
+    let start = std::time::Instant::now();
+    while !first.exists() && start.elapsed().as_secs() < 60 {
+        assert!(
+            child.try_wait().unwrap().is_none(),
+            "finished before it could be interrupted"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    assert!(first.exists(), "no frame was written within 60 s");
+    let kill = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(kill.success());
+    let out = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(130), "{err}");
+    assert!(err.contains("interrupted"), "{err}");
+    let left: Vec<String> = names(&s.dir)
+        .into_iter()
+        .filter(|n| !before.contains(n))
+        .collect();
+    assert!(left.is_empty(), "left behind: {left:?}");
+}

@@ -1,0 +1,243 @@
+//! Refusals: bad numbers and counts, hostile rig inputs (issue 20) and output names of a format
+//! the command does not write (issue 21) exit with code 2 before any work, never a panic.
+
+use super::{read_obj, run, stderr, Scene};
+use crate::common;
+use std::path::Path;
+
+/// Exit code 2 with `needle` in the message, no panic, and `out` not written.
+fn refused(args: &[&str], needle: &str, out: &str) {
+    let o = run(args);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+    assert!(!err.contains("panicked"), "{args:?}: {err}");
+    assert!(err.contains(needle), "{args:?}: {err:?} lacks {needle:?}");
+    assert!(!Path::new(out).exists(), "{args:?} left an output");
+}
+
+/// Issue 20's reproducers on the procedural bar: numeric flags that cannot hold NaN or an
+/// infinity, and counts checked against the work budget before anything is allocated.
+#[test]
+fn huge_counts_and_non_finite_numbers_are_refused_before_any_work() {
+    let s = Scene::new("budget");
+    let (mesh, sel, motors, out) = (
+        s.p("bar.obj"),
+        s.p("sel.json"),
+        s.p("motors.json"),
+        s.p("o.obj"),
+    );
+    let fabrik = |extra: &[&str]| {
+        let mut a = vec![
+            "fabrik", &mesh, "--select", &sel, "--target", "1,12,0", "-o", &out,
+        ];
+        a.extend_from_slice(extra);
+        a.into_iter().map(String::from).collect::<Vec<_>>()
+    };
+    let refused_fabrik = |extra: &[&str], needle: &str| {
+        let a = fabrik(extra);
+        refused(
+            &a.iter().map(String::as_str).collect::<Vec<_>>(),
+            needle,
+            &out,
+        );
+    };
+    refused_fabrik(&["--joints=18446744073709551615"], "--max-work");
+    refused_fabrik(&["--joints=1000000000"], "--max-work");
+    refused_fabrik(&["--joints=1000", "--max-work=100"], "--joints");
+    refused_fabrik(&["--tolerance=nan"], "--tolerance");
+    refused_fabrik(&["--tolerance=-1"], "--tolerance");
+    // Within the budget the same flags work.
+    let a = fabrik(&["--joints=40", "--quiet"]);
+    let o = run(&a.iter().map(String::as_str).collect::<Vec<_>>());
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    std::fs::remove_file(&out).unwrap();
+
+    for lattice in ["18446744073709551615x2x2", "1000x1000x1000", "2x2x16384"] {
+        let flag = format!("--lattice={lattice}");
+        let args = ["ffd", &mesh, &flag, "--motors", &motors, "-o", &out];
+        refused(&args, "--lattice", &out);
+    }
+    let args = [
+        "cage", &mesh, "--cage", &mesh, "--coords", "harmonic", "--grid", "256", "--motors",
+        &motors, "-o", &out,
+    ];
+    refused(&args, "--grid", &out);
+    let args = [
+        "arap",
+        &mesh,
+        "--select",
+        &sel,
+        "--motors",
+        &motors,
+        "--iterations",
+        "100000000",
+        "-o",
+        &out,
+    ];
+    refused(&args, "--iterations", &out);
+}
+
+/// Issue 20's reproducers on the shared rigs: `--time nan`, huge frame counts, an opening or a
+/// drill far beyond the model, a scalpel that returns to an earlier blade, a glTF naming a
+/// missing accessor, and a frame sequence whose generated names include an input.
+#[test]
+fn hostile_rig_inputs_exit_2_or_succeed_without_panicking() {
+    let Some(data) = common::data_dir() else {
+        return;
+    };
+    let man = data
+        .join("gltf/CesiumMan.glb")
+        .to_string_lossy()
+        .into_owned();
+    let simple = data.join("gltf/SimpleSkin.gltf");
+    let s = Scene::new("rigs");
+    let out = s.p("o.obj");
+    std::fs::write(s.p("edit.json"), "{}").unwrap();
+    let edit = format!("0={}", s.p("edit.json"));
+    refused(&["skin", &man, "--time", "nan", "-o", &out], "finite", &out);
+    for tool in [
+        vec!["cut", &man, "--plane", "0,0,1,1"],
+        vec![
+            "drill", &man, "--tip", "0,0,0", "--end", "0,0,1", "--radius", "0.1",
+        ],
+        vec![
+            "tear",
+            &man,
+            "--scalpel",
+            "0.3,0,1.05:0,0,1.05",
+            "--scalpel",
+            "0.3,0.03,1.05:0,0.03,1.05",
+        ],
+    ] {
+        let mut args = tool.clone();
+        args.extend(["--time", "nan", "-o", &out]);
+        refused(&args, "finite", &out);
+    }
+    let args = [
+        "skin",
+        &man,
+        "--edit",
+        &edit,
+        "--in-betweens=18446744073709551615",
+        "-o",
+        &out,
+    ];
+    refused(&args, "--in-betweens", &out);
+    refused(
+        &["skin", &man, "--range", "0:1:100000", "-o", &out],
+        "--max-work",
+        &out,
+    );
+    let (a, b) = ("0.3,0,1.05:0,0,1.05", "0.3,0.03,1.05:0,0.03,1.05");
+    let args = [
+        "tear",
+        &man,
+        "--scalpel",
+        a,
+        "--scalpel",
+        b,
+        "--open",
+        "1e308",
+        "-o",
+        &out,
+    ];
+    refused(&args, "model's size", &out);
+    let args = [
+        "drill", &man, "--tip", "0,0,-10", "--end", "0,0,10", "--radius", "100", "-o", &out,
+    ];
+    refused(&args, "whole mesh", &out);
+
+    // A scalpel that comes back to an earlier blade: no panic; a finite result or a message.
+    let o = run(&[
+        "tear",
+        &man,
+        "--scalpel",
+        a,
+        "--scalpel",
+        b,
+        "--scalpel",
+        a,
+        "-o",
+        &out,
+        "--quiet",
+    ]);
+    let err = stderr(&o);
+    assert!(
+        matches!(o.status.code(), Some(0 | 2)) && !err.contains("panicked"),
+        "{err}"
+    );
+    if o.status.success() {
+        let m = read_obj(&out);
+        assert!(m.positions.iter().all(|p| p.is_finite()));
+        std::fs::remove_file(&out).unwrap();
+    }
+
+    // An ordinary straight 4-blade scalpel along libigl's arm: a finite, opened tear.
+    let libigl = data.join("meshes/libigl");
+    let lib = |n: &str| libigl.join(n).to_string_lossy().into_owned();
+    let (arm, tgf, dmat) = (lib("arm.obj"), lib("arm.tgf"), lib("arm-weights.dmat"));
+    let mut args = vec![
+        "tear".to_string(),
+        arm,
+        "--skeleton".into(),
+        tgf,
+        "--weights".into(),
+        dmat,
+    ];
+    for (x, y) in [(-0.6, 0.215), (-0.3, 0.227), (0.0, 0.183), (0.3, 0.097)] {
+        args.push("--scalpel".into());
+        args.push(format!("{x},{y},0.6:{x},{y},-0.03"));
+    }
+    args.extend(["--open", "0.01", "-o", &out, "--quiet"].map(String::from));
+    let o = run(&args.iter().map(String::as_str).collect::<Vec<_>>());
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(read_obj(&out).positions.iter().all(|p| p.is_finite()));
+    std::fs::remove_file(&out).unwrap();
+
+    // POSITION names an accessor that does not exist (the gltf crate's validation panicked).
+    let mut json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(&simple).unwrap()).unwrap();
+    json["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = 99.into();
+    std::fs::write(s.p("bad.gltf"), json.to_string()).unwrap();
+    refused(
+        &["skin", &s.p("bad.gltf"), "-o", &out],
+        "refers to index 99",
+        &out,
+    );
+
+    // A sequence whose generated names include an input (the edit motor file) is refused
+    // before anything is written, and the input is left as it was.
+    std::fs::write(s.p("seq_0001.obj"), "{}").unwrap();
+    let edit = format!("0={}", s.p("seq_0001.obj"));
+    let simple = simple.to_string_lossy().into_owned();
+    let seq = s.p("seq.obj");
+    let args = [
+        "skin", &simple, "--edit", &edit, "--range", "0:1:3", "-o", &seq,
+    ];
+    refused(
+        &args,
+        "refusing to overwrite an input",
+        &s.p("seq_0000.obj"),
+    );
+    assert_eq!(std::fs::read_to_string(s.p("seq_0001.obj")).unwrap(), "{}");
+}
+
+/// Issue 21's "wrong files under the asked name": an output extension the command does not
+/// write is refused before any work, not filled with another format's bytes.
+#[test]
+fn outputs_must_name_a_format_the_command_writes() {
+    let s = Scene::new("formats");
+    let (mesh, sel, keys) = (s.p("bar.obj"), s.p("sel.json"), s.p("keys.json"));
+    for out in ["x.glb", "x.ply", "x"] {
+        let out = s.p(out);
+        let args = [
+            "spline", &mesh, "--select", &sel, "--keys", &keys, "-o", &out,
+        ];
+        refused(&args, "this command writes .obj", &out);
+    }
+    let (out, png) = (s.p("x.obj"), s.p("x.jpg"));
+    let args = [
+        "spline", &mesh, "--select", &sel, "--keys", &keys, "-o", &out, "--png", &png,
+    ];
+    refused(&args, "--png writes PNG", &out);
+}

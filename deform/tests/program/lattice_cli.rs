@@ -1,0 +1,165 @@
+//! The `ffd` and `cage` subcommands end to end: outputs parse back with the input's counts,
+//! identity motors reproduce the input, a cage that does not enclose the mesh and a motor for
+//! a control point that does not exist exit with code 2.
+
+use crate::common;
+
+use deform::shapes::{icosphere, tube};
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn run(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_deform"))
+        .args(args)
+        .output()
+        .expect("run deform")
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("deform-lattice-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn s(p: &std::path::Path) -> &str {
+    p.to_str().unwrap()
+}
+
+#[test]
+fn ffd_twists_a_bar_and_writes_obj_png_and_json() {
+    let dir = scratch("ffd");
+    let bar = tube(1.0, 10.0, 8, 11);
+    deform::io::write_obj(&bar, dir.join("bar.obj")).unwrap();
+    // Layer u = 1 of a 2x2x2 lattice (odd indices) turns 90 degrees about the bar's axis.
+    let motors = r#"{"1": {"rotate": {"axis": [1, 0, 0], "degrees": 90}},
+        "3": {"rotate": {"axis": [1, 0, 0], "degrees": 90}},
+        "5": {"rotate": {"axis": [1, 0, 0], "degrees": 90}},
+        "7": {"rotate": {"axis": [1, 0, 0], "degrees": 90}}}"#;
+    std::fs::write(dir.join("m.json"), motors).unwrap();
+    let (bar_obj, m_json) = (dir.join("bar.obj"), dir.join("m.json"));
+    let (out_obj, out_png) = (dir.join("out.obj"), dir.join("out.png"));
+    for extra in [&[][..], &["--positional"][..], &["--degree", "1"][..]] {
+        let mut args = vec![
+            "ffd",
+            s(&bar_obj),
+            "--lattice",
+            "2x2x2",
+            "--box",
+            "-0.5,-1,-1,10.5,1,1",
+            "--motors",
+            s(&m_json),
+            "-o",
+            s(&out_obj),
+            "--png",
+            s(&out_png),
+            "--json",
+        ];
+        args.extend_from_slice(extra);
+        let o = run(&args);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let json: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        assert_eq!(json["command"], "ffd");
+        let out = deform::io::read_mesh(dir.join("out.obj")).unwrap();
+        assert_eq!(out.vertex_count(), bar.vertex_count());
+        assert!(dir.join("out.png").is_file());
+    }
+    // A motor for control point 8 of a 2x2x2 lattice, a flat box: exit code 2.
+    std::fs::write(dir.join("bad.json"), r#"{"8": {}}"#).unwrap();
+    for (motors, bounds) in [
+        ("bad.json", "-0.5,-1,-1,10.5,1,1"),
+        ("m.json", "0,0,0,1,0,1"),
+    ] {
+        let o = run(&[
+            "ffd",
+            s(&dir.join("bar.obj")),
+            "--lattice",
+            "2x2x2",
+            "--box",
+            bounds,
+            "--motors",
+            s(&dir.join(motors)),
+            "-o",
+            s(&dir.join("bad.obj")),
+        ]);
+        assert_eq!(o.status.code(), Some(2));
+        assert!(!dir.join("bad.obj").exists());
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn cage_identity_reproduces_the_mesh_and_a_small_cage_exits_2() {
+    let dir = scratch("cage");
+    let model = icosphere(1.0, 2);
+    deform::io::write_obj(&model, dir.join("model.obj")).unwrap();
+    deform::io::write_obj(&icosphere(1.6, 1), dir.join("cage.obj")).unwrap();
+    deform::io::write_obj(&icosphere(0.5, 1), dir.join("small.obj")).unwrap();
+    std::fs::write(dir.join("id.json"), r#"{"*": {}}"#).unwrap();
+    for coords in ["mvc", "harmonic"] {
+        let o = run(&[
+            "cage",
+            s(&dir.join("model.obj")),
+            "--cage",
+            s(&dir.join("cage.obj")),
+            "--coords",
+            coords,
+            "--grid",
+            "24",
+            "--motors",
+            s(&dir.join("id.json")),
+            "-o",
+            s(&dir.join("out.obj")),
+            "--quiet",
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let out = deform::io::read_mesh(dir.join("out.obj")).unwrap();
+        assert_eq!(out.vertex_count(), model.vertex_count());
+        assert!(out
+            .positions
+            .iter()
+            .zip(&model.positions)
+            .all(|(a, b)| a.distance(*b) < 1e-9));
+    }
+    let o = run(&[
+        "cage",
+        s(&dir.join("model.obj")),
+        "--cage",
+        s(&dir.join("small.obj")),
+        "--motors",
+        s(&dir.join("id.json")),
+        "-o",
+        s(&dir.join("bad.obj")),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("does not enclose"), "{err}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn the_partial_bar_cage_exits_2() {
+    let Some(cages) = common::mesh_path("cages") else {
+        return;
+    };
+    let dir = scratch("partial");
+    std::fs::write(dir.join("id.json"), r#"{"*": {}}"#).unwrap();
+    let o = run(&[
+        "cage",
+        s(&cages.join("bar.OBJ")),
+        "--cage",
+        s(&cages.join("bar_cage_partial.OBJ")),
+        "--motors",
+        s(&dir.join("id.json")),
+        "-o",
+        s(&dir.join("out.obj")),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("bar_cage_partial.OBJ") && err.contains("does not enclose"),
+        "{err}"
+    );
+    assert!(!dir.join("out.obj").exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}

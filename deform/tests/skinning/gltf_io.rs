@@ -1,0 +1,346 @@
+//! glTF and glb input and output: round trips, normals, a second joint set, morph targets,
+//! external buffers, coordinates beyond single precision, and bad glTF or rig input.
+
+use crate::common::{self, data_dir};
+use crate::{gltf, gltf_out, max_dist, skin};
+use cga::ScaledMotor;
+use deform::skinning::{glb_bytes, parse_gltf, procedural_arm, GlbOptions, Rig, Skinning};
+use deform::{BlendMethod, Deformer};
+use glam::{DQuat, DVec3};
+
+/// A written `.glb` read back gives the same positions at the same times.
+#[test]
+fn glb_round_trip() {
+    let mut rigs = vec![("arm".to_string(), procedural_arm(12, 20))];
+    for name in ["SimpleSkin.gltf", "Fox.glb", "CesiumMan.glb"] {
+        if let Some(r) = gltf(name) {
+            rigs.push((name.to_string(), r));
+        }
+    }
+    for (name, rig) in &rigs {
+        let bytes = glb_bytes(rig, &GlbOptions::default()).unwrap();
+        std::fs::write(gltf_out().join(format!("{name}.glb")), &bytes).unwrap();
+        let back = parse_gltf(&bytes, name, None).unwrap();
+        check_written_normals(&bytes, rig, name);
+        assert_eq!(back.animations.len(), rig.animations.len());
+        assert_eq!(back.mesh.triangles, rig.mesh.triangles);
+        let diag = rig.mesh.bounding_box().unwrap().diagonal();
+        for (a, anim) in rig.animations.iter().enumerate() {
+            let (t0, t1) = anim.range();
+            for k in 0..5 {
+                let t = t0 + (t1 - t0) * k as f64 / 4.0;
+                let p = skin(rig, BlendMethod::Matrix, Some(a), t, &[]);
+                let q = skin(&back, BlendMethod::Matrix, Some(a), t, &[]);
+                let err = max_dist(&p, &q) / diag;
+                assert!(err < 2e-6, "{name} animation {a} t={t}: {err:e}");
+            }
+        }
+    }
+}
+
+/// Every written primitive has unit normals that are the rig's smooth vertex normals.
+fn check_written_normals(bytes: &[u8], rig: &deform::skinning::Rig, name: &str) {
+    let g = gltf::Gltf::from_slice(bytes).unwrap();
+    let blob = g.blob.as_deref();
+    let want = rig.mesh.vertex_normals();
+    let mut seen = 0;
+    for prim in g.meshes().flat_map(|m| m.primitives().collect::<Vec<_>>()) {
+        let reader = prim.reader(|b| if b.index() == 0 { blob } else { None });
+        let normals: Vec<[f32; 3]> = reader.read_normals().expect("a NORMAL attribute").collect();
+        let count = reader.read_positions().unwrap().count();
+        assert_eq!(normals.len(), count, "{name}");
+        for n in normals {
+            let n = glam::Vec3::from(n);
+            assert!(
+                (n.length() - 1.0).abs() < 1e-6,
+                "{name}: |n| = {}",
+                n.length()
+            );
+            let w = want[seen];
+            if w != glam::DVec3::ZERO {
+                assert!((n.as_dvec3() - w).length() < 1e-6, "{name} vertex {seen}");
+            }
+            seen += 1;
+        }
+    }
+    assert_eq!(seen, rig.mesh.vertex_count(), "{name}");
+}
+
+/// SimpleSkin's JSON, edited by `f`, parsed again.
+fn simple_skin_edited(
+    f: impl FnOnce(&mut serde_json::Value),
+) -> Option<Result<Rig, deform::skinning::SkinError>> {
+    let path = data_dir()?.join("gltf/SimpleSkin.gltf");
+    let mut doc: serde_json::Value = serde_json::from_slice(&std::fs::read(path).unwrap()).unwrap();
+    f(&mut doc);
+    Some(parse_gltf(
+        &serde_json::to_vec(&doc).unwrap(),
+        "edited",
+        None,
+    ))
+}
+
+/// Bad input: typed errors or documented handling, never a panic.
+#[test]
+fn bad_gltf_input() {
+    use deform::skinning::SkinError;
+    let Some(dir) = data_dir() else { return };
+    // Truncated and corrupt files, at many lengths.
+    for name in ["Fox.glb", "SimpleSkin.gltf"] {
+        let bytes = std::fs::read(dir.join("gltf").join(name)).unwrap();
+        for cut in (0..bytes.len()).step_by(bytes.len() / 97 + 1) {
+            assert!(
+                parse_gltf(&bytes[..cut], name, None).is_err(),
+                "{name} cut at {cut}"
+            );
+        }
+        let mut flipped = bytes.clone();
+        for k in (0..flipped.len()).step_by(131) {
+            flipped[k] ^= 0x5a;
+            let _ = parse_gltf(&flipped, name, None); // any result, no panic
+        }
+    }
+    // Missing inverse bind matrices: identity, as the specification says.
+    let r = simple_skin_edited(|d| {
+        d["skins"][0]
+            .as_object_mut()
+            .unwrap()
+            .remove("inverseBindMatrices");
+    })
+    .unwrap()
+    .unwrap();
+    assert!(r.inverse_bind.iter().all(|m| *m == glam::DMat4::IDENTITY));
+    // An animation targeting a missing node: the glTF checks refuse it.
+    let e = simple_skin_edited(|d| d["animations"][0]["channels"][0]["target"]["node"] = 99.into())
+        .unwrap();
+    assert!(matches!(e, Err(SkinError::Gltf { .. })), "{e:?}");
+    // A skin joint that is not a node.
+    let e = simple_skin_edited(|d| d["skins"][0]["joints"][1] = 42.into()).unwrap();
+    assert!(matches!(e, Err(SkinError::Gltf { .. })), "{e:?}");
+    // A buffer shorter than declared.
+    let e = simple_skin_edited(|d| {
+        let uri = d["buffers"][0]["uri"].as_str().unwrap().to_string();
+        d["buffers"][0]["uri"] = uri[..uri.len() - 40].into();
+    })
+    .unwrap();
+    assert!(matches!(e, Err(SkinError::Data { .. })), "{e:?}");
+    // An accessor reaching past its view.
+    let e = simple_skin_edited(|d| {
+        let c = d["accessors"][0]["count"].as_u64().unwrap();
+        d["accessors"][0]["count"] = (c + 1000).into();
+    })
+    .unwrap();
+    assert!(e.is_err(), "{e:?}");
+}
+
+/// Joint indices out of range, bad weights, weights that do not sum to 1, non-finite keys,
+/// non-similarity transforms asked for as motors.
+#[test]
+fn bad_rig_input() {
+    use deform::skinning::{Animation, Channel, Interpolation, Property, SkinError};
+    let rig = procedural_arm(6, 4);
+    let rebuild = |f: &dyn Fn(&mut deform::skinning::Influences)| {
+        let mut inf = rig.influences.clone();
+        f(&mut inf);
+        Rig::new(
+            rig.nodes.clone(),
+            rig.joints.clone(),
+            rig.inverse_bind.clone(),
+            rig.mesh.clone(),
+            inf,
+            rig.primitives.clone(),
+            rig.animations.clone(),
+            Default::default(),
+        )
+    };
+    let e = rebuild(&|i| i.joints[5] = 7).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            SkinError::JointOutOfRange {
+                vertex: 1,
+                joint: 7,
+                ..
+            }
+        ),
+        "{e:?}"
+    );
+    let e = rebuild(&|i| i.weights[2] = f64::NAN).unwrap_err();
+    assert!(matches!(e, SkinError::BadWeight { vertex: 0, .. }), "{e:?}");
+    let e = rebuild(&|i| i.weights[2] = -0.5).unwrap_err();
+    assert!(matches!(e, SkinError::BadWeight { .. }), "{e:?}");
+    // Weights scaled by 2 on 3 vertices: normalised and counted.
+    let r = rebuild(&|i| (0..12).for_each(|k| i.weights[k] *= 2.0)).unwrap();
+    assert_eq!(r.report.renormalised_vertices, 3);
+    for v in 0..r.mesh.vertex_count() {
+        let s: f64 = r.influences.row(v).map(|(_, w)| w).sum();
+        assert!((s - 1.0).abs() < 1e-12);
+    }
+    // Keyframes: non-finite values and times that do not increase.
+    let bad = Channel::new(
+        0,
+        Property::Translation,
+        Interpolation::Linear,
+        vec![0.0, 1.0],
+        vec![glam::DVec4::ZERO, glam::DVec4::splat(f64::INFINITY)],
+        "c",
+    );
+    assert!(matches!(bad, Err(SkinError::BadTransform { .. })));
+    let bad = Channel::new(
+        0,
+        Property::Translation,
+        Interpolation::Linear,
+        vec![1.0, 1.0],
+        vec![glam::DVec4::ZERO; 2],
+        "c",
+    );
+    assert!(matches!(bad, Err(SkinError::BadTransform { .. })));
+    let bad = Channel::new(
+        0,
+        Property::Rotation,
+        Interpolation::Step,
+        vec![0.0],
+        vec![glam::DVec4::ZERO],
+        "c",
+    );
+    assert!(
+        matches!(bad, Err(SkinError::BadTransform { .. })),
+        "a zero quaternion key"
+    );
+    // A non-uniform scale on a joint: matrices skin it, motors say why they cannot.
+    let mut squash = rig.clone();
+    squash.animations = vec![Animation {
+        name: "squash".into(),
+        channels: vec![Channel::new(
+            1,
+            Property::Scale,
+            Interpolation::Step,
+            vec![0.0],
+            vec![glam::DVec4::new(1.0, 0.5, 1.0, 0.0)],
+            "s",
+        )
+        .unwrap()],
+    }];
+    let pose = squash.pose(Some(0), 0.0, &[]).unwrap();
+    assert!(matches!(
+        pose.skin_motors(),
+        Err(SkinError::NotSimilarity { .. })
+    ));
+    assert!(squash.pose(Some(3), 0.0, &[]).is_err());
+    assert!(squash.joint_index("no such joint").is_err());
+    assert_eq!(squash.joint_index("elbow").unwrap(), 1);
+}
+
+/// More than 4 influences: the writer keeps the 8 largest as two joint sets, the reader reads
+/// both; vertices with at most 8 influences skin exactly as before.
+#[test]
+fn second_joint_set_round_trip() {
+    let Some(rig) = common::libigl_rig("elephant") else {
+        return;
+    };
+    let bytes = glb_bytes(&rig, &GlbOptions::default()).unwrap();
+    std::fs::write(gltf_out().join("elephant-8-influences.glb"), &bytes).unwrap();
+    let back = parse_gltf(&bytes, "elephant", None).unwrap();
+    assert_eq!(back.influences.width, 8);
+    let keys: Vec<ScaledMotor> = (0..rig.joints.len())
+        .map(|j| {
+            ScaledMotor::from_scale_rotation_translation(
+                1.0,
+                DQuat::from_rotation_y(0.1 * j as f64),
+                DVec3::ZERO,
+            )
+        })
+        .collect();
+    let pose = |r: &Rig| {
+        let b = Skinning::bind(r, BlendMethod::Matrix).unwrap();
+        let mut out = vec![DVec3::ZERO; r.mesh.vertex_count()];
+        b.pose(&keys, &mut out).unwrap();
+        out
+    };
+    let (p, q) = (pose(&rig), pose(&back));
+    let diag = rig.mesh.bounding_box().unwrap().diagonal();
+    let mut exact = 0;
+    for v in 0..rig.mesh.vertex_count() {
+        if rig.influences.row(v).filter(|&(_, w)| w > 0.0).count() <= 8 {
+            exact += 1;
+            assert!(p[v].distance(q[v]) / diag < 1e-6, "vertex {v}");
+        }
+    }
+    assert!(exact > 0);
+}
+
+/// Morph targets are read past and reported (unsupported), not an error.
+#[test]
+fn morph_targets_are_reported() {
+    let Some(r) = simple_skin_edited(|d| {
+        d["meshes"][0]["primitives"][0]["targets"] = serde_json::json!([{"POSITION": 1}]);
+    }) else {
+        return;
+    };
+    let rig = r.unwrap();
+    assert!(
+        rig.report.notes.iter().any(|n| n.contains("morph targets")),
+        "{:?}",
+        rig.report.notes
+    );
+}
+
+/// A coordinate beyond the f32 range (issue 20: a vertex or joint at 1e300) is an error when
+/// writing `.glb`, not an accessor of infinities.
+#[test]
+fn glb_refuses_coordinates_beyond_single_precision() {
+    let mut rig = procedural_arm(6, 5);
+    assert!(glb_bytes(&rig, &GlbOptions::default()).is_ok());
+    rig.mesh.positions[3].x = 1e300;
+    let err = glb_bytes(&rig, &GlbOptions::default()).unwrap_err();
+    assert!(err.to_string().contains("POSITION: element 3"), "{err}");
+}
+
+/// External buffers (issue 20): a URI that leaves the model's folder is refused unless
+/// allowed, and only the declared `byteLength` is read from a longer file.
+#[test]
+fn external_buffers_stay_in_the_model_folder_and_within_their_length() {
+    use deform::skinning::{parse_gltf_with, GltfReadOptions};
+    let glb = glb_bytes(&procedural_arm(6, 5), &GlbOptions::default()).unwrap();
+    let u32_at = |i: usize| u32::from_le_bytes(glb[i..i + 4].try_into().unwrap()) as usize;
+    let json_len = u32_at(12);
+    let json: &[u8] = &glb[20..20 + json_len];
+    let bin_len = u32_at(20 + json_len);
+    let bin = &glb[28 + json_len..28 + json_len + bin_len];
+    let root = std::env::temp_dir().join(format!("deform-external-{}", std::process::id()));
+    let model = root.join("model");
+    std::fs::create_dir_all(&model).unwrap();
+    let mut longer = bin.to_vec();
+    longer.extend_from_slice(&[0xAB; 4096]);
+    std::fs::write(root.join("outside.bin"), bin).unwrap();
+    std::fs::write(model.join("inside.bin"), &longer).unwrap();
+    let with_uri = |uri: &str| {
+        let mut doc: serde_json::Value = serde_json::from_slice(json).unwrap();
+        doc["buffers"][0]["uri"] = uri.into();
+        doc.to_string().into_bytes()
+    };
+    let strict = GltfReadOptions::default();
+    let inside = parse_gltf_with(&with_uri("inside.bin"), "inside", Some(&model), &strict);
+    assert_eq!(
+        inside.unwrap().mesh.vertex_count(),
+        procedural_arm(6, 5).mesh.vertex_count()
+    );
+    let outside = with_uri("../outside.bin");
+    let err = parse_gltf_with(&outside, "outside", Some(&model), &strict).unwrap_err();
+    assert!(
+        err.to_string().contains("leaves the model's folder"),
+        "{err}"
+    );
+    let open = GltfReadOptions {
+        allow_external: true,
+        ..strict
+    };
+    assert!(parse_gltf_with(&outside, "outside", Some(&model), &open).is_ok());
+    let small = GltfReadOptions {
+        max_buffer_bytes: 16,
+        ..strict
+    };
+    let err = parse_gltf_with(&with_uri("inside.bin"), "small", Some(&model), &small).unwrap_err();
+    assert!(err.to_string().contains("over the limit"), "{err}");
+    let _ = std::fs::remove_dir_all(&root);
+}

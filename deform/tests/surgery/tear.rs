@@ -1,0 +1,231 @@
+//! Tearing a skinned mesh: manifold results, area kept, incision points on their planes,
+//! weights, bad tears, real and posed meshes.
+
+use crate::{assert_manifold, check_animates, common};
+use deform::skinning::{procedural_arm, Rig, Skinning};
+use deform::surgery::{CutPiece, Frame, Surgery, SurgeryError, VertexOrigin};
+use deform::{BlendMethod, Deformer};
+use glam::DVec3;
+
+/// Tear checks: manifold, area kept (a slit re-triangulates the same surface), incision points
+/// on their step's plane, weights partitions of unity, input vertices unchanged.
+fn check_tear(rig: &Rig, r: &deform::surgery::TearResult, opened: bool) {
+    let m = &r.mesh.mesh;
+    assert_manifold(m);
+    let all = deform::adjacency::boundary_loops(&m.triangles, m.vertex_count()).len();
+    assert_eq!(r.boundary_loops, all, "boundary loops");
+    let diag = rig.mesh.bounding_box().unwrap().diagonal();
+    if !opened {
+        assert!((m.area() - rig.mesh.area()).abs() < 1e-9 * rig.mesh.area());
+    }
+    for (v, o) in r.origin.iter().enumerate() {
+        match *o {
+            VertexOrigin::Incision if !opened => {
+                let d = r
+                    .planes
+                    .iter()
+                    .map(|(n, p)| n.dot(m.positions[v] - *p).abs())
+                    .fold(f64::INFINITY, f64::min);
+                assert!(
+                    d < 1e-9 * diag,
+                    "incision vertex {v} is {d} off every step plane"
+                );
+            }
+            VertexOrigin::Original(i) if !opened || !r.incision.contains(&(v as u32)) => {
+                assert_eq!(m.positions[v], rig.mesh.positions[i as usize]);
+            }
+            _ => {}
+        }
+        let row: Vec<(u32, f64)> = r.mesh.influences.row(v).collect();
+        assert!((row.iter().map(|x| x.1).sum::<f64>() - 1.0).abs() < 1e-12);
+    }
+}
+
+#[test]
+fn tear_the_arm() {
+    use deform::surgery::{Scalpel, TearOptions};
+    let rig = procedural_arm(24, 81);
+    let s = Surgery::new(&rig.mesh, &rig.influences).unwrap();
+    let blade = |x: f64, z: f64| Scalpel {
+        a: DVec3::new(x, 1.2, z),
+        b: DVec3::new(x, 0.2, z),
+    };
+    let two = [blade(2.03, 0.05), blade(3.01, 0.08)];
+    let r = s.tear(&two, Frame::Rest, &TearOptions::default()).unwrap();
+    check_tear(&rig, &r, false);
+    assert_eq!(r.boundary_loops, 1, "the slit is one loop");
+    assert!(r.duplicated >= 3, "{} duplicated", r.duplicated);
+    assert!(r.incision.len() >= 5);
+    let pose = rig.pose(Some(0), 1.3, &[]).unwrap();
+    let piece = CutPiece {
+        mesh: r.mesh.clone(),
+        origin: r.origin.clone(),
+        face_origin: vec![],
+        boundary_loops: r.boundary_loops,
+        cap_triangles: 0,
+    };
+    for method in [
+        BlendMethod::Matrix,
+        BlendMethod::DualQuaternion,
+        BlendMethod::Conformal,
+    ] {
+        check_animates(&rig, &piece, pose.skin_motors().unwrap(), method);
+    }
+    // A sequence of steps is one longer incision.
+    let four = [
+        blade(2.03, 0.05),
+        blade(2.6, 0.1),
+        blade(3.3, 0.12),
+        blade(4.1, 0.0),
+    ];
+    let r = s.tear(&four, Frame::Rest, &TearOptions::default()).unwrap();
+    check_tear(&rig, &r, false);
+    assert_eq!(r.boundary_loops, 1);
+    // Opened: the lips part in the middle, the ends stay.
+    let r = s
+        .tear(
+            &four,
+            Frame::Rest,
+            &TearOptions {
+                open: 0.1,
+                ..TearOptions::default()
+            },
+        )
+        .unwrap();
+    check_tear(&rig, &r, true);
+    let m = &r.mesh.mesh;
+    let widest = r
+        .origin
+        .iter()
+        .enumerate()
+        .filter_map(|(c, o)| match o {
+            VertexOrigin::Copy(v) => Some(m.positions[c].distance(m.positions[*v as usize])),
+            _ => None,
+        })
+        .fold(0.0, f64::max);
+    assert!(
+        widest > 0.05 && widest <= 0.1 + 1e-12,
+        "widest gap {widest}"
+    );
+}
+
+#[test]
+fn bad_tears() {
+    use deform::surgery::{Scalpel, TearOptions};
+    let rig = procedural_arm(12, 21);
+    let s = Surgery::new(&rig.mesh, &rig.influences).unwrap();
+    let o = TearOptions::default();
+    let one = [Scalpel {
+        a: DVec3::new(2.0, 1.0, 0.0),
+        b: DVec3::new(2.0, 0.0, 0.0),
+    }];
+    assert!(matches!(
+        s.tear(&one, Frame::Rest, &o),
+        Err(SurgeryError::BadTool(_))
+    ));
+    let air = [
+        Scalpel {
+            a: DVec3::new(2.0, 3.0, 0.0),
+            b: DVec3::new(2.0, 2.0, 0.0),
+        },
+        Scalpel {
+            a: DVec3::new(3.0, 3.0, 0.0),
+            b: DVec3::new(3.0, 2.0, 0.0),
+        },
+    ];
+    assert!(matches!(
+        s.tear(&air, Frame::Rest, &o),
+        Err(SurgeryError::BadTool(_))
+    ));
+    let nan = [
+        Scalpel {
+            a: DVec3::NAN,
+            b: DVec3::ZERO,
+        },
+        Scalpel {
+            a: DVec3::ONE,
+            b: DVec3::ZERO,
+        },
+    ];
+    assert!(matches!(
+        s.tear(&nan, Frame::Rest, &o),
+        Err(SurgeryError::BadTool(_))
+    ));
+}
+
+#[test]
+fn tear_real_and_posed() {
+    use deform::surgery::{Scalpel, TearOptions};
+    let rig = procedural_arm(24, 81);
+    let s = Surgery::new(&rig.mesh, &rig.influences).unwrap();
+    let pose = rig.pose(Some(0), 2.0, &[]).unwrap();
+    let keys = pose.skin_motors().unwrap();
+    let lbs = Skinning::bind(&rig, BlendMethod::Matrix).unwrap();
+    let mut posed = vec![DVec3::ZERO; rig.mesh.vertex_count()];
+    lbs.pose(keys, &mut posed).unwrap();
+    // The forearm points up after the bend: tear along it on its +x side.
+    let blade = |y: f64| Scalpel {
+        a: DVec3::new(5.5, y, 0.02),
+        b: DVec3::new(4.0, y, 0.02),
+    };
+    let frame = Frame::Posed {
+        positions: &posed,
+        skin: &pose.skin_matrices,
+    };
+    let r = s
+        .tear(&[blade(1.5), blade(2.5)], frame, &TearOptions::default())
+        .unwrap();
+    assert_manifold(&r.mesh.mesh);
+    assert_eq!(r.boundary_loops, 1);
+    // Posed again by LBS, the incision lies on the step plane.
+    let b = Skinning::bind_influences(
+        &r.mesh.mesh.positions,
+        &r.mesh.influences,
+        3,
+        BlendMethod::Matrix,
+    )
+    .unwrap();
+    let mut out = vec![DVec3::ZERO; r.mesh.mesh.vertex_count()];
+    b.pose(keys, &mut out).unwrap();
+    for (v, o) in r.origin.iter().enumerate() {
+        if matches!(o, VertexOrigin::Incision) {
+            let d = r
+                .planes
+                .iter()
+                .map(|(n, p)| n.dot(out[v] - *p).abs())
+                .fold(f64::INFINITY, f64::min);
+            assert!(d < 1e-9, "{d}");
+        }
+    }
+    let Some(arm) = common::libigl_rig("arm") else {
+        return;
+    };
+    let s = Surgery::new(&arm.mesh, &arm.influences).unwrap();
+    let loops0 =
+        deform::adjacency::boundary_loops(&arm.mesh.triangles, arm.mesh.vertex_count()).len();
+    // Two blades pointing into the skin along the normals of two nearby vertices.
+    let normals = arm.mesh.vertex_normals();
+    let c = arm.mesh.bounding_box().unwrap().center();
+    let v0 = (0..arm.mesh.vertex_count())
+        .min_by(|&i, &j| {
+            arm.mesh.positions[i]
+                .distance(c)
+                .total_cmp(&arm.mesh.positions[j].distance(c))
+        })
+        .unwrap();
+    let p0 = arm.mesh.positions[v0];
+    let along = normals[v0].any_orthonormal_vector();
+    let at = |p: DVec3| Scalpel {
+        a: p + normals[v0] * 0.05,
+        b: p - normals[v0] * 0.05,
+    };
+    let r = s
+        .tear(
+            &[at(p0 + along * 0.013), at(p0 + along * 0.06)],
+            Frame::Rest,
+            &TearOptions::default(),
+        )
+        .unwrap();
+    check_tear(&arm, &r, false);
+    assert_eq!(r.boundary_loops, loops0 + 1);
+}
