@@ -1,18 +1,30 @@
-//! Meshes, Laplacians, sparse solves, harmonic fields and the CGA mesh deformers.
+//! Meshes, Laplacians, sparse solves, harmonic fields and the CGA mesh deformers of the two
+//! papers, in layers; each folder may use only the layers below it (a unit test checks every
+//! `crate::` path, see `ARCHITECTURE.md` at the repository root):
 //!
-//! * [`Mesh`] with on-demand adjacency ([`adjacency`]), [`validate()`] and [`clean()`];
-//! * files in [`io`]: OBJ, OFF, MEDIT, libigl DMAT and TGF;
-//! * Laplacians ([`cotangent_laplacian`], [`mean_value_laplacian`], [`uniform_laplacian`])
-//!   and mass matrices ([`mass_matrix`]) as `sprs::CsMat<f64>`;
-//! * [`DirichletSolver`]: prefactored sparse Cholesky (faer) with Dirichlet conditions;
-//! * [`Harmonic`] fields and coordinates.
+//! | layer | what | may use | error |
+//! |---|---|---|---|
+//! | [`mesh`] | [`Mesh`], adjacency, [`validate()`]/[`clean()`], shapes, files ([`io`]) | - | [`MeshError`] |
+//! | [`operators`] | Laplacians, mass matrices, [`DirichletSolver`], [`Harmonic`] fields | mesh | [`SolveError`] |
+//! | [`blend`] | [`BlendMethod`], [`KeyWeights`], [`BoundBlend`], [`control`] points | mesh | [`KeyError`], [`BlendError`] |
+//! | [`deformers`] | the [`Deformer`] shape; spline, B-spline + FABRIK, handles, ARAP, FFD, cages | mesh, operators, blend | [`DeformError`] |
+//! | [`skinning`] | glTF and libigl rigs, animation, skinning by every blend method | mesh, operators, blend, deformers | [`skinning::SkinError`] |
+//! | [`surgery`] | cut, tear and drill that stay animatable | mesh, skinning | [`surgery::SurgeryError`] |
+//! | [`render`] | the PNG preview renderer | mesh | [`MeshError`] |
+//! | [`input`] | motor JSON and selections, one format for every program command | mesh | [`input::InputError`] |
+//!
+//! Every layer's error converts into [`Error`] with `?`. Deformers bind once and pose many
+//! times: a bound deformer is immutable, so threads share it, each posing with its own
+//! [`PoseScratch`] (a [`Poser`]); a warm scratch makes a pose allocation-free. The `deform`
+//! program is behind the default feature `cli`; depend on `deform` with
+//! `default-features = false` for the library alone.
 //!
 //! Every fallible function returns `Ok` only with finite values. Angles (cotangents, mean-value
 //! tangents, the degenerate-triangle test) are computed scale-invariantly, so a mesh scaled by
 //! `1e-300` or `1e299` has the unit mesh's cotangent Laplacian and fields; [`validate()`]
 //! refuses coordinates beyond [`validate::MAX_COORDINATE`] (where edge vectors would
 //! overflow), and quantities with units (masses, mean-value weights) that leave the `f64`
-//! range are [`Error::Overflow`].
+//! range are [`MeshError::Overflow`].
 //!
 //! ```
 //! use deform::{harmonic_field, io, HarmonicOptions};

@@ -1,5 +1,9 @@
 //! Per-vertex blending of key motors, the core every motor deformer poses with.
 //!
+//! **May use**: the mesh foundation. **Must not use**: operators, deformers, skinning,
+//! surgery, render, input, or the crate-level `Error`; its errors are [`KeyError`] and
+//! [`BlendError`].
+//!
 //! Each vertex `i` has weights `w_ij` over a contiguous run of keys ([`KeyWeights`]); its
 //! transform is a blend of the keys `R_j`, by one of these methods ([`BlendMethod`]):
 //!

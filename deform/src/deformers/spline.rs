@@ -228,7 +228,7 @@ impl SplineDeformer {
     /// # Errors
     /// [`KeyError::WrongCount`] for a key list of the wrong length for the scheme,
     /// [`KeyError::ParameterOutOfRange`], [`KeyError::Invalid`] for a rest key that is not a
-    /// scaled motor, [`MeshError::DimensionMismatch`].
+    /// scaled motor, [`MeshError::DimensionMismatch`](crate::mesh::MeshError::DimensionMismatch).
     pub fn bind_with_lambda(
         positions: &[DVec3],
         lambda: Vec<f64>,

@@ -1,5 +1,8 @@
 //! What the `deform` program reads besides meshes: key motors in JSON ([`motors`]) and handle
 //! selections ([`selection`]). One format for every subcommand.
+//!
+//! **May use**: the mesh foundation (selection files in DMAT). **Must not use**: any other
+//! layer or the crate-level `Error`; its error is [`InputError`].
 
 pub mod motors;
 pub mod selection;

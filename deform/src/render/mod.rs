@@ -1,5 +1,8 @@
 //! A small deterministic software renderer for PNG previews of meshes.
 //!
+//! **May use**: the mesh foundation. **Must not use**: any other layer or the crate-level
+//! `Error`; it reports [`MeshError`] (bad meshes, sizes and files).
+//!
 //! * [`Camera`]: looks at a box from a yaw and a pitch, orthographic or perspective
 //!   ([`Projection`]), and frames it so that it fills the image with a margin;
 //! * [`render`] / [`render_with_camera`]: z-buffered, flat-shaded triangles (Lambert with a

@@ -12,6 +12,10 @@
 //! * [`Skinning`]: the bound deformer; its keys are the skin motors, one per joint.
 //! * [`write_glb`]: the rig back out as binary glTF (mesh, skin, hierarchy, animations).
 //!
+//! **May use**: mesh, operators, blend, deformers. **Must not use**: surgery, render, input,
+//! or the crate-level `Error`; its error is [`SkinError`] (binding reports
+//! [`crate::deformers::DeformError`]).
+//!
 //! ```
 //! use deform::skinning::{procedural_arm, Skinning};
 //! use deform::{BlendMethod, Deformer};

@@ -5,9 +5,6 @@ use crate::mesh::Mesh;
 use cga::ScaledMotor;
 use glam::DMat4;
 
-/// Relative tolerance within which a scale counts as uniform (a similarity).
-pub(crate) const UNIFORM_SCALE_TOLERANCE: f64 = 1e-4;
-
 /// Weights down to this (negative) value are rounding noise of a weight solver and read as 0.
 pub(crate) const NEGATIVE_WEIGHT_TOLERANCE: f64 = -1e-6;
 

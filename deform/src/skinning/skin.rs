@@ -45,8 +45,8 @@ impl Skinning {
     /// Bind rest positions with per-vertex influences over `joint_count` joints.
     ///
     /// # Errors
-    /// [`MeshError::DimensionMismatch`] when the influences do not match the positions,
-    /// [`MeshError::InvalidArgument`] for a joint index past `joint_count` or a non-finite
+    /// [`MeshError::DimensionMismatch`](crate::mesh::MeshError::DimensionMismatch) when the influences do not match the positions,
+    /// [`MeshError::InvalidArgument`](crate::mesh::MeshError::InvalidArgument) for a joint index past `joint_count` or a non-finite
     /// weight, [`crate::blend::KeyError::TooMany`] for too many joints.
     pub fn bind_influences(
         positions: &[DVec3],

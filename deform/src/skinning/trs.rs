@@ -1,9 +1,11 @@
 //! A node's local transform as glTF stores it: translation, rotation, scale.
 
-use super::rig::UNIFORM_SCALE_TOLERANCE;
 use super::SkinError;
 use cga::ScaledMotor;
 use glam::{DMat4, DQuat, DVec3};
+
+/// Relative tolerance within which a scale counts as uniform (a similarity).
+pub(crate) const UNIFORM_SCALE_TOLERANCE: f64 = 1e-4;
 
 /// A node's local transform: `T * R * S` applied to a point (glTF's order).
 #[derive(Clone, Copy, Debug, PartialEq)]

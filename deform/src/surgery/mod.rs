@@ -22,6 +22,9 @@
 //! the inverse of its own blended skin transform, so posing the pieces at that frame gives
 //! exactly the cut that was seen.
 //!
+//! **May use**: mesh, skinning. **Must not use**: operators, blend, deformers, render, input,
+//! or the crate-level `Error`; its error is [`SurgeryError`].
+//!
 //! ```
 //! use deform::skinning::procedural_arm;
 //! use deform::surgery::{CutOptions, Frame, Surgery};
@@ -49,7 +52,7 @@ pub use bvh::FaceBvh;
 pub use cut::{CutOptions, CutPiece, CutResult};
 pub use drill::{Drill, DrillOptions, DrillResult};
 pub use split::VertexOrigin;
-pub use tear::{Scalpel, TearOptions, TearResult};
+pub use tear::{Scalpel, TearOptions, TearResult, MAX_OPEN_PER_DIAGONAL};
 pub use weights::{push_interpolated, NEW_VERTEX_INFLUENCES};
 
 use crate::mesh::Mesh;

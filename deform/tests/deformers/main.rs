@@ -6,6 +6,7 @@ mod common;
 mod arap;
 mod blend;
 mod cage;
+mod fabrik;
 mod ffd;
 mod handles;
 mod pose_scratch;

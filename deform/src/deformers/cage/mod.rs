@@ -38,79 +38,9 @@ pub use mvc::{coordinates_and_winding, mean_value_coordinates};
 
 use crate::blend::control::{ControlBinding, ControlForm};
 use crate::blend::KeyWeights;
+pub use crate::deformers::error::CageError;
 use crate::deformers::Result;
-use crate::mesh::IndexList;
 use crate::mesh::Mesh;
-
-/// What is wrong with a cage.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum CageError {
-    /// Too few vertices or faces to enclose anything.
-    #[error("the cage has {vertices} vertices and {faces} faces: at least 4 of each")]
-    TooSmall {
-        /// Vertices.
-        vertices: usize,
-        /// Faces.
-        faces: usize,
-    },
-    /// Cage vertices that are not finite.
-    #[error("cage vertices {vertices} are not finite")]
-    NonFinite {
-        /// The vertices.
-        vertices: IndexList,
-    },
-    /// Faces with an index out of range or a repeated corner.
-    #[error("cage faces {faces} have out-of-range or repeated corners")]
-    BadFaces {
-        /// The faces.
-        faces: IndexList,
-    },
-    /// Edges on one face only: the cage has holes.
-    #[error("the cage is open: boundary edges at vertices {vertices}")]
-    Open {
-        /// Endpoints of boundary edges.
-        vertices: IndexList,
-    },
-    /// Edges shared by more than two faces.
-    #[error("the cage is not manifold: edges shared by 3 or more faces at vertices {vertices}")]
-    NonManifold {
-        /// Endpoints of those edges.
-        vertices: IndexList,
-    },
-    /// Faces that cross each other.
-    #[error("the cage intersects itself: {pairs} pairs of faces cross, e.g. faces {} and {}", first[0], first[1])]
-    SelfIntersecting {
-        /// How many pairs cross.
-        pairs: usize,
-        /// The lowest crossing pair.
-        first: [u32; 2],
-    },
-    /// Faces of (numerically) zero area.
-    #[error("degenerate (zero-area) cage faces {faces}")]
-    Degenerate {
-        /// The faces.
-        faces: IndexList,
-    },
-    /// Model vertices outside the cage.
-    #[error("the cage does not enclose the model: {count} vertices outside (winding number down to {lowest:.3}), e.g. {vertices}")]
-    NotEnclosing {
-        /// How many.
-        count: usize,
-        /// The vertices.
-        vertices: IndexList,
-        /// The lowest winding number among them.
-        lowest: f64,
-    },
-    /// A point whose coordinates could not be normalised.
-    #[error("vertex {index}: the cage coordinates do not normalise")]
-    Coordinates {
-        /// The vertex.
-        index: usize,
-    },
-    /// A harmonic-coordinate grid that cannot be built.
-    #[error("harmonic grid: {0}")]
-    Grid(String),
-}
 
 /// Which coordinates bind the model to the cage.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]

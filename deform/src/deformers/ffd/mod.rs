@@ -23,42 +23,11 @@ mod lattice;
 pub use lattice::{bernstein, Lattice, LatticeBasis, OUTSIDE_TOLERANCE};
 
 use crate::blend::control::{ControlBinding, ControlForm};
+pub use crate::deformers::error::FfdError;
 use crate::deformers::Result;
 use crate::mesh::Mesh;
 use crate::mesh::MeshError;
 use glam::DVec3;
-
-/// What is wrong with a lattice or the mesh inside it.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum FfdError {
-    /// An axis with fewer than 2 control points, or too many points in all.
-    #[error("lattice {dims:?}: every axis needs at least 2 control points (at most {max} in all)", max = crate::blend::MAX_KEYS)]
-    Dims {
-        /// Control points per axis.
-        dims: [usize; 3],
-    },
-    /// The box has no extent (or is not finite) along an axis.
-    #[error("lattice box has zero extent along axis {axis} ({min} .. {max}); give a box")]
-    ZeroExtent {
-        /// 0, 1 or 2.
-        axis: usize,
-        /// Lower bound.
-        min: f64,
-        /// Upper bound.
-        max: f64,
-    },
-    /// A B-spline degree outside 1..=3.
-    #[error("B-spline lattice degree {0}: 1, 2 or 3 are supported")]
-    Degree(usize),
-    /// A mesh vertex outside the lattice's box.
-    #[error("vertex {vertex} at {position:?} lies outside the lattice box")]
-    Outside {
-        /// The vertex.
-        vertex: usize,
-        /// Its position.
-        position: [f64; 3],
-    },
-}
 
 /// Options of [`Ffd::bind`].
 #[derive(Clone, Copy, Debug, Default, PartialEq)]

@@ -7,12 +7,17 @@
 //! elimination tree) and the numeric factor are computed once; solves for new boundary values
 //! or right-hand sides (any number of columns) only do triangular solves.
 
-use crate::mesh::union_find::UnionFind;
+mod components;
+mod scratch;
+
+pub use scratch::SolveScratch;
+
 use crate::mesh::IndexList;
 use crate::mesh::MeshError;
 use crate::operators::laplacian::ensure_finite;
 use crate::operators::Result;
 use crate::operators::SolveError;
+use components::{check_components, ensure_csr};
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::cholesky::llt::factor::LltError;
 use faer::linalg::cholesky::llt::factor::LltRegularization;
@@ -469,82 +474,4 @@ impl DirichletSolver {
         }
         Ok(())
     }
-}
-
-/// Workspace of [`DirichletSolver::solve_into`], from [`DirichletSolver::scratch`].
-pub struct SolveScratch {
-    /// The reduced right-hand sides / free unknowns, `free x ncols`.
-    y: Vec<f64>,
-    /// faer's triangular-solve workspace.
-    mem: MemBuffer,
-    /// Free rows of the solver it was made for.
-    free: usize,
-    /// Most columns it holds.
-    ncols: usize,
-    /// Size and alignment of `mem`.
-    size: usize,
-    align: usize,
-}
-
-impl std::fmt::Debug for SolveScratch {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("SolveScratch")
-            .field("free", &self.free)
-            .field("ncols", &self.ncols)
-            .field("bytes", &self.size)
-            .finish()
-    }
-}
-
-impl SolveScratch {
-    /// The most columns one solve may have with this scratch.
-    pub fn columns(&self) -> usize {
-        self.ncols
-    }
-}
-
-/// `q` in CSR storage (borrowed when it already is).
-fn ensure_csr(q: &CsMat<f64>) -> std::borrow::Cow<'_, CsMat<f64>> {
-    if q.is_csr() {
-        std::borrow::Cow::Borrowed(q)
-    } else {
-        std::borrow::Cow::Owned(q.to_csr())
-    }
-}
-
-/// Fails when a connected component of the graph of `q`'s nonzero off-diagonal entries has no
-/// constrained row (`slot != u32::MAX`).
-fn check_components(
-    n: usize,
-    indptr: &[usize],
-    indices: &[usize],
-    data: &[f64],
-    slot: &[u32],
-) -> Result<()> {
-    let mut uf = UnionFind::new(n);
-    for i in 0..n {
-        for k in indptr[i]..indptr[i + 1] {
-            if indices[k] != i && data[k] != 0.0 {
-                uf.union(i as u32, indices[k] as u32);
-            }
-        }
-    }
-    let comps = uf.labels();
-    let mut anchored = vec![false; comps.count];
-    for v in 0..n {
-        if slot[v] != u32::MAX {
-            anchored[comps.labels[v] as usize] = true;
-        }
-    }
-    let unanchored = anchored.iter().filter(|a| !**a).count();
-    if unanchored == 0 {
-        return Ok(());
-    }
-    let vertices: Vec<u32> = (0..n as u32)
-        .filter(|&v| !anchored[comps.labels[v as usize] as usize])
-        .collect();
-    Err(SolveError::Unconstrained {
-        components: unanchored,
-        vertices: IndexList(vertices),
-    })
 }
