@@ -29,6 +29,7 @@
 
 mod accessor;
 mod animation;
+mod bake;
 mod edit;
 mod glb_write;
 mod gltf_read;
@@ -41,6 +42,7 @@ mod trs;
 
 pub use accessor::GltfReadOptions;
 pub use animation::{Animation, Channel, Interpolation, KeyframeBlend, Property};
+pub use bake::bake_edits;
 pub use edit::{in_betweens, JointEdit};
 pub use glb_write::{glb_bytes, write_glb, GlbOptions};
 pub use gltf_read::{parse_gltf, parse_gltf_with, read_gltf, read_gltf_with};

@@ -101,3 +101,77 @@ fn skin_cli() {
         assert!(!o.stderr.is_empty());
     }
 }
+
+/// `skin --edit ... -o x.glb` writes the edit into the animation (issue 21): the written file,
+/// sampled at several times as a viewer samples it, gives what `skin --edit ... --time t
+/// -o x.obj` gives at those times.
+#[test]
+fn an_edit_written_to_glb_plays_like_the_obj_of_each_frame() {
+    use deform::skinning::{read_gltf, KeyframeBlend, RigPose};
+    use std::process::Command;
+    let Some(dir) = data_dir() else { return };
+    let out = gltf_out();
+    let exe = env!("CARGO_BIN_EXE_deform");
+    let edit = out.join("neck-plays.json");
+    std::fs::write(
+        &edit,
+        r#"{"rotate": {"axis": [1, 0, 0], "degrees": 25}, "scale": 1.2}"#,
+    )
+    .unwrap();
+    let man = dir.join("gltf/CesiumMan.glb");
+    let edit_arg = format!("Skeleton_neck_joint_1={}", edit.display());
+    let run = |extra: &[&str]| {
+        let mut args = vec!["skin", man.to_str().unwrap(), "--edit", &edit_arg, "-q"];
+        args.extend(extra);
+        let o = Command::new(exe).args(&args).output().unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    };
+    let glb = out.join("cesium-neck-plays.glb");
+    run(&["-o", glb.to_str().unwrap()]);
+    let written = read_gltf(&glb).unwrap();
+    let diag = written.mesh.bounding_box().unwrap().diagonal();
+    for t in ["0.4", "1.25"] {
+        let obj = out.join(format!("cesium-neck-{t}.obj"));
+        run(&[
+            "--animation",
+            "0",
+            "--time",
+            t,
+            "--backend",
+            "lbs",
+            "-o",
+            obj.to_str().unwrap(),
+        ]);
+        let want = deform::io::read_obj(&obj).unwrap().positions;
+        let mut pose = RigPose::default();
+        written
+            .pose_into(
+                Some(0),
+                t.parse().unwrap(),
+                KeyframeBlend::Gltf,
+                &[],
+                &mut pose,
+            )
+            .unwrap();
+        let got: Vec<glam::DVec3> = (0..written.mesh.vertex_count())
+            .map(|v| {
+                let p = written.mesh.positions[v];
+                written
+                    .influences
+                    .row(v)
+                    .map(|(j, w)| w * pose.skin_matrices[j as usize].transform_point3(p))
+                    .sum()
+            })
+            .collect();
+        let worst = want
+            .iter()
+            .zip(&got)
+            .map(|(a, b)| (*a - *b).length())
+            .fold(0.0, f64::max);
+        assert!(
+            worst < 1e-6 * diag,
+            "t {t}: {:e} of the diagonal",
+            worst / diag
+        );
+    }
+}

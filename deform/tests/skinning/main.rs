@@ -4,6 +4,7 @@
 #[path = "../common/mod.rs"]
 mod common;
 
+mod bake;
 #[cfg(feature = "cli")]
 mod cli;
 mod gltf_io;

@@ -13,7 +13,9 @@ use anyhow::{bail, Context, Result};
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::{Args, ValueEnum};
 use deform::input::parse_motor;
-use deform::skinning::{in_betweens, GlbOptions, JointEdit, KeyframeBlend, RigPose, Skinning};
+use deform::skinning::{
+    bake_edits, in_betweens, GlbOptions, JointEdit, KeyframeBlend, RigPose, Skinning,
+};
 use deform::{BlendMethod, Deformer, Mesh};
 use glam::DVec3;
 use std::path::{Path, PathBuf};
@@ -183,6 +185,13 @@ pub fn run(a: &SkinArgs) -> Result<()> {
         let motor = parse_motor(&read_text(path)?, &path.display().to_string())?;
         edits.push(JointEdit { joint: j, motor });
     }
+    // The written rig carries the edits in its rest transforms and its animations, so a
+    // viewer playing it shows them; refused here, before any work, when that is impossible.
+    let baked = if glb {
+        Some(bake_edits(&rig, &edits)?)
+    } else {
+        None
+    };
     let method = a.backend.method;
     let t = Instant::now();
     let bound = Skinning::bind(&rig, method)?;
@@ -350,13 +359,8 @@ pub fn run(a: &SkinArgs) -> Result<()> {
         report.add("linf_difference_percent_of_diagonal", 100.0 * linf / diag);
     }
     report.add("pose_ms", pose_ms / frames.len() as f64);
-    if glb {
-        let pose = rig.pose(None, 0.0, &edits)?;
-        let options = GlbOptions {
-            node_transforms: Some(pose.locals.clone()),
-            without_animations: false,
-        };
-        write_glb(&a.out.output, &rig, &options)?;
+    if let Some(baked) = &baked {
+        write_glb(&a.out.output, baked, &GlbOptions::default())?;
     }
     report.add("output", a.out.output.display().to_string());
     if let Some(png) = &a.out.png {
