@@ -175,3 +175,35 @@ fn an_edit_written_to_glb_plays_like_the_obj_of_each_frame() {
         );
     }
 }
+
+/// `skin --time` without `--animation` samples the first animation, as `cut`, `tear` and
+/// `drill` do (issue 21); without a time it is the rest pose.
+#[test]
+fn skin_time_defaults_to_the_first_animation() {
+    use std::process::Command;
+    let Some(dir) = data_dir() else { return };
+    let out = gltf_out();
+    let man = dir.join("gltf/CesiumMan.glb");
+    let run = |name: &str, extra: &[&str]| {
+        let obj = out.join(name);
+        let mut args = vec![
+            "skin",
+            man.to_str().unwrap(),
+            "-q",
+            "-o",
+            obj.to_str().unwrap(),
+        ];
+        args.extend(extra);
+        let o = Command::new(env!("CARGO_BIN_EXE_deform"))
+            .args(&args)
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        deform::io::read_obj(&obj).unwrap().positions
+    };
+    let implicit = run("time-implicit.obj", &["--time", "0.5"]);
+    let explicit = run("time-explicit.obj", &["--time", "0.5", "--animation", "0"]);
+    let rest = run("time-rest.obj", &[]);
+    assert_eq!(implicit, explicit);
+    assert_ne!(implicit, rest);
+}

@@ -93,12 +93,14 @@ pub enum Keyframes {
 pub struct SkinArgs {
     #[command(flatten)]
     pub rig: RigInput,
-    /// The animation, by name or index (default: none, the rest pose).
+    /// The animation, by name or index (default: the first when --time or --range is given,
+    /// as for cut, tear and drill; without either, the rest pose).
     #[arg(long)]
     pub animation: Option<String>,
-    /// Time in seconds (clamped to the animation's keys).
-    #[arg(long, default_value_t = 0.0, value_parser = crate::numbers::finite, allow_hyphen_values = true)]
-    pub time: f64,
+    /// Time in seconds (clamped to the animation's keys; default 0); with --dmat-animation a
+    /// frame index.
+    #[arg(long, value_parser = crate::numbers::finite, allow_hyphen_values = true)]
+    pub time: Option<f64>,
     /// A time range T0:T1:N: N frames written as OUT_0000.obj, OUT_0001.obj, ...
     #[arg(long, value_parser = parse_range, conflicts_with = "time")]
     pub range: Option<(f64, f64, usize)>,
@@ -174,11 +176,14 @@ pub fn run(a: &SkinArgs) -> Result<()> {
     let t = Instant::now();
     let rig = read_rig(&a.rig)?;
     let load_ms = ms(t);
-    let animation = a
-        .animation
-        .as_deref()
-        .map(|n| rig.animation_index(n))
-        .transpose()?;
+    let timed = a.time.is_some() || a.range.is_some();
+    let animation = match a.animation.as_deref() {
+        Some(name) => Some(rig.animation_index(name)?),
+        // A time without a named animation means the first one, as for cut, tear and drill.
+        None if timed && a.dmat_animation.is_none() && !rig.animations.is_empty() => Some(0),
+        None => None,
+    };
+    let time = a.time.unwrap_or(0.0);
     let mut edits = Vec::new();
     for (joint, path) in &a.edits {
         let j = rig.joint_index(joint)?;
@@ -202,6 +207,9 @@ pub fn run(a: &SkinArgs) -> Result<()> {
     report.add("blend_method", method.name());
     report.add("joints", rig.joints.len());
     report.add("animations", rig.animations.len());
+    if let Some(k) = animation {
+        report.add("animation", rig.animations[k].name.as_str());
+    }
     report.add("renormalised_vertices", rig.report.renormalised_vertices);
     for note in &rig.report.notes {
         report.add("note", note.as_str());
@@ -259,10 +267,10 @@ pub fn run(a: &SkinArgs) -> Result<()> {
                 })
                 .collect();
             (0..n.max(1))
-                .map(|k| (a.time, steps.iter().map(|s| s[k]).collect()))
+                .map(|k| (time, steps.iter().map(|s| s[k]).collect()))
                 .collect()
         }
-        (None, None) => vec![(a.time, edits.clone())],
+        (None, None) => vec![(time, edits.clone())],
     };
     let mut posed = vec![DVec3::ZERO; rig.mesh.vertex_count()];
     let mut pose_ms = 0.0;
