@@ -149,7 +149,10 @@ impl Surgery {
             }
         }
         if !(s.iter().any(|&x| x > 0.0) && s.iter().any(|&x| x < 0.0)) {
-            return Err(SurgeryError::Misses { vertices: n });
+            return Err(SurgeryError::Misses {
+                vertices: n,
+                where_: plane_whereabouts(&s, positions),
+            });
         }
         // Split: faces of each side over input vertices, then new ones.
         let mut splitter = Splitter::new(positions);
@@ -246,7 +249,10 @@ impl Surgery {
         // Vertices on both sides but every face on one: nothing was cut (an empty piece would
         // also be an empty glTF primitive, which the format does not allow).
         if pieces.iter().any(|p| p.mesh.mesh.triangle_count() == 0) {
-            return Err(SurgeryError::Misses { vertices: n });
+            return Err(SurgeryError::Misses {
+                vertices: n,
+                where_: "; every face lies on one side of the plane".into(),
+            });
         }
         Ok(CutResult {
             pieces,
@@ -351,5 +357,27 @@ fn piece(
         face_origin,
         boundary_loops,
         cap_triangles,
+    }
+}
+
+/// "; every vertex is on one side of the plane, the nearest at distance D, (x, y, z)" from the
+/// signed distances `s` of the vertices at `positions`.
+fn plane_whereabouts(s: &[f64], positions: &[DVec3]) -> String {
+    let nearest = (0..s.len())
+        .filter(|&v| s[v] != 0.0)
+        .min_by(|&a, &b| s[a].abs().total_cmp(&s[b].abs()));
+    match nearest {
+        Some(v) => {
+            let p = positions[v];
+            format!(
+                "; every vertex is on one side of the plane (or on it), the nearest off it {:.4} \
+                 away at ({:.4}, {:.4}, {:.4})",
+                s[v].abs(),
+                p.x,
+                p.y,
+                p.z
+            )
+        }
+        None => "; every vertex is on the plane".into(),
     }
 }

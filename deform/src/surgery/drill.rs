@@ -11,6 +11,7 @@
 //! green, no T-junctions) and drilled again, up to [`DrillOptions::max_refinements`] times.
 //! An edge tangent to the cylinder (a double root) removes nothing.
 
+use super::nearest::nearest_to_segment;
 use super::refine::Work;
 use super::split::{assemble, local_loops, new_vertex_data, FaceFate, Splitter};
 use super::{check_snap, Frame, SkinnedMesh, Surgery, SurgeryError, VertexOrigin};
@@ -245,8 +246,16 @@ impl Surgery {
                 }
             }
             if plan.removed == 0 {
+                let axis = nearest_to_segment(tris, fpos, drill.tip, drill.end);
                 return Err(SurgeryError::Misses {
                     vertices: rest.len(),
+                    where_: axis.map_or(String::new(), |n| {
+                        format!(
+                            "; the drill's axis (radius {:.4}): {}",
+                            drill.radius,
+                            n.describe()
+                        )
+                    }),
                 });
             }
             // Split and keep the outside.

@@ -41,6 +41,7 @@ mod bvh;
 mod cap;
 mod cut;
 mod drill;
+mod nearest;
 mod refine;
 mod soup;
 mod split;
@@ -84,10 +85,13 @@ pub enum SurgeryError {
     /// The tool does not reach the mesh: a plane with every vertex on one side (or on it), a
     /// drill with no vertex inside and no edge through it, a scalpel that does not touch the
     /// surface.
-    #[error("the tool does not reach the mesh ({vertices} vertices): nothing to cut")]
+    #[error("the tool does not reach the mesh ({vertices} vertices): nothing to cut{where_}")]
     Misses {
         /// The mesh's vertex count.
         vertices: usize,
+        /// Where the tool is: how far from the surface and the nearest surface point (empty
+        /// when not known), as `"; ..."`.
+        where_: String,
     },
 }
 

@@ -11,6 +11,7 @@
 //! opens; [`TearOptions::open`] moves the two lips apart along the planes' normals (tapered to
 //! zero at the ends). New vertices get interpolated weights (4 largest, renormalised).
 
+use super::nearest::nearest_to_segment;
 use super::soup::Soup;
 use super::split::{local_loops, FaceFate};
 use super::{check_snap, Frame, SkinnedMesh, Surgery, SurgeryError, VertexOrigin};
@@ -125,14 +126,16 @@ impl Surgery {
         // Where each blade enters the skin, on the input mesh.
         let mut hits = Vec::with_capacity(scalpel.len());
         for (i, s) in scalpel.iter().enumerate() {
-            let hit = first_hit(bvh, &src.mesh.triangles, positions, s.a, s.b)
-                .ok_or(SurgeryError::Misses { vertices: n0 })
-                .map_err(|e| match e {
-                    SurgeryError::Misses { .. } => {
-                        SurgeryError::BadTool(format!("scalpel {i} does not touch the surface"))
-                    }
-                    e => e,
-                })?;
+            let Some(hit) = first_hit(bvh, &src.mesh.triangles, positions, s.a, s.b) else {
+                let p = |v: DVec3| format!("({:.4}, {:.4}, {:.4})", v.x, v.y, v.z);
+                let whereabouts = nearest_to_segment(&src.mesh.triangles, positions, s.a, s.b)
+                    .map_or(String::new(), |n| format!(": {}", n.describe()));
+                return Err(SurgeryError::BadTool(format!(
+                    "scalpel {i}, the blade from {} to {}, does not touch the surface{whereabouts}",
+                    p(s.a),
+                    p(s.b)
+                )));
+            };
             hits.push(hit);
         }
         let mut soup = Soup::new(

@@ -218,3 +218,40 @@ fn drill_a_posed_frame_and_real_arm() {
     check_drill(&arm, &r, &d);
     assert!(r.holes >= 1, "{} holes", r.holes);
 }
+
+/// A drill or a cut that misses says how far the tool is and where the nearest surface point
+/// is (issue 21).
+#[test]
+fn tools_that_miss_say_where_the_surface_is() {
+    use deform::surgery::{CutOptions, Drill, DrillOptions};
+    let rig = procedural_arm(16, 41);
+    let s = Surgery::new(&rig.mesh, &rig.influences).unwrap();
+    let top = rig
+        .mesh
+        .positions
+        .iter()
+        .map(|p| p.y)
+        .fold(f64::MIN, f64::max);
+    let outside = Drill {
+        tip: DVec3::new(3.0, 5.0, 0.0),
+        end: DVec3::new(5.0, 5.0, 0.0),
+        radius: 0.3,
+    };
+    match s.drill(&outside, Frame::Rest, &DrillOptions::default()) {
+        Err(e @ SurgeryError::Misses { .. }) => {
+            let text = e.to_string();
+            let gap = format!("it passes {:.4} from the surface", 5.0 - top);
+            assert!(text.contains(&gap), "{text} (expected {gap:?})");
+            assert!(text.contains("radius 0.3000"), "{text}");
+        }
+        other => panic!("expected a miss, got {:?}", other.map(|_| ())),
+    }
+    let plane = cga::Plane::from_normal_distance(DVec3::X, -2.0);
+    match s.cut(&plane, Frame::Rest, &CutOptions::default()) {
+        Err(e @ SurgeryError::Misses { .. }) => {
+            let text = e.to_string();
+            assert!(text.contains("the nearest off it 2.0000 away"), "{text}");
+        }
+        other => panic!("expected a miss, got {:?}", other.map(|_| ())),
+    }
+}

@@ -229,3 +229,39 @@ fn tear_real_and_posed() {
     check_tear(&arm, &r, false);
     assert_eq!(r.boundary_loops, loops0 + 1);
 }
+
+/// A scalpel that misses says where its blade is, how far from the surface, and the nearest
+/// surface point (issue 21).
+#[test]
+fn a_scalpel_that_misses_says_where_the_surface_is() {
+    use deform::surgery::{Scalpel, TearOptions};
+    let rig = procedural_arm(12, 21);
+    let s = Surgery::new(&rig.mesh, &rig.influences).unwrap();
+    let top = rig
+        .mesh
+        .positions
+        .iter()
+        .map(|p| p.y)
+        .fold(f64::MIN, f64::max);
+    let high = [
+        Scalpel {
+            a: DVec3::new(2.0, 3.0, 0.0),
+            b: DVec3::new(2.0, 4.0, 0.0),
+        },
+        Scalpel {
+            a: DVec3::new(3.0, 3.0, 0.0),
+            b: DVec3::new(3.0, 4.0, 0.0),
+        },
+    ];
+    match s.tear(&high, Frame::Rest, &TearOptions::default()) {
+        Err(SurgeryError::BadTool(text)) => {
+            assert!(
+                text.contains("scalpel 0, the blade from (2.0000, 3.0000, 0.0000)"),
+                "{text}"
+            );
+            let gap = format!("it passes {:.4} from the surface", 3.0 - top);
+            assert!(text.contains(&gap), "{text} (expected {gap:?})");
+        }
+        other => panic!("expected a refusal, got {:?}", other.map(|_| ())),
+    }
+}
