@@ -57,12 +57,15 @@ pub enum Command {
     /// Cut a rigged model by the plane n.x = d (the second paper's Algorithm 1): both pieces
     /// stay skinned and animatable; .glb keeps the rig (one primitive per piece), OBJ writes
     /// the rest mesh. Coordinates are rest-pose mesh space unless --time is given.
+    #[command(after_long_help = CUT_COUNTS)]
     Cut(cut::CutArgs),
     /// Drill a hole with a finite cylinder from --tip to --end of --radius (Algorithm 3);
     /// the result stays skinned and animatable.
+    #[command(after_long_help = DRILL_COUNTS)]
     Drill(drill::DrillArgs),
     /// Tear the skin with a scalpel given at successive time steps (Algorithm 2): the
     /// incision opens (--open pulls its lips apart); the result stays skinned and animatable.
+    #[command(after_long_help = TEAR_COUNTS)]
     Tear(tear::TearArgs),
 }
 
@@ -84,3 +87,31 @@ impl Command {
         }
     }
 }
+
+/// What `cut --json` reports.
+const CUT_COUNTS: &str = "Reported counts (--json): new_vertices: vertices made on crossing \
+edges (each appears in both pieces); split_faces: input triangles removed and \
+re-triangulated; snapped_vertices: input vertices closer to the plane than --snap of a \
+crossing edge, treated as on it; per piece (piece_positive, piece_negative): vertices, \
+triangles, cap_triangles, and boundary_loops: the closed chains of boundary edges of the \
+piece after capping, counted over the welded surface (vertices at bit-identical positions, \
+such as glTF's copies along UV seams, are one vertex), so an uncapped cut through a closed \
+limb reports 1 per piece and a capped one 0.";
+
+/// What `tear --json` reports.
+const TEAR_COUNTS: &str = "Reported counts (--json): steps: scalpel positions minus one; \
+incision_vertices: points of the incision; new_vertices: vertices added (incision points and \
+their copies); duplicated: inner incision vertices copied to make the two lips; \
+changed_faces: input triangles re-triangulated; boundary_loops: closed chains of boundary \
+edges around the changed region, counted over the input's own vertices (a glTF model split \
+along UV seams counts its seam openings there too).";
+
+/// What `drill --json` reports.
+const DRILL_COUNTS: &str = "Reported counts (--json): new_vertices: points made where the \
+cylinder crosses edges; removed_faces: input triangles removed or re-triangulated; \
+refined_faces: triangles replaced by refinement where the drill is thinner than the \
+triangles; boundary_loops: closed chains of boundary edges through the drilled region, \
+counted over the input's own vertices (over the whole result after refinement); holes: \
+boundary_loops minus the boundary loops the whole input had, which is exact on a closed \
+mesh (a through-drill of a closed limb makes 2) and undercounts on a model with open seams \
+or holes of its own.";
