@@ -3,6 +3,7 @@
 
 use anyhow::Result;
 use deform::render::{render_with_camera, Camera, Coloring, Image, RenderOptions};
+use deform::skinning::Rig;
 use deform::{Aabb, Mesh};
 
 const BACKGROUND: [u8; 3] = [235, 235, 235];
@@ -56,4 +57,22 @@ pub fn posed(rest: &Mesh, posed: &Mesh, scalar: &[f64], yaw: f64, pitch: f64) ->
 /// A grid of images.
 pub fn sheet(images: &[Image], columns: usize) -> Image {
     Image::contact_sheet(images, columns, BACKGROUND)
+}
+
+/// `mesh`, a mesh of `rig` in its rest (mesh) space, placed in world space by the rest
+/// transform of the rig's skinned node: how a viewer shows the model at rest, so a Z-up
+/// glTF model is upright like the posed meshes the skinning formula gives.
+pub fn in_world(rig: &Rig, mesh: &Mesh) -> Result<Mesh> {
+    let rest = rig.pose(None, 0.0, &[])?;
+    let place = rig
+        .primitives
+        .first()
+        .map_or(glam::DMat4::IDENTITY, |p| rest.globals[p.node]);
+    Ok(Mesh::new(
+        mesh.positions
+            .iter()
+            .map(|&p| place.transform_point3(p))
+            .collect(),
+        mesh.triangles.clone(),
+    ))
 }

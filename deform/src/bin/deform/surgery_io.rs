@@ -85,7 +85,14 @@ pub fn write_result(
             part_of[r].iter_mut().for_each(|x| *x = k as f64);
         }
         let scalar = marks.unwrap_or(part_of);
-        let image = preview::before_after(&rig.mesh, &shown, &scalar, 30.0, 50.0)?;
+        // In world space, as `skin` draws it: a Z-up glTF model stands upright.
+        let image = preview::before_after(
+            &preview::in_world(rig, &rig.mesh)?,
+            &preview::in_world(rig, &shown)?,
+            &scalar,
+            30.0,
+            50.0,
+        )?;
         write_png(png, &image)?;
         report.add("png", png.display().to_string());
     }

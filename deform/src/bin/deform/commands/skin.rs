@@ -372,16 +372,7 @@ pub fn run(a: &SkinArgs) -> Result<()> {
     }
     report.add("output", a.out.output.display().to_string());
     if let Some(png) = &a.out.png {
-        let rest = rig.pose(None, 0.0, &[])?;
-        let place = rest.globals[rig.primitives[0].node];
-        let rest_mesh = Mesh::new(
-            rig.mesh
-                .positions
-                .iter()
-                .map(|&p| place.transform_point3(p))
-                .collect(),
-            rig.mesh.triangles.clone(),
-        );
+        let rest_mesh = preview::in_world(&rig, &rig.mesh)?;
         let moved = displacement(&rest_mesh, &posed);
         let image = preview::before_after(
             &rest_mesh,
