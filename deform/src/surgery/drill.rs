@@ -14,6 +14,7 @@
 use super::nearest::nearest_to_segment;
 use super::refine::Work;
 use super::split::{assemble, local_loops, new_vertex_data, FaceFate, Splitter};
+use super::weld::{canonical_ids, share_copies};
 use super::{check_snap, Frame, SkinnedMesh, Surgery, SurgeryError, VertexOrigin};
 use crate::mesh::Mesh;
 use glam::DVec3;
@@ -198,7 +199,6 @@ impl Surgery {
         let n0 = src.mesh.vertex_count();
         let resolved = self.resolve(frame)?;
         let (frame_positions, skin) = (resolved.positions, resolved.skin);
-        let loops_before = self.topology.loops;
         let mut work: Option<Work> = None;
         let mut refined_faces = 0;
         for round in 0..=options.max_refinements {
@@ -329,7 +329,16 @@ impl Surgery {
                     skin,
                 },
             };
-            let (new_inf, new_rest) = new_vertex_data(sub, &splitter.new_edges, posed_frame, fpos)?;
+            // Over the welded surface when coincident vertices exist and the input's topology
+            // applies (no refinement), as the cut counts: glTF's seam copies are one vertex,
+            // and the new vertices on the copies of a seam edge coincide exactly.
+            let weld = self.weld.as_ref().filter(|_| work.is_none());
+            let canon = weld.map(|w| canonical_ids(&w.canon, &splitter.new_edges));
+            let (mut new_inf, mut new_rest) =
+                new_vertex_data(sub, &splitter.new_edges, posed_frame, fpos)?;
+            if let Some(c) = &canon {
+                share_copies(&c[n0..], n0, &mut new_inf, &mut new_rest);
+            }
             let a = assemble(sub, kept, &splitter, &new_inf, &new_rest);
             let origin = a
                 .origin
@@ -339,15 +348,29 @@ impl Surgery {
                     other => other,
                 })
                 .collect();
-            let boundary_loops = if work.is_none() {
-                local_loops(&self.topology, tris, fate, &changed, &[], &produced, 0).len()
-            } else {
+            let (boundary_loops, loops_before) = match (weld, &canon) {
+                (Some(w), Some(c)) => {
+                    let produced: Vec<([u32; 3], u8)> = produced
+                        .iter()
+                        .map(|(t, k)| (t.map(|v| c[v as usize]), *k))
+                        .collect();
+                    let loops =
+                        local_loops(&w.topology, &w.triangles, fate, &changed, &[], &produced, 0);
+                    (loops.len(), w.topology.loops)
+                }
+                _ if work.is_none() => {
+                    let loops =
+                        local_loops(&self.topology, tris, fate, &changed, &[], &produced, 0);
+                    (loops.len(), self.topology.loops)
+                }
                 // Refined: the input's topology does not apply.
-                crate::mesh::adjacency::boundary_loops(
-                    &a.mesh.mesh.triangles,
-                    a.mesh.mesh.vertex_count(),
-                )
-                .len()
+                _ => {
+                    let loops = crate::mesh::adjacency::boundary_loops(
+                        &a.mesh.mesh.triangles,
+                        a.mesh.mesh.vertex_count(),
+                    );
+                    (loops.len(), self.topology.loops)
+                }
             };
             return Ok(DrillResult {
                 mesh: a.mesh,

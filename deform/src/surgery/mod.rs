@@ -14,8 +14,8 @@
 //! [`Surgery::new`] welds vertices at bit-identical positions for the cut's topology: boundary
 //! loops and caps are found over the welded surface (a cut of CesiumMan closes with two caps
 //! instead of meeting hundreds of seam loops), while each piece keeps every input vertex; the
-//! copies of a new vertex on a seam get identical rest positions and weights. Tears and drills
-//! count loops over the input's own vertices.
+//! copies of a new vertex on a seam get identical rest positions and weights. Drills count their
+//! loops the same way (unless they refine the mesh); tears count over the input's own vertices.
 //!
 //! The cut can be made on the rest mesh or on a posed frame ([`Frame::Posed`]): the plane then
 //! classifies the posed positions, and each new vertex is mapped back to the rest pose through

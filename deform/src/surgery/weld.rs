@@ -7,6 +7,8 @@
 
 use super::split::Topology;
 use crate::mesh::Mesh;
+use crate::skinning::Influences;
+use glam::DVec3;
 use std::collections::{HashMap, HashSet};
 
 /// The mesh with every vertex replaced by the first vertex at its position.
@@ -69,6 +71,37 @@ impl Weld {
             triangles,
             topology,
         })
+    }
+}
+
+/// The canonical id of every input and new vertex: `canon` for input vertices, and for a new
+/// vertex the first new vertex on an edge between the same canonical ends (the copies of a
+/// seam edge are split at the same point).
+pub(crate) fn canonical_ids(canon: &[u32], new_edges: &[(u32, u32, f64)]) -> Vec<u32> {
+    let n = canon.len();
+    let mut first: HashMap<(u32, u32), u32> = HashMap::with_capacity(new_edges.len());
+    let mut out = Vec::with_capacity(n + new_edges.len());
+    out.extend_from_slice(canon);
+    for (k, &(a, b, _)) in new_edges.iter().enumerate() {
+        let (ca, cb) = (canon[a as usize], canon[b as usize]);
+        let key = (ca.min(cb), ca.max(cb));
+        out.push(*first.entry(key).or_insert((n + k) as u32));
+    }
+    out
+}
+
+/// Give the copies of a new vertex (one per copy of a seam edge) the rest position and
+/// influences of the first, so that they coincide exactly and pose alike: `canon_new[k]` is
+/// the canonical global id of new vertex `k` (new ids start at `n`).
+pub(crate) fn share_copies(canon_new: &[u32], n: usize, inf: &mut Influences, rest: &mut [DVec3]) {
+    let w = inf.width;
+    for (k, &c) in canon_new.iter().enumerate() {
+        let c = c as usize - n;
+        if c != k {
+            rest[k] = rest[c];
+            inf.joints.copy_within(c * w..(c + 1) * w, k * w);
+            inf.weights.copy_within(c * w..(c + 1) * w, k * w);
+        }
     }
 }
 

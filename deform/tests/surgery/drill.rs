@@ -255,3 +255,50 @@ fn tools_that_miss_say_where_the_surface_is() {
         other => panic!("expected a miss, got {:?}", other.map(|_| ())),
     }
 }
+
+/// On a glTF model split along UV seams, a drill counts loops over the welded surface, as a
+/// cut does (issue 21): a drill through CesiumMan's torso makes two holes and reports two
+/// loops, not the seams' hundreds; the copies of each new vertex on a seam coincide.
+#[test]
+fn a_drill_counts_holes_over_the_welded_surface() {
+    use deform::surgery::{Drill, DrillOptions};
+    let Some(dir) = common::data_dir() else {
+        return;
+    };
+    let rig = deform::skinning::read_gltf(dir.join("gltf/CesiumMan.glb")).unwrap();
+    let s = Surgery::new(&rig.mesh, &rig.influences).unwrap();
+    let through = Drill {
+        tip: DVec3::new(0.0, -0.5, 1.0),
+        end: DVec3::new(0.0, 0.5, 1.0),
+        radius: 0.05,
+    };
+    let r = s
+        .drill(&through, Frame::Rest, &DrillOptions::default())
+        .unwrap();
+    assert_eq!((r.boundary_loops, r.holes), (2, 2));
+    assert_eq!(r.refined_faces, 0);
+    // The truth: the result welded by bit-identical positions (the seam copies of a new
+    // vertex must coincide exactly) has exactly those loops, and the input none.
+    let welded_loops = |m: &deform::Mesh| {
+        let mut first = std::collections::HashMap::new();
+        let canon: Vec<u32> = m
+            .positions
+            .iter()
+            .enumerate()
+            .map(|(i, p)| {
+                *first
+                    .entry(p.to_array().map(f64::to_bits))
+                    .or_insert(i as u32)
+            })
+            .collect();
+        let tris: Vec<[u32; 3]> = m
+            .triangles
+            .iter()
+            .map(|t| t.map(|v| canon[v as usize]))
+            .collect();
+        deform::adjacency::boundary_loops(&tris, m.vertex_count()).len()
+    };
+    assert_eq!(welded_loops(&rig.mesh), 0);
+    assert_eq!(welded_loops(&r.mesh.mesh), 2);
+    assert_manifold(&r.mesh.mesh);
+}

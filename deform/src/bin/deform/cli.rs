@@ -111,7 +111,8 @@ const DRILL_COUNTS: &str = "Reported counts (--json): new_vertices: points made 
 cylinder crosses edges; removed_faces: input triangles removed or re-triangulated; \
 refined_faces: triangles replaced by refinement where the drill is thinner than the \
 triangles; boundary_loops: closed chains of boundary edges through the drilled region, \
-counted over the input's own vertices (over the whole result after refinement); holes: \
-boundary_loops minus the boundary loops the whole input had, which is exact on a closed \
-mesh (a through-drill of a closed limb makes 2) and undercounts on a model with open seams \
-or holes of its own.";
+counted over the welded surface as for cut (glTF's seam copies are one vertex), or over the \
+whole result's own vertices after refinement; holes: boundary_loops minus the boundary \
+loops the whole input had (over the same vertices), exact on a closed surface (a \
+through-drill of a closed limb makes 2) and an undercount where the input has open \
+boundaries of its own near the drill.";
