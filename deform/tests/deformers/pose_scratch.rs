@@ -195,4 +195,20 @@ fn a_scratch_of_another_deformer_is_replaced_not_misread() {
     let mut expected = vec![DVec3::ZERO; arap.vertex_count()];
     arap.pose(&arap_keys(0.5), &mut expected).expect("pose");
     assert_eq!(posed, expected);
+    // The scratch of another ARAP (another mesh) given to this one: replaced too.
+    let other_mesh = tube(1.0, 5.0, 8, 10);
+    let other = Arap::bind(
+        &other_mesh,
+        &tube_ring(8, 0),
+        &[&tube_ring(8, 9)],
+        ArapOptions::default(),
+    )
+    .expect("bind");
+    let mut foreign = Deformer::scratch(&other);
+    let mut out = vec![DVec3::ZERO; other.vertex_count()];
+    Deformer::pose_using(&other, &[twist(0.2)], &mut foreign, &mut out).expect("pose");
+    let mut posed = vec![DVec3::ZERO; arap.vertex_count()];
+    arap.pose_using(&arap_keys(0.5), &mut foreign, &mut posed)
+        .expect("pose");
+    assert_eq!(posed, expected);
 }

@@ -59,20 +59,24 @@ pub fn sheet(images: &[Image], columns: usize) -> Image {
     Image::contact_sheet(images, columns, BACKGROUND)
 }
 
-/// `mesh`, a mesh of `rig` in its rest (mesh) space, placed in world space by the rest
-/// transform of the rig's skinned node: how a viewer shows the model at rest, so a Z-up
-/// glTF model is upright like the posed meshes the skinning formula gives.
-pub fn in_world(rig: &Rig, mesh: &Mesh) -> Result<Mesh> {
+/// The rest transform of `rig`'s skinned node: it places a mesh of the rig's rest (mesh) space
+/// in world space, as a viewer shows the model at rest, so a Z-up glTF model stands upright
+/// like the posed meshes the skinning formula gives.
+pub fn rest_placement(rig: &Rig) -> Result<glam::DMat4> {
     let rest = rig.pose(None, 0.0, &[])?;
-    let place = rig
+    Ok(rig
         .primitives
         .first()
-        .map_or(glam::DMat4::IDENTITY, |p| rest.globals[p.node]);
-    Ok(Mesh::new(
+        .map_or(glam::DMat4::IDENTITY, |p| rest.globals[p.node]))
+}
+
+/// `mesh` moved by `place` (see [`rest_placement`]).
+pub fn placed(mesh: &Mesh, place: &glam::DMat4) -> Mesh {
+    Mesh::new(
         mesh.positions
             .iter()
             .map(|&p| place.transform_point3(p))
             .collect(),
         mesh.triangles.clone(),
-    ))
+    )
 }

@@ -86,9 +86,10 @@ pub fn write_result(
         }
         let scalar = marks.unwrap_or(part_of);
         // In world space, as `skin` draws it: a Z-up glTF model stands upright.
+        let place = preview::rest_placement(rig)?;
         let image = preview::before_after(
-            &preview::in_world(rig, &rig.mesh)?,
-            &preview::in_world(rig, &shown)?,
+            &preview::placed(&rig.mesh, &place),
+            &preview::placed(&shown, &place),
             &scalar,
             30.0,
             50.0,

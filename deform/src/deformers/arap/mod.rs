@@ -431,7 +431,10 @@ impl Deformer for Arap {
     ) -> Result<()> {
         check_positions(self.vertex_count(), positions.len())?;
         let w = scratch.get_or_try(|| self.scratch())?;
-        self.check_scratch(w)?;
+        if self.check_scratch(w).is_err() {
+            // The scratch of another `Arap`: replaced, as the trait promises.
+            *w = self.scratch()?;
+        }
         self.fill_boundary(&Targets::Motors(keys), &mut w.boundary)?;
         let mut p = std::mem::take(&mut w.positions);
         p.copy_from_slice(&self.system.rest);

@@ -372,7 +372,7 @@ pub fn run(a: &SkinArgs) -> Result<()> {
     }
     report.add("output", a.out.output.display().to_string());
     if let Some(png) = &a.out.png {
-        let rest_mesh = preview::in_world(&rig, &rig.mesh)?;
+        let rest_mesh = preview::placed(&rig.mesh, &preview::rest_placement(&rig)?);
         let moved = displacement(&rest_mesh, &posed);
         let image = preview::before_after(
             &rest_mesh,
