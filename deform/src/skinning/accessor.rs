@@ -148,6 +148,15 @@ impl Buffers {
     }
 }
 
+impl Buffers {
+    /// The bytes of buffer view `view` (checked against its buffer).
+    pub(crate) fn view_bytes(&self, view: &gltf::buffer::View) -> Option<&[u8]> {
+        let buffer = self.data.get(view.buffer().index())?;
+        let end = view.offset().checked_add(view.length())?;
+        buffer.get(view.offset()..end)
+    }
+}
+
 /// One little-endian component.
 fn component(t: DataType, b: &[u8], normalized: bool) -> f64 {
     match t {
@@ -209,7 +218,7 @@ impl Default for GltfReadOptions {
 
 /// Reads the first `length` bytes of the external buffer `uri` beside the model in `base`:
 /// never more than declared, and only inside `base` unless `allow_external`.
-fn read_external(
+pub(crate) fn read_external(
     base: &Path,
     uri: &str,
     length: usize,

@@ -62,8 +62,8 @@ struct Bin {
 }
 
 impl Bin {
-    /// Append `bytes` as a new buffer view (with `target` when given) and an accessor over it.
-    fn push(&mut self, bytes: &[u8], target: Option<u32>, accessor: Value) -> usize {
+    /// Append `bytes` as a new buffer view (with `target` when given); its index.
+    fn view(&mut self, bytes: &[u8], target: Option<u32>) -> usize {
         while !self.data.len().is_multiple_of(4) {
             self.data.push(0);
         }
@@ -74,8 +74,14 @@ impl Bin {
         }
         self.data.extend_from_slice(bytes);
         self.views.push(view);
+        self.views.len() - 1
+    }
+
+    /// Append `bytes` as a new buffer view (with `target` when given) and an accessor over it.
+    fn push(&mut self, bytes: &[u8], target: Option<u32>, accessor: Value) -> usize {
+        let view = self.view(bytes, target);
         let mut a = accessor;
-        a["bufferView"] = json!(self.views.len() - 1);
+        a["bufferView"] = json!(view);
         self.accessors.push(a);
         self.accessors.len() - 1
     }
@@ -164,7 +170,9 @@ fn compact_influences(rig: &Rig) -> (usize, Vec<[u16; 8]>, Vec<[f32; 8]>) {
 }
 
 /// The rig as binary glTF: one mesh (every primitive of [`Rig::primitives`]), one skin, the
-/// nodes (a new root node instances the skinned mesh), the animations, and a scene.
+/// nodes (a new root node instances the skinned mesh), the animations, a scene, and the
+/// model's [`super::Look`]: its vertex attributes (its normals where it has them, else smooth
+/// ones), each primitive's material, and the materials, textures, samplers and images (embedded).
 /// Positions, smooth normals, matrices and keys are written in single precision, as glTF
 /// stores them. Up to 8 influences per vertex are kept (the largest, renormalised).
 ///
@@ -194,11 +202,20 @@ pub fn glb_bytes(rig: &Rig, options: &GlbOptions) -> Result<Vec<u8>> {
         Some(t) => t.clone(),
         None => rig.nodes.iter().map(|n| n.rest).collect(),
     };
+    let look = &rig.look;
+    check_look(rig)?;
     let mut bin = Bin::default();
     let (width, joints, weights) = compact_influences(rig);
-    let normals = unit_normals(&rig.mesh);
+    let normals: Vec<[f32; 3]> = match look.attribute("NORMAL").filter(|a| a.width == 3) {
+        Some(a) => a
+            .values
+            .chunks_exact(3)
+            .map(|c| [c[0], c[1], c[2]])
+            .collect(),
+        None => unit_normals(&rig.mesh),
+    };
     let mut primitives = Vec::new();
-    for p in &rig.primitives {
+    for (index, p) in rig.primitives.iter().enumerate() {
         let range = p.vertex_offset..p.vertex_offset + p.vertex_count;
         let pos: Vec<f32> = rig.mesh.positions[range.clone()]
             .iter()
@@ -219,6 +236,12 @@ pub fn glb_bytes(rig: &Rig, options: &GlbOptions) -> Result<Vec<u8>> {
         let nrm: Vec<f32> = normals[range.clone()].iter().flatten().copied().collect();
         let normal = bin.floats(&nrm, 3, "VEC3", Some(34962), false, "NORMAL")?;
         let mut attributes = json!({"POSITION": position, "NORMAL": normal});
+        for a in look.attributes.iter().filter(|a| a.name != "NORMAL") {
+            let values = &a.values[range.start * a.width..range.end * a.width];
+            let kind = ["SCALAR", "VEC2", "VEC3", "VEC4"][a.width - 1];
+            attributes[a.name.as_str()] =
+                json!(bin.floats(values, a.width, kind, Some(34962), false, &a.name)?);
+        }
         for set in 0..width / 4 {
             let j: Vec<u8> = joints[range.clone()]
                 .iter()
@@ -236,7 +259,11 @@ pub fn glb_bytes(rig: &Rig, options: &GlbOptions) -> Result<Vec<u8>> {
             attributes[format!("WEIGHTS_{set}")] =
                 json!(bin.floats(&w, 4, "VEC4", Some(34962), false, "WEIGHTS")?);
         }
-        primitives.push(json!({"attributes": attributes, "indices": indices, "mode": 4}));
+        let mut primitive = json!({"attributes": attributes, "indices": indices, "mode": 4});
+        if let Some(m) = look.primitive_materials.get(index).copied().flatten() {
+            primitive["material"] = json!(m);
+        }
+        primitives.push(primitive);
     }
     let ibm: Vec<f32> = rig
         .inverse_bind
@@ -307,6 +334,7 @@ pub fn glb_bytes(rig: &Rig, options: &GlbOptions) -> Result<Vec<u8>> {
             })
             .collect::<Result<Vec<_>>>()?
     };
+    let images = image_views(look, &mut bin);
     while !bin.data.len().is_multiple_of(4) {
         bin.data.push(0);
     }
@@ -324,6 +352,7 @@ pub fn glb_bytes(rig: &Rig, options: &GlbOptions) -> Result<Vec<u8>> {
     if !animations.is_empty() {
         doc["animations"] = json!(animations);
     }
+    write_look(look, images, &mut doc);
     let mut text =
         serde_json::to_vec(&doc).map_err(|e| SkinError::InvalidArgument(e.to_string()))?;
     while !text.len().is_multiple_of(4) {
@@ -341,4 +370,68 @@ pub fn glb_bytes(rig: &Rig, options: &GlbOptions) -> Result<Vec<u8>> {
     out.extend_from_slice(b"BIN\0");
     out.extend_from_slice(&bin.data);
     Ok(out)
+}
+
+/// Refuses a look that does not fit the rig: attributes of another length or width, material
+/// indices past the materials.
+fn check_look(rig: &Rig) -> Result<()> {
+    let n = rig.mesh.vertex_count();
+    for a in &rig.look.attributes {
+        if !(1..=4).contains(&a.width) || a.values.len() != a.width * n {
+            return Err(SkinError::InvalidArgument(format!(
+                "attribute {}: {} values of width {} for {n} vertices",
+                a.name,
+                a.values.len(),
+                a.width
+            )));
+        }
+    }
+    let materials = rig.look.materials.len();
+    if let Some(m) = rig
+        .look
+        .primitive_materials
+        .iter()
+        .flatten()
+        .find(|&&m| m >= materials)
+    {
+        return Err(SkinError::InvalidArgument(format!(
+            "material {m} past the {materials} materials"
+        )));
+    }
+    Ok(())
+}
+
+/// The images' JSON, their bytes stored as buffer views of `bin`.
+fn image_views(look: &super::Look, bin: &mut Bin) -> Vec<Value> {
+    look.images
+        .iter()
+        .map(|image| {
+            let mut json = image.json.clone();
+            if let Some(bytes) = &image.bytes {
+                json["bufferView"] = json!(bin.view(bytes, None));
+            }
+            json
+        })
+        .collect()
+}
+
+/// The materials, textures, samplers, images and their extensions, into `doc`.
+fn write_look(look: &super::Look, images: Vec<Value>, doc: &mut Value) {
+    let lists = [
+        ("materials", look.materials.clone()),
+        ("textures", look.textures.clone()),
+        ("samplers", look.samplers.clone()),
+        ("images", images),
+    ];
+    for (key, list) in lists {
+        if !list.is_empty() {
+            doc[key] = json!(list);
+        }
+    }
+    if !look.extensions_used.is_empty() {
+        doc["extensionsUsed"] = json!(look.extensions_used);
+    }
+    if !look.extensions_required.is_empty() {
+        doc["extensionsRequired"] = json!(look.extensions_required);
+    }
 }

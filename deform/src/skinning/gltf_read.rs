@@ -2,7 +2,9 @@
 
 use super::accessor::{Buffers, GltfReadOptions};
 use super::animation::{Animation, Channel, Interpolation, Property};
-use super::rig::{Influences, LoadReport, PrimitiveInfo, Rig, RigNode};
+use super::influences::Influences;
+use super::look_read::{merge_attributes, primitive_attributes, read_look};
+use super::rig::{LoadReport, PrimitiveInfo, Rig, RigNode};
 use super::SkinError;
 use super::Trs;
 use crate::mesh::Mesh;
@@ -45,7 +47,10 @@ pub fn read_gltf_with(path: impl AsRef<Path>, options: &GltfReadOptions) -> Resu
 /// POSITION accessor index), `JOINTS_0`/`WEIGHTS_0` and a second set `JOINTS_1`/`WEIGHTS_1`
 /// where present, inverse bind matrices (identity when absent, as the specification says),
 /// and every animation's translation, rotation and scale channels with `LINEAR`, `STEP` and
-/// `CUBICSPLINE` samplers.
+/// `CUBICSPLINE` samplers. The model's look is kept in [`Rig::look`]: the other vertex
+/// attributes of those primitives (UVs, colours, normals; not tangents), their materials, and
+/// the file's materials, textures, samplers and images (image files beside the model are read
+/// under the same rules as buffers, and embedded when written).
 ///
 /// Handled and reported in [`Rig::report`]: weights not summing to 1 (normalised; an all-zero
 /// vertex is bound to its first joint), morph targets and morph-weight channels (ignored:
@@ -115,6 +120,8 @@ pub fn parse_gltf_with(
     let mut mesh = Mesh::new(Vec::new(), Vec::new());
     let mut influences = Influences::default();
     let mut primitives = Vec::new();
+    let mut attributes = Vec::new();
+    let mut materials = Vec::new();
     for (mesh_index, prim_index, node) in instances {
         let m = doc
             .meshes()
@@ -125,6 +132,14 @@ pub fn parse_gltf_with(
             .nth(prim_index)
             .expect("index from the document");
         let info = read_primitive(&p, &buffers, name, &mut mesh, &mut influences)?;
+        attributes.push(primitive_attributes(
+            &p,
+            info.vertex_count,
+            &buffers,
+            name,
+            &mut report.notes,
+        )?);
+        materials.push(p.material().index());
         primitives.push(PrimitiveInfo {
             node,
             mesh: mesh_index,
@@ -138,7 +153,10 @@ pub fn parse_gltf_with(
         }
     }
     let animations = read_animations(doc, &buffers, name, &mut report)?;
-    Rig::new(
+    let mut look = read_look(bytes, doc, &buffers, base, options, &mut report.notes);
+    look.attributes = merge_attributes(attributes, &mut report.notes);
+    look.primitive_materials = materials;
+    let mut rig = Rig::new(
         nodes,
         joints,
         inverse_bind,
@@ -147,7 +165,9 @@ pub fn parse_gltf_with(
         primitives,
         animations,
         report,
-    )
+    )?;
+    rig.look = look;
+    Ok(rig)
 }
 
 /// Every node with its parent and rest transform.

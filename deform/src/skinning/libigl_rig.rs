@@ -1,7 +1,8 @@
 //! libigl rigs: a mesh, a TGF skeleton, DMAT weights (one column per bone), and DMAT
 //! animations (per frame, per bone, the 4x3 block `[A^T; t^T]` that `igl::lbs_matrix` uses).
 
-use super::rig::{Influences, LoadReport, PrimitiveInfo, Rig, RigNode};
+use super::influences::Influences;
+use super::rig::{LoadReport, PrimitiveInfo, Rig, RigNode};
 use super::SkinError;
 use super::Trs;
 use crate::mesh::io::{Dmat, Skeleton};

@@ -1,7 +1,8 @@
 //! A procedural rigged arm (no files needed): for the demo, tests and benches.
 
 use super::animation::{Animation, Channel, Interpolation, Property};
-use super::rig::{Influences, LoadReport, PrimitiveInfo, Rig, RigNode};
+use super::influences::Influences;
+use super::rig::{LoadReport, PrimitiveInfo, Rig, RigNode};
 use super::Trs;
 use crate::mesh::shapes::tube;
 use glam::{DMat4, DQuat, DVec3, DVec4};

@@ -1,6 +1,6 @@
 //! The rig: node hierarchy, skin, rest mesh with influences, animations.
 
-use super::{Animation, SkinError, Trs};
+use super::{Animation, Influences, Look, SkinError, Trs};
 use crate::mesh::Mesh;
 use cga::ScaledMotor;
 use glam::DMat4;
@@ -17,55 +17,6 @@ pub struct RigNode {
     pub parent: Option<usize>,
     /// Its rest (unanimated) local transform.
     pub rest: Trs,
-}
-
-/// Per-vertex joint influences: `width` (joint, weight) pairs per vertex, joints indexing the
-/// skin's joint list. Weights are non-negative and sum to 1 ([`Rig::new`] reads weights in
-/// `[-1e-6, 0)` as 0 and normalises).
-#[derive(Clone, Debug, PartialEq, Default)]
-pub struct Influences {
-    /// Pairs per vertex (4, or 8 with a second joint/weight set).
-    pub width: usize,
-    /// Joint indices, vertex-major.
-    pub joints: Vec<u32>,
-    /// Weights, vertex-major.
-    pub weights: Vec<f64>,
-}
-
-impl Influences {
-    /// Number of vertices.
-    pub fn vertex_count(&self) -> usize {
-        self.weights.len().checked_div(self.width).unwrap_or(0)
-    }
-
-    /// Normalise every vertex's weights to sum 1 (an all-zero vertex gets weight 1 on its first
-    /// joint, as three.js does); returns how many vertices were off by more than `1e-5`.
-    pub(crate) fn normalise(&mut self) -> usize {
-        let mut changed = 0;
-        let w = self.width.max(1);
-        for row in self.weights.chunks_mut(w) {
-            let sum: f64 = row.iter().sum();
-            if (sum - 1.0).abs() > 1e-5 {
-                changed += 1;
-            }
-            if sum > 0.0 {
-                row.iter_mut().for_each(|x| *x /= sum);
-            } else {
-                row.iter_mut().for_each(|x| *x = 0.0);
-                row[0] = 1.0;
-            }
-        }
-        changed
-    }
-
-    /// The `(joint, weight)` pairs of vertex `v`.
-    pub fn row(&self, v: usize) -> impl Iterator<Item = (u32, f64)> + '_ {
-        let r = v * self.width..(v + 1) * self.width;
-        self.joints[r.clone()]
-            .iter()
-            .copied()
-            .zip(self.weights[r].iter().copied())
-    }
 }
 
 /// Where a glTF primitive's vertices sit in the rig's concatenated mesh.
@@ -136,6 +87,8 @@ pub struct Rig {
     pub animations: Vec<Animation>,
     /// What the loader changed or ignored.
     pub report: LoadReport,
+    /// What the model looks like (UVs, colours, materials, textures), kept for writing.
+    pub look: Look,
 }
 
 impl Rig {
@@ -240,6 +193,7 @@ impl Rig {
             primitives,
             animations,
             report,
+            look: Look::default(),
         })
     }
 
@@ -314,62 +268,4 @@ fn hierarchy_order(nodes: &[RigNode]) -> Result<Vec<usize>, SkinError> {
         });
     }
     Ok(order)
-}
-
-impl Rig {
-    /// The same rig (nodes, skin, animations) with its mesh replaced by `parts`, one glTF
-    /// primitive each, in order: how a cut, torn or drilled mesh stays animatable.
-    ///
-    /// # Errors
-    /// As [`Rig::new`] (influences of another length, joint indices past the skin).
-    pub fn with_parts(&self, parts: &[(&Mesh, &Influences)]) -> Result<Rig, SkinError> {
-        let width = parts.iter().map(|p| p.1.width).max().unwrap_or(4);
-        let mut mesh = Mesh::new(Vec::new(), Vec::new());
-        let mut influences = Influences {
-            width,
-            ..Influences::default()
-        };
-        let node = self.primitives.first().map_or(0, |p| p.node);
-        let mut primitives = Vec::new();
-        for (k, (m, inf)) in parts.iter().enumerate() {
-            if inf.vertex_count() != m.vertex_count() {
-                return Err(SkinError::NoSkin(format!(
-                    "part {k}: {} influence rows for {} vertices",
-                    inf.vertex_count(),
-                    m.vertex_count()
-                )));
-            }
-            let offset = mesh.positions.len() as u32;
-            primitives.push(PrimitiveInfo {
-                node,
-                mesh: 0,
-                primitive: k,
-                vertex_offset: offset as usize,
-                vertex_count: m.vertex_count(),
-                triangle_offset: mesh.triangles.len(),
-                triangle_count: m.triangle_count(),
-            });
-            mesh.positions.extend_from_slice(&m.positions);
-            mesh.triangles
-                .extend(m.triangles.iter().map(|t| t.map(|v| v + offset)));
-            for v in 0..m.vertex_count() {
-                let row: Vec<(u32, f64)> = inf.row(v).collect();
-                for k in 0..width {
-                    let (j, w) = row.get(k).copied().unwrap_or((0, 0.0));
-                    influences.joints.push(j);
-                    influences.weights.push(w);
-                }
-            }
-        }
-        Rig::new(
-            self.nodes.clone(),
-            self.joints.clone(),
-            self.inverse_bind.clone(),
-            mesh,
-            influences,
-            primitives,
-            self.animations.clone(),
-            self.report.clone(),
-        )
-    }
 }

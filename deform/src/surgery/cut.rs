@@ -43,6 +43,18 @@ pub struct CutPiece {
     pub cap_triangles: usize,
 }
 
+impl CutPiece {
+    /// The piece's surface and its caps apart, each over its own vertices (a cap gets copies of
+    /// its rim, so it can have its own texture coordinates and normals at the crease, as
+    /// renderers need); no cap without cap triangles.
+    pub fn surface_and_caps(&self) -> (SkinnedMesh, Option<SkinnedMesh>) {
+        let is_cap = |f: usize| self.face_origin[f] == u32::MAX;
+        let surface = self.mesh.with_triangles(|f| !is_cap(f));
+        let caps = (self.cap_triangles > 0).then(|| self.mesh.with_triangles(is_cap));
+        (surface, caps)
+    }
+}
+
 /// The result of [`Surgery::cut`]: the pieces (the side the plane's normal points to first)
 /// and what changed.
 #[derive(Clone, Debug, PartialEq)]
@@ -202,13 +214,12 @@ impl Surgery {
                 t.iter().filter(|&&v| s[v as usize] == 0.0).count() >= 2
             })
             .collect();
-        let (mut new_inf, mut new_rest) =
-            new_vertex_data(src, &splitter.new_edges, frame, positions)?;
+        let mut new = new_vertex_data(src, &splitter.new_edges, frame, positions)?;
         let on_plane = |g: u32| (g as usize) >= n || s[g as usize] == 0.0;
         // Loops are found over welded vertices when coincident ones exist.
         let canon = weld.map(|w| canonical_ids(&w.canon, &splitter.new_edges));
         if let Some(c) = &canon {
-            share_copies(&c[n..], n, &mut new_inf, &mut new_rest);
+            share_copies(&c[n..], n, &mut new.influences, &mut new.mesh.positions);
         }
         let (topology, triangles, produced) = match (weld, &canon) {
             (Some(w), Some(c)) => (
@@ -224,7 +235,7 @@ impl Surgery {
         let [f0, f1] = faces;
         let [o0, o1] = from;
         let pieces = [(f0, o0, 0u8), (f1, o1, 1u8)].map(|(f, o, side)| {
-            let a = assemble(src, f, &splitter, &new_inf, &new_rest);
+            let a = assemble(src, f, &splitter, &new);
             let loops = local_loops(
                 topology,
                 triangles,

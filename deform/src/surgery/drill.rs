@@ -238,6 +238,7 @@ impl Surgery {
                         rest: src.mesh.positions.clone(),
                         frame: frame_positions.to_vec(),
                         influences: src.influences.clone(),
+                        sources: src.sources.clone(),
                         triangles: src.mesh.triangles.clone(),
                         skin: skin.map(|s| s.to_vec()),
                     });
@@ -262,10 +263,11 @@ impl Surgery {
             let owned;
             let sub = match &work {
                 None => &self.mesh,
-                Some(_) => {
+                Some(w) => {
                     owned = SkinnedMesh {
                         mesh: Mesh::new(rest.to_vec(), Vec::new()),
                         influences: inf.clone(),
+                        sources: w.sources.clone(),
                     };
                     &owned
                 }
@@ -334,12 +336,11 @@ impl Surgery {
             // and the new vertices on the copies of a seam edge coincide exactly.
             let weld = self.weld.as_ref().filter(|_| work.is_none());
             let canon = weld.map(|w| canonical_ids(&w.canon, &splitter.new_edges));
-            let (mut new_inf, mut new_rest) =
-                new_vertex_data(sub, &splitter.new_edges, posed_frame, fpos)?;
+            let mut new = new_vertex_data(sub, &splitter.new_edges, posed_frame, fpos)?;
             if let Some(c) = &canon {
-                share_copies(&c[n0..], n0, &mut new_inf, &mut new_rest);
+                share_copies(&c[n0..], n0, &mut new.influences, &mut new.mesh.positions);
             }
-            let a = assemble(sub, kept, &splitter, &new_inf, &new_rest);
+            let a = assemble(sub, kept, &splitter, &new);
             let origin = a
                 .origin
                 .iter()

@@ -54,7 +54,7 @@ pub use cut::{CutOptions, CutPiece, CutResult};
 pub use drill::{Drill, DrillOptions, DrillResult};
 pub use split::VertexOrigin;
 pub use tear::{Scalpel, TearOptions, TearResult, MAX_OPEN_PER_DIAGONAL};
-pub use weights::{push_interpolated, NEW_VERTEX_INFLUENCES};
+pub use weights::{identity_sources, push_interpolated, NEW_VERTEX_INFLUENCES};
 
 use crate::mesh::Mesh;
 use crate::skinning::Influences;
@@ -95,13 +95,57 @@ pub enum SurgeryError {
     },
 }
 
-/// A triangle mesh with per-vertex skin influences.
+/// A triangle mesh with per-vertex skin influences, and where each vertex comes from.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SkinnedMesh {
     /// The rest mesh.
     pub mesh: Mesh,
     /// Influences, one row per vertex.
     pub influences: Influences,
+    /// Sources, one row per vertex: the vertices of the mesh given to [`Surgery::new`] that
+    /// this vertex is interpolated from, with their coefficients (in the `joints` and
+    /// `weights` of each row), exactly as its influences were (section 4.3: the 4 largest,
+    /// renormalised). An input vertex has `(v, 1)`. Interpolate any other per-vertex
+    /// attribute (UVs, colours, normals) with them:
+    /// [`crate::skinning::VertexAttribute::interpolated`].
+    pub sources: Influences,
+}
+
+impl SkinnedMesh {
+    /// The triangles `keep` accepts, over the vertices they use (in their order here), with
+    /// their influences and sources.
+    pub fn with_triangles(&self, keep: impl Fn(usize) -> bool) -> SkinnedMesh {
+        let n = self.mesh.vertex_count();
+        let tris: Vec<[u32; 3]> = (0..self.mesh.triangle_count())
+            .filter(|&f| keep(f))
+            .map(|f| self.mesh.triangles[f])
+            .collect();
+        let mut local = vec![u32::MAX; n];
+        tris.iter().flatten().for_each(|&v| local[v as usize] = 0);
+        let mut positions = Vec::new();
+        let rows = |i: &Influences| Influences {
+            width: i.width,
+            ..Influences::default()
+        };
+        let (mut influences, mut sources) = (rows(&self.influences), rows(&self.sources));
+        for (v, slot) in local.iter_mut().enumerate().filter(|(_, s)| **s == 0) {
+            *slot = positions.len() as u32;
+            positions.push(self.mesh.positions[v]);
+            weights::push_copy(&self.influences, v as u32, &mut influences);
+            weights::push_copy(&self.sources, v as u32, &mut sources);
+        }
+        let triangles = tris.iter().map(|t| t.map(|v| local[v as usize])).collect();
+        SkinnedMesh {
+            mesh: Mesh::new(positions, triangles),
+            influences,
+            sources,
+        }
+    }
+
+    /// This mesh as a part of a rig made by [`crate::skinning::Rig::with_parts`].
+    pub fn part(&self) -> crate::skinning::RigPart<'_> {
+        crate::skinning::RigPart::new(&self.mesh, &self.influences, &self.sources)
+    }
 }
 
 /// The frame a tool is given in.
@@ -176,6 +220,7 @@ impl Surgery {
             mesh: SkinnedMesh {
                 mesh: mesh.clone(),
                 influences: influences.clone(),
+                sources: weights::identity_sources(n),
             },
             diagonal,
         })

@@ -14,6 +14,8 @@ pub(crate) struct Work {
     pub rest: Vec<DVec3>,
     pub frame: Vec<DVec3>,
     pub influences: Influences,
+    /// Sources of every vertex ([`super::SkinnedMesh::sources`]).
+    pub sources: Influences,
     pub triangles: Vec<[u32; 3]>,
     /// Skin matrices when the frame is posed.
     pub skin: Option<Vec<DAffine3>>,
@@ -72,6 +74,13 @@ impl Work {
             push_interpolated(&self.influences, &[(a, 0.5), (b, 0.5)], &mut row);
             self.influences.joints.extend_from_slice(&row.joints);
             self.influences.weights.extend_from_slice(&row.weights);
+            let mut from = Influences {
+                width: self.sources.width,
+                ..Influences::default()
+            };
+            push_interpolated(&self.sources, &[(a, 0.5), (b, 0.5)], &mut from);
+            self.sources.joints.extend_from_slice(&from.joints);
+            self.sources.weights.extend_from_slice(&from.weights);
             let p = 0.5 * (self.frame[a as usize] + self.frame[b as usize]);
             let rest = match &self.skin {
                 None => 0.5 * (self.rest[a as usize] + self.rest[b as usize]),

@@ -24,6 +24,8 @@ pub(crate) struct Soup<'a> {
     frame: Vec<DVec3>,
     pub rest: Vec<DVec3>,
     pub influences: Influences,
+    /// Sources of every vertex ([`super::SkinnedMesh::sources`]).
+    pub sources: Influences,
     pub origin: Vec<VertexOrigin>,
     /// The skin matrices of a posed frame.
     pub skin: Option<&'a [DAffine3]>,
@@ -38,6 +40,7 @@ impl<'a> Soup<'a> {
         rest: &[DVec3],
         frame: &[DVec3],
         src_influences: &Influences,
+        src_sources: &Influences,
         skin: Option<&'a [DAffine3]>,
     ) -> Soup<'a> {
         let influences = src_influences;
@@ -76,6 +79,7 @@ impl<'a> Soup<'a> {
             },
             rest: rest_v,
             influences,
+            sources: src_sources.clone(),
             origin,
             skin,
         }
@@ -96,6 +100,13 @@ impl<'a> Soup<'a> {
         };
         self.influences.joints.extend_from_slice(&row.joints);
         self.influences.weights.extend_from_slice(&row.weights);
+        let mut from = Influences {
+            width: self.sources.width,
+            ..Influences::default()
+        };
+        push_interpolated(&self.sources, parts, &mut from);
+        self.sources.joints.extend_from_slice(&from.joints);
+        self.sources.weights.extend_from_slice(&from.weights);
         if self.skin.is_some() {
             self.frame.push(p);
         }
@@ -135,6 +146,9 @@ impl<'a> Soup<'a> {
         let src = self.influences.clone_row(v);
         self.influences.joints.extend_from_slice(&src.0);
         self.influences.weights.extend_from_slice(&src.1);
+        let from = self.sources.clone_row(v);
+        self.sources.joints.extend_from_slice(&from.0);
+        self.sources.weights.extend_from_slice(&from.1);
         if self.skin.is_some() {
             self.frame.push(self.frame[v as usize]);
         }

@@ -127,22 +127,27 @@ impl<'a> Splitter<'a> {
     }
 }
 
-/// Influences (interpolated, 4 largest) and rest positions of new vertices `(a, b, t)`: on the
-/// rest pose the interpolated rest point; on a posed frame the posed point mapped back through
-/// the inverse of its own blended skin transform.
+/// New vertices `(a, b, t)` as a triangle-free [`SkinnedMesh`]: influences and sources
+/// interpolated (4 largest), rest positions on the rest pose the interpolated rest point, on a
+/// posed frame the posed point mapped back through the inverse of its own blended skin
+/// transform.
 pub(crate) fn new_vertex_data(
     src: &SkinnedMesh,
     new_edges: &[(u32, u32, f64)],
     frame: Frame,
     frame_positions: &[DVec3],
-) -> Result<(Influences, Vec<DVec3>), SurgeryError> {
-    let mut inf = Influences {
-        width: src.influences.width,
+) -> Result<SkinnedMesh, SurgeryError> {
+    let empty = |width| Influences {
+        width,
         ..Influences::default()
     };
+    let mut inf = empty(src.influences.width);
+    let mut sources = empty(src.sources.width);
     let mut rest = Vec::with_capacity(new_edges.len());
     for (k, &(a, b, t)) in new_edges.iter().enumerate() {
-        push_interpolated(&src.influences, &[(a, 1.0 - t), (b, t)], &mut inf);
+        let parts = [(a, 1.0 - t), (b, t)];
+        push_interpolated(&src.influences, &parts, &mut inf);
+        push_interpolated(&src.sources, &parts, &mut sources);
         let (pa, pb) = (a as usize, b as usize);
         rest.push(match frame {
             Frame::Rest => src.mesh.positions[pa].lerp(src.mesh.positions[pb], t),
@@ -157,7 +162,11 @@ pub(crate) fn new_vertex_data(
             }
         });
     }
-    Ok((inf, rest))
+    Ok(SkinnedMesh {
+        mesh: Mesh::new(rest, Vec::new()),
+        influences: inf,
+        sources,
+    })
 }
 
 /// One result mesh from triangles over input vertices `0..n` and new vertices `n..`:
@@ -173,8 +182,7 @@ pub(crate) fn assemble(
     src: &SkinnedMesh,
     mut faces: Vec<[u32; 3]>,
     splitter: &Splitter,
-    new_inf: &Influences,
-    new_rest: &[DVec3],
+    new: &SkinnedMesh,
 ) -> Assembled {
     let n = src.mesh.vertex_count();
     let total = n + splitter.new_edges.len();
@@ -193,6 +201,10 @@ pub(crate) fn assemble(
         joints: Vec::with_capacity(kept * w),
         weights: Vec::with_capacity(kept * w),
     };
+    let mut sources = Influences {
+        width: src.sources.width,
+        ..Influences::default()
+    };
     for (g, slot) in local.iter_mut().enumerate() {
         if *slot == u32::MAX {
             continue;
@@ -202,16 +214,13 @@ pub(crate) fn assemble(
             positions.push(src.mesh.positions[g]);
             origin.push(VertexOrigin::Original(g as u32));
             push_copy(&src.influences, g as u32, &mut influences);
+            push_copy(&src.sources, g as u32, &mut sources);
         } else {
             let (a, b, t) = splitter.new_edges[g - n];
-            positions.push(new_rest[g - n]);
+            positions.push(new.mesh.positions[g - n]);
             origin.push(VertexOrigin::Edge { a, b, t });
-            let w = new_inf.width;
-            let r = (g - n) * w..(g - n + 1) * w;
-            influences
-                .joints
-                .extend_from_slice(&new_inf.joints[r.clone()]);
-            influences.weights.extend_from_slice(&new_inf.weights[r]);
+            push_copy(&new.influences, (g - n) as u32, &mut influences);
+            push_copy(&new.sources, (g - n) as u32, &mut sources);
         }
     }
     for t in &mut faces {
@@ -221,6 +230,7 @@ pub(crate) fn assemble(
         mesh: SkinnedMesh {
             mesh: Mesh::new(positions, faces),
             influences,
+            sources,
         },
         origin,
         local,

@@ -145,6 +145,7 @@ impl Surgery {
             &src.mesh.positions,
             positions,
             &src.influences,
+            &src.sources,
             skin,
         );
         let points: Vec<u32> = hits
@@ -204,6 +205,7 @@ impl Surgery {
             mesh: SkinnedMesh {
                 mesh: Mesh::new(soup.rest, soup.tris),
                 influences: soup.influences,
+                sources: soup.sources,
             },
             origin: soup.origin,
             incision,

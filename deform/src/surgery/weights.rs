@@ -1,5 +1,7 @@
 //! Skin weights of new vertices (second paper, section 4.3): interpolate the influences of the
-//! vertices a new point is made from, keep the 4 largest, renormalise.
+//! vertices a new point is made from, keep the 4 largest, renormalise. The same interpolation
+//! records each vertex's sources (the input vertices it is made from, with their coefficients),
+//! so any other per-vertex attribute (UVs, colours) follows the weights.
 
 use crate::skinning::Influences;
 
@@ -44,4 +46,21 @@ pub fn push_copy(src: &Influences, v: u32, out: &mut Influences) {
     let r = v as usize * src.width..(v as usize + 1) * src.width;
     out.joints.extend_from_slice(&src.joints[r.clone()]);
     out.weights.extend_from_slice(&src.weights[r]);
+}
+
+/// Sources of the input vertices themselves: row `v` is `(v, 1)`. Rows are
+/// [`NEW_VERTEX_INFLUENCES`] wide; [`push_interpolated`] and [`push_copy`] extend them as they
+/// extend the weights, with input vertex indices in place of joints.
+pub fn identity_sources(n: usize) -> Influences {
+    let width = NEW_VERTEX_INFLUENCES;
+    let mut s = Influences {
+        width,
+        joints: vec![0; n * width],
+        weights: vec![0.0; n * width],
+    };
+    for v in 0..n {
+        s.joints[v * width] = v as u32;
+        s.weights[v * width] = 1.0;
+    }
+    s
 }

@@ -10,9 +10,9 @@ use crate::report::Report;
 use crate::shared_args::{OutputArgs, RigInput, ToolFrame};
 use crate::timing::ms;
 use anyhow::{Context, Result};
-use deform::skinning::{GlbOptions, Rig, Skinning};
+use deform::skinning::{GlbOptions, Rig, RigPart, Skinning};
 use deform::surgery::{Frame, Surgery};
-use deform::{BlendMethod, Deformer, Mesh};
+use deform::{BlendMethod, Deformer};
 use glam::{DAffine3, DVec3};
 use std::time::Instant;
 
@@ -54,7 +54,7 @@ impl Posed {
 /// `away(part)`, coloured by part, or by `marks` (one value per vertex of a single part).
 pub fn write_result(
     rig: &Rig,
-    parts: &[(&Mesh, &deform::skinning::Influences)],
+    parts: &[RigPart],
     out: &OutputArgs,
     away: impl Fn(usize) -> DVec3,
     marks: Option<Vec<f64>>,
@@ -76,7 +76,9 @@ pub fn write_result(
     if let Some(png) = &out.png {
         let mut shown = result.mesh.clone();
         let mut part_of = vec![0.0; shown.vertex_count()];
-        for (k, p) in result.primitives.iter().enumerate() {
+        for p in &result.primitives {
+            // The part a primitive belongs to (a part with several materials has several).
+            let k = p.primitive;
             let shift = away(k);
             let r = p.vertex_offset..p.vertex_offset + p.vertex_count;
             shown.positions[r.clone()]
@@ -140,7 +142,7 @@ pub fn write_one(
         .collect();
     write_result(
         rig,
-        &[(&mesh.mesh, &mesh.influences)],
+        &[mesh.part()],
         out,
         |_| DVec3::ZERO,
         Some(marks),

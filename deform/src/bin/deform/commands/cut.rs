@@ -8,6 +8,7 @@ use crate::surgery_io::{prepare, write_result, Posed, Prepared};
 use crate::timing::ms;
 use anyhow::{bail, Result};
 use clap::Args;
+use deform::skinning::RigPart;
 use deform::surgery::CutOptions;
 use glam::DVec3;
 use std::time::Instant;
@@ -76,16 +77,32 @@ pub fn run(a: &CutArgs) -> Result<()> {
     }
     let spread = 0.04 * rig.mesh.bounding_box().map_or(1.0, |b| b.diagonal());
     let n = plane.normal();
-    let parts: Vec<_> = cut
-        .pieces
-        .iter()
-        .map(|p| (&p.mesh.mesh, &p.mesh.influences))
-        .collect();
+    // Each piece's surface, then its caps (their own vertices: planar UVs, flat normals).
+    let split: Vec<_> = cut.pieces.iter().map(|p| p.surface_and_caps()).collect();
+    let mut parts = Vec::new();
+    let mut piece_of = Vec::new();
+    for (k, (surface, caps)) in split.iter().enumerate() {
+        parts.push(surface.part());
+        piece_of.push(k);
+        if let Some(c) = caps {
+            parts.push(RigPart {
+                cap: Some(n),
+                ..c.part()
+            });
+            piece_of.push(k);
+        }
+    }
     write_result(
         &rig,
         &parts,
         &a.out,
-        |k| if k == 0 { n * spread } else { -n * spread },
+        |k| {
+            if piece_of[k] == 0 {
+                n * spread
+            } else {
+                -n * spread
+            }
+        },
         None,
         &mut report,
     )

@@ -69,11 +69,7 @@ pub fn scenes(out: &Path) -> Result<Vec<DemoScene>> {
         },
     )?;
     let cut_ms = ms(t);
-    let parts: Vec<_> = cut
-        .pieces
-        .iter()
-        .map(|p| (&p.mesh.mesh, &p.mesh.influences))
-        .collect();
+    let parts: Vec<_> = cut.pieces.iter().map(|p| p.mesh.part()).collect();
     let cut_rig = rig.with_parts(&parts)?;
     let (posed, pose_ms) = animate(&cut_rig, 2.0, &[], &out.join("cut-arm.glb"))?;
     let side: Vec<f64> = cut_rig
@@ -109,7 +105,7 @@ pub fn scenes(out: &Path) -> Result<Vec<DemoScene>> {
         },
     )?;
     let tear_ms = ms(t);
-    let torn = rig.with_parts(&[(&tear.mesh.mesh, &tear.mesh.influences)])?;
+    let torn = rig.with_parts(&[tear.mesh.part()])?;
     let (posed, pose_ms) = animate(&torn, 2.0, &[], &out.join("tear-arm.glb"))?;
     scenes.push(DemoScene {
         name: "tear-arm",
@@ -136,7 +132,7 @@ pub fn scenes(out: &Path) -> Result<Vec<DemoScene>> {
         &DrillOptions::default(),
     )?;
     let drill_ms = ms(t);
-    let drilled = rig.with_parts(&[(&drill.mesh.mesh, &drill.mesh.influences)])?;
+    let drilled = rig.with_parts(&[drill.mesh.part()])?;
     let (posed, pose_ms) = animate(&drilled, 2.0, &[], &out.join("drill-arm.glb"))?;
     scenes.push(DemoScene {
         name: "drill-arm",

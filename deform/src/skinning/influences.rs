@@ -1,0 +1,50 @@
+//! Per-vertex joint influences.
+
+/// Per-vertex joint influences: `width` (joint, weight) pairs per vertex, joints indexing the
+/// skin's joint list. Weights are non-negative and sum to 1 ([`super::Rig::new`] reads weights in
+/// `[-1e-6, 0)` as 0 and normalises).
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct Influences {
+    /// Pairs per vertex (4, or 8 with a second joint/weight set).
+    pub width: usize,
+    /// Joint indices, vertex-major.
+    pub joints: Vec<u32>,
+    /// Weights, vertex-major.
+    pub weights: Vec<f64>,
+}
+
+impl Influences {
+    /// Number of vertices.
+    pub fn vertex_count(&self) -> usize {
+        self.weights.len().checked_div(self.width).unwrap_or(0)
+    }
+
+    /// Normalise every vertex's weights to sum 1 (an all-zero vertex gets weight 1 on its first
+    /// joint, as three.js does); returns how many vertices were off by more than `1e-5`.
+    pub(crate) fn normalise(&mut self) -> usize {
+        let mut changed = 0;
+        let w = self.width.max(1);
+        for row in self.weights.chunks_mut(w) {
+            let sum: f64 = row.iter().sum();
+            if (sum - 1.0).abs() > 1e-5 {
+                changed += 1;
+            }
+            if sum > 0.0 {
+                row.iter_mut().for_each(|x| *x /= sum);
+            } else {
+                row.iter_mut().for_each(|x| *x = 0.0);
+                row[0] = 1.0;
+            }
+        }
+        changed
+    }
+
+    /// The `(joint, weight)` pairs of vertex `v`.
+    pub fn row(&self, v: usize) -> impl Iterator<Item = (u32, f64)> + '_ {
+        let r = v * self.width..(v + 1) * self.width;
+        self.joints[r.clone()]
+            .iter()
+            .copied()
+            .zip(self.weights[r].iter().copied())
+    }
+}
