@@ -9,6 +9,7 @@ mod bake;
 mod cli;
 mod gltf_io;
 mod keyframes;
+mod look;
 
 use cga::ScaledMotor;
 use common::{data_dir, reference, reference_mesh};

@@ -9,6 +9,7 @@ mod common;
 #[cfg(feature = "cli")]
 mod cli;
 mod drill;
+mod look;
 mod seams;
 mod tear;
 
