@@ -59,7 +59,7 @@ fn shared_models_keep_their_look() {
     }
 }
 
-/// The procedural arm with a made-up look: colours, a second UV set, a textured material.
+/// The procedural arm with a made-up look: colours, two UV sets, a material textured through the second.
 fn dressed_arm() -> Rig {
     let mut rig = procedural_arm(8, 6);
     let n = rig.mesh.vertex_count();
@@ -72,9 +72,14 @@ fn dressed_arm() -> Rig {
             values: colour.collect(),
         },
         VertexAttribute {
+            name: "TEXCOORD_0".into(),
+            width: 2,
+            values: uv.clone().collect(),
+        },
+        VertexAttribute {
             name: "TEXCOORD_1".into(),
             width: 2,
-            values: uv.collect(),
+            values: uv.map(|x| 1.0 - x).collect(),
         },
     ];
     rig.look.materials = vec![json!({
