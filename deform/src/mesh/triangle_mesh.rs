@@ -145,6 +145,26 @@ impl Mesh {
         acc.into_iter().map(|n| n.normalize_or_zero()).collect()
     }
 
+    /// [`Mesh::vertex_normals`] with the normals of vertices at bit-identical positions summed
+    /// (the copies glTF makes along UV seams), so shading shows no seam.
+    pub fn seamless_vertex_normals(&self) -> Vec<DVec3> {
+        let mut acc = vec![DVec3::ZERO; self.positions.len()];
+        for (t, n) in self.triangles.iter().zip(self.face_area_vectors()) {
+            for &v in t {
+                acc[v as usize] += n;
+            }
+        }
+        let key = |p: DVec3| p.to_array().map(f64::to_bits);
+        let mut at: std::collections::HashMap<[u64; 3], DVec3> = std::collections::HashMap::new();
+        for (p, n) in self.positions.iter().zip(&acc) {
+            *at.entry(key(*p)).or_insert(DVec3::ZERO) += *n;
+        }
+        self.positions
+            .iter()
+            .map(|p| at[&key(*p)].normalize_or_zero())
+            .collect()
+    }
+
     /// Signed volume enclosed by a closed, consistently oriented mesh.
     pub fn volume(&self) -> f64 {
         (0..self.triangles.len())

@@ -7,6 +7,7 @@ use super::SkinError;
 use super::Trs;
 
 type Result<T, E = SkinError> = std::result::Result<T, E>;
+use crate::mesh::io::{unit_normals, GlbBuilder};
 use serde_json::{json, Value};
 use std::path::Path;
 
@@ -36,99 +37,18 @@ pub fn write_glb(rig: &Rig, options: &GlbOptions, path: impl AsRef<Path>) -> Res
     std::fs::rename(&tmp, path).map_err(io)
 }
 
-/// Smooth vertex normals of the bind-pose mesh ([`crate::mesh::Mesh::vertex_normals`], area
-/// weighted), unit length in single precision as glTF requires. Without them a viewer must
-/// shade the mesh flat. A vertex with no non-degenerate face gets `+z`.
-fn unit_normals(mesh: &crate::mesh::Mesh) -> Vec<[f32; 3]> {
-    mesh.vertex_normals()
-        .into_iter()
-        .map(|n| {
-            let n = n.as_vec3().normalize_or_zero();
-            if n == glam::Vec3::ZERO {
-                [0.0, 0.0, 1.0]
-            } else {
-                n.to_array()
-            }
-        })
-        .collect()
-}
-
-/// Binary buffer under construction: 4-byte aligned views.
-#[derive(Default)]
-struct Bin {
-    data: Vec<u8>,
-    views: Vec<Value>,
-    accessors: Vec<Value>,
-}
-
-impl Bin {
-    /// Append `bytes` as a new buffer view (with `target` when given); its index.
-    fn view(&mut self, bytes: &[u8], target: Option<u32>) -> usize {
-        while !self.data.len().is_multiple_of(4) {
-            self.data.push(0);
-        }
-        let mut view =
-            json!({"buffer": 0, "byteOffset": self.data.len(), "byteLength": bytes.len()});
-        if let Some(t) = target {
-            view["target"] = json!(t);
-        }
-        self.data.extend_from_slice(bytes);
-        self.views.push(view);
-        self.views.len() - 1
-    }
-
-    /// Append `bytes` as a new buffer view (with `target` when given) and an accessor over it.
-    fn push(&mut self, bytes: &[u8], target: Option<u32>, accessor: Value) -> usize {
-        let view = self.view(bytes, target);
-        let mut a = accessor;
-        a["bufferView"] = json!(view);
-        self.accessors.push(a);
-        self.accessors.len() - 1
-    }
-
-    /// `f32` elements of `dim` components (with min/max when `bounds`).
-    ///
-    /// # Errors
-    /// [`SkinError::InvalidArgument`] when a value is not finite in single precision (a
-    /// coordinate beyond the f32 range, or NaN), naming `what`: glTF holds finite f32 only.
-    fn floats(
-        &mut self,
-        v: &[f32],
-        dim: usize,
-        kind: &str,
-        target: Option<u32>,
-        bounds: bool,
-        what: &str,
-    ) -> Result<usize> {
-        if v.is_empty() {
-            return Err(SkinError::InvalidArgument(format!(
-                "{what}: no elements (a glTF accessor holds at least one)"
-            )));
-        }
-        if let Some(i) = v.iter().position(|x| !x.is_finite()) {
-            return Err(SkinError::InvalidArgument(format!(
-                "{what}: element {} is {} in single precision; glTF holds finite f32 values \
-                 only (coordinates beyond about 3.4e38, or NaN)",
-                i / dim,
-                v[i]
-            )));
-        }
-        let bytes: Vec<u8> = v.iter().flat_map(|x| x.to_le_bytes()).collect();
-        let mut a = json!({"componentType": 5126, "count": v.len() / dim, "type": kind});
-        if bounds {
-            let mut lo = vec![f32::INFINITY; dim];
-            let mut hi = vec![f32::NEG_INFINITY; dim];
-            for e in v.chunks_exact(dim) {
-                for c in 0..dim {
-                    lo[c] = lo[c].min(e[c]);
-                    hi[c] = hi[c].max(e[c]);
-                }
-            }
-            a["min"] = json!(lo);
-            a["max"] = json!(hi);
-        }
-        Ok(self.push(&bytes, target, a))
-    }
+/// [`GlbBuilder::floats`] with its error as [`SkinError::InvalidArgument`].
+fn floats(
+    bin: &mut GlbBuilder,
+    v: &[f32],
+    dim: usize,
+    kind: &str,
+    target: Option<u32>,
+    bounds: bool,
+    what: &str,
+) -> Result<usize> {
+    bin.floats(v, dim, kind, target, bounds, what)
+        .map_err(SkinError::InvalidArgument)
 }
 
 /// Per vertex, at most 8 `(joint, weight)` influences: duplicates merged, zero weights
@@ -204,7 +124,7 @@ pub fn glb_bytes(rig: &Rig, options: &GlbOptions) -> Result<Vec<u8>> {
     };
     let look = &rig.look;
     check_look(rig)?;
-    let mut bin = Bin::default();
+    let mut bin = GlbBuilder::default();
     let (width, joints, weights) = compact_influences(rig);
     let normals: Vec<[f32; 3]> = match look.attribute("NORMAL").filter(|a| a.width == 3) {
         Some(a) => a
@@ -221,7 +141,7 @@ pub fn glb_bytes(rig: &Rig, options: &GlbOptions) -> Result<Vec<u8>> {
             .iter()
             .flat_map(|x| x.as_vec3().to_array())
             .collect();
-        let position = bin.floats(&pos, 3, "VEC3", Some(34962), true, "POSITION")?;
+        let position = floats(&mut bin, &pos, 3, "VEC3", Some(34962), true, "POSITION")?;
         let idx: Vec<u8> = rig.mesh.triangles
             [p.triangle_offset..p.triangle_offset + p.triangle_count]
             .iter()
@@ -234,13 +154,20 @@ pub fn glb_bytes(rig: &Rig, options: &GlbOptions) -> Result<Vec<u8>> {
             json!({"componentType": 5125, "count": 3 * p.triangle_count, "type": "SCALAR"}),
         );
         let nrm: Vec<f32> = normals[range.clone()].iter().flatten().copied().collect();
-        let normal = bin.floats(&nrm, 3, "VEC3", Some(34962), false, "NORMAL")?;
+        let normal = floats(&mut bin, &nrm, 3, "VEC3", Some(34962), false, "NORMAL")?;
         let mut attributes = json!({"POSITION": position, "NORMAL": normal});
         for a in look.attributes.iter().filter(|a| a.name != "NORMAL") {
             let values = &a.values[range.start * a.width..range.end * a.width];
             let kind = ["SCALAR", "VEC2", "VEC3", "VEC4"][a.width - 1];
-            attributes[a.name.as_str()] =
-                json!(bin.floats(values, a.width, kind, Some(34962), false, &a.name)?);
+            attributes[a.name.as_str()] = json!(floats(
+                &mut bin,
+                values,
+                a.width,
+                kind,
+                Some(34962),
+                false,
+                &a.name
+            )?);
         }
         for set in 0..width / 4 {
             let j: Vec<u8> = joints[range.clone()]
@@ -256,8 +183,15 @@ pub fn glb_bytes(rig: &Rig, options: &GlbOptions) -> Result<Vec<u8>> {
                 Some(34962),
                 json!({"componentType": 5123, "count": p.vertex_count, "type": "VEC4"})
             ));
-            attributes[format!("WEIGHTS_{set}")] =
-                json!(bin.floats(&w, 4, "VEC4", Some(34962), false, "WEIGHTS")?);
+            attributes[format!("WEIGHTS_{set}")] = json!(floats(
+                &mut bin,
+                &w,
+                4,
+                "VEC4",
+                Some(34962),
+                false,
+                "WEIGHTS"
+            )?);
         }
         let mut primitive = json!({"attributes": attributes, "indices": indices, "mode": 4});
         if let Some(m) = look.primitive_materials.get(index).copied().flatten() {
@@ -270,7 +204,15 @@ pub fn glb_bytes(rig: &Rig, options: &GlbOptions) -> Result<Vec<u8>> {
         .iter()
         .flat_map(|m| m.as_mat4().to_cols_array())
         .collect();
-    let ibm = bin.floats(&ibm, 16, "MAT4", None, false, "inverse bind matrices")?;
+    let ibm = floats(
+        &mut bin,
+        &ibm,
+        16,
+        "MAT4",
+        None,
+        false,
+        "inverse bind matrices",
+    )?;
     let mut nodes: Vec<Value> = rig
         .nodes
         .iter()
@@ -310,7 +252,7 @@ pub fn glb_bytes(rig: &Rig, options: &GlbOptions) -> Result<Vec<u8>> {
                 let mut channels = Vec::new();
                 for c in &a.channels {
                     let times: Vec<f32> = c.times.iter().map(|&t| t as f32).collect();
-                    let input = bin.floats(&times, 1, "SCALAR", None, true, "animation times")?;
+                    let input = floats(&mut bin, &times, 1, "SCALAR", None, true, "animation times")?;
                     let (dim, kind, path) = match c.property {
                         Property::Translation => (3, "VEC3", "translation"),
                         Property::Rotation => (4, "VEC4", "rotation"),
@@ -321,7 +263,7 @@ pub fn glb_bytes(rig: &Rig, options: &GlbOptions) -> Result<Vec<u8>> {
                         .iter()
                         .flat_map(|v| v.as_vec4().to_array()[..dim].to_vec())
                         .collect();
-                    let output = bin.floats(&values, dim, kind, None, false, "animation values")?;
+                    let output = floats(&mut bin, &values, dim, kind, None, false, "animation values")?;
                     let interpolation = match c.interpolation {
                         Interpolation::Linear => "LINEAR",
                         Interpolation::Step => "STEP",
@@ -335,9 +277,6 @@ pub fn glb_bytes(rig: &Rig, options: &GlbOptions) -> Result<Vec<u8>> {
             .collect::<Result<Vec<_>>>()?
     };
     let images = image_views(look, &mut bin);
-    while !bin.data.len().is_multiple_of(4) {
-        bin.data.push(0);
-    }
     let mut doc = json!({
         "asset": {"version": "2.0", "generator": "deform (cga mesh deformers)"},
         "scene": 0,
@@ -345,31 +284,12 @@ pub fn glb_bytes(rig: &Rig, options: &GlbOptions) -> Result<Vec<u8>> {
         "nodes": nodes,
         "meshes": [{"name": "skin", "primitives": primitives}],
         "skins": [{"joints": rig.joints, "inverseBindMatrices": ibm}],
-        "buffers": [{"byteLength": bin.data.len()}],
-        "bufferViews": bin.views,
-        "accessors": bin.accessors,
     });
     if !animations.is_empty() {
         doc["animations"] = json!(animations);
     }
     write_look(look, images, &mut doc);
-    let mut text =
-        serde_json::to_vec(&doc).map_err(|e| SkinError::InvalidArgument(e.to_string()))?;
-    while !text.len().is_multiple_of(4) {
-        text.push(b' ');
-    }
-    let total = 12 + 8 + text.len() + 8 + bin.data.len();
-    let mut out = Vec::with_capacity(total);
-    out.extend_from_slice(b"glTF");
-    out.extend_from_slice(&2u32.to_le_bytes());
-    out.extend_from_slice(&(total as u32).to_le_bytes());
-    out.extend_from_slice(&(text.len() as u32).to_le_bytes());
-    out.extend_from_slice(b"JSON");
-    out.extend_from_slice(&text);
-    out.extend_from_slice(&(bin.data.len() as u32).to_le_bytes());
-    out.extend_from_slice(b"BIN\0");
-    out.extend_from_slice(&bin.data);
-    Ok(out)
+    bin.finish(doc).map_err(SkinError::InvalidArgument)
 }
 
 /// Refuses a look that does not fit the rig: attributes of another length or width, material
@@ -402,7 +322,7 @@ fn check_look(rig: &Rig) -> Result<()> {
 }
 
 /// The images' JSON, their bytes stored as buffer views of `bin`.
-fn image_views(look: &super::Look, bin: &mut Bin) -> Vec<Value> {
+fn image_views(look: &super::Look, bin: &mut GlbBuilder) -> Vec<Value> {
     look.images
         .iter()
         .map(|image| {

@@ -252,3 +252,31 @@ fn binary_dmat_round_trip() {
     std::fs::remove_file(&path).ok();
     assert_eq!(back, m);
 }
+
+#[test]
+fn obj_with_texture_coordinates_and_normals() {
+    let m = Mesh::new(
+        vec![glam::DVec3::ZERO, glam::DVec3::X, glam::DVec3::Y],
+        vec![[0, 1, 2]],
+    );
+    let uv = [0.0f32, 0.25, 1.0, 0.25, 0.0, 1.0];
+    let normals = m.seamless_vertex_normals();
+    let extras = io::ObjExtras {
+        uvs: Some(&uv),
+        normals: Some(&normals),
+    };
+    let mut text = Vec::new();
+    io::write_obj_with_to(&m, extras, &mut text).unwrap();
+    let text = String::from_utf8(text).unwrap();
+    // OBJ's texture origin is bottom left, glTF's top left: v is flipped.
+    assert!(text.contains("vt 0 0.75\nvt 1 0.75\nvt 0 0\n"), "{text}");
+    assert!(text.contains("vn 0 0 1\n"), "{text}");
+    assert!(text.contains("f 1/1/1 2/2/2 3/3/3"), "{text}");
+    assert_eq!(io::parse_obj(&text, "t").unwrap(), m);
+    let short = io::ObjExtras {
+        uvs: Some(&uv[..4]),
+        normals: None,
+    };
+    let err = io::write_obj_with_to(&m, short, &mut Vec::new()).unwrap_err();
+    assert_eq!(err.kind(), std::io::ErrorKind::InvalidInput);
+}

@@ -49,6 +49,25 @@ fn skin_cli() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let m = deform::io::read_obj(&obj).unwrap();
     assert_eq!(m.vertex_count(), 1728);
+    // The Fox's UVs as `vt` (V flipped for OBJ), one per vertex, used by every face corner;
+    // no `vn`, since the Fox has no normals.
+    let text = std::fs::read_to_string(&obj).unwrap();
+    let vt: Vec<[f32; 2]> = text
+        .lines()
+        .filter_map(|l| l.strip_prefix("vt "))
+        .map(|l| {
+            let mut it = l.split(' ').map(|x| x.parse::<f32>().unwrap());
+            [it.next().unwrap(), it.next().unwrap()]
+        })
+        .collect();
+    let fox = read_gltf(dir.join("gltf/Fox.glb")).unwrap();
+    let uv = fox.look.attribute("TEXCOORD_0").unwrap();
+    assert_eq!(vt.len(), uv.vertex_count());
+    for (v, t) in vt.iter().enumerate() {
+        assert_eq!(*t, [uv.row(v)[0], 1.0 - uv.row(v)[1]], "vertex {v}");
+    }
+    assert!(!text.contains("\nvn "));
+    assert!(text.lines().any(|l| l == "f 1/1 2/2 3/3") || text.contains(" 1/1"));
     // A libigl rig with its DMAT animation: frame 100.
     let lib = dir.join("meshes/libigl");
     let ele = out.join("elephant-100.obj");

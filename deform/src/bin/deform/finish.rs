@@ -1,7 +1,7 @@
 //! The last steps of every mesh deformer command: pose and time, refuse a non-finite result,
-//! write the OBJ and the preview, print the report.
+//! write the mesh (OBJ or static `.glb`) and the preview, print the report.
 
-use crate::output_files::{write_obj, write_png};
+use crate::output_files::{write_mesh, write_png};
 use crate::preview;
 use crate::report::Report;
 use crate::shared_args::OutputArgs;
@@ -23,7 +23,7 @@ pub fn finish(
         bail!("vertex {i}: the deformation produced a non-finite position");
     }
     let posed = Mesh::new(posed, mesh.triangles.clone());
-    write_obj(&out.output, &posed)?;
+    write_mesh(&out.output, &posed)?;
     report.add("output", out.output.display().to_string());
     if let Some(png) = &out.png {
         let image = preview::before_after(mesh, &posed, scalar, 30.0, 20.0)?;

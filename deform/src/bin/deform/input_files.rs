@@ -73,17 +73,18 @@ pub fn read_rig(input: &RigInput) -> Result<Rig> {
         .with_context(|| format!("{}: cannot rig", input.model.display()))
 }
 
-/// Refuse outputs that are inputs (`mesh` and `extra`) or not OBJ, then read the mesh.
+/// Refuse outputs that are inputs (`mesh` and `extra`) or neither OBJ nor `.glb`, then read
+/// the mesh.
 pub fn read_mesh_checked(mesh: &Path, extra: &[&Path], out: &OutputArgs) -> Result<Mesh> {
     let mut inputs = vec![mesh];
     inputs.extend_from_slice(extra);
     check_outputs(&inputs, &out.paths())?;
-    check_formats(out, &["obj"])?;
+    check_formats(out, &["obj", "glb"])?;
     read_mesh(mesh)
 }
 
-/// Read the mesh and selection, refusing outputs that are inputs (these and `extra`) or not
-/// OBJ.
+/// Read the mesh and selection, refusing outputs that are inputs (these and `extra`) or
+/// neither OBJ nor `.glb`.
 pub fn read_mesh_input(
     input: &MeshInput,
     extra: &[&Path],

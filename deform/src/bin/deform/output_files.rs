@@ -103,6 +103,28 @@ pub fn write_atomic(path: &Path, write: impl FnOnce(&mut dyn Write) -> Result<()
 
 /// Write a mesh as OBJ (the vertex order and count as given).
 pub fn write_obj(path: &Path, mesh: &Mesh) -> Result<()> {
+    write_obj_with(path, mesh, deform::io::ObjExtras::default())
+}
+
+/// Write a rig's mesh (rest or posed) as OBJ with the texture coordinates of its look
+/// (`TEXCOORD_0`) as `vt` and, where the model has normals, this mesh's smooth normals
+/// (seamless across UV seams) as `vn`.
+pub fn write_rig_obj(path: &Path, mesh: &Mesh, look: &deform::skinning::Look) -> Result<()> {
+    let uv = look
+        .attribute("TEXCOORD_0")
+        .filter(|a| a.width == 2 && a.vertex_count() == mesh.vertex_count());
+    let normals = look
+        .attribute("NORMAL")
+        .map(|_| mesh.seamless_vertex_normals());
+    let extras = deform::io::ObjExtras {
+        uvs: uv.map(|a| &a.values[..]),
+        normals: normals.as_deref(),
+    };
+    write_obj_with(path, mesh, extras)
+}
+
+/// Write a mesh as OBJ with texture coordinates and normals.
+fn write_obj_with(path: &Path, mesh: &Mesh, extras: deform::io::ObjExtras) -> Result<()> {
     // Every command's result goes through here: a non-finite vertex is an error, never a file.
     if let Some(i) = mesh.positions.iter().position(|p| !p.is_finite()) {
         bail!(
@@ -112,7 +134,29 @@ pub fn write_obj(path: &Path, mesh: &Mesh) -> Result<()> {
         );
     }
     write_atomic(path, |w| {
-        deform::io::write_obj_to(mesh, w)?;
+        deform::io::write_obj_with_to(mesh, extras, w)?;
+        Ok(())
+    })
+}
+
+/// Write a deformed mesh in the format its extension names: `.glb` (a static binary glTF
+/// with smooth normals) or OBJ.
+pub fn write_mesh(path: &Path, mesh: &Mesh) -> Result<()> {
+    let glb = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("glb"));
+    if !glb {
+        return write_obj(path, mesh);
+    }
+    if let Some(i) = mesh.positions.iter().position(|p| !p.is_finite()) {
+        bail!(
+            "{}: not written: vertex {i} of the result is not finite",
+            path.display()
+        );
+    }
+    let bytes = deform::io::glb_bytes(mesh)?;
+    write_atomic(path, |w| {
+        w.write_all(&bytes)?;
         Ok(())
     })
 }

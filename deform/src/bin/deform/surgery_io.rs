@@ -4,7 +4,7 @@
 //! preview.
 
 use crate::input_files::read_rig;
-use crate::output_files::{check_formats, check_outputs, write_glb, write_obj, write_png};
+use crate::output_files::{check_formats, check_outputs, write_glb, write_png, write_rig_obj};
 use crate::preview;
 use crate::report::Report;
 use crate::shared_args::{OutputArgs, RigInput, ToolFrame};
@@ -70,7 +70,7 @@ pub fn write_result(
     if glb {
         write_glb(&out.output, &result, &GlbOptions::default())?;
     } else {
-        write_obj(&out.output, &result.mesh)?;
+        write_rig_obj(&out.output, &result.mesh, &result.look)?;
     }
     report.add("output", out.output.display().to_string());
     if let Some(png) = &out.png {

@@ -8,7 +8,10 @@ mod tgf;
 
 pub use dmat::{parse_dmat, read_dmat, write_dmat, Dmat};
 pub use medit::{parse_medit, read_medit, MeditMesh};
-pub use obj::{parse_obj, read_obj, write_obj, write_obj_to};
+mod glb;
+pub use glb::{glb_bytes, write_glb};
+pub(crate) use glb::{unit_normals, GlbBuilder};
+pub use obj::{parse_obj, read_obj, write_obj, write_obj_to, write_obj_with_to, ObjExtras};
 pub use off::{parse_off, read_off};
 pub use tgf::{parse_tgf, read_tgf, Skeleton};
 

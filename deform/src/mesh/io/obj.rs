@@ -86,6 +86,59 @@ pub fn write_obj_to(mesh: &Mesh, mut w: impl Write) -> std::io::Result<()> {
     buf.flush()
 }
 
+/// What [`write_obj_with_to`] writes besides positions and faces: per-vertex texture
+/// coordinates and normals, each indexed like the vertices.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct ObjExtras<'a> {
+    /// glTF-style UVs (origin top left), two per vertex: written as `vt u (1 - v)`, OBJ's
+    /// origin being bottom left.
+    pub uvs: Option<&'a [f32]>,
+    /// Unit normals, one per vertex (`vn`).
+    pub normals: Option<&'a [glam::DVec3]>,
+}
+
+/// Writes `v`, `vt`, `vn` and `f v/vt/vn` lines; `vt` and `vn` only where given (each
+/// checked to have one entry per vertex: a mismatch is an `InvalidInput` error).
+pub fn write_obj_with_to(mesh: &Mesh, extras: ObjExtras, mut w: impl Write) -> std::io::Result<()> {
+    let n = mesh.positions.len();
+    let bad = |what: &str, len: usize| {
+        std::io::Error::new(
+            std::io::ErrorKind::InvalidInput,
+            format!("{len} {what} for {n} vertices"),
+        )
+    };
+    if let Some(uv) = extras.uvs.filter(|uv| uv.len() != 2 * n) {
+        return Err(bad("texture coordinates", uv.len() / 2));
+    }
+    if let Some(nr) = extras.normals.filter(|nr| nr.len() != n) {
+        return Err(bad("normals", nr.len()));
+    }
+    let mut buf = std::io::BufWriter::new(&mut w);
+    for p in &mesh.positions {
+        writeln!(buf, "v {} {} {}", p.x, p.y, p.z)?;
+    }
+    if let Some(uv) = extras.uvs {
+        for t in uv.chunks_exact(2) {
+            writeln!(buf, "vt {} {}", t[0], 1.0 - t[1])?;
+        }
+    }
+    if let Some(nr) = extras.normals {
+        for v in nr {
+            writeln!(buf, "vn {} {} {}", v.x, v.y, v.z)?;
+        }
+    }
+    let corner = |v: u32| match (extras.uvs.is_some(), extras.normals.is_some()) {
+        (false, false) => format!("{}", v + 1),
+        (true, false) => format!("{0}/{0}", v + 1),
+        (false, true) => format!("{0}//{0}", v + 1),
+        (true, true) => format!("{0}/{0}/{0}", v + 1),
+    };
+    for t in &mesh.triangles {
+        writeln!(buf, "f {} {} {}", corner(t[0]), corner(t[1]), corner(t[2]))?;
+    }
+    buf.flush()
+}
+
 /// Writes an OBJ file.
 pub fn write_obj(mesh: &Mesh, path: impl AsRef<Path>) -> Result<()> {
     let path = path.as_ref();

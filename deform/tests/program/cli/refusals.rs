@@ -228,13 +228,35 @@ fn hostile_rig_inputs_exit_2_or_succeed_without_panicking() {
 fn outputs_must_name_a_format_the_command_writes() {
     let s = Scene::new("formats");
     let (mesh, sel, keys) = (s.p("bar.obj"), s.p("sel.json"), s.p("keys.json"));
-    for out in ["x.glb", "x.ply", "x"] {
+    for out in ["x.stl", "x"] {
         let out = s.p(out);
         let args = [
             "spline", &mesh, "--select", &sel, "--keys", &keys, "-o", &out,
         ];
         refused(&args, "this command writes .obj", &out);
     }
+    // A `.glb` is a static binary glTF of the deformed mesh: its header, one mesh, the
+    // input's vertex and triangle counts.
+    let out = s.p("x.glb");
+    let args = [
+        "spline", &mesh, "--select", &sel, "--keys", &keys, "-o", &out,
+    ];
+    let o = run(&args);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let bytes = std::fs::read(&out).unwrap();
+    assert_eq!(&bytes[..4], b"glTF");
+    let len = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+    let doc: serde_json::Value = serde_json::from_slice(&bytes[20..20 + len]).unwrap();
+    let bar = deform::io::read_obj(&mesh).unwrap();
+    let prim = &doc["meshes"][0]["primitives"][0];
+    let count =
+        |a: &serde_json::Value| doc["accessors"][a.as_u64().unwrap() as usize]["count"].clone();
+    assert_eq!(count(&prim["attributes"]["POSITION"]), bar.vertex_count());
+    assert_eq!(count(&prim["indices"]), 3 * bar.triangle_count());
+    // `.ci/run` validates it with the Khronos validator.
+    let checked = Path::new(env!("CARGO_MANIFEST_DIR")).join("../target/gltf-out");
+    std::fs::create_dir_all(&checked).unwrap();
+    std::fs::write(checked.join("static-spline.glb"), &bytes).unwrap();
     let (out, png) = (s.p("x.obj"), s.p("x.jpg"));
     let args = [
         "spline", &mesh, "--select", &sel, "--keys", &keys, "-o", &out, "--png", &png,

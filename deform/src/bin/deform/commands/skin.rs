@@ -4,7 +4,7 @@
 
 use crate::finish::displacement;
 use crate::input_files::{read_rig, read_text};
-use crate::output_files::{check_formats, check_outputs, write_glb, write_obj, write_png};
+use crate::output_files::{check_formats, check_outputs, write_glb, write_png, write_rig_obj};
 use crate::preview;
 use crate::report::Report;
 use crate::shared_args::{OutputArgs, RigInput};
@@ -350,7 +350,7 @@ pub fn run(a: &SkinArgs) -> Result<()> {
         if sequence {
             unfinished.add(path);
         }
-        if let Err(e) = write_obj(path, &mesh) {
+        if let Err(e) = write_rig_obj(path, &mesh, &rig.look) {
             for (written, _) in &finished[..k] {
                 let _ = std::fs::remove_file(written);
             }
