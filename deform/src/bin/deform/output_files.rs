@@ -101,9 +101,27 @@ pub fn write_atomic(path: &Path, write: impl FnOnce(&mut dyn Write) -> Result<()
     result.with_context(|| format!("writing {}", path.display()))
 }
 
-/// Write a mesh as OBJ (the vertex order and count as given).
-pub fn write_obj(path: &Path, mesh: &Mesh) -> Result<()> {
-    // Every command's result goes through here: a non-finite vertex is an error, never a file.
+/// The mesh formats every command that writes a mesh writes, by `-o` extension.
+pub const MESH_FORMATS: [&str; 2] = ["obj", "ply"];
+
+/// Write a mesh in the format its extension names: `.ply` (binary PLY), else OBJ; the vertex
+/// order and count as given.
+pub fn write_mesh(path: &Path, mesh: &Mesh) -> Result<()> {
+    let ply = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("ply"));
+    if !ply {
+        return write_obj(path, mesh);
+    }
+    check_finite(path, mesh)?;
+    write_atomic(path, |w| {
+        deform::io::write_ply_to(mesh, w)?;
+        Ok(())
+    })
+}
+
+/// Every command's result goes through here: a non-finite vertex is an error, never a file.
+fn check_finite(path: &Path, mesh: &Mesh) -> Result<()> {
     if let Some(i) = mesh.positions.iter().position(|p| !p.is_finite()) {
         bail!(
             "{}: not written: vertex {i} of the result is not finite ({})",
@@ -111,6 +129,12 @@ pub fn write_obj(path: &Path, mesh: &Mesh) -> Result<()> {
             mesh.positions[i]
         );
     }
+    Ok(())
+}
+
+/// Write a mesh as OBJ (the vertex order and count as given).
+pub fn write_obj(path: &Path, mesh: &Mesh) -> Result<()> {
+    check_finite(path, mesh)?;
     write_atomic(path, |w| {
         deform::io::write_obj_to(mesh, w)?;
         Ok(())

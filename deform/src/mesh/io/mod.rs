@@ -1,15 +1,18 @@
-//! Mesh and matrix files: OBJ (read, write), OFF, MEDIT `.mesh`, libigl DMAT and TGF.
+//! Mesh and matrix files: OBJ (read, write), PLY (write), OFF, MEDIT `.mesh`, libigl DMAT and
+//! TGF.
 
 mod dmat;
 mod medit;
 mod obj;
 mod off;
+mod ply;
 mod tgf;
 
 pub use dmat::{parse_dmat, read_dmat, write_dmat, Dmat};
 pub use medit::{parse_medit, read_medit, MeditMesh};
 pub use obj::{parse_obj, read_obj, write_obj, write_obj_to};
 pub use off::{parse_off, read_off};
+pub use ply::{ply_header, write_ply, write_ply_to};
 pub use tgf::{parse_tgf, read_tgf, Skeleton};
 
 use crate::mesh::Mesh;
