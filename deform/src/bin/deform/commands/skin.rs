@@ -379,13 +379,18 @@ pub fn run(a: &SkinArgs) -> Result<()> {
     if let Some(png) = &a.out.png {
         let rest_mesh = preview::placed(&rig.mesh, &preview::rest_placement(&rig)?);
         let moved = displacement(&rest_mesh, &posed);
-        let title = format!(
-            "skin  {}  t {}  {} edits  {}",
+        let mut title = format!(
+            "skin  {}  t {}  {} edit(s)  {}",
             a.backend.name,
             deform::render::short_number(frames.last().map_or(time, |f| f.0)),
             edits.len(),
             preview::max_move(&rest_mesh, &posed)
         );
+        if let Some(b) = a.compare {
+            let diag = rest_mesh.bounding_box().map_or(f64::NAN, |b| b.diagonal());
+            let percent = deform::render::short_number(100.0 * linf / diag);
+            title.push_str(&format!("  vs {}: {percent}% of diag", b.name));
+        }
         let mut look = preview::Look::new(title, "displacement");
         look.view = a.out.view();
         let image = preview::before_after(
