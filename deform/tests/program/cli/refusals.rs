@@ -228,12 +228,12 @@ fn hostile_rig_inputs_exit_2_or_succeed_without_panicking() {
 fn outputs_must_name_a_format_the_command_writes() {
     let s = Scene::new("formats");
     let (mesh, sel, keys) = (s.p("bar.obj"), s.p("sel.json"), s.p("keys.json"));
-    for out in ["x.glb", "x.ply", "x"] {
+    for out in ["x.glb", "x.stl", "x"] {
         let out = s.p(out);
         let args = [
             "spline", &mesh, "--select", &sel, "--keys", &keys, "-o", &out,
         ];
-        refused(&args, "this command writes .obj", &out);
+        refused(&args, "this command writes .obj or .ply", &out);
     }
     let (out, png) = (s.p("x.obj"), s.p("x.jpg"));
     let args = [
