@@ -316,6 +316,14 @@ impl Camera {
             && self.near.is_finite()
     }
 
+    /// The perspective near plane's depth (`None` for an orthographic camera).
+    pub(crate) fn near_depth(&self) -> Option<f64> {
+        match self.projection {
+            Projection::Orthographic => None,
+            Projection::Perspective { .. } => Some(self.near),
+        }
+    }
+
     /// Half-spaces in view coordinates that keep geometry in front of the near plane
     /// (perspective only) and within `guard` pixels of the image on every side.
     pub(crate) fn clip_planes(&self, guard: f64) -> Vec<Plane> {

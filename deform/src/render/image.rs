@@ -134,6 +134,48 @@ impl Image {
         sheet
     }
 
+    /// Fills the `width x height` rectangle with its top-left corner at `(x, y)` (which may lie
+    /// outside the image) with `color`; what falls outside the image is skipped.
+    pub fn fill_rect(&mut self, x: i64, y: i64, width: u32, height: u32, color: [u8; 3]) {
+        let (w, h) = (i64::from(self.width), i64::from(self.height));
+        let (x0, y0) = (x.clamp(0, w), y.clamp(0, h));
+        let x1 = x.saturating_add(i64::from(width)).clamp(0, w);
+        let y1 = y.saturating_add(i64::from(height)).clamp(0, h);
+        for yy in y0..y1 {
+            for xx in x0..x1 {
+                self.set_pixel(xx as u32, yy as u32, color);
+            }
+        }
+    }
+
+    /// Draws the one-pixel outline of the `width x height` rectangle at `(x, y)`, clipped.
+    pub fn outline_rect(&mut self, x: i64, y: i64, width: u32, height: u32, color: [u8; 3]) {
+        if width == 0 || height == 0 {
+            return;
+        }
+        let (right, bottom) = (x + i64::from(width) - 1, y + i64::from(height) - 1);
+        self.fill_rect(x, y, width, 1, color);
+        self.fill_rect(x, bottom, width, 1, color);
+        self.fill_rect(x, y, 1, height, color);
+        self.fill_rect(right, y, 1, height, color);
+    }
+
+    /// Copies `src` with its top-left corner at `(x, y)`; what falls outside is skipped.
+    pub fn paste(&mut self, src: &Image, x: i64, y: i64) {
+        for sy in 0..src.height {
+            let ty = y + i64::from(sy);
+            if ty < 0 || ty >= i64::from(self.height) {
+                continue;
+            }
+            for sx in 0..src.width {
+                let tx = x + i64::from(sx);
+                if tx >= 0 && tx < i64::from(self.width) {
+                    self.set_pixel(tx as u32, ty as u32, src.pixel(sx, sy));
+                }
+            }
+        }
+    }
+
     /// Copies `src` with its top-left corner at `(x0, y0)` (the caller makes it fit).
     fn blit(&mut self, src: &Image, x0: u32, y0: u32) {
         let row = 3 * src.width as usize;

@@ -10,7 +10,11 @@
 //!   right), coloured uniformly or by a per-vertex scalar through a viridis-like colormap
 //!   ([`Coloring`], [`viridis`]);
 //! * [`Image`]: RGB8 pixels, PNG encoding ([`Image::write_png_to`]) and contact sheets of
-//!   several views ([`Image::contact_sheet`], [`render_views`]).
+//!   several views ([`Image::contact_sheet`], [`render_views`]);
+//! * [`Overlay`]: lines and dots in world space (cages, lattices, chains, handles, tools)
+//!   projected by the same camera and drawn on top;
+//! * [`font`]: a 5x8 bitmap font of printable ASCII ([`Image::draw_text`]), and [`annotate`]:
+//!   a title band above an image and a colour [`Legend`] below it.
 //!
 //! Rasterisation is exact on a fixed-point grid with a top-left fill rule, so triangles that
 //! share an edge leave no cracks and cover no pixel twice; everything runs in plain sequential
@@ -41,14 +45,19 @@
 //! assert_eq!(&png[1..4], b"PNG");
 //! ```
 
+mod annotate;
 mod camera;
 mod colormap;
+pub mod font;
 mod image;
+mod overlay;
 mod raster;
 
+pub use annotate::{annotate, short_number, text_scale, wrap, Legend, TEXT_COLOR};
 pub use camera::{Camera, Projection, FRAME_MARGIN};
 pub use colormap::viridis;
 pub use image::{Image, CONTACT_SHEET_GAP, MAX_IMAGE_SIDE};
+pub use overlay::{Dot, Overlay, Segment};
 
 use glam::DVec3;
 

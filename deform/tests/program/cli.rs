@@ -6,6 +6,7 @@ use deform::shapes::{tube, tube_ring};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
+mod previews;
 mod refusals;
 
 const SIDES: usize = 8;

@@ -1,8 +1,8 @@
 //! The last steps of every mesh deformer command: pose and time, refuse a non-finite result,
-//! write the mesh (OBJ or static `.glb`) and the preview, print the report.
+//! write the mesh (OBJ, static `.glb` or PLY) and the preview, print the report.
 
 use crate::output_files::{write_mesh, write_png};
-use crate::preview;
+use crate::preview::{self, Look};
 use crate::report::Report;
 use crate::shared_args::OutputArgs;
 use crate::timing::time_pose;
@@ -10,12 +10,13 @@ use anyhow::{bail, Context, Result};
 use deform::{Deformer, Mesh};
 use glam::DVec3;
 
-/// Write the posed mesh and its preview (the posed mesh coloured by `scalar`), then print the
-/// report.
+/// Write the posed mesh and its preview (the posed mesh coloured by `scalar`, `look`'s title
+/// followed by the largest displacement), then print the report.
 pub fn finish(
     mesh: &Mesh,
     posed: Vec<DVec3>,
     scalar: &[f64],
+    look: Look,
     out: &OutputArgs,
     report: &mut Report,
 ) -> Result<()> {
@@ -26,7 +27,16 @@ pub fn finish(
     write_mesh(&out.output, &posed)?;
     report.add("output", out.output.display().to_string());
     if let Some(png) = &out.png {
-        let image = preview::before_after(mesh, &posed, scalar, 30.0, 20.0)?;
+        let look = Look {
+            title: format!(
+                "{}  {}",
+                look.title,
+                preview::max_move(mesh, &posed.positions)
+            ),
+            view: out.view(),
+            ..look
+        };
+        let image = preview::before_after(mesh, &posed, scalar, &look)?;
         write_png(png, &image)?;
         report.add("png", png.display().to_string());
     }
@@ -48,6 +58,7 @@ pub fn pose_and_finish(
     d: &dyn Deformer,
     mesh: &Mesh,
     motors: &[cga::ScaledMotor],
+    look: Look,
     out: &OutputArgs,
     mut report: Report,
 ) -> Result<()> {
@@ -55,5 +66,5 @@ pub fn pose_and_finish(
     let pose_ms = time_pose(d, motors, &mut posed).context("cannot pose")?;
     report.add("pose_ms", pose_ms);
     let moved = displacement(mesh, &posed);
-    finish(mesh, posed, &moved, out, &mut report)
+    finish(mesh, posed, &moved, look, out, &mut report)
 }

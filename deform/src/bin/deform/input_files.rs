@@ -2,7 +2,7 @@
 //! the checks every command makes before reading (no output names an input, each output
 //! names a format the command writes).
 
-use crate::output_files::{check_formats, check_outputs};
+use crate::output_files::{check_formats, check_outputs, MESH_FORMATS};
 use crate::shared_args::{MeshInput, OutputArgs, RigInput};
 use anyhow::{bail, Context, Result};
 use deform::input::{parse_selection_json, selection_from_dmat, Selection};
@@ -73,18 +73,18 @@ pub fn read_rig(input: &RigInput) -> Result<Rig> {
         .with_context(|| format!("{}: cannot rig", input.model.display()))
 }
 
-/// Refuse outputs that are inputs (`mesh` and `extra`) or neither OBJ nor `.glb`, then read
-/// the mesh.
+/// Refuse outputs that are inputs (`mesh` and `extra`) or not in
+/// [`MESH_FORMATS`], then read the mesh.
 pub fn read_mesh_checked(mesh: &Path, extra: &[&Path], out: &OutputArgs) -> Result<Mesh> {
     let mut inputs = vec![mesh];
     inputs.extend_from_slice(extra);
     check_outputs(&inputs, &out.paths())?;
-    check_formats(out, &["obj", "glb"])?;
+    check_formats(out, &MESH_FORMATS)?;
     read_mesh(mesh)
 }
 
-/// Read the mesh and selection, refusing outputs that are inputs (these and `extra`) or
-/// neither OBJ nor `.glb`.
+/// Read the mesh and selection, refusing outputs that are inputs (these and `extra`) or not
+/// in [`MESH_FORMATS`].
 pub fn read_mesh_input(
     input: &MeshInput,
     extra: &[&Path],

@@ -14,6 +14,7 @@ mod input_files;
 mod interrupt;
 mod numbers;
 mod output_files;
+mod overlays;
 mod preview;
 mod progress;
 mod report;

@@ -101,6 +101,48 @@ pub fn write_atomic(path: &Path, write: impl FnOnce(&mut dyn Write) -> Result<()
     result.with_context(|| format!("writing {}", path.display()))
 }
 
+/// The mesh formats every command that writes a mesh writes, by `-o` extension.
+pub const MESH_FORMATS: [&str; 3] = ["obj", "glb", "ply"];
+
+/// Write a mesh in the format its extension names: `.glb` (a static binary glTF with smooth
+/// normals), `.ply` (binary PLY), else OBJ; the vertex order and count as given.
+pub fn write_mesh(path: &Path, mesh: &Mesh) -> Result<()> {
+    let ext = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase())
+        .unwrap_or_default();
+    match ext.as_str() {
+        "glb" => {
+            check_finite(path, mesh)?;
+            let bytes = deform::io::glb_bytes(mesh)?;
+            write_atomic(path, |w| {
+                w.write_all(&bytes)?;
+                Ok(())
+            })
+        }
+        "ply" => {
+            check_finite(path, mesh)?;
+            write_atomic(path, |w| {
+                deform::io::write_ply_to(mesh, w)?;
+                Ok(())
+            })
+        }
+        _ => write_obj(path, mesh),
+    }
+}
+
+/// Every command's result goes through here: a non-finite vertex is an error, never a file.
+fn check_finite(path: &Path, mesh: &Mesh) -> Result<()> {
+    if let Some(i) = mesh.positions.iter().position(|p| !p.is_finite()) {
+        bail!(
+            "{}: not written: vertex {i} of the result is not finite ({})",
+            path.display(),
+            mesh.positions[i]
+        );
+    }
+    Ok(())
+}
+
 /// Write a mesh as OBJ (the vertex order and count as given).
 pub fn write_obj(path: &Path, mesh: &Mesh) -> Result<()> {
     write_obj_with(path, mesh, deform::io::ObjExtras::default())
@@ -108,8 +150,14 @@ pub fn write_obj(path: &Path, mesh: &Mesh) -> Result<()> {
 
 /// Write a rig's mesh (rest or posed) as OBJ with the texture coordinates of its look
 /// (`TEXCOORD_0`) as `vt` and, where the model has normals, this mesh's smooth normals
-/// (seamless across UV seams) as `vn`.
-pub fn write_rig_obj(path: &Path, mesh: &Mesh, look: &deform::skinning::Look) -> Result<()> {
+/// (seamless across UV seams) as `vn`; or, for a `.ply` or `.glb` name, as [`write_mesh`].
+pub fn write_rig_mesh(path: &Path, mesh: &Mesh, look: &deform::skinning::Look) -> Result<()> {
+    let obj = path
+        .extension()
+        .is_none_or(|e| !(e.eq_ignore_ascii_case("ply") || e.eq_ignore_ascii_case("glb")));
+    if !obj {
+        return write_mesh(path, mesh);
+    }
     let uv = look
         .attribute("TEXCOORD_0")
         .filter(|a| a.width == 2 && a.vertex_count() == mesh.vertex_count());
@@ -125,38 +173,9 @@ pub fn write_rig_obj(path: &Path, mesh: &Mesh, look: &deform::skinning::Look) ->
 
 /// Write a mesh as OBJ with texture coordinates and normals.
 fn write_obj_with(path: &Path, mesh: &Mesh, extras: deform::io::ObjExtras) -> Result<()> {
-    // Every command's result goes through here: a non-finite vertex is an error, never a file.
-    if let Some(i) = mesh.positions.iter().position(|p| !p.is_finite()) {
-        bail!(
-            "{}: not written: vertex {i} of the result is not finite ({})",
-            path.display(),
-            mesh.positions[i]
-        );
-    }
+    check_finite(path, mesh)?;
     write_atomic(path, |w| {
         deform::io::write_obj_with_to(mesh, extras, w)?;
-        Ok(())
-    })
-}
-
-/// Write a deformed mesh in the format its extension names: `.glb` (a static binary glTF
-/// with smooth normals) or OBJ.
-pub fn write_mesh(path: &Path, mesh: &Mesh) -> Result<()> {
-    let glb = path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("glb"));
-    if !glb {
-        return write_obj(path, mesh);
-    }
-    if let Some(i) = mesh.positions.iter().position(|p| !p.is_finite()) {
-        bail!(
-            "{}: not written: vertex {i} of the result is not finite",
-            path.display()
-        );
-    }
-    let bytes = deform::io::glb_bytes(mesh)?;
-    write_atomic(path, |w| {
-        w.write_all(&bytes)?;
         Ok(())
     })
 }

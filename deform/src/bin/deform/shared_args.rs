@@ -11,12 +11,18 @@ use std::path::{Path, PathBuf};
 /// Options every command that writes files shares.
 #[derive(Args, Debug, Clone)]
 pub struct OutputArgs {
-    /// The deformed mesh (OBJ; the input's vertex order and count are kept).
+    /// The deformed mesh, by extension: `.obj` or `.ply` (binary); the input's vertex order
+    /// and count are kept.
     #[arg(short = 'o', long = "output")]
     pub output: PathBuf,
-    /// A PNG preview: the rest mesh beside the deformed one.
+    /// A PNG preview: the rest mesh beside the deformed one, titled, with the colour legend
+    /// and the tools (handles, cage, lattice, chain, target, plane) drawn over them.
     #[arg(long)]
     pub png: Option<PathBuf>,
+    /// The preview's view YAW,PITCH in degrees (yaw 0 looks along -Z, at the model's front
+    /// when it faces +Z; pitch raises the eye; +Y is up).
+    #[arg(long, value_parser = parse_view, allow_hyphen_values = true, default_value = "30,20")]
+    pub view: (f64, f64),
     /// Print timings and counts as one JSON object on stdout.
     #[arg(long)]
     pub json: bool,
@@ -25,7 +31,24 @@ pub struct OutputArgs {
     pub quiet: bool,
 }
 
+/// `YAW,PITCH`, finite degrees.
+fn parse_view(s: &str) -> Result<(f64, f64), String> {
+    let bad = || format!("{s:?}: expected YAW,PITCH in degrees");
+    let (y, p) = s.split_once(',').ok_or_else(bad)?;
+    let y: f64 = y.trim().parse().map_err(|_| bad())?;
+    let p: f64 = p.trim().parse().map_err(|_| bad())?;
+    if !(y.is_finite() && p.is_finite()) {
+        return Err(bad());
+    }
+    Ok((y, p))
+}
+
 impl OutputArgs {
+    /// The preview's yaw and pitch.
+    pub fn view(&self) -> (f64, f64) {
+        self.view
+    }
+
     /// The files this run writes: `-o` and `--png`.
     pub fn paths(&self) -> Vec<&Path> {
         let mut outputs = vec![self.output.as_path()];
@@ -134,12 +157,14 @@ impl RigInput {
 /// Where the tool's coordinates are given.
 #[derive(Args, Debug)]
 pub struct ToolFrame {
-    /// Give the tool in the posed world space at this time (of --animation, default the
-    /// first) instead of the rest-pose mesh space.
+    /// Give the tool in the posed world space at this time in seconds (clamped to the
+    /// animation's keys) instead of the rest-pose mesh space; as for `skin`, --animation
+    /// alone means time 0.
     #[arg(long, value_parser = crate::numbers::finite, allow_hyphen_values = true)]
     pub time: Option<f64>,
-    /// The animation for --time, by name or index.
-    #[arg(long, requires = "time")]
+    /// The animation, by name or index (default: the first when --time is given, as for
+    /// `skin`; without either, the rest pose).
+    #[arg(long)]
     pub animation: Option<String>,
 }
 

@@ -1,15 +1,18 @@
 //! What `cut`, `drill` and `tear` share: reading the rig for surgery (refusing outputs that
 //! are inputs), posing it in the frame the tool is given in, and writing what it becomes:
-//! the new rig as `.glb` (its mesh, skin and animations) or its rest mesh as OBJ, and a
+//! the new rig as `.glb` (its mesh, skin and animations) or its rest mesh as OBJ or PLY, and a
 //! preview.
 
 use crate::input_files::read_rig;
-use crate::output_files::{check_formats, check_outputs, write_glb, write_png, write_rig_obj};
-use crate::preview;
+use crate::output_files::{
+    check_formats, check_outputs, write_glb, write_png, write_rig_mesh, MESH_FORMATS,
+};
+use crate::preview::{self, Focus, Look};
 use crate::report::Report;
 use crate::shared_args::{OutputArgs, RigInput, ToolFrame};
 use crate::timing::ms;
 use anyhow::{Context, Result};
+use deform::render::Overlay;
 use deform::skinning::{GlbOptions, Rig, RigPart, Skinning};
 use deform::surgery::{Frame, Surgery};
 use deform::{BlendMethod, Deformer};
@@ -24,7 +27,10 @@ pub struct Posed {
 
 impl Posed {
     pub fn read(rig: &Rig, f: &ToolFrame) -> Result<Option<Posed>> {
-        let Some(t) = f.time else { return Ok(None) };
+        // The defaults of `skin`: --animation alone is its time 0, --time alone the first.
+        let Some(t) = f.time.or(f.animation.as_ref().map(|_| 0.0)) else {
+            return Ok(None);
+        };
         let animation = match &f.animation {
             Some(a) => Some(rig.animation_index(a)?),
             None => (!rig.animations.is_empty()).then_some(0),
@@ -50,14 +56,16 @@ impl Posed {
     }
 }
 
-/// Write the new rig (`.glb`) or its rest mesh (OBJ), and a preview of the parts moved by
-/// `away(part)`, coloured by part, or by `marks` (one value per vertex of a single part).
+/// Write the new rig (`.glb`) or its rest mesh (OBJ or PLY), and a preview of the parts moved
+/// by `away(part)`, coloured by part, or by `marks` (one value per vertex of a single part),
+/// with `look`'s title and overlays (given in the rig's mesh space, drawn in world space).
 pub fn write_result(
     rig: &Rig,
     parts: &[RigPart],
     out: &OutputArgs,
     away: impl Fn(usize) -> DVec3,
     marks: Option<Vec<f64>>,
+    look: Look,
     report: &mut Report,
 ) -> Result<()> {
     let result = rig
@@ -70,7 +78,7 @@ pub fn write_result(
     if glb {
         write_glb(&out.output, &result, &GlbOptions::default())?;
     } else {
-        write_rig_obj(&out.output, &result.mesh, &result.look)?;
+        write_rig_mesh(&out.output, &result.mesh, &result.look)?;
     }
     report.add("output", out.output.display().to_string());
     if let Some(png) = &out.png {
@@ -89,12 +97,21 @@ pub fn write_result(
         let scalar = marks.unwrap_or(part_of);
         // In world space, as `skin` draws it: a Z-up glTF model stands upright.
         let place = preview::rest_placement(rig)?;
+        let look = Look {
+            rest: placed_overlay(&look.rest, &place),
+            posed: placed_overlay(&look.posed, &place),
+            focus: look.focus.map(|f| Focus {
+                direction: f.direction.map(|d| place.transform_vector3(d)),
+                ..f
+            }),
+            view: out.view(),
+            ..look
+        };
         let image = preview::before_after(
             &preview::placed(&rig.mesh, &place),
             &preview::placed(&shown, &place),
             &scalar,
-            30.0,
-            50.0,
+            &look,
         )?;
         write_png(png, &image)?;
         report.add("png", png.display().to_string());
@@ -114,7 +131,7 @@ pub struct Prepared {
 
 pub fn prepare(rig: &RigInput, frame: &ToolFrame, out: &OutputArgs) -> Result<Prepared> {
     check_outputs(&rig.paths(), &out.paths())?;
-    check_formats(out, &["obj", "glb"])?;
+    check_formats(out, &MESH_FORMATS)?;
     let rig = read_rig(rig)?;
     let posed = Posed::read(&rig, frame)?;
     let t = Instant::now();
@@ -128,24 +145,60 @@ pub fn prepare(rig: &RigInput, frame: &ToolFrame, out: &OutputArgs) -> Result<Pr
     })
 }
 
-/// [`write_result`] for a tool with one result mesh, its new vertices marked in the preview.
+/// [`write_result`] for a tool with one result mesh, its new vertices marked in the preview
+/// and shown zoomed in, seen along `direction` (mesh space).
 pub fn write_one(
     rig: &Rig,
     mesh: &deform::surgery::SkinnedMesh,
     origin: &[deform::surgery::VertexOrigin],
     out: &OutputArgs,
+    mut look: Look,
+    direction: DVec3,
     report: &mut Report,
 ) -> Result<()> {
-    let marks = origin
+    let marks: Vec<f64> = origin
         .iter()
         .map(|o| if o.is_input() { 0.0 } else { 1.0 })
         .collect();
+    let vertices: Vec<u32> = (0..marks.len() as u32)
+        .filter(|&v| marks[v as usize] > 0.0)
+        .collect();
+    if !vertices.is_empty() {
+        look.focus = Some(Focus {
+            vertices,
+            direction: Some(direction),
+        });
+    }
     write_result(
         rig,
         &[mesh.part()],
         out,
         |_| DVec3::ZERO,
         Some(marks),
+        look,
         report,
     )
+}
+
+/// The tool's overlay: drawn when it is given in the rest pose's mesh space (the space the
+/// preview shows, placed in the world), left out when it is given in a posed frame.
+pub fn tool_overlay(posed: &Option<Posed>, draw: impl FnOnce(&mut Overlay)) -> Overlay {
+    let mut o = Overlay::new(2);
+    if posed.is_none() {
+        draw(&mut o);
+    }
+    o
+}
+
+/// `o` moved by `place`.
+fn placed_overlay(o: &Overlay, place: &glam::DMat4) -> Overlay {
+    let mut o = o.clone();
+    for s in &mut o.segments {
+        s.a = place.transform_point3(s.a);
+        s.b = place.transform_point3(s.b);
+    }
+    for d in &mut o.dots {
+        d.p = place.transform_point3(d.p);
+    }
+    o
 }

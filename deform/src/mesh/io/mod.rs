@@ -1,9 +1,11 @@
-//! Mesh and matrix files: OBJ (read, write), OFF, MEDIT `.mesh`, libigl DMAT and TGF.
+//! Mesh and matrix files: OBJ (read, write), PLY (write), OFF, MEDIT `.mesh`, libigl DMAT and
+//! TGF.
 
 mod dmat;
 mod medit;
 mod obj;
 mod off;
+mod ply;
 mod tgf;
 
 pub use dmat::{parse_dmat, read_dmat, write_dmat, Dmat};
@@ -13,6 +15,7 @@ pub use glb::{glb_bytes, write_glb};
 pub(crate) use glb::{unit_normals, GlbBuilder};
 pub use obj::{parse_obj, read_obj, write_obj, write_obj_to, write_obj_with_to, ObjExtras};
 pub use off::{parse_off, read_off};
+pub use ply::{ply_header, write_ply, write_ply_to};
 pub use tgf::{parse_tgf, read_tgf, Skeleton};
 
 use crate::mesh::Mesh;

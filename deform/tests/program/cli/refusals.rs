@@ -233,7 +233,7 @@ fn outputs_must_name_a_format_the_command_writes() {
         let args = [
             "spline", &mesh, "--select", &sel, "--keys", &keys, "-o", &out,
         ];
-        refused(&args, "this command writes .obj", &out);
+        refused(&args, "this command writes .obj or .glb or .ply", &out);
     }
     // A `.glb` is a static binary glTF of the deformed mesh: its header, one mesh, the
     // input's vertex and triangle counts.

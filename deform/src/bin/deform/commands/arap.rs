@@ -5,6 +5,8 @@
 
 use crate::finish::{displacement, finish};
 use crate::input_files::{read_mesh_input, read_text};
+use crate::overlays::centroid;
+use crate::preview::{Look, POSED_INK, REST_INK, TOOL_INK};
 use crate::progress::with_progress;
 use crate::report::Report;
 use crate::shared_args::{MeshInput, OutputArgs};
@@ -177,6 +179,29 @@ pub fn run(a: &ArapArgs) -> Result<()> {
     }
     report.add("bind_ms", bind_ms);
     report.add("pose_ms", pose_ms);
-    let moved = displacement(&mesh, &posed);
-    finish(&mesh, posed, &moved, &a.out, &mut report)
+    let title = format!(
+        "arap  {}  {}  {} iter",
+        options.energy.name(),
+        match options.local_step {
+            LocalStep::Rotor => "rotor",
+            LocalStep::Svd => "svd",
+        },
+        energies.len()
+    );
+    let mut look = Look::new(title, "displacement");
+    // Fixed groups stay; handle groups move by their motors.
+    for (g, vertices) in sel.groups.iter().enumerate() {
+        let c = centroid(&mesh.positions, vertices);
+        if moved[g] {
+            look.rest.dot(c, 4, POSED_INK);
+            let m = motors[g].transform_point(c);
+            look.posed.line(c, m, TOOL_INK);
+            look.posed.dot(m, 4, POSED_INK);
+        } else {
+            look.rest.dot(c, 4, REST_INK);
+            look.posed.dot(c, 4, REST_INK);
+        }
+    }
+    let shift = displacement(&mesh, &posed);
+    finish(&mesh, posed, &shift, look, &a.out, &mut report)
 }

@@ -4,6 +4,8 @@
 
 use crate::finish::pose_and_finish;
 use crate::input_files::{read_mesh, read_mesh_checked, read_text};
+use crate::overlays::{mesh_edges, moved};
+use crate::preview::{Look, POSED_INK, REST_INK};
 use crate::progress::with_progress;
 use crate::report::Report;
 use crate::shared_args::{FormArgs, OutputArgs};
@@ -99,5 +101,25 @@ pub fn run(a: &CageArgs) -> Result<()> {
         },
     );
     report.add("form", options.form.name());
-    pose_and_finish(&d, &mesh, &motors, &a.out, report)
+    let coords = match a.coords {
+        CoordsArg::Mvc => "mvc",
+        CoordsArg::Harmonic => "harmonic",
+    };
+    let title = format!(
+        "cage  {coords}  {}  {} cage vertices",
+        options.form.name(),
+        cage.vertex_count()
+    );
+    let mut look = Look::new(title, "displacement");
+    // The cage at rest and moved by its motors.
+    look.rest.line_width = 1;
+    look.posed.line_width = 1;
+    mesh_edges(&mut look.rest, &cage, &cage.positions, REST_INK);
+    mesh_edges(
+        &mut look.posed,
+        &cage,
+        &moved(&cage.positions, &motors),
+        POSED_INK,
+    );
+    pose_and_finish(&d, &mesh, &motors, look, &a.out, report)
 }

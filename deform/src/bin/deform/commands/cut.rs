@@ -2,9 +2,11 @@
 //! stay skinned and animatable, written as `.glb` (the rig, one primitive per piece) or OBJ
 //! (the rest mesh).
 
+use crate::overlays;
+use crate::preview::{Look, TOOL_INK};
 use crate::report::Report;
 use crate::shared_args::{OutputArgs, RigInput, ToolFrame};
-use crate::surgery_io::{prepare, write_result, Posed, Prepared};
+use crate::surgery_io::{prepare, tool_overlay, write_result, Posed, Prepared};
 use crate::timing::ms;
 use anyhow::{bail, Result};
 use clap::Args;
@@ -40,7 +42,8 @@ pub fn run(a: &CutArgs) -> Result<()> {
     if len.is_nan() || len <= 0.0 {
         bail!("--plane: the normal is zero");
     }
-    let plane = cga::Plane::from_normal_distance(normal / len, d / len);
+    let plane_d = d / len;
+    let plane = cga::Plane::from_normal_distance(normal / len, plane_d);
     let Prepared {
         rig,
         posed,
@@ -92,6 +95,21 @@ pub fn run(a: &CutArgs) -> Result<()> {
             piece_of.push(k);
         }
     }
+    let title = format!(
+        "cut{}  {} new vertices  {} pieces  (pieces pulled apart)",
+        if a.cap { "  capped" } else { "" },
+        cut.new_vertices,
+        cut.pieces.len()
+    );
+    let mut look = Look::new(title, "piece");
+    // The plane, on the model's centre, in both views.
+    let tool = tool_overlay(&posed, |o| {
+        let b = rig.mesh.bounding_box();
+        let (c, size) = b.map_or((DVec3::ZERO, 1.0), |b| (b.center(), 0.8 * b.diagonal()));
+        overlays::plane(o, n, plane_d, c, size, TOOL_INK);
+    });
+    look.rest = tool.clone();
+    look.posed = tool;
     write_result(
         &rig,
         &parts,
@@ -104,6 +122,7 @@ pub fn run(a: &CutArgs) -> Result<()> {
             }
         },
         None,
+        look,
         &mut report,
     )
 }

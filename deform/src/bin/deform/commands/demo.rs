@@ -7,7 +7,8 @@ mod surgery;
 
 use crate::finish::displacement;
 use crate::output_files::{write_obj, write_png};
-use crate::preview;
+use crate::overlays::{centroid, spine};
+use crate::preview::{self, Look, POSED_INK, REST_INK, TOOL_INK};
 use crate::spline_ends::straight_chain;
 use crate::timing::{ms, time_pose};
 use anyhow::{Context, Result};
@@ -41,6 +42,7 @@ pub struct DemoArgs {
 }
 
 /// One scene's result.
+#[derive(Clone)]
 struct Row {
     name: &'static str,
     method: String,
@@ -151,15 +153,24 @@ pub fn run(a: &DemoArgs) -> Result<()> {
         .with_context(|| format!("{}: cannot create", a.out.display()))?;
     let mut rows = Vec::new();
     let mut images = Vec::new();
-    let mut save = |name: &str, rest: &Mesh, posed: Vec<DVec3>, scalar: &[f64]| -> Result<()> {
+    // One OBJ, one before-and-after PNG and one tile of the sheet per scene, titled with the
+    // scene, its method and how far it moved.
+    let mut save = |row: &Row, rest: &Mesh, posed: Vec<DVec3>, scalar: &[f64], look: Look| {
         let posed = Mesh::new(posed, rest.triangles.clone());
+        let name = row.name;
         write_obj(&a.out.join(format!("{name}.obj")), &posed)?;
+        let moved = preview::max_move(rest, &posed.positions);
+        let look = Look {
+            title: format!("{name}  {}  {moved}", row.method),
+            ..look
+        };
         write_png(
             &a.out.join(format!("{name}.png")),
-            &preview::before_after(rest, &posed, scalar, 20.0, 25.0)?,
+            &preview::before_after(rest, &posed, scalar, &look)?,
         )?;
-        images.push(preview::posed(rest, &posed, scalar, 20.0, 25.0)?);
-        Ok(())
+        images.push(preview::tile(rest, &posed, scalar, &look)?);
+        rows.push(row.clone());
+        anyhow::Ok(())
     };
 
     let bar = tube(1.0, LENGTH, SIDES, RINGS);
@@ -175,14 +186,17 @@ pub fn run(a: &DemoArgs) -> Result<()> {
         let bind_ms = ms(t);
         let mut out = vec![DVec3::ZERO; bar.vertex_count()];
         let pose_ms = time_pose(&d, &s.keys, &mut out)?;
-        save(s.name, &bar, out, d.lambda())?;
-        rows.push(Row {
+        let row = Row {
             name: s.name,
             method: format!("{} / {}", s.scheme.name(), s.method.name()),
             vertices: bar.vertex_count(),
             bind_ms,
             pose_ms,
-        });
+        };
+        let mut look = Look::new("", "lambda");
+        look.posed
+            .polyline(&spine(&out, d.lambda(), 24), false, POSED_INK);
+        save(&row, &bar, out, d.lambda(), look)?;
     }
 
     // FABRIK: a round bar follows a chain whose end effector is pulled up and back.
@@ -194,14 +208,10 @@ pub fn run(a: &DemoArgs) -> Result<()> {
     let bind_ms = ms(t);
     let mut out = vec![DVec3::ZERO; rod.vertex_count()];
     let t = Instant::now();
-    let r = chain.pose_to_target(
-        DVec3::new(5.0, 6.0, 2.0),
-        &FabrikOptions::default(),
-        &mut out,
-    )?;
+    let target = DVec3::new(5.0, 6.0, 2.0);
+    let r = chain.pose_to_target(target, &FabrikOptions::default(), &mut out)?;
     let pose_ms = ms(t);
-    save("fabrik-chain", &rod, out, chain.spline().lambda())?;
-    rows.push(Row {
+    let row = Row {
         name: "fabrik-chain",
         method: format!(
             "FABRIK ({} passes) + B-spline fit / motor-log",
@@ -210,19 +220,26 @@ pub fn run(a: &DemoArgs) -> Result<()> {
         vertices: rod.vertex_count(),
         bind_ms,
         pose_ms,
-    });
+    };
+    let mut look = Look::new("", "lambda");
+    look.posed.polyline(&r.solution.joints, false, POSED_INK);
+    for &j in &r.solution.joints {
+        look.posed.dot(j, 3, POSED_INK);
+    }
+    look.posed.dot(target, 5, TOOL_INK);
+    save(&row, &rod, out, chain.spline().lambda(), look)?;
 
     // FFD twists (motor vs positional lattice) and a bar bent by motors on its cage's
     // vertices (demo/lattice.rs).
     for s in lattice::scenes(LENGTH)? {
-        save(s.name, &s.rest, s.posed, &s.scalar)?;
-        rows.push(Row {
+        let row = Row {
             name: s.name,
             method: s.method,
             vertices: s.rest.vertex_count(),
             bind_ms: s.bind_ms,
             pose_ms: s.pose_ms,
-        });
+        };
+        save(&row, &s.rest, s.posed, &s.scalar, s.look)?;
     }
 
     // Motor handles on a sphere: the bottom cap stays, the top cap lifts and grows, a side
@@ -256,14 +273,22 @@ pub fn run(a: &DemoArgs) -> Result<()> {
     let mut out = vec![DVec3::ZERO; ball.vertex_count()];
     let pose_ms = time_pose(&handles, &keys, &mut out)?;
     let moved = displacement(&ball, &out);
-    save("handles-sphere", &ball, out, &moved)?;
-    rows.push(Row {
+    let row = Row {
         name: "handles-sphere",
         method: "3 harmonic handles / motor-log".into(),
         vertices: ball.vertex_count(),
         bind_ms,
         pose_ms,
-    });
+    };
+    let mut look = Look::new("", "displacement");
+    for (set, key) in sets.iter().zip(&keys) {
+        look.posed.dot(
+            key.transform_point(centroid(&ball.positions, set)),
+            4,
+            POSED_INK,
+        );
+    }
+    save(&row, &ball, out, &moved, look)?;
 
     // ARAP with rotors: a square bar, its left end fixed, its right end lifted and turned by
     // a motor; a few iterations of the spokes-and-rims energy from the rest pose.
@@ -292,8 +317,7 @@ pub fn run(a: &DemoArgs) -> Result<()> {
         )?;
         let pose_ms = ms(t);
         let moved = displacement(&beam, &out);
-        save("arap-beam", &beam, out, &moved)?;
-        rows.push(Row {
+        let row = Row {
             name: "arap-beam",
             method: format!(
                 "ARAP {} / rotor, {iterations} iterations (E {:.3})",
@@ -303,20 +327,26 @@ pub fn run(a: &DemoArgs) -> Result<()> {
             vertices: beam.vertex_count(),
             bind_ms,
             pose_ms,
-        });
+        };
+        let mut look = Look::new("", "displacement");
+        look.posed
+            .dot(centroid(&beam.positions, &fixed), 4, REST_INK);
+        let end_centre = key.transform_point(centroid(&beam.positions, &end));
+        look.posed.dot(end_centre, 4, POSED_INK);
+        save(&row, &beam, out, &moved, look)?;
     }
 
     // Skinning, then cutting, tearing and drilling the rigged arm, re-animated after each
     // (demo/surgery.rs); every rig is also written as .glb.
     for s in surgery::scenes(&a.out)? {
-        save(s.name, &s.rest, s.posed, &s.scalar)?;
-        rows.push(Row {
+        let row = Row {
             name: s.name,
             method: s.method,
             vertices: s.rest.vertex_count(),
             bind_ms: s.bind_ms,
             pose_ms: s.pose_ms,
-        });
+        };
+        save(&row, &s.rest, s.posed, &s.scalar, s.look)?;
     }
 
     let sheet = preview::sheet(&images, 4);

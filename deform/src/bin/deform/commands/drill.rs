@@ -1,12 +1,15 @@
 //! `deform drill`: drill a hole with a finite cylinder (the second paper's Algorithm 3); the
 //! result stays skinned and animatable, written as `.glb` or OBJ.
 
+use crate::overlays::circle;
+use crate::preview::{Look, TOOL_INK};
 use crate::report::Report;
 use crate::shared_args::{OutputArgs, RigInput, ToolFrame};
-use crate::surgery_io::{prepare, write_one, Posed, Prepared};
+use crate::surgery_io::{prepare, tool_overlay, write_one, Posed, Prepared};
 use crate::timing::ms;
 use anyhow::Result;
 use clap::Args;
+use deform::render::short_number;
 use glam::DVec3;
 use std::time::Instant;
 
@@ -53,5 +56,27 @@ pub fn run(a: &DrillArgs) -> Result<()> {
     report.add("refined_faces", r.refined_faces);
     report.add("holes", r.holes);
     report.add("boundary_loops", r.boundary_loops);
-    write_one(&rig, &r.mesh, &r.origin, &a.out, &mut report)
+    let title = format!(
+        "drill  radius {}  {} holes  {} new vertices",
+        short_number(a.radius),
+        r.holes,
+        r.new_vertices
+    );
+    let mut look = Look::new(title, "new vertex");
+    // The drill's axis and its rims at tip and end.
+    look.rest = tool_overlay(&posed, |o| {
+        let axis = d.end - d.tip;
+        o.line(d.tip, d.end, TOOL_INK);
+        circle(o, d.tip, axis, d.radius, TOOL_INK);
+        circle(o, d.end, axis, d.radius, TOOL_INK);
+    });
+    write_one(
+        &rig,
+        &r.mesh,
+        &r.origin,
+        &a.out,
+        look,
+        d.end - d.tip,
+        &mut report,
+    )
 }

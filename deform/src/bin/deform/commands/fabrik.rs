@@ -4,6 +4,7 @@
 
 use crate::finish::finish;
 use crate::input_files::{read_mesh_input, read_text};
+use crate::preview::{Look, POSED_INK, REST_INK, TOOL_INK};
 use crate::progress::with_progress;
 use crate::report::Report;
 use crate::shared_args::{MeshInput, OutputArgs};
@@ -123,5 +124,26 @@ pub fn run(a: &FabrikArgs) -> Result<()> {
         );
     }
     let lambda = d.spline().lambda().to_vec();
-    finish(&mesh, posed, &lambda, &a.out, &mut report)
+    let title = format!(
+        "fabrik  {} joints  {} controls  {} in {} iter",
+        joints.len(),
+        a.controls,
+        format!("{:?}", result.solution.status).to_lowercase(),
+        result.solution.iterations
+    );
+    let mut look = Look::new(title, "lambda");
+    // The chain at rest and solved, and the target.
+    let target = DVec3::from_array(a.target);
+    look.rest.polyline(&joints, false, REST_INK);
+    look.posed
+        .polyline(&result.solution.joints, false, POSED_INK);
+    for &j in &joints {
+        look.rest.dot(j, 3, REST_INK);
+    }
+    for &j in &result.solution.joints {
+        look.posed.dot(j, 3, POSED_INK);
+    }
+    look.rest.dot(target, 5, TOOL_INK);
+    look.posed.dot(target, 5, TOOL_INK);
+    finish(&mesh, posed, &lambda, look, &a.out, &mut report)
 }

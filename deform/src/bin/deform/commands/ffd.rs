@@ -4,6 +4,8 @@
 
 use crate::finish::pose_and_finish;
 use crate::input_files::{read_mesh_checked, read_text};
+use crate::overlays::{lattice, moved};
+use crate::preview::{Look, POSED_INK, REST_INK};
 use crate::report::Report;
 use crate::shared_args::{FormArgs, OutputArgs};
 use crate::timing::ms;
@@ -71,19 +73,34 @@ pub fn run(a: &FfdArgs) -> Result<()> {
     let t = Instant::now();
     let d = Ffd::bind(&mesh, a.lattice, bounds, options)
         .with_context(|| format!("{}: cannot bind to the lattice", a.mesh.display()))?;
+    let basis = match options.basis {
+        LatticeBasis::Bernstein => "bernstein".to_string(),
+        LatticeBasis::BSpline(p) => format!("bspline-{p}"),
+    };
     let mut report = Report::new("ffd", &mesh);
     report.add("bind_ms", ms(t));
     report.add(
         "lattice",
         format!("{}x{}x{}", a.lattice[0], a.lattice[1], a.lattice[2]),
     );
-    report.add(
-        "basis",
-        match options.basis {
-            LatticeBasis::Bernstein => "bernstein".to_string(),
-            LatticeBasis::BSpline(p) => format!("bspline-{p}"),
-        },
-    );
+    report.add("basis", basis.as_str());
     report.add("form", options.form.name());
-    pose_and_finish(&d, &mesh, &motors, &a.out, report)
+    let title = format!(
+        "ffd  {}x{}x{} {basis}  {}",
+        a.lattice[0],
+        a.lattice[1],
+        a.lattice[2],
+        options.form.name()
+    );
+    let mut look = Look::new(title, "displacement");
+    // The lattice at rest and moved by its motors.
+    let points = d.lattice().rest_points();
+    lattice(&mut look.rest, &points, a.lattice, REST_INK);
+    lattice(
+        &mut look.posed,
+        &moved(&points, &motors),
+        a.lattice,
+        POSED_INK,
+    );
+    pose_and_finish(&d, &mesh, &motors, look, &a.out, report)
 }

@@ -3,6 +3,8 @@
 
 use crate::finish::pose_and_finish;
 use crate::input_files::{read_mesh_input, read_text};
+use crate::overlays::{centroid, moved};
+use crate::preview::{Look, POSED_INK, REST_INK, TOOL_INK};
 use crate::progress::with_progress;
 use crate::report::Report;
 use crate::shared_args::{BlendingArgs, MeshInput, OutputArgs};
@@ -11,6 +13,7 @@ use anyhow::{Context, Result};
 use clap::Args;
 use deform::input::parse_group_motors;
 use deform::{HandleOptions, MotorHandles};
+use glam::DVec3;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -49,5 +52,22 @@ pub fn run(a: &HandlesArgs) -> Result<()> {
     report.add("handles", sel.groups.len());
     report.add("blend", options.method.name());
     report.add("bind_ms", bind_ms);
-    pose_and_finish(&d, &mesh, &motors, &a.out, report)
+    let title = format!(
+        "handles  {}  {} groups",
+        options.method.name(),
+        sel.groups.len()
+    );
+    let mut look = Look::new(title, "displacement");
+    // Each group's centre at rest, and where its motor takes it.
+    let centres: Vec<DVec3> = sel
+        .groups
+        .iter()
+        .map(|g| centroid(&mesh.positions, g))
+        .collect();
+    for (c, m) in centres.iter().zip(moved(&centres, &motors)) {
+        look.rest.dot(*c, 4, REST_INK);
+        look.posed.line(*c, m, TOOL_INK);
+        look.posed.dot(m, 4, POSED_INK);
+    }
+    pose_and_finish(&d, &mesh, &motors, look, &a.out, report)
 }

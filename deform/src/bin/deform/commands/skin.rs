@@ -4,7 +4,9 @@
 
 use crate::finish::displacement;
 use crate::input_files::{read_rig, read_text};
-use crate::output_files::{check_formats, check_outputs, write_glb, write_png, write_rig_obj};
+use crate::output_files::{
+    check_formats, check_outputs, write_glb, write_png, write_rig_mesh, MESH_FORMATS,
+};
 use crate::preview;
 use crate::report::Report;
 use crate::shared_args::{OutputArgs, RigInput};
@@ -154,12 +156,16 @@ fn parse_edit(s: &str) -> Result<(String, PathBuf), String> {
     Ok((j.to_string(), PathBuf::from(m)))
 }
 
-/// `OUT.obj` -> `OUT_0003.obj`.
+/// `OUT.obj` -> `OUT_0003.obj` (`.ply` stays `.ply`).
 fn numbered(path: &Path, k: usize) -> PathBuf {
     let stem = path
         .file_stem()
         .map_or("frame".into(), |s| s.to_string_lossy().to_string());
-    path.with_file_name(format!("{stem}_{k:04}.obj"))
+    let ext = path
+        .extension()
+        .filter(|e| e.eq_ignore_ascii_case("ply"))
+        .map_or("obj".into(), |e| e.to_string_lossy().to_string());
+    path.with_file_name(format!("{stem}_{k:04}.{ext}"))
 }
 
 pub fn run(a: &SkinArgs) -> Result<()> {
@@ -167,7 +173,7 @@ pub fn run(a: &SkinArgs) -> Result<()> {
     inputs.extend(a.dmat_animation.as_deref());
     inputs.extend(a.edits.iter().map(|(_, p)| p.as_path()));
     check_outputs(&inputs, &a.out.paths())?;
-    check_formats(&a.out, &["obj", "glb"])?;
+    check_formats(&a.out, &MESH_FORMATS)?;
     let glb = a
         .out
         .output
@@ -350,7 +356,7 @@ pub fn run(a: &SkinArgs) -> Result<()> {
         if sequence {
             unfinished.add(path);
         }
-        if let Err(e) = write_rig_obj(path, &mesh, &rig.look) {
+        if let Err(e) = write_rig_mesh(path, &mesh, &rig.look) {
             for (written, _) in &finished[..k] {
                 let _ = std::fs::remove_file(written);
             }
@@ -363,7 +369,8 @@ pub fn run(a: &SkinArgs) -> Result<()> {
         let diag = Mesh::new(posed.clone(), Vec::new())
             .bounding_box()
             .map_or(f64::NAN, |b| b.diagonal());
-        report.add("compared_with", b.method.name());
+        // The --compare name as given, in the --backend vocabulary.
+        report.add("compared_with", b.name);
         report.add("linf_difference_percent_of_diagonal", 100.0 * linf / diag);
     }
     report.add("pose_ms", pose_ms / frames.len() as f64);
@@ -374,12 +381,25 @@ pub fn run(a: &SkinArgs) -> Result<()> {
     if let Some(png) = &a.out.png {
         let rest_mesh = preview::placed(&rig.mesh, &preview::rest_placement(&rig)?);
         let moved = displacement(&rest_mesh, &posed);
+        let mut title = format!(
+            "skin  {}  t {}  {} edit(s)  {}",
+            a.backend.name,
+            deform::render::short_number(frames.last().map_or(time, |f| f.0)),
+            edits.len(),
+            preview::max_move(&rest_mesh, &posed)
+        );
+        if let Some(b) = a.compare {
+            let diag = rest_mesh.bounding_box().map_or(f64::NAN, |b| b.diagonal());
+            let percent = deform::render::short_number(100.0 * linf / diag);
+            title.push_str(&format!("  vs {}: {percent}% of diag", b.name));
+        }
+        let mut look = preview::Look::new(title, "displacement");
+        look.view = a.out.view();
         let image = preview::before_after(
             &rest_mesh,
             &Mesh::new(posed, rig.mesh.triangles.clone()),
             &moved,
-            30.0,
-            20.0,
+            &look,
         )?;
         write_png(png, &image)?;
         report.add("png", png.display().to_string());

@@ -3,6 +3,8 @@
 
 use crate::finish::finish;
 use crate::input_files::{read_mesh_input, read_text};
+use crate::overlays::{centroid, spine};
+use crate::preview::{Look, POSED_INK, REST_INK};
 use crate::progress::with_progress;
 use crate::report::Report;
 use crate::shared_args::{BlendingArgs, MeshInput, OutputArgs};
@@ -94,5 +96,21 @@ pub fn run(a: &SplineArgs) -> Result<()> {
     report.add("bind_ms", bind_ms);
     report.add("pose_ms", pose_ms);
     let lambda = d.lambda().to_vec();
-    finish(&mesh, posed, &lambda, &a.out, &mut report)
+    let title = format!(
+        "spline  {}  {}  {} keys",
+        options.scheme.name(),
+        options.method.name(),
+        keys.len()
+    );
+    let mut look = Look::new(title, "lambda");
+    // The spine (mean position along lambda) and the end groups, before and after.
+    let rest_spine = spine(&mesh.positions, &lambda, 24);
+    look.rest.polyline(&rest_spine, false, REST_INK);
+    look.posed
+        .polyline(&spine(&posed, &lambda, 24), false, POSED_INK);
+    for g in [&first, &last] {
+        look.rest.dot(centroid(&mesh.positions, g), 4, REST_INK);
+        look.posed.dot(centroid(&posed, g), 4, POSED_INK);
+    }
+    finish(&mesh, posed, &lambda, look, &a.out, &mut report)
 }

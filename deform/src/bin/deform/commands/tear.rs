@@ -3,12 +3,14 @@
 //! written as `.glb` or OBJ.
 
 use crate::numbers::point;
+use crate::preview::{Look, TOOL_INK};
 use crate::report::Report;
 use crate::shared_args::{OutputArgs, RigInput, ToolFrame};
-use crate::surgery_io::{prepare, write_one, Posed, Prepared};
+use crate::surgery_io::{prepare, tool_overlay, write_one, Posed, Prepared};
 use crate::timing::ms;
 use anyhow::Result;
 use clap::Args;
+use deform::render::short_number;
 use glam::DVec3;
 use std::time::Instant;
 
@@ -61,5 +63,30 @@ pub fn run(a: &TearArgs) -> Result<()> {
     report.add("duplicated", r.duplicated);
     report.add("changed_faces", r.changed_faces);
     report.add("boundary_loops", r.boundary_loops);
-    write_one(&rig, &r.mesh, &r.origin, &a.out, &mut report)
+    let title = format!(
+        "tear  {} steps  open {}  {} new vertices",
+        blades.len() - 1,
+        short_number(a.open),
+        r.new_vertices
+    );
+    let mut look = Look::new(title, "new vertex");
+    // The blade at each step, and its path.
+    look.rest = tool_overlay(&posed, |o| {
+        for s in &blades {
+            o.line(s.a, s.b, TOOL_INK);
+            o.dot(s.b, 3, TOOL_INK);
+        }
+        let tips: Vec<DVec3> = blades.iter().map(|s| s.b).collect();
+        o.polyline(&tips, false, TOOL_INK);
+    });
+    let direction = blades[0].b - blades[0].a;
+    write_one(
+        &rig,
+        &r.mesh,
+        &r.origin,
+        &a.out,
+        look,
+        direction,
+        &mut report,
+    )
 }

@@ -5,6 +5,8 @@
 
 use super::scene::DemoScene;
 use crate::finish::displacement;
+use crate::overlays::{self, mesh_edges, moved};
+use crate::preview::{Look, POSED_INK};
 use crate::timing::{ms, time_pose};
 use anyhow::Result;
 use cga::ScaledMotor;
@@ -26,6 +28,7 @@ fn run(
     rest: &Mesh,
     bind: impl FnOnce() -> deform::Result<Box<dyn Deformer>>,
     keys: &[ScaledMotor],
+    look: Look,
 ) -> Result<DemoScene> {
     let t = Instant::now();
     let d = bind()?;
@@ -40,6 +43,7 @@ fn run(
         posed,
         bind_ms,
         pose_ms,
+        look,
     })
 }
 
@@ -70,6 +74,19 @@ pub fn scenes(length: f64) -> Result<Vec<DemoScene>> {
             &bar,
             || Ok(Box::new(Ffd::bind(&bar, [2, 2, 2], Some(bounds), options)?)),
             &keys,
+            {
+                // The lattice moved by its motors.
+                let mut look = Look::new("", "displacement");
+                let lattice = deform::ffd::Lattice::new(
+                    [2, 2, 2],
+                    bounds.0,
+                    bounds.1,
+                    deform::ffd::LatticeBasis::Bernstein,
+                )?;
+                let points = moved(&lattice.rest_points(), &keys);
+                overlays::lattice(&mut look.posed, &points, [2, 2, 2], POSED_INK);
+                look
+            },
         )?);
     }
     // Cage: a square tube cage of 6 rings around a round bar; the vertices at x turn about
@@ -102,6 +119,18 @@ pub fn scenes(length: f64) -> Result<Vec<DemoScene>> {
             )?))
         },
         &keys,
+        {
+            // The cage moved by its motors.
+            let mut look = Look::new("", "displacement");
+            look.posed.line_width = 1;
+            mesh_edges(
+                &mut look.posed,
+                &cage,
+                &moved(&cage.positions, &keys),
+                POSED_INK,
+            );
+            look
+        },
     )?);
     Ok(out)
 }

@@ -1,5 +1,6 @@
 //! One demo scene's result, as the lattice and surgery scenes hand it to the demo.
 
+use crate::preview::Look;
 use deform::Mesh;
 use glam::DVec3;
 
@@ -12,4 +13,6 @@ pub struct DemoScene {
     pub scalar: Vec<f64>,
     pub bind_ms: f64,
     pub pose_ms: f64,
+    /// The preview's scalar name, overlays and focus (its title is the demo's).
+    pub look: Look,
 }

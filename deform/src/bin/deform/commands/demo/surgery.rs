@@ -5,6 +5,7 @@
 
 use super::scene::DemoScene;
 use crate::finish::displacement;
+use crate::preview::{Focus, Look};
 use crate::timing::{ms, time_pose};
 use anyhow::Result;
 use cga::ScaledMotor;
@@ -35,6 +36,21 @@ fn made(origin: &[VertexOrigin]) -> Vec<f64> {
         .collect()
 }
 
+/// A look zoomed on the vertices a tool made, seen along `direction`.
+fn zoomed(origin: &[VertexOrigin], direction: DVec3) -> Look {
+    let mut look = Look::new("", "new vertex");
+    let vertices: Vec<u32> = (0..origin.len() as u32)
+        .filter(|&v| !origin[v as usize].is_input())
+        .collect();
+    if !vertices.is_empty() {
+        look.focus = Some(Focus {
+            vertices,
+            direction: Some(direction),
+        });
+    }
+    look
+}
+
 pub fn scenes(out: &Path) -> Result<Vec<DemoScene>> {
     let rig = procedural_arm(24, 81);
     let mut scenes = Vec::new();
@@ -54,6 +70,7 @@ pub fn scenes(out: &Path) -> Result<Vec<DemoScene>> {
         scalar: moved,
         bind_ms: ms(t) - pose_ms,
         pose_ms,
+        look: Look::new("", "displacement"),
     });
 
     let surgery = Surgery::new(&rig.mesh, &rig.influences)?;
@@ -88,6 +105,7 @@ pub fn scenes(out: &Path) -> Result<Vec<DemoScene>> {
         scalar: side,
         bind_ms: cut_ms,
         pose_ms,
+        look: Look::new("", "piece"),
     });
 
     // Tear along the forearm's front (+z, towards the camera) in three scalpel steps, opened.
@@ -118,6 +136,7 @@ pub fn scenes(out: &Path) -> Result<Vec<DemoScene>> {
         scalar: made(&tear.origin),
         bind_ms: tear_ms,
         pose_ms,
+        look: zoomed(&tear.origin, DVec3::NEG_Z),
     });
 
     // Drill through the upper arm.
@@ -145,6 +164,7 @@ pub fn scenes(out: &Path) -> Result<Vec<DemoScene>> {
         scalar: made(&drill.origin),
         bind_ms: drill_ms,
         pose_ms,
+        look: zoomed(&drill.origin, DVec3::Z),
     });
     Ok(scenes)
 }
