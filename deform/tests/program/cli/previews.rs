@@ -376,7 +376,7 @@ fn unknown_output_extensions_exit_2_before_any_work() {
             let err = stderr(&o);
             assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
             assert!(
-                err.contains("this command writes .obj or .ply"),
+                err.contains("this command writes .obj or .glb or .ply"),
                 "{args:?}: {err}"
             );
             assert!(
