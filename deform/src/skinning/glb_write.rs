@@ -91,8 +91,9 @@ fn compact_influences(rig: &Rig) -> (usize, Vec<[u16; 8]>, Vec<[f32; 8]>) {
 
 /// The rig as binary glTF: one mesh (every primitive of [`Rig::primitives`]), one skin, the
 /// nodes (a new root node instances the skinned mesh), the animations, a scene, and the
-/// model's [`super::Look`]: its vertex attributes (its normals where it has them, else smooth
-/// ones), each primitive's material, and the materials, textures, samplers and images (embedded).
+/// model's [`super::Look`]: its vertex attributes (its normals where it has them, none for a
+/// glTF model without them, which viewers shade flat, else smooth ones), each primitive's
+/// material, and the materials, textures, samplers and images (embedded).
 /// Positions, smooth normals, matrices and keys are written in single precision, as glTF
 /// stores them. Up to 8 influences per vertex are kept (the largest, renormalised).
 ///
@@ -153,9 +154,19 @@ pub fn glb_bytes(rig: &Rig, options: &GlbOptions) -> Result<Vec<u8>> {
             Some(34963),
             json!({"componentType": 5125, "count": 3 * p.triangle_count, "type": "SCALAR"}),
         );
-        let nrm: Vec<f32> = normals[range.clone()].iter().flatten().copied().collect();
-        let normal = floats(&mut bin, &nrm, 3, "VEC3", Some(34962), false, "NORMAL")?;
-        let mut attributes = json!({"POSITION": position, "NORMAL": normal});
+        let mut attributes = json!({ "POSITION": position });
+        if !look.flat {
+            let nrm: Vec<f32> = normals[range.clone()].iter().flatten().copied().collect();
+            attributes["NORMAL"] = json!(floats(
+                &mut bin,
+                &nrm,
+                3,
+                "VEC3",
+                Some(34962),
+                false,
+                "NORMAL"
+            )?);
+        }
         for a in look.attributes.iter().filter(|a| a.name != "NORMAL") {
             let values = &a.values[range.start * a.width..range.end * a.width];
             let kind = ["SCALAR", "VEC2", "VEC3", "VEC4"][a.width - 1];

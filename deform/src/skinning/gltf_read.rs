@@ -155,6 +155,7 @@ pub fn parse_gltf_with(
     let animations = read_animations(doc, &buffers, name, &mut report)?;
     let mut look = read_look(bytes, doc, &buffers, base, options, &mut report.notes);
     look.attributes = merge_attributes(attributes, &mut report.notes);
+    look.flat = look.attribute("NORMAL").is_none();
     look.primitive_materials = materials;
     let mut rig = Rig::new(
         nodes,

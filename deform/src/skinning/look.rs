@@ -89,6 +89,10 @@ pub struct Look {
     pub extensions_used: Vec<String>,
     /// The file's `extensionsRequired` that the kept JSON uses.
     pub extensions_required: Vec<String>,
+    /// The model was read from a glTF file without normals, which viewers shade flat (as the
+    /// specification says): none are written, so it keeps that look. Otherwise a rig without
+    /// a `NORMAL` attribute (libigl, procedural) is written with smooth normals.
+    pub flat: bool,
 }
 
 impl Look {

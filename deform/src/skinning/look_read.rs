@@ -282,6 +282,7 @@ pub(crate) fn read_look(
         primitive_materials: Vec::new(),
         extensions_used: listed("extensionsUsed"),
         extensions_required: listed("extensionsRequired"),
+        flat: false,
         materials,
         textures,
         samplers,
