@@ -264,6 +264,7 @@ fn obj_with_texture_coordinates_and_normals() {
     let extras = io::ObjExtras {
         uvs: Some(&uv),
         normals: Some(&normals),
+        texture: None,
     };
     let mut text = Vec::new();
     io::write_obj_with_to(&m, extras, &mut text).unwrap();
@@ -276,7 +277,34 @@ fn obj_with_texture_coordinates_and_normals() {
     let short = io::ObjExtras {
         uvs: Some(&uv[..4]),
         normals: None,
+        texture: None,
     };
     let err = io::write_obj_with_to(&m, short, &mut Vec::new()).unwrap_err();
     assert_eq!(err.kind(), std::io::ErrorKind::InvalidInput);
+}
+
+/// An OBJ's texture coordinates are per face corner: read with the fans, written back as they
+/// were around new positions.
+#[test]
+fn obj_texture_corners_round_trip() {
+    let text = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 0.5 0.5\n\
+                f 1/1 2/2 3/3 4/4\nf 1/5 3/3 2/2\n";
+    let (m, t) = io::parse_obj_textured(text, "quad").unwrap();
+    let t = t.expect("every face has vt");
+    assert_eq!(t.corners, vec![[0, 1, 2], [0, 2, 3], [4, 2, 1]]);
+    assert_eq!(t.uvs.len(), 5);
+    let extras = io::ObjExtras {
+        texture: Some(&t),
+        ..io::ObjExtras::default()
+    };
+    let mut out = Vec::new();
+    io::write_obj_with_to(&m, extras, &mut out).unwrap();
+    let out = String::from_utf8(out).unwrap();
+    let (back, t2) = io::parse_obj_textured(&out, "back").unwrap();
+    assert_eq!(back, m);
+    assert_eq!(t2.as_ref(), Some(&t));
+    // A face without vt: no texture.
+    let (_, none) =
+        io::parse_obj_textured("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2 3\n", "x").unwrap();
+    assert!(none.is_none());
 }

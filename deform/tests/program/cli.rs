@@ -396,3 +396,59 @@ fn ctrl_c_stops_a_sequence_and_leaves_no_partial_output() {
         .collect();
     assert!(left.is_empty(), "left behind: {left:?}");
 }
+
+/// A deformed OBJ keeps the input's texture coordinates, corner by corner, and gets normals
+/// where the input had them (issue 21).
+#[test]
+fn deformed_obj_keeps_texture_coordinates() {
+    let s = Scene::new("textured");
+    let bar = tube(1.0, 10.0, SIDES, RINGS);
+    let mut text = String::new();
+    for p in &bar.positions {
+        text.push_str(&format!("v {} {} {}\n", p.x, p.y, p.z));
+    }
+    // One vt per corner, so the output must follow the corners, not the vertices.
+    for (f, _) in bar.triangles.iter().enumerate() {
+        for k in 0..3 {
+            text.push_str(&format!("vt {} {}\n", f as f64 / 1000.0, k as f64 / 4.0));
+        }
+    }
+    text.push_str("vn 0 0 1\n");
+    for (f, t) in bar.triangles.iter().enumerate() {
+        let c = |k: usize| format!("{}/{}/1", t[k] + 1, 3 * f + k + 1);
+        text.push_str(&format!("f {} {} {}\n", c(0), c(1), c(2)));
+    }
+    std::fs::write(s.p("textured.obj"), &text).unwrap();
+    std::fs::write(
+        s.p("twist.json"),
+        r#"{"0": {"rotate": {"axis": [1, 0, 0], "degrees": 40}}}"#,
+    )
+    .unwrap();
+    let out = s.p("out.obj");
+    let o = run(&[
+        "ffd",
+        &s.p("textured.obj"),
+        "--lattice",
+        "2x2x2",
+        "--motors",
+        &s.p("twist.json"),
+        "-o",
+        &out,
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let written = std::fs::read_to_string(&out).unwrap();
+    let (mesh, texture) = deform::io::parse_obj_textured(&written, "out").unwrap();
+    let (input, input_texture) = deform::io::parse_obj_textured(&text, "in").unwrap();
+    assert_eq!(mesh.triangles, input.triangles);
+    assert_eq!(texture, input_texture, "the same vt, corner by corner");
+    assert!(
+        mesh.positions != input.positions,
+        "the lattice moved the bar"
+    );
+    let vn = written.lines().filter(|l| l.starts_with("vn ")).count();
+    assert_eq!(
+        vn,
+        mesh.vertex_count(),
+        "normals of the deformed mesh, per vertex"
+    );
+}

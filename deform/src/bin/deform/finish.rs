@@ -1,7 +1,7 @@
 //! The last steps of every mesh deformer command: pose and time, refuse a non-finite result,
 //! write the mesh (OBJ, static `.glb` or PLY) and the preview, print the report.
 
-use crate::output_files::{write_mesh, write_png};
+use crate::output_files::{write_deformed, write_png};
 use crate::preview::{self, Look};
 use crate::report::Report;
 use crate::shared_args::OutputArgs;
@@ -24,7 +24,7 @@ pub fn finish(
         bail!("vertex {i}: the deformation produced a non-finite position");
     }
     let posed = Mesh::new(posed, mesh.triangles.clone());
-    write_mesh(&out.output, &posed)?;
+    write_deformed(&out.output, &posed, out.input_extras.get())?;
     report.add("output", out.output.display().to_string());
     if let Some(png) = &out.png {
         let look = Look {

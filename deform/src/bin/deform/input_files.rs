@@ -2,7 +2,7 @@
 //! the checks every command makes before reading (no output names an input, each output
 //! names a format the command writes).
 
-use crate::output_files::{check_formats, check_outputs, MESH_FORMATS};
+use crate::output_files::{check_formats, check_outputs, ObjInputExtras, MESH_FORMATS};
 use crate::shared_args::{MeshInput, OutputArgs, RigInput};
 use anyhow::{bail, Context, Result};
 use deform::input::{parse_selection_json, selection_from_dmat, Selection};
@@ -80,7 +80,9 @@ pub fn read_mesh_checked(mesh: &Path, extra: &[&Path], out: &OutputArgs) -> Resu
     inputs.extend_from_slice(extra);
     check_outputs(&inputs, &out.paths())?;
     check_formats(out, &MESH_FORMATS)?;
-    read_mesh(mesh)
+    let read = read_mesh(mesh)?;
+    let _ = out.input_extras.set(ObjInputExtras::read(mesh));
+    Ok(read)
 }
 
 /// Read the mesh and selection, refusing outputs that are inputs (these and `extra`) or not

@@ -101,6 +101,51 @@ pub fn write_atomic(path: &Path, write: impl FnOnce(&mut dyn Write) -> Result<()
     result.with_context(|| format!("writing {}", path.display()))
 }
 
+/// What an OBJ input had beside positions and faces: its texture coordinates by face corner,
+/// and whether it had normals. A deformed OBJ output keeps the first and recomputes the
+/// second.
+#[derive(Clone, Debug, Default)]
+pub struct ObjInputExtras {
+    pub texture: Option<deform::io::ObjTexture>,
+    pub normals: bool,
+}
+
+impl ObjInputExtras {
+    /// Read them from an OBJ file (none for other formats or unreadable files: the mesh
+    /// itself was read and checked before).
+    pub fn read(path: &Path) -> ObjInputExtras {
+        let obj = path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("obj"));
+        let Some(text) = obj.then(|| std::fs::read_to_string(path).ok()).flatten() else {
+            return ObjInputExtras::default();
+        };
+        let texture = deform::io::parse_obj_textured(&text, "")
+            .ok()
+            .and_then(|(_, t)| t);
+        let normals = text.lines().any(|l| l.starts_with("vn "));
+        ObjInputExtras { texture, normals }
+    }
+}
+
+/// Write a deformed mesh as [`write_mesh`] does; an OBJ keeps the OBJ input's texture
+/// coordinates and, where it had normals, gets this mesh's smooth normals.
+pub fn write_deformed(path: &Path, mesh: &Mesh, input: Option<&ObjInputExtras>) -> Result<()> {
+    let obj = path
+        .extension()
+        .is_none_or(|e| !(e.eq_ignore_ascii_case("ply") || e.eq_ignore_ascii_case("glb")));
+    let Some(input) = input.filter(|_| obj) else {
+        return write_mesh(path, mesh);
+    };
+    let normals = input.normals.then(|| mesh.seamless_vertex_normals());
+    let extras = deform::io::ObjExtras {
+        texture: input.texture.as_ref(),
+        normals: normals.as_deref(),
+        uvs: None,
+    };
+    write_obj_with(path, mesh, extras)
+}
+
 /// The mesh formats every command that writes a mesh writes, by `-o` extension.
 pub const MESH_FORMATS: [&str; 3] = ["obj", "glb", "ply"];
 
@@ -167,6 +212,7 @@ pub fn write_rig_mesh(path: &Path, mesh: &Mesh, look: &deform::skinning::Look) -
     let extras = deform::io::ObjExtras {
         uvs: uv.map(|a| &a.values[..]),
         normals: normals.as_deref(),
+        texture: None,
     };
     write_obj_with(path, mesh, extras)
 }

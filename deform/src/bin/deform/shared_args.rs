@@ -29,6 +29,10 @@ pub struct OutputArgs {
     /// Print nothing but errors.
     #[arg(long, short)]
     pub quiet: bool,
+    /// What an OBJ input had beside positions and faces, kept for an OBJ output (set when the
+    /// input is read).
+    #[arg(skip)]
+    pub input_extras: std::cell::OnceCell<crate::output_files::ObjInputExtras>,
 }
 
 /// `YAW,PITCH`, finite degrees.

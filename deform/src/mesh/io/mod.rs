@@ -13,7 +13,10 @@ pub use medit::{parse_medit, read_medit, MeditMesh};
 mod glb;
 pub use glb::{glb_bytes, write_glb};
 pub(crate) use glb::{unit_normals, GlbBuilder};
-pub use obj::{parse_obj, read_obj, write_obj, write_obj_to, write_obj_with_to, ObjExtras};
+pub use obj::{
+    parse_obj, parse_obj_textured, read_obj, write_obj, write_obj_to, write_obj_with_to, ObjExtras,
+    ObjTexture,
+};
 pub use off::{parse_off, read_off};
 pub use ply::{ply_header, write_ply, write_ply_to};
 pub use tgf::{parse_tgf, read_tgf, Skeleton};

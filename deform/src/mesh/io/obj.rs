@@ -20,8 +20,8 @@ pub fn read_obj(path: impl AsRef<Path>) -> Result<Mesh> {
 
 /// Parses OBJ text. Vertices keep their file order (unreferenced ones included); face
 /// corners may be `v`, `v/t`, `v//n` or `v/t/n`, with negative (relative) indices allowed;
-/// polygons become triangle fans. Texture coordinates, normals, groups, materials, lines and
-/// points are ignored. Coordinates must be finite. Indices past the last vertex are kept and
+/// polygons become triangle fans. Texture coordinates ([`parse_obj_textured`] reads them),
+/// normals, groups, materials, lines and points are ignored. Coordinates must be finite. Indices past the last vertex are kept and
 /// reported by [`crate::mesh::validate()`].
 ///
 /// ```
@@ -29,9 +29,30 @@ pub fn read_obj(path: impl AsRef<Path>) -> Result<Mesh> {
 /// assert_eq!(m.triangles, vec![[0, 1, 2], [0, 2, 3]]);
 /// ```
 pub fn parse_obj(text: &str, name: &str) -> Result<Mesh> {
+    Ok(parse_obj_textured(text, name)?.0)
+}
+
+/// An OBJ file's texture coordinates, by face corner: OBJ indexes them apart from the
+/// vertices, so a vertex on a UV seam has one per side.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct ObjTexture {
+    /// The `vt` lines (`u v`, OBJ's origin bottom left), in file order.
+    pub uvs: Vec<[f64; 2]>,
+    /// Per triangle of the parsed mesh (fans as [`parse_obj`] makes them), the `vt` index of
+    /// each corner.
+    pub corners: Vec<[u32; 3]>,
+}
+
+/// [`parse_obj`], and the texture coordinates of every face corner when every face has them
+/// (in range); `None` when the file has none or some face lacks them.
+pub fn parse_obj_textured(text: &str, name: &str) -> Result<(Mesh, Option<ObjTexture>)> {
     let mut positions = Vec::new();
     let mut triangles = Vec::new();
     let mut poly: Vec<u32> = Vec::new();
+    let mut uvs: Vec<[f64; 2]> = Vec::new();
+    let mut corners: Vec<[u32; 3]> = Vec::new();
+    let mut poly_uv: Vec<u32> = Vec::new();
+    let mut textured = true;
     for (ln, line) in text.lines().enumerate() {
         let ctx = Ctx { name, line: ln + 1 };
         let mut toks = line.split_ascii_whitespace();
@@ -42,10 +63,20 @@ pub fn parse_obj(text: &str, name: &str) -> Result<Mesh> {
                 let z = ctx.f64(toks.next(), "z coordinate")?;
                 positions.push(DVec3::new(x, y, z));
             }
+            Some("vt") => {
+                let u = ctx.f64(toks.next(), "u texture coordinate")?;
+                // A missing v is 0, as the format allows.
+                let v = toks
+                    .next()
+                    .map_or(Ok(0.0), |t| ctx.f64(Some(t), "v texture coordinate"))?;
+                uvs.push([u, v]);
+            }
             Some("f") => {
                 poly.clear();
+                poly_uv.clear();
                 for tok in toks {
-                    let v = tok.split('/').next().unwrap_or("");
+                    let mut parts = tok.split('/');
+                    let v = parts.next().unwrap_or("");
                     let i: i64 = v
                         .parse()
                         .map_err(|_| ctx.err(format!("bad face index {tok:?}")))?;
@@ -59,19 +90,37 @@ pub fn parse_obj(text: &str, name: &str) -> Result<Mesh> {
                     let idx = u32::try_from(idx)
                         .map_err(|_| ctx.err(format!("face index {i} is out of range")))?;
                     poly.push(idx);
+                    let t = parts.next().and_then(|t| t.parse::<i64>().ok());
+                    let t = match t {
+                        Some(t) if t > 0 => Some(t - 1),
+                        Some(t) if t < 0 => Some(uvs.len() as i64 + t),
+                        _ => None,
+                    };
+                    match t.and_then(|t| u32::try_from(t).ok()) {
+                        Some(t) if (t as usize) < uvs.len() => poly_uv.push(t),
+                        _ => textured = false,
+                    }
                 }
                 if poly.len() < 3 {
                     return Err(ctx.err(format!("face with {} corners", poly.len())));
                 }
                 push_fan(&poly, &mut triangles);
+                if textured {
+                    push_fan(&poly_uv, &mut corners);
+                }
             }
             _ => {}
         }
     }
-    Ok(Mesh {
-        positions,
-        triangles,
-    })
+    let texture = (textured && !uvs.is_empty() && corners.len() == triangles.len())
+        .then_some(ObjTexture { uvs, corners });
+    Ok((
+        Mesh {
+            positions,
+            triangles,
+        },
+        texture,
+    ))
 }
 
 /// Writes `v` and `f` lines (shortest round-trip decimal form) to a writer.
@@ -95,6 +144,9 @@ pub struct ObjExtras<'a> {
     pub uvs: Option<&'a [f32]>,
     /// Unit normals, one per vertex (`vn`).
     pub normals: Option<&'a [glam::DVec3]>,
+    /// Texture coordinates by face corner, as an OBJ input had them (written as given, in
+    /// place of `uvs`).
+    pub texture: Option<&'a ObjTexture>,
 }
 
 /// Writes `v`, `vt`, `vn` and `f v/vt/vn` lines; `vt` and `vn` only where given (each
@@ -113,11 +165,28 @@ pub fn write_obj_with_to(mesh: &Mesh, extras: ObjExtras, mut w: impl Write) -> s
     if let Some(nr) = extras.normals.filter(|nr| nr.len() != n) {
         return Err(bad("normals", nr.len()));
     }
+    if let Some(t) = extras.texture {
+        let fits = t.corners.len() == mesh.triangles.len()
+            && t.corners
+                .iter()
+                .flatten()
+                .all(|&c| (c as usize) < t.uvs.len());
+        if !fits {
+            return Err(bad(
+                "texture corners (or past the vt list)",
+                t.corners.len(),
+            ));
+        }
+    }
     let mut buf = std::io::BufWriter::new(&mut w);
     for p in &mesh.positions {
         writeln!(buf, "v {} {} {}", p.x, p.y, p.z)?;
     }
-    if let Some(uv) = extras.uvs {
+    if let Some(t) = extras.texture {
+        for [u, v] in &t.uvs {
+            writeln!(buf, "vt {u} {v}")?;
+        }
+    } else if let Some(uv) = extras.uvs {
         for t in uv.chunks_exact(2) {
             writeln!(buf, "vt {} {}", t[0], 1.0 - t[1])?;
         }
@@ -127,14 +196,18 @@ pub fn write_obj_with_to(mesh: &Mesh, extras: ObjExtras, mut w: impl Write) -> s
             writeln!(buf, "vn {} {} {}", v.x, v.y, v.z)?;
         }
     }
-    let corner = |v: u32| match (extras.uvs.is_some(), extras.normals.is_some()) {
+    let textured = extras.uvs.is_some() || extras.texture.is_some();
+    let corner = |v: u32, t: u32| match (textured, extras.normals.is_some()) {
         (false, false) => format!("{}", v + 1),
-        (true, false) => format!("{0}/{0}", v + 1),
+        (true, false) => format!("{}/{}", v + 1, t + 1),
         (false, true) => format!("{0}//{0}", v + 1),
-        (true, true) => format!("{0}/{0}/{0}", v + 1),
+        (true, true) => format!("{0}/{1}/{0}", v + 1, t + 1),
     };
-    for t in &mesh.triangles {
-        writeln!(buf, "f {} {} {}", corner(t[0]), corner(t[1]), corner(t[2]))?;
+    for (f, t) in mesh.triangles.iter().enumerate() {
+        // The texture index of a corner: its own (OBJ input) or the vertex's.
+        let c = extras.texture.map_or(*t, |x| x.corners[f]);
+        let [a, b, d] = [0, 1, 2].map(|k| corner(t[k], c[k]));
+        writeln!(buf, "f {a} {b} {d}")?;
     }
     buf.flush()
 }
