@@ -11,13 +11,20 @@
 //! opens; [`TearOptions::open`] moves the two lips apart along the planes' normals (tapered to
 //! zero at the ends). New vertices get interpolated weights (4 largest, renormalised).
 
+mod entry;
+mod open;
+mod seams;
+mod walk;
+
 use super::nearest::nearest_to_segment;
 use super::soup::Soup;
 use super::split::{local_loops, FaceFate};
 use super::{check_snap, Frame, SkinnedMesh, Surgery, SurgeryError, VertexOrigin};
 use crate::mesh::Mesh;
+use entry::{first_hit, insert_point};
 use glam::DVec3;
-use std::collections::{HashMap, HashSet};
+use seams::Seams;
+use walk::Step;
 
 /// The blade at one time step: the segment from `a` to `b`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -66,12 +73,6 @@ pub struct TearResult {
     pub changed_faces: usize,
     /// Boundary loops of the result.
     pub boundary_loops: usize,
-}
-
-/// Where a step of the walk goes next.
-enum Next {
-    Vertex(u32),
-    Edge { f: u32, k: usize, t: f64 },
 }
 
 /// The largest opening of a tear, in bounding-box diagonals of the model.
@@ -147,9 +148,10 @@ impl Surgery {
             &src.influences,
             skin,
         );
+        let mut seams = Seams::new(self.weld.as_ref().map(|w| &w.canon[..]), n0);
         let points: Vec<u32> = hits
             .iter()
-            .map(|&(f, p)| insert_point(&mut soup, f, p, options.snap))
+            .map(|&(f, p)| insert_point(&mut soup, &mut seams, f, p, options.snap))
             .collect::<Result<_, _>>()?;
         // Follow each step's plane from one scalpel point to the next.
         let mut incision = vec![points[0]];
@@ -167,39 +169,30 @@ impl Surgery {
             }
             let normal = normal / len;
             planes.push((normal, s));
-            if points[i] == points[i + 1] {
+            if seams.label(points[i]) == seams.label(points[i + 1]) {
                 continue;
             }
-            let path = walk(&mut soup, points[i], points[i + 1], normal, s, options.snap)?;
+            let step = Step {
+                index: i,
+                from: points[i],
+                to: points[i + 1],
+                normal,
+                point: s,
+                blades: [scalpel[i], next],
+                snap: options.snap,
+                diagonal: self.diagonal,
+            };
+            let path = walk::follow(&mut soup, &mut seams, &step)?;
             incision.extend_from_slice(&path[1..]);
         }
         // Open: the faces on one side of the incision get copies of its inner vertices.
-        let duplicated = open_incision(&mut soup, &incision, &planes, options.open)?;
+        let duplicated =
+            open::open_incision(&mut soup, &mut seams, &incision, &planes, options.open)?;
         let new_vertices = soup.rest.len() - n0;
         let changed: Vec<u32> = (0..src.mesh.triangle_count() as u32)
             .filter(|&f| soup.touched[f as usize])
             .collect();
-        let produced: Vec<([u32; 3], u8)> = (0..soup.tris.len() as u32)
-            .filter(|&f| soup.touched[soup.root(f) as usize])
-            .map(|f| (soup.tris[f as usize], 0u8))
-            .collect();
-        let fate = |f: u32| {
-            if soup.touched[f as usize] {
-                FaceFate::Changed
-            } else {
-                FaceFate::Kept(0)
-            }
-        };
-        let boundary_loops = local_loops(
-            &self.topology,
-            &src.mesh.triangles,
-            fate,
-            &changed,
-            &[],
-            &produced,
-            0,
-        )
-        .len();
+        let boundary_loops = self.welded_loops(&soup, &seams, &changed);
         Ok(TearResult {
             mesh: SkinnedMesh {
                 mesh: Mesh::new(soup.rest, soup.tris),
@@ -216,279 +209,27 @@ impl Surgery {
     }
 }
 
-/// The first face the segment `a -> b` hits, with the point (Moller-Trumbore over the faces
-/// the index returns for the segment's box).
-fn first_hit(
-    bvh: &super::FaceBvh,
-    tris: &[[u32; 3]],
-    pos: &[DVec3],
-    a: DVec3,
-    b: DVec3,
-) -> Option<(u32, DVec3)> {
-    let (lo, hi) = (a.min(b), a.max(b));
-    let d = b - a;
-    let mut best: Option<(f64, u32)> = None;
-    bvh.query(
-        |bx| bx.min.cmple(hi).all() && bx.max.cmpge(lo).all(),
-        |f| {
-            let [p, q, r] = tris[f as usize].map(|v| pos[v as usize]);
-            let (e1, e2) = (q - p, r - p);
-            let h = d.cross(e2);
-            let det = e1.dot(h);
-            if det.abs() < 1e-300 {
-                return;
-            }
-            let s = a - p;
-            let u = s.dot(h) / det;
-            let qv = s.cross(e1);
-            let v = d.dot(qv) / det;
-            let t = e2.dot(qv) / det;
-            if (0.0..=1.0).contains(&u)
-                && v >= 0.0
-                && u + v <= 1.0
-                && (0.0..=1.0).contains(&t)
-                && best.is_none_or(|b| t < b.0)
-            {
-                best = Some((t, f));
-            }
-        },
-    );
-    best.map(|(t, f)| (f, a + t * d))
-}
-
-/// Make the point `p` on input face `f0` a vertex: a corner within `snap` of it, a point on
-/// an edge when it is that close to the edge, else a new vertex splitting its face in three.
-fn insert_point(soup: &mut Soup, f0: u32, p: DVec3, snap: f64) -> Result<u32, SurgeryError> {
-    // The face (of those made from f0 so far) that holds p.
-    let candidates: Vec<u32> = (0..soup.tris.len() as u32)
-        .filter(|&f| soup.root(f) == f0)
-        .collect();
-    let mut best = (f64::INFINITY, candidates[0], [0.0; 3]);
-    for &f in &candidates {
-        let [a, b, c] = soup.tris[f as usize].map(|v| soup.at(v));
-        let bary = barycentric(p, a, b, c);
-        let outside = -bary.iter().copied().fold(0.0, f64::min);
-        if outside < best.0 {
-            best = (outside, f, bary);
-        }
-    }
-    let (_, f, bary) = best;
-    let t = soup.tris[f as usize];
-    if let Some(k) = (0..3).find(|&k| bary[k] > 1.0 - snap) {
-        return Ok(t[k]);
-    }
-    if let Some(k) = (0..3).find(|&k| bary[k] < snap) {
-        // On the edge opposite corner k.
-        let (i, j) = ((k + 1) % 3, (k + 2) % 3);
-        let s = bary[i] + bary[j];
-        let v = soup.add_vertex(p, &[(t[i], bary[i] / s), (t[j], bary[j] / s)])?;
-        soup.split_edge(f, k, v)?;
-        return Ok(v);
-    }
-    let v = soup.add_vertex(p, &[(t[0], bary[0]), (t[1], bary[1]), (t[2], bary[2])])?;
-    soup.split_face(f, v);
-    Ok(v)
-}
-
-/// Barycentric coordinates of `p` (projected) in the triangle `a b c`.
-fn barycentric(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> [f64; 3] {
-    let (v0, v1, v2) = (b - a, c - a, p - a);
-    let (d00, d01, d11) = (v0.dot(v0), v0.dot(v1), v1.dot(v1));
-    let (d20, d21) = (v2.dot(v0), v2.dot(v1));
-    let den = d00 * d11 - d01 * d01;
-    let v = (d11 * d20 - d01 * d21) / den;
-    let w = (d00 * d21 - d01 * d20) / den;
-    [1.0 - v - w, v, w]
-}
-
-/// Follow the plane `(normal, point)` over the surface from vertex `from` to vertex `to`,
-/// splitting the edges it crosses; returns the incision's vertices.
-fn walk(
-    soup: &mut Soup,
-    from: u32,
-    to: u32,
-    normal: DVec3,
-    point: DVec3,
-    snap: f64,
-) -> Result<Vec<u32>, SurgeryError> {
-    let mut sd: HashMap<u32, f64> = HashMap::new();
-    sd.insert(from, 0.0);
-    sd.insert(to, 0.0);
-    let mut path = vec![from];
-    let (mut v, mut prev) = (from, u32::MAX);
-    let target = soup.at(to);
-    let limit = 4 * soup.tris.len() + 16;
-    for _ in 0..limit {
-        if v == to {
-            return Ok(path);
-        }
-        let here = soup.at(v);
-        let toward = target - here;
-        let mut best: Option<(f64, Next)> = None;
-        let consider = |score: f64, next: Next, best: &mut Option<(f64, Next)>| {
-            if best.as_ref().is_none_or(|b| score < b.0) {
-                *best = Some((score, next));
-            }
-        };
-        for f in soup.fan(v)? {
-            let t = soup.tris[f as usize];
-            let k = soup.corner(f, v)?;
-            let (a, b) = (t[(k + 1) % 3], t[(k + 2) % 3]);
-            let mut s = |x: u32| {
-                *sd.entry(x)
-                    .or_insert_with(|| normal.dot(soup.at(x) - point))
-            };
-            let (sa, sb) = (s(a), s(b));
-            let score = |p: DVec3| {
-                let ahead = (p - here).dot(toward) > 0.0;
-                p.distance(target) + if ahead { 0.0 } else { 1e300 }
-            };
-            for (x, sx) in [(a, sa), (b, sb)] {
-                if sx == 0.0 && x != prev {
-                    consider(score(soup.at(x)), Next::Vertex(x), &mut best);
-                }
-            }
-            if sa * sb < 0.0 {
-                let t_ab = sa / (sa - sb);
-                if t_ab < snap && a != prev {
-                    sd.insert(a, 0.0);
-                    consider(score(soup.at(a)), Next::Vertex(a), &mut best);
-                } else if 1.0 - t_ab < snap && b != prev {
-                    sd.insert(b, 0.0);
-                    consider(score(soup.at(b)), Next::Vertex(b), &mut best);
-                } else {
-                    let p = soup.at(a).lerp(soup.at(b), t_ab);
-                    consider(score(p), Next::Edge { f, k, t: t_ab }, &mut best);
-                }
-            }
-        }
-        let Some((score, next)) = best else {
-            break;
-        };
-        if score >= 1e299 {
-            break;
-        }
-        prev = v;
-        v = match next {
-            Next::Vertex(x) => x,
-            Next::Edge { f, k, t } => {
-                let tri = soup.tris[f as usize];
-                let (a, b) = (tri[(k + 1) % 3], tri[(k + 2) % 3]);
-                let p = soup.at(a).lerp(soup.at(b), t);
-                let m = soup.add_vertex(p, &[(a, 1.0 - t), (b, t)])?;
-                sd.insert(m, 0.0);
-                soup.split_edge(f, k, m)?;
-                m
-            }
-        };
-        path.push(v);
-    }
-    Err(SurgeryError::BadTool(
-        "the incision could not be followed from one scalpel point to the next: take smaller steps"
-            .into(),
-    ))
-}
-
-/// Duplicate the incision's inner vertices: the faces right of it (seen along the incision
-/// with the surface's orientation) get the copies. Then pull the lips apart by `open`.
-fn open_incision(
-    soup: &mut Soup,
-    incision: &[u32],
-    planes: &[(DVec3, DVec3)],
-    open: f64,
-) -> Result<usize, SurgeryError> {
-    let m = incision.len();
-    if m < 3 {
-        return Ok(0);
-    }
-    let mut path_edges: HashSet<(u32, u32)> = HashSet::new();
-    for w in incision.windows(2) {
-        path_edges.insert((w[0].min(w[1]), w[0].max(w[1])));
-    }
-    let total: f64 = incision
-        .windows(2)
-        .map(|w| soup.at(w[0]).distance(soup.at(w[1])))
-        .sum();
-    let mut arc = 0.0;
-    let mut copies = 0;
-    for j in 1..m - 1 {
-        let v = incision[j];
-        arc += soup.at(incision[j - 1]).distance(soup.at(v));
-        let fan = soup.fan(v)?;
-        // The left face: the one holding the half-edge v -> next.
-        let next = incision[j + 1];
-        let Some(&left) = fan.iter().find(|&&f| {
-            let t = soup.tris[f as usize];
-            (0..3).any(|k| t[k] == v && t[(k + 1) % 3] == next)
-        }) else {
-            continue;
-        };
-        let mut side: HashSet<u32> = HashSet::new();
-        let mut stack = vec![left];
-        while let Some(f) = stack.pop() {
-            if !side.insert(f) {
-                continue;
-            }
-            let t = soup.tris[f as usize];
-            let k = soup.corner(f, v)?;
-            for (x, across) in [(t[(k + 1) % 3], (k + 2) % 3), (t[(k + 2) % 3], (k + 1) % 3)] {
-                if path_edges.contains(&(v.min(x), v.max(x))) {
-                    continue;
-                }
-                let g = soup.nb[f as usize][across];
-                if g != u32::MAX && fan.contains(&g) {
-                    stack.push(g);
-                }
-            }
-        }
-        let right: Vec<u32> = fan.iter().copied().filter(|f| !side.contains(f)).collect();
-        if right.is_empty() {
-            continue;
-        }
-        let c = soup.copy_vertex(v);
-        copies += 1;
-        for &f in &right {
-            for x in soup.tris[f as usize].iter_mut() {
-                if *x == v {
-                    *x = c;
-                }
-            }
-            soup.mark(f);
-        }
-        // The lips are no longer neighbours: a later fan of `v` (the incision may come back to
-        // it) stays on the left, one of `c` on the right.
-        for &f in &right {
-            for g in soup.nb[f as usize] {
-                if side.contains(&g) {
-                    soup.unlink(f, g);
-                }
-            }
-        }
-        soup.vf[c as usize] = right[0];
-        soup.vf[v as usize] = left;
-        if open != 0.0 {
-            // This vertex's step plane, its normal turned towards the left face.
-            let step = planes
-                .iter()
-                .min_by(|a, b| {
-                    a.0.dot(soup.at(v) - a.1)
-                        .abs()
-                        .total_cmp(&b.0.dot(soup.at(v) - b.1).abs())
-                })
-                .expect("a plane per step");
-            let lt = soup.tris[left as usize].map(|x| soup.at(x));
-            let centre = (lt[0] + lt[1] + lt[2]) / 3.0;
-            let n = if step.0.dot(centre - soup.at(v)) >= 0.0 {
-                step.0
+impl Surgery {
+    /// The boundary loops of the torn soup around its `changed` input faces, over the welded
+    /// surface when coincident vertices were welded (seam copies are one vertex, the lips of
+    /// the incision two), as a cut and a drill count them.
+    fn welded_loops(&self, soup: &Soup, seams: &Seams, changed: &[u32]) -> usize {
+        let label = seams.labels();
+        let produced: Vec<([u32; 3], u8)> = (0..soup.tris.len() as u32)
+            .filter(|&f| soup.touched[soup.root(f) as usize])
+            .map(|f| (soup.tris[f as usize].map(|v| label[v as usize]), 0u8))
+            .collect();
+        let fate = |f: u32| {
+            if soup.touched[f as usize] {
+                FaceFate::Changed
             } else {
-                -step.0
-            };
-            let w = 0.5 * open * (std::f64::consts::PI * arc / total).sin();
-            for (x, sign) in [(v, 1.0), (c, -1.0)] {
-                let p = soup.at(x) + sign * w * n;
-                soup.move_to(x, p)?;
+                FaceFate::Kept(0)
             }
-        }
+        };
+        let (topology, triangles) = match &self.weld {
+            Some(w) => (&w.topology, &w.triangles[..]),
+            None => (&self.topology, &self.mesh.mesh.triangles[..]),
+        };
+        local_loops(topology, triangles, fate, changed, &[], &produced, 0).len()
     }
-    Ok(copies)
 }

@@ -1,0 +1,199 @@
+//! The tear's soup seen over welded vertices. glTF splits a vertex wherever its UV coordinates
+//! change, so along a seam two faces that meet on the surface share no edge index: the soup
+//! links them as boundary. The walk and the opening look through such seams by labels: every
+//! soup vertex carries the label of its coincident copies (the welded input's canonical vertex,
+//! or the first of a new vertex's copies), and an edge whose soup link is a boundary is joined
+//! to the face holding the same edge by labels, its seam twin. Splitting a seam edge splits the
+//! twin too, at an exact copy of the new vertex, so the copies coincide and pose alike.
+
+use super::super::soup::Soup;
+use super::super::SurgeryError;
+use std::collections::HashMap;
+
+/// The first label given to the far lip of an opened incision vertex (labels below it are soup
+/// vertices: the copy that stands for the others).
+pub(super) const LIP: u32 = 1 << 31;
+
+/// Labels of coincident soup vertices.
+pub(super) struct Seams {
+    /// `label[v]`: the label of soup vertex `v`.
+    label: Vec<u32>,
+    /// The soup vertices of each label that has more than one, or whose group was set.
+    copies: HashMap<u32, Vec<u32>>,
+}
+
+impl Seams {
+    /// Labels of the `n` input vertices: `canon` (the weld's first vertex at each position),
+    /// or each vertex its own when nothing was welded.
+    pub fn new(canon: Option<&[u32]>, n: usize) -> Seams {
+        let label: Vec<u32> = match canon {
+            Some(c) => c.to_vec(),
+            None => (0..n as u32).collect(),
+        };
+        let mut copies: HashMap<u32, Vec<u32>> = HashMap::new();
+        for (v, &l) in label.iter().enumerate() {
+            if l != v as u32 {
+                copies.entry(l).or_insert_with(|| vec![l]).push(v as u32);
+            }
+        }
+        Seams { label, copies }
+    }
+
+    /// The label of soup vertex `v`.
+    #[inline]
+    pub fn label(&self, v: u32) -> u32 {
+        self.label[v as usize]
+    }
+
+    /// Every soup vertex's label.
+    pub fn labels(&self) -> &[u32] {
+        &self.label
+    }
+
+    /// The soup vertices labelled `l`.
+    pub fn copies(&self, l: u32) -> Vec<u32> {
+        self.copies.get(&l).cloned().unwrap_or_else(|| vec![l])
+    }
+
+    /// Register the new soup vertex `v` (the next one) with label `l`.
+    pub fn push(&mut self, v: u32, l: u32) {
+        debug_assert_eq!(
+            v as usize,
+            self.label.len(),
+            "vertices are registered in order"
+        );
+        self.label.push(l);
+        if l != v {
+            self.copies.entry(l).or_insert_with(|| vec![l]).push(v);
+        }
+    }
+
+    /// Split label `l`: the vertices `near` keep it, the vertices `far` get label `lip`.
+    pub fn divide(&mut self, l: u32, near: Vec<u32>, far: Vec<u32>, lip: u32) {
+        for &v in &far {
+            self.label[v as usize] = lip;
+        }
+        self.copies.insert(l, near);
+        self.copies.insert(lip, far);
+    }
+
+    /// The faces around label `l` (every copy's fan), each with the copy it holds.
+    pub fn fan(&self, soup: &Soup, l: u32) -> Result<Vec<(u32, u32)>, SurgeryError> {
+        let mut out = Vec::new();
+        for c in self.copies(l) {
+            for f in soup.fan(c)? {
+                if !out.iter().any(|&(g, _)| g == f) {
+                    out.push((f, c));
+                }
+            }
+        }
+        Ok(out)
+    }
+
+    /// The face across the edge `a b` of face `f`: its soup neighbour, else its seam twin;
+    /// `None` on the surface's boundary.
+    ///
+    /// # Errors
+    /// [`SurgeryError::Broken`] when `f` has no such edge.
+    pub fn across(&self, soup: &Soup, f: u32, a: u32, b: u32) -> Result<Option<u32>, SurgeryError> {
+        let t = soup.tris[f as usize];
+        let Some(k) = (0..3).find(|&k| t[k] != a && t[k] != b) else {
+            return Err(SurgeryError::Broken(format!(
+                "face {f} {t:?} has no edge {a} {b}"
+            )));
+        };
+        let g = soup.nb[f as usize][k];
+        if g != u32::MAX {
+            return Ok(Some(g));
+        }
+        Ok(self.twin(soup, f, k)?.map(|(g, _)| g))
+    }
+
+    /// The other face holding, by labels, the edge opposite corner `k` of face `f`, with its
+    /// corner opposite that edge.
+    fn twin(&self, soup: &Soup, f: u32, k: usize) -> Result<Option<(u32, usize)>, SurgeryError> {
+        let t = soup.tris[f as usize];
+        let (la, lb) = (self.label(t[(k + 1) % 3]), self.label(t[(k + 2) % 3]));
+        if !self.copies.contains_key(&la) && !self.copies.contains_key(&lb) {
+            return Ok(None);
+        }
+        for c in self.copies(la) {
+            for g in soup.fan(c)? {
+                if g == f {
+                    continue;
+                }
+                let l = soup.tris[g as usize].map(|x| self.label(x));
+                if l.contains(&la) && l.contains(&lb) {
+                    let kg = (0..3).find(|&i| l[i] != la && l[i] != lb);
+                    if let Some(kg) = kg {
+                        return Ok(Some((g, kg)));
+                    }
+                }
+            }
+        }
+        Ok(None)
+    }
+
+    /// Split the edge opposite corner `k` of face `f` at the new vertex `v` (registered), and
+    /// its seam twin, if any, at an exact copy of `v`.
+    ///
+    /// # Errors
+    /// [`SurgeryError::Broken`] when the soup's links are inconsistent.
+    pub fn split_edge(
+        &mut self,
+        soup: &mut Soup,
+        f: u32,
+        k: usize,
+        v: u32,
+    ) -> Result<(), SurgeryError> {
+        let twin = if soup.nb[f as usize][k] == u32::MAX {
+            self.twin(soup, f, k)?
+        } else {
+            None
+        };
+        soup.split_edge(f, k, v)?;
+        if let Some((g, kg)) = twin {
+            let c = soup.copy_vertex(v);
+            // A copy on the other side of a seam, not a lip: it is the same incision point.
+            soup.origin[c as usize] = soup.origin[v as usize];
+            self.push(c, self.label(v));
+            soup.split_edge(g, kg, c)?;
+        }
+        Ok(())
+    }
+
+    /// A new vertex on the soup edge `a b` at `a + t (b - a)`, splitting the edge and its seam
+    /// twin; returns the vertex on `a b`'s side.
+    ///
+    /// # Errors
+    /// [`SurgeryError::Broken`] when no face holds the edge; [`SurgeryError::BadMesh`] when the
+    /// new vertex cannot be mapped back to the rest pose.
+    pub fn split_at(
+        &mut self,
+        soup: &mut Soup,
+        a: u32,
+        b: u32,
+        t: f64,
+    ) -> Result<u32, SurgeryError> {
+        let Some(f) = soup
+            .fan(a)?
+            .into_iter()
+            .find(|&f| soup.tris[f as usize].contains(&b))
+        else {
+            return Err(SurgeryError::Broken(format!(
+                "no face holds the edge {a} {b}"
+            )));
+        };
+        let tri = soup.tris[f as usize];
+        let Some(k) = (0..3).find(|&i| tri[i] != a && tri[i] != b) else {
+            return Err(SurgeryError::Broken(format!(
+                "face {f} {tri:?} is degenerate"
+            )));
+        };
+        let p = soup.at(a).lerp(soup.at(b), t);
+        let m = soup.add_vertex(p, &[(a, 1.0 - t), (b, t)])?;
+        self.push(m, m);
+        self.split_edge(soup, f, k, m)?;
+        Ok(m)
+    }
+}
