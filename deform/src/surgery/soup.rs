@@ -256,42 +256,6 @@ impl<'a> Soup<'a> {
         })
     }
 
-    /// The faces around vertex `v`, in order (one direction, then the other from a boundary).
-    ///
-    /// # Errors
-    /// [`SurgeryError::Broken`] when a link leads to a face without `v`.
-    pub fn fan(&self, v: u32) -> Result<Vec<u32>, SurgeryError> {
-        let start = self.vf[v as usize];
-        let mut out = Vec::new();
-        if start == u32::MAX {
-            return Ok(out);
-        }
-        // Across the edge v -> next corner (opposite the corner after it).
-        let step = |f: u32, forward: bool| -> Result<u32, SurgeryError> {
-            let k = self.corner(f, v)?;
-            let across = if forward { (k + 2) % 3 } else { (k + 1) % 3 };
-            Ok(self.nb[f as usize][across])
-        };
-        let mut f = start;
-        loop {
-            out.push(f);
-            let g = step(f, true)?;
-            if g == u32::MAX || g == start || out.len() > 4096 {
-                if g == start {
-                    return Ok(out);
-                }
-                break;
-            }
-            f = g;
-        }
-        let mut f = step(start, false)?;
-        while f != u32::MAX && !out.contains(&f) && out.len() <= 4096 {
-            out.push(f);
-            f = step(f, false)?;
-        }
-        Ok(out)
-    }
-
     /// Faces `f` and `g` stop being neighbours (the edge between them became a boundary).
     pub fn unlink(&mut self, f: u32, g: u32) {
         self.repoint(f, g, u32::MAX);

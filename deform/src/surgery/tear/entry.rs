@@ -84,7 +84,7 @@ pub(super) fn insert_point(
     }
     let v = soup.add_vertex(p, &[(t[0], bary[0]), (t[1], bary[1]), (t[2], bary[2])])?;
     seams.push(v, v);
-    soup.split_face(f, v);
+    seams.split_face(soup, f, v);
     Ok(v)
 }
 

@@ -148,7 +148,8 @@ impl Surgery {
             &src.influences,
             skin,
         );
-        let mut seams = Seams::new(self.weld.as_ref().map(|w| &w.canon[..]), n0);
+        let canon = self.weld.as_ref().map(|w| &w.canon[..]);
+        let mut seams = Seams::new(canon, n0, &src.mesh.triangles);
         let points: Vec<u32> = hits
             .iter()
             .map(|&(f, p)| insert_point(&mut soup, &mut seams, f, p, options.snap))

@@ -79,7 +79,7 @@ fn sides(
     next: u32,
     path: &HashSet<(u32, u32)>,
 ) -> Result<Option<(Vec<u32>, Vec<u32>)>, SurgeryError> {
-    let fan = seams.fan(soup, l)?;
+    let fan = seams.fan(l);
     let copy_in = |f: u32| fan.iter().find(|x| x.0 == f).map(|x| x.1);
     let Some(&(start, _)) = fan.iter().find(|&&(f, c)| {
         let t = soup.tris[f as usize];
@@ -129,29 +129,18 @@ fn divide(
 ) -> Result<(Vec<u32>, Vec<u32>), SurgeryError> {
     let (mut near, mut far) = (Vec::new(), Vec::new());
     for c in seams.copies(l) {
-        let on = |faces: &[u32]| {
-            faces
-                .iter()
-                .copied()
-                .find(|&f| soup.tris[f as usize].contains(&c))
-        };
+        let on = |faces: &[u32]| faces.iter().any(|&f| soup.tris[f as usize].contains(&c));
         match (on(left), on(right)) {
-            (Some(fl), Some(fr)) => {
+            (true, true) => {
                 let d = soup.copy_vertex(c);
                 seams.push(d, d);
                 for &f in right {
-                    for x in soup.tris[f as usize].iter_mut() {
-                        if *x == c {
-                            *x = d;
-                        }
-                    }
+                    seams.replace(soup, f, c, d);
                 }
-                soup.vf[d as usize] = fr;
-                soup.vf[c as usize] = fl;
                 near.push(c);
                 far.push(d);
             }
-            (None, Some(_)) => far.push(c),
+            (false, true) => far.push(c),
             _ => near.push(c),
         }
     }

@@ -5,6 +5,10 @@
 //! or the first of a new vertex's copies), and an edge whose soup link is a boundary is joined
 //! to the face holding the same edge by labels, its seam twin. Splitting a seam edge splits the
 //! twin too, at an exact copy of the new vertex, so the copies coincide and pose alike.
+//!
+//! The faces around each soup vertex are kept here as a list, updated by every edit the tear
+//! makes, so a fan never depends on walking the soup's links (which stop at seams and at the
+//! incision's already opened edges).
 
 use super::super::soup::Soup;
 use super::super::SurgeryError;
@@ -20,12 +24,14 @@ pub(super) struct Seams {
     label: Vec<u32>,
     /// The soup vertices of each label that has more than one, or whose group was set.
     copies: HashMap<u32, Vec<u32>>,
+    /// `faces[v]`: the faces around soup vertex `v`.
+    faces: Vec<Vec<u32>>,
 }
 
 impl Seams {
-    /// Labels of the `n` input vertices: `canon` (the weld's first vertex at each position),
-    /// or each vertex its own when nothing was welded.
-    pub fn new(canon: Option<&[u32]>, n: usize) -> Seams {
+    /// Labels of the input vertices of the triangles `tris`: `canon` (the weld's first vertex
+    /// at each position), or each vertex its own (`n` of them) when nothing was welded.
+    pub fn new(canon: Option<&[u32]>, n: usize, tris: &[[u32; 3]]) -> Seams {
         let label: Vec<u32> = match canon {
             Some(c) => c.to_vec(),
             None => (0..n as u32).collect(),
@@ -36,7 +42,17 @@ impl Seams {
                 copies.entry(l).or_insert_with(|| vec![l]).push(v as u32);
             }
         }
-        Seams { label, copies }
+        let mut faces = vec![Vec::new(); label.len()];
+        for (f, t) in tris.iter().enumerate() {
+            for &v in t {
+                faces[v as usize].push(f as u32);
+            }
+        }
+        Seams {
+            label,
+            copies,
+            faces,
+        }
     }
 
     /// The label of soup vertex `v`.
@@ -63,6 +79,7 @@ impl Seams {
             "vertices are registered in order"
         );
         self.label.push(l);
+        self.faces.push(Vec::new());
         if l != v {
             self.copies.entry(l).or_insert_with(|| vec![l]).push(v);
         }
@@ -77,17 +94,69 @@ impl Seams {
         self.copies.insert(lip, far);
     }
 
-    /// The faces around label `l` (every copy's fan), each with the copy it holds.
-    pub fn fan(&self, soup: &Soup, l: u32) -> Result<Vec<(u32, u32)>, SurgeryError> {
+    /// The faces around label `l` (every copy's), each with the copy it holds.
+    pub fn fan(&self, l: u32) -> Vec<(u32, u32)> {
         let mut out = Vec::new();
         for c in self.copies(l) {
-            for f in soup.fan(c)? {
-                if !out.iter().any(|&(g, _)| g == f) {
-                    out.push((f, c));
-                }
+            out.extend(self.faces[c as usize].iter().map(|&f| (f, c)));
+        }
+        out
+    }
+
+    /// Record that faces `edited` (with their corners before the edit) changed and faces from
+    /// `first_new` on are new.
+    fn refresh(&mut self, soup: &Soup, edited: &[(u32, [u32; 3])], first_new: usize) {
+        for &(f, old) in edited {
+            let now = soup.tris[f as usize];
+            for x in old.into_iter().filter(|x| !now.contains(x)) {
+                self.faces[x as usize].retain(|&g| g != f);
+            }
+            for x in now.into_iter().filter(|x| !old.contains(x)) {
+                self.faces[x as usize].push(f);
             }
         }
-        Ok(out)
+        for f in first_new..soup.tris.len() {
+            for x in soup.tris[f] {
+                self.faces[x as usize].push(f as u32);
+            }
+        }
+    }
+
+    /// Split face `f` into three at the new vertex `v` (registered) inside it.
+    pub fn split_face(&mut self, soup: &mut Soup, f: u32, v: u32) {
+        let (old, first_new) = (soup.tris[f as usize], soup.tris.len());
+        soup.split_face(f, v);
+        self.refresh(soup, &[(f, old)], first_new);
+    }
+
+    /// In face `f`, vertex `c` becomes `d`.
+    pub fn replace(&mut self, soup: &mut Soup, f: u32, c: u32, d: u32) {
+        let old = soup.tris[f as usize];
+        for x in soup.tris[f as usize].iter_mut() {
+            if *x == c {
+                *x = d;
+            }
+        }
+        self.refresh(soup, &[(f, old)], soup.tris.len());
+    }
+
+    /// Split the soup edge opposite corner `k` of face `f` (both its linked faces) at `v`.
+    fn split_linked(
+        &mut self,
+        soup: &mut Soup,
+        f: u32,
+        k: usize,
+        v: u32,
+    ) -> Result<(), SurgeryError> {
+        let g = soup.nb[f as usize][k];
+        let mut edited = vec![(f, soup.tris[f as usize])];
+        if g != u32::MAX {
+            edited.push((g, soup.tris[g as usize]));
+        }
+        let first_new = soup.tris.len();
+        soup.split_edge(f, k, v)?;
+        self.refresh(soup, &edited, first_new);
+        Ok(())
     }
 
     /// The face across the edge `a b` of face `f`: its soup neighbour, else its seam twin;
@@ -106,32 +175,22 @@ impl Seams {
         if g != u32::MAX {
             return Ok(Some(g));
         }
-        Ok(self.twin(soup, f, k)?.map(|(g, _)| g))
+        Ok(self.twin(soup, f, k).map(|(g, _)| g))
     }
 
     /// The other face holding, by labels, the edge opposite corner `k` of face `f`, with its
     /// corner opposite that edge.
-    fn twin(&self, soup: &Soup, f: u32, k: usize) -> Result<Option<(u32, usize)>, SurgeryError> {
+    fn twin(&self, soup: &Soup, f: u32, k: usize) -> Option<(u32, usize)> {
         let t = soup.tris[f as usize];
         let (la, lb) = (self.label(t[(k + 1) % 3]), self.label(t[(k + 2) % 3]));
         if !self.copies.contains_key(&la) && !self.copies.contains_key(&lb) {
-            return Ok(None);
+            return None;
         }
-        for c in self.copies(la) {
-            for g in soup.fan(c)? {
-                if g == f {
-                    continue;
-                }
-                let l = soup.tris[g as usize].map(|x| self.label(x));
-                if l.contains(&la) && l.contains(&lb) {
-                    let kg = (0..3).find(|&i| l[i] != la && l[i] != lb);
-                    if let Some(kg) = kg {
-                        return Ok(Some((g, kg)));
-                    }
-                }
-            }
-        }
-        Ok(None)
+        self.fan(la).into_iter().find_map(|(g, _)| {
+            let l = soup.tris[g as usize].map(|x| self.label(x));
+            let kg = (0..3).find(|&i| l[i] != la && l[i] != lb)?;
+            (g != f && l.contains(&lb)).then_some((g, kg))
+        })
     }
 
     /// Split the edge opposite corner `k` of face `f` at the new vertex `v` (registered), and
@@ -147,17 +206,17 @@ impl Seams {
         v: u32,
     ) -> Result<(), SurgeryError> {
         let twin = if soup.nb[f as usize][k] == u32::MAX {
-            self.twin(soup, f, k)?
+            self.twin(soup, f, k)
         } else {
             None
         };
-        soup.split_edge(f, k, v)?;
+        self.split_linked(soup, f, k, v)?;
         if let Some((g, kg)) = twin {
             let c = soup.copy_vertex(v);
             // A copy on the other side of a seam, not a lip: it is the same incision point.
             soup.origin[c as usize] = soup.origin[v as usize];
             self.push(c, self.label(v));
-            soup.split_edge(g, kg, c)?;
+            self.split_linked(soup, g, kg, c)?;
         }
         Ok(())
     }
@@ -175,10 +234,9 @@ impl Seams {
         b: u32,
         t: f64,
     ) -> Result<u32, SurgeryError> {
-        let Some(f) = soup
-            .fan(a)?
-            .into_iter()
-            .find(|&f| soup.tris[f as usize].contains(&b))
+        let Some(&f) = self.faces[a as usize]
+            .iter()
+            .find(|&&f| soup.tris[f as usize].contains(&b))
         else {
             return Err(SurgeryError::Broken(format!(
                 "no face holds the edge {a} {b}"

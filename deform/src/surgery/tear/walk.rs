@@ -123,7 +123,7 @@ impl Level {
         let r = self.raw(soup, l);
         let mut s = if r.abs() <= self.tiny { 0.0 } else { r };
         if s != 0.0 {
-            'fan: for (f, _) in seams.fan(soup, l)? {
+            'fan: for (f, _) in seams.fan(l) {
                 for x in soup.tris[f as usize] {
                     let rx = self.raw(soup, seams.label(x));
                     if r * rx < 0.0 && r.abs() / (r.abs() + rx.abs()) < self.snap {
@@ -178,7 +178,7 @@ fn moves(
 ) -> Result<Vec<Move>, SurgeryError> {
     let l = seams.label(v);
     let mut out: Vec<Move> = Vec::new();
-    for (f, c) in seams.fan(soup, l)? {
+    for (f, c) in seams.fan(l) {
         let t = soup.tris[f as usize];
         let k = soup.corner(f, c)?;
         let (a, b) = (t[(k + 1) % 3], t[(k + 2) % 3]);
