@@ -11,6 +11,7 @@ mod cli;
 mod drill;
 mod seams;
 mod tear;
+mod tear_steps;
 
 use cga::{Plane, ScaledMotor};
 use deform::skinning::{procedural_arm, Rig, Skinning};

@@ -47,7 +47,7 @@ pub(super) fn first_hit(
 
 /// Make the point `p` on input face `f0` a vertex: a corner within `snap` of it, a point on
 /// an edge when it is that close to the edge (the edge's seam twin split too), else a new
-/// vertex splitting its face in three.
+/// vertex splitting its face in three (a point on an edge is `p` moved onto the edge).
 pub(super) fn insert_point(
     soup: &mut Soup,
     seams: &mut Seams,
@@ -75,9 +75,10 @@ pub(super) fn insert_point(
     }
     if let Some(k) = (0..3).find(|&k| bary[k] < snap) {
         // On the edge opposite corner k.
-        let (i, j) = ((k + 1) % 3, (k + 2) % 3);
-        let s = bary[i] + bary[j];
-        let v = soup.add_vertex(p, &[(t[i], bary[i] / s), (t[j], bary[j] / s)])?;
+        let (a, b) = (t[(k + 1) % 3], t[(k + 2) % 3]);
+        let u = bary[(k + 2) % 3] / (bary[(k + 1) % 3] + bary[(k + 2) % 3]);
+        let q = soup.at(a).lerp(soup.at(b), u);
+        let v = soup.add_vertex(q, &[(a, 1.0 - u), (b, u)])?;
         seams.push(v, v);
         seams.split_edge(soup, f, k, v)?;
         return Ok(v);

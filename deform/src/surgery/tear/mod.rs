@@ -154,22 +154,15 @@ impl Surgery {
             .iter()
             .map(|&(f, p)| insert_point(&mut soup, &mut seams, f, p, options.snap))
             .collect::<Result<_, _>>()?;
+        let planes: Vec<(DVec3, DVec3)> = (0..points.len() - 1)
+            .map(|i| {
+                let ends = [points[i], points[i + 1]].map(|v| soup.at(v));
+                step_plane(i, ends, &scalpel[i + 1])
+            })
+            .collect::<Result<_, _>>()?;
         // Follow each step's plane from one scalpel point to the next.
         let mut incision = vec![points[0]];
-        let mut planes = Vec::new();
         for i in 0..points.len() - 1 {
-            let s = soup.at(points[i]);
-            let next = scalpel[i + 1];
-            let normal = (next.a - s).cross(next.b - s);
-            let len = normal.length();
-            let scale = (next.a - s).length() * (next.b - s).length();
-            if len.is_nan() || len <= 1e-12 * scale {
-                return Err(SurgeryError::BadTool(format!(
-                    "step {i}: the scalpel point and the next blade are collinear: no plane"
-                )));
-            }
-            let normal = normal / len;
-            planes.push((normal, s));
             if seams.label(points[i]) == seams.label(points[i + 1]) {
                 continue;
             }
@@ -177,9 +170,9 @@ impl Surgery {
                 index: i,
                 from: points[i],
                 to: points[i + 1],
-                normal,
-                point: s,
-                blades: [scalpel[i], next],
+                normal: planes[i].0,
+                point: planes[i].1,
+                blades: [scalpel[i], scalpel[i + 1]],
                 snap: options.snap,
                 diagonal: self.diagonal,
             };
@@ -188,7 +181,7 @@ impl Surgery {
         }
         // Open: the faces on one side of the incision get copies of its inner vertices.
         let duplicated =
-            open::open_incision(&mut soup, &mut seams, &incision, &planes, options.open)?;
+            open::open_incision(&mut soup, &mut seams, &mut incision, &planes, options.open)?;
         let new_vertices = soup.rest.len() - n0;
         let changed: Vec<u32> = (0..src.mesh.triangle_count() as u32)
             .filter(|&f| soup.touched[f as usize])
@@ -233,4 +226,28 @@ impl Surgery {
         };
         local_loops(topology, triangles, fate, changed, &[], &produced, 0).len()
     }
+}
+
+/// The plane of step `i` (Algorithm 2, step 5), as `(unit normal, first point)`: through its
+/// two scalpel points `ends` and along the next blade `next`. Where the second point is where
+/// blade `next` enters, this is the paper's plane through the first point and the next
+/// blade's ends; where it was snapped onto a corner or an edge, the plane still holds both
+/// points (and so the whole incision of the step). Two points that coincide take the paper's
+/// plane.
+fn step_plane(i: usize, ends: [DVec3; 2], next: &Scalpel) -> Result<(DVec3, DVec3), SurgeryError> {
+    let [s, t] = ends;
+    let (normal, scale) = if s == t {
+        let n = (next.a - s).cross(next.b - s);
+        (n, (next.a - s).length() * (next.b - s).length())
+    } else {
+        let d = next.b - next.a;
+        ((t - s).cross(d), (t - s).length() * d.length())
+    };
+    let len = normal.length();
+    if len.is_nan() || len <= 1e-12 * scale {
+        return Err(SurgeryError::BadTool(format!(
+            "step {i}: the scalpel points and the next blade are collinear: no plane"
+        )));
+    }
+    Ok((normal / len, s))
 }

@@ -13,7 +13,7 @@ use std::collections::HashSet;
 
 /// Open the incision (soup vertices, first scalpel point to last): its inner points get a
 /// right lip, and with `open` the lips move apart by up to `open` (a sine taper, zero at the
-/// ends). Returns how many points were split.
+/// ends). The incision is left listing the left lip. Returns how many points were split.
 ///
 /// # Errors
 /// [`SurgeryError::Broken`] on inconsistent bookkeeping; [`SurgeryError::BadMesh`] when a
@@ -21,7 +21,7 @@ use std::collections::HashSet;
 pub(super) fn open_incision(
     soup: &mut Soup,
     seams: &mut Seams,
-    incision: &[u32],
+    incision: &mut [u32],
     planes: &[(DVec3, DVec3)],
     open: f64,
 ) -> Result<usize, SurgeryError> {
@@ -55,6 +55,12 @@ pub(super) fn open_incision(
         let lip = LIP + j as u32;
         let (near, far) = divide(soup, seams, l, &left, &right, lip)?;
         split += 1;
+        // A seam copy whose faces all lie on the right is the right lip now.
+        if far.contains(&incision[j]) {
+            if let Some(&v) = near.first() {
+                incision[j] = v;
+            }
+        }
         if open != 0.0 {
             let w = 0.5 * open * (std::f64::consts::PI * arc / total).sin();
             let n = opening_direction(soup, planes, incision[j], left[0]);
