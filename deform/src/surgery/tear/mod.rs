@@ -2,14 +2,26 @@
 //!
 //! For each step the point `S_i` where the blade `A_i B_i` enters the skin is found with the
 //! face index (the first hit from `A_i`) and inserted as a vertex (snapped onto a corner or an
-//! edge within [`TearOptions::snap`] of it). The plane through `S_i` and the next blade
-//! `A_{i+1} B_{i+1}` is then followed over the skin from `S_i` to `S_{i+1}`: each edge the
-//! plane crosses is split at the crossing (both its faces), corners within the snap fraction
-//! are taken instead, so the incision becomes a chain of mesh edges. A sequence of steps makes
-//! one longer incision. Every incision vertex but the two ends is then duplicated: the faces
-//! on one side of the incision keep it, those on the other side get the copy, so the surface
-//! opens; [`TearOptions::open`] moves the two lips apart along the planes' normals (tapered to
-//! zero at the ends). New vertices get interpolated weights (4 largest, renormalised).
+//! edge within [`TearOptions::snap`] of it; `entry.rs`). Between two points the incision is
+//! the curve where the surface meets the swept blade: the plane through `S_i` and the next
+//! blade `A_{i+1} B_{i+1}` (through `S_i` and `S_{i+1}` along that blade when `S_{i+1}` was
+//! snapped). That curve is traced from `S_i` both ways, across as many faces as it crosses,
+//! and the arc that joins `S_{i+1}` while staying nearest the swept blade is taken (`walk.rs`);
+//! each edge it crosses is split at the crossing (both its faces), corners within the snap
+//! fraction are taken instead, so the incision becomes a chain of mesh edges. Steps are as
+//! long as the model allows: only a blade that misses the surface, or two points the curve
+//! does not join (say a blade that enters another limb), are refused, saying where. A sequence
+//! of steps makes one longer incision. Every incision point but the two ends is then split in
+//! two lips: the faces on one side of the incision keep it, those on the other side get a
+//! copy, so the surface opens (`open.rs`); [`TearOptions::open`] moves the two lips apart
+//! along the planes' normals (tapered to zero at the ends). New vertices get interpolated
+//! weights (4 largest, renormalised).
+//!
+//! glTF models split vertices along UV seams. The tear sees through them (`seams.rs`): the
+//! curve is followed from one side of a seam to the other, a seam edge it crosses is split on
+//! both sides at coincident copies of one new vertex, an incision point on a seam opens on
+//! every copy, and the boundary loops are counted over the welded surface, as a cut and a
+//! drill count them.
 
 mod entry;
 mod open;
@@ -61,17 +73,20 @@ pub struct TearResult {
     pub mesh: SkinnedMesh,
     /// Where each vertex comes from.
     pub origin: Vec<VertexOrigin>,
-    /// The incision: its vertices from the first scalpel point to the last (one lip).
+    /// The incision: its vertices from the first scalpel point to the last (the left lip).
+    /// Consecutive vertices share an edge of the welded surface (where the incision crosses
+    /// a UV seam, a vertex may stand for its coincident copy).
     pub incision: Vec<u32>,
     /// Each step's plane, as `(unit normal, point on it)`.
     pub planes: Vec<(DVec3, DVec3)>,
-    /// Vertices added (incision points and copies).
+    /// Vertices added (incision points, their copies across UV seams, and the lips' copies).
     pub new_vertices: usize,
-    /// Incision vertices duplicated (the inner ones).
+    /// Inner incision points split into two lips.
     pub duplicated: usize,
     /// Input faces re-triangulated.
     pub changed_faces: usize,
-    /// Boundary loops of the result.
+    /// Boundary loops of the result, over the welded surface when the input has coincident
+    /// vertices (UV seams): a slit through a closed surface is one loop.
     pub boundary_loops: usize,
 }
 
@@ -83,11 +98,14 @@ impl Surgery {
     ///
     /// # Errors
     /// [`SurgeryError::BadTool`] for fewer than two positions, a non-finite or zero-length
-    /// blade, a plane that is not defined (the blade moved along itself), an incision that
-    /// cannot be followed from one scalpel point to the next (steps too large for the mesh),
-    /// an opening over [`MAX_OPEN_PER_DIAGONAL`] bounding-box diagonals;
-    /// [`SurgeryError::Misses`] when a blade does not touch the surface;
-    /// [`SurgeryError::Broken`] when the mesh bookkeeping breaks an invariant (a bug).
+    /// blade, a blade that does not touch the surface (with how far it passes and the nearest
+    /// surface point), a plane that is not defined (the blade moved along itself), two
+    /// scalpel points that the plane's curve over the surface does not join (with where the
+    /// curve goes and how near it comes), an opening over [`MAX_OPEN_PER_DIAGONAL`]
+    /// bounding-box diagonals, posed positions of the wrong length;
+    /// [`SurgeryError::BadMesh`] when a new vertex cannot be mapped back to the rest pose (a
+    /// singular blended skin transform); [`SurgeryError::Broken`] when the mesh bookkeeping
+    /// breaks an invariant (a bug).
     pub fn tear(
         &self,
         scalpel: &[Scalpel],

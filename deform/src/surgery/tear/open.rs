@@ -11,6 +11,9 @@ use super::seams::{Seams, LIP};
 use glam::DVec3;
 use std::collections::HashSet;
 
+/// The faces around an incision point on its left and on its right.
+type Sides = (Vec<u32>, Vec<u32>);
+
 /// Open the incision (soup vertices, first scalpel point to last): its inner points get a
 /// right lip, and with `open` the lips move apart by up to `open` (a sine taper, zero at the
 /// ends). The incision is left listing the left lip. Returns how many points were split.
@@ -42,7 +45,7 @@ pub(super) fn open_incision(
     let total = along[m - 1];
     // The sides around every point, found before any is split: splitting one unlinks the
     // faces along its incision edges, which breaks the fans of its neighbours on the path.
-    let sided: Vec<Option<(Vec<u32>, Vec<u32>)>> = (1..m - 1)
+    let sided: Vec<Option<Sides>> = (1..m - 1)
         .map(|j| sides(soup, seams, labels[j], labels[j + 1], &path))
         .collect::<Result<_, _>>()?;
     let mut split = 0;
@@ -84,7 +87,7 @@ fn sides(
     l: u32,
     next: u32,
     path: &HashSet<(u32, u32)>,
-) -> Result<Option<(Vec<u32>, Vec<u32>)>, SurgeryError> {
+) -> Result<Option<Sides>, SurgeryError> {
     let fan = seams.fan(l);
     let copy_in = |f: u32| fan.iter().find(|x| x.0 == f).map(|x| x.1);
     let Some(&(start, _)) = fan.iter().find(|&&(f, c)| {
