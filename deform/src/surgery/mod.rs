@@ -15,7 +15,8 @@
 //! loops and caps are found over the welded surface (a cut of CesiumMan closes with two caps
 //! instead of meeting hundreds of seam loops), while each piece keeps every input vertex; the
 //! copies of a new vertex on a seam get identical rest positions and weights. Drills count their
-//! loops the same way (unless they refine the mesh); tears count over the input's own vertices.
+//! loops the same way (unless they refine the mesh), and so do tears, whose incision also
+//! crosses seams as if they were not there.
 //!
 //! The cut can be made on the rest mesh or on a posed frame ([`Frame::Posed`]): the plane then
 //! classifies the posed positions, and each new vertex is mapped back to the rest pose through

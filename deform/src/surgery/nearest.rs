@@ -60,6 +60,16 @@ pub(crate) fn nearest_to_segment(
     best
 }
 
+/// The distance from `x` to the convex hull of four points (the union of the four triangles
+/// they make), e.g. the quad a blade sweeps between two time steps.
+pub(crate) fn distance_to_hull(x: DVec3, corners: &[DVec3; 4]) -> f64 {
+    let [a, b, c, d] = *corners;
+    [(a, b, c), (a, c, d), (a, b, d), (b, c, d)]
+        .iter()
+        .map(|&(p, q, r)| x.distance(closest_on_triangle(x, p, q, r)))
+        .fold(f64::INFINITY, f64::min)
+}
+
 /// The point of triangle `p q r` nearest to `x` (Ericson, "Real-Time Collision Detection",
 /// 5.1.5: by the Voronoi regions of the corners, edges and face).
 fn closest_on_triangle(x: DVec3, p: DVec3, q: DVec3, r: DVec3) -> DVec3 {

@@ -116,6 +116,20 @@ impl<'a> Soup<'a> {
         Ok((self.rest.len() - 1) as u32)
     }
 
+    /// Re-derive vertex `v`'s sources from `parts`: a seam copy of a new vertex lies on its own
+    /// side's edge, and its attributes (UVs) come from that side's vertices.
+    pub fn set_sources(&mut self, v: u32, parts: &[(u32, f64)]) {
+        let mut from = Influences {
+            width: self.sources.width,
+            ..Influences::default()
+        };
+        push_interpolated(&self.sources, parts, &mut from);
+        let w = self.sources.width;
+        let r = v as usize * w..(v as usize + 1) * w;
+        self.sources.joints[r.clone()].copy_from_slice(&from.joints);
+        self.sources.weights[r].copy_from_slice(&from.weights);
+    }
+
     /// Vertex `v`'s position in the tool's frame.
     #[inline]
     pub fn at(&self, v: u32) -> DVec3 {
@@ -268,42 +282,6 @@ impl<'a> Soup<'a> {
         t.iter().position(|&x| x == v).ok_or_else(|| {
             SurgeryError::Broken(format!("vertex {v} is not a corner of face {f} {t:?}"))
         })
-    }
-
-    /// The faces around vertex `v`, in order (one direction, then the other from a boundary).
-    ///
-    /// # Errors
-    /// [`SurgeryError::Broken`] when a link leads to a face without `v`.
-    pub fn fan(&self, v: u32) -> Result<Vec<u32>, SurgeryError> {
-        let start = self.vf[v as usize];
-        let mut out = Vec::new();
-        if start == u32::MAX {
-            return Ok(out);
-        }
-        // Across the edge v -> next corner (opposite the corner after it).
-        let step = |f: u32, forward: bool| -> Result<u32, SurgeryError> {
-            let k = self.corner(f, v)?;
-            let across = if forward { (k + 2) % 3 } else { (k + 1) % 3 };
-            Ok(self.nb[f as usize][across])
-        };
-        let mut f = start;
-        loop {
-            out.push(f);
-            let g = step(f, true)?;
-            if g == u32::MAX || g == start || out.len() > 4096 {
-                if g == start {
-                    return Ok(out);
-                }
-                break;
-            }
-            f = g;
-        }
-        let mut f = step(start, false)?;
-        while f != u32::MAX && !out.contains(&f) && out.len() <= 4096 {
-            out.push(f);
-            f = step(f, false)?;
-        }
-        Ok(out)
     }
 
     /// Faces `f` and `g` stop being neighbours (the edge between them became a boundary).

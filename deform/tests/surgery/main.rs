@@ -12,6 +12,7 @@ mod drill;
 mod look;
 mod seams;
 mod tear;
+mod tear_steps;
 
 use cga::{Plane, ScaledMotor};
 use deform::skinning::{procedural_arm, Rig, Skinning};

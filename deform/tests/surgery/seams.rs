@@ -13,7 +13,7 @@ use std::collections::HashMap;
 
 /// The triangles with every vertex replaced by the first vertex at its position (an
 /// independent weld: exact positions, no tolerance).
-fn welded(m: &Mesh) -> Vec<[u32; 3]> {
+pub(crate) fn welded(m: &Mesh) -> Vec<[u32; 3]> {
     let mut first = HashMap::new();
     let canon: Vec<u32> = m
         .positions

@@ -100,11 +100,15 @@ limb reports 1 per piece and a capped one 0.";
 
 /// What `tear --json` reports.
 const TEAR_COUNTS: &str = "Reported counts (--json): steps: scalpel positions minus one; \
-incision_vertices: points of the incision; new_vertices: vertices added (incision points and \
-their copies); duplicated: inner incision vertices copied to make the two lips; \
-changed_faces: input triangles re-triangulated; boundary_loops: closed chains of boundary \
-edges around the changed region, counted over the input's own vertices (a glTF model split \
-along UV seams counts its seam openings there too).";
+incision_vertices: points of the incision, from the first scalpel point to the last; \
+new_vertices: vertices added (incision points, their copies on the far side of UV seams, and \
+the lips' copies); duplicated: inner incision points split into two lips; changed_faces: \
+input triangles re-triangulated; boundary_loops: closed chains of boundary edges through the \
+changed region, counted over the welded surface as for cut (glTF's seam copies are one \
+vertex), so a slit through a closed surface is 1, on the rest pose and on a posed frame \
+alike. Between two scalpel positions the incision follows the surface along the plane \
+swept by the blade, however far apart they are; two positions whose entry points that \
+curve does not join (say one blade enters another limb) are refused, saying where.";
 
 /// What `drill --json` reports.
 const DRILL_COUNTS: &str = "Reported counts (--json): new_vertices: points made where the \
