@@ -48,7 +48,7 @@ pub fn read_gltf_with(path: impl AsRef<Path>, options: &GltfReadOptions) -> Resu
 /// where present, inverse bind matrices (identity when absent, as the specification says),
 /// and every animation's translation, rotation and scale channels with `LINEAR`, `STEP` and
 /// `CUBICSPLINE` samplers. The model's look is kept in [`Rig::look`]: the other vertex
-/// attributes of those primitives (UVs, colours, normals; not tangents), their materials, and
+/// attributes of those primitives (UVs, colours, normals, custom `_NAME` ones; not tangents), their materials, and
 /// the file's materials, textures, samplers and images (image files beside the model are read
 /// under the same rules as buffers, and embedded when written).
 ///

@@ -9,6 +9,7 @@ use deform::surgery::{
     CutOptions, Drill, DrillOptions, Frame, Scalpel, SkinnedMesh, Surgery, TearOptions,
 };
 use glam::DVec3;
+use serde_json::json;
 use std::collections::HashSet;
 
 fn model(name: &str) -> Option<Rig> {
@@ -276,4 +277,74 @@ fn caps_get_planar_uvs_inside_their_rim() {
     let p = &caps.mesh.positions;
     let (i, j) = (0, p.len() / 2);
     assert!(p[i].distance(p[j]) > 0.0 && cap_uv[i] != cap_uv[j]);
+}
+
+/// A model of two primitives with two materials, cut across both: every written primitive
+/// holds triangles of one input primitive and carries that primitive's material.
+#[test]
+fn a_cut_keeps_each_material_on_its_own_triangles() {
+    use deform::skinning::{procedural_arm, VertexAttribute};
+    use deform::surgery::identity_sources;
+    let arm = procedural_arm(12, 20);
+    let n = arm.mesh.vertex_count();
+    // Two primitives: the triangles of the lower and the upper side (by centroid y).
+    let up = |t: &[u32; 3]| {
+        t.iter()
+            .map(|&v| arm.mesh.positions[v as usize].y)
+            .sum::<f64>()
+            > 0.0
+    };
+    let whole = SkinnedMesh {
+        mesh: arm.mesh.clone(),
+        influences: arm.influences.clone(),
+        sources: identity_sources(n),
+    };
+    let idx: Vec<bool> = arm.mesh.triangles.iter().map(up).collect();
+    let (low, high) = (
+        whole.with_triangles(|f| !idx[f]),
+        whole.with_triangles(|f| idx[f]),
+    );
+    let mut rig = arm.with_parts(&[low.part(), high.part()]).unwrap();
+    assert_eq!(rig.primitives.len(), 2);
+    let m = rig.mesh.vertex_count();
+    rig.look.materials = vec![json!({"name": "low"}), json!({"name": "high"})];
+    rig.look.primitive_materials = vec![Some(0), Some(1)];
+    // A custom attribute naming each vertex's primitive: interpolation within a primitive
+    // keeps it, so a written primitive mixing the two would show it.
+    let side: Vec<f32> = rig
+        .primitives
+        .iter()
+        .flat_map(|p| std::iter::repeat_n(p.primitive as f32, p.vertex_count))
+        .collect();
+    assert_eq!(side.len(), m);
+    rig.look.attributes = vec![VertexAttribute {
+        name: "_PRIMITIVE".into(),
+        width: 1,
+        values: side,
+    }];
+    let s = Surgery::new(&rig.mesh, &rig.influences).unwrap();
+    let plane = cga::Plane::from_normal_distance(DVec3::X, 4.1);
+    let cut = s.cut(&plane, Frame::Rest, &CutOptions::default()).unwrap();
+    let parts: Vec<RigPart> = cut.pieces.iter().map(|p| p.mesh.part()).collect();
+    let made = rig.with_parts(&parts).unwrap();
+    // Each piece crosses both sides: two primitives per piece.
+    assert_eq!(made.primitives.len(), 4);
+    let bytes = glb_bytes(&made, &GlbOptions::default()).unwrap();
+    let out = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../target/gltf-out");
+    std::fs::create_dir_all(&out).unwrap();
+    std::fs::write(out.join("look-two-materials.glb"), &bytes).unwrap();
+    // Custom (`_`-prefixed) attributes are read back, as glTF allows them.
+    let back = parse_gltf(&bytes, "two-materials", None).unwrap();
+    assert_eq!(back.look.primitive_materials, made.look.primitive_materials);
+    for (k, p) in back.primitives.iter().enumerate() {
+        let material = back.look.primitive_materials[k].expect("a material") as f32;
+        let tag = back.look.attribute("_PRIMITIVE").unwrap();
+        for v in p.vertex_offset..p.vertex_offset + p.vertex_count {
+            let got = tag.row(v)[0];
+            assert!(
+                (got - material).abs() < 1e-6,
+                "primitive {k} (material {material}): vertex {v} comes from primitive {got}"
+            );
+        }
+    }
 }
