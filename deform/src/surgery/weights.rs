@@ -49,8 +49,9 @@ pub fn push_copy(src: &Influences, v: u32, out: &mut Influences) {
 }
 
 /// Sources of the input vertices themselves: row `v` is `(v, 1)`. Rows are
-/// [`NEW_VERTEX_INFLUENCES`] wide; [`push_interpolated`] and [`push_copy`] extend them as they
-/// extend the weights, with input vertex indices in place of joints.
+/// [`NEW_VERTEX_INFLUENCES`] wide; the surgery extends them as it extends the weights
+/// ([`push_interpolated`] for new vertices, copies for copied ones), with input vertex indices
+/// in place of joints.
 pub fn identity_sources(n: usize) -> Influences {
     let width = NEW_VERTEX_INFLUENCES;
     let mut s = Influences {
