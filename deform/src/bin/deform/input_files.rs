@@ -2,7 +2,8 @@
 //! the checks every command makes before reading (no output names an input, each output
 //! names a format the command writes).
 
-use crate::output_files::{check_formats, check_outputs, ObjInputExtras, MESH_FORMATS};
+use crate::obj_extras::ObjInputExtras;
+use crate::output_files::{check_formats, check_outputs, MESH_FORMATS};
 use crate::shared_args::{MeshInput, OutputArgs, RigInput};
 use anyhow::{bail, Context, Result};
 use deform::input::{parse_selection_json, selection_from_dmat, Selection};

@@ -13,6 +13,7 @@ mod finish;
 mod input_files;
 mod interrupt;
 mod numbers;
+mod obj_extras;
 mod output_files;
 mod overlays;
 mod preview;

@@ -2,6 +2,7 @@
 //! in a format the command writes, and every file is written to a temporary file beside it
 //! and renamed, so a failure never leaves a half-written file.
 
+use crate::obj_extras::ObjInputExtras;
 use crate::shared_args::OutputArgs;
 use anyhow::{bail, Context, Result};
 use deform::Mesh;
@@ -99,33 +100,6 @@ pub fn write_atomic(path: &Path, write: impl FnOnce(&mut dyn Write) -> Result<()
         let _ = std::fs::remove_file(&tmp);
     }
     result.with_context(|| format!("writing {}", path.display()))
-}
-
-/// What an OBJ input had beside positions and faces: its texture coordinates by face corner,
-/// and whether it had normals. A deformed OBJ output keeps the first and recomputes the
-/// second.
-#[derive(Clone, Debug, Default)]
-pub struct ObjInputExtras {
-    pub texture: Option<deform::io::ObjTexture>,
-    pub normals: bool,
-}
-
-impl ObjInputExtras {
-    /// Read them from an OBJ file (none for other formats or unreadable files: the mesh
-    /// itself was read and checked before).
-    pub fn read(path: &Path) -> ObjInputExtras {
-        let obj = path
-            .extension()
-            .is_some_and(|e| e.eq_ignore_ascii_case("obj"));
-        let Some(text) = obj.then(|| std::fs::read_to_string(path).ok()).flatten() else {
-            return ObjInputExtras::default();
-        };
-        let texture = deform::io::parse_obj_textured(&text, "")
-            .ok()
-            .and_then(|(_, t)| t);
-        let normals = text.lines().any(|l| l.starts_with("vn "));
-        ObjInputExtras { texture, normals }
-    }
 }
 
 /// Write a deformed mesh as [`write_mesh`] does; an OBJ keeps the OBJ input's texture
