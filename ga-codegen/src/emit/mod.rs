@@ -12,6 +12,8 @@
 //! - `types.rs`: one struct per declared type with its methods and scalar operators;
 //! - `operators.rs`: binary operators between declared types and conversions;
 //! - `sandwich.rs`: fused sandwich products and their matrix (outermorphism) form;
+//! - `decompose.rs`, `exp_log.rs`: closed-form `exp`, `log`, `sqrt` and `normalize` of even
+//!   versors by the invariant decomposition of bivectors;
 //! - `lanes.rs`: paired-lane (`F64x2`) forms of dense geometric products;
 //! - `library.rs`: serde and bytemuck impls and the list of types, for a library's API;
 //! - `summary.rs`: the human-readable table of what was emitted.
@@ -20,6 +22,8 @@
 //! `syn::File` and formats it with prettyplease, and the `algebra!` macro returns the tokens
 //! as they are.
 
+mod decompose;
+mod exp_log;
 mod infer;
 mod lanes;
 mod library;
@@ -30,6 +34,8 @@ mod sandwich;
 mod summary;
 mod types;
 
+pub use decompose::Refusal;
+pub use exp_log::refusals;
 pub use render::snake;
 
 use crate::spec::Spec;
@@ -366,6 +372,7 @@ pub fn generate(spec: &Spec, opts: &EmitOptions) -> Result<Generated, GenError> 
     for d in &spec.sandwiches {
         g.sandwich(d)?;
     }
+    g.exp_log();
     if opts.library {
         g.library_items();
     }
