@@ -46,6 +46,12 @@ fn grade_part(m: &SymMv, k: u32) -> SymMv {
     )
 }
 
+/// Whether `p` is a sum of squares with negative coefficients (so never positive).
+fn negative_squares(p: &Poly) -> bool {
+    p.0.iter()
+        .all(|(m, c)| m.len() == 2 && m[0] == m[1] && *c < Rational::ZERO)
+}
+
 /// Whether a type is a bivector type (fields only, every blade of grade 2).
 fn is_bivector(t: &TypeDef) -> bool {
     t.constants.is_empty() && !t.fields.is_empty() && t.fields.iter().all(|f| grade(f.bitmap) == 2)
@@ -431,9 +437,13 @@ impl Gen<'_> {
     fn log_impl(&mut self, vt: &TypeDef, kind: SpanKind) -> TokenStream {
         let s = self.s.clone();
         let v = SymMv::of_type(vt, 0);
-        let lo = match self.infer(&grade_part(&v, 2)) {
-            OutType::Type(li) if self.spec.types[li].constants.is_empty() => li,
-            _ => return TokenStream::new(),
+        // The smallest bivector type holding every bivector blade of `V`.
+        let g2: Vec<Bitmap> = grade_part(&v, 2).support();
+        let Some(lo) = self.by_size.iter().copied().find(|&i| {
+            let t = &self.spec.types[i];
+            is_bivector(t) && g2.iter().all(|b| t.blades().any(|x| x == *b))
+        }) else {
+            return TokenStream::new();
         };
         let spec = self.spec;
         let lt = &spec.types[lo];
@@ -447,6 +457,9 @@ impl Gen<'_> {
         let (wp_stmt, wp) = cx.local("wp", &grade_part(&pp, 4), None);
         let qp = self.table.product(&wp, &wp, Product::Geometric).get(0);
         let wpp = grade_part(&self.table.product(&wp, &p, Product::Geometric), 2);
+        if qp.is_zero() && negative_squares(&pp.get(0)) {
+            return self.log_null(vt, lt, cx, [p_stmt, r4_stmt, wp_stmt], sp, &p, &r4, &wpp);
+        }
         let squares = if qp.is_zero() {
             quote!(let (mr, mo) = (sp.min(0.0), sp.max(0.0));)
         } else {
@@ -602,7 +615,95 @@ impl Gen<'_> {
         }
     }
 
-    /// `impl EvenVersor for V` when `V (a + W)` stays in `V` for the grade-4 part `W` of
+    /// `impl Log for V` when `<P P>_0` is a negative sum of squares and `W W = 0` identically:
+    /// `P` is a rotation (or nothing) plus a null part (PGA and CGA motors), so the squares are
+    /// `<P P>_0` and `0` with nothing to solve, and the null part needs no scaling.
+    #[allow(clippy::too_many_arguments)]
+    fn log_null(
+        &mut self,
+        vt: &TypeDef,
+        lt: &TypeDef,
+        mut cx: Ctx<'_>,
+        stmts: [TokenStream; 3],
+        sp: TokenStream,
+        p: &SymMv,
+        r4: &SymMv,
+        wpp: &SymMv,
+    ) -> TokenStream {
+        let s = self.s.clone();
+        let r0 = cx.at(&SymMv::of_type(vt, 0), 0);
+        let keys: Vec<Bitmap> = p.0.keys().copied().collect();
+        // pr = p - (W p) / (2 <P P>_0): the rotation part.
+        let pr_vals = keys.iter().map(|b| {
+            let pe = cx.at(p, *b);
+            if wpp.0.contains_key(b) {
+                let we = cx.at(wpp, *b);
+                quote!(#pe - (#we) * k)
+            } else {
+                pe
+            }
+        });
+        let n = proc_macro2::Literal::usize_unsuffixed(keys.len());
+        let pr_stmt = quote!(let pr: [#s; #n] = [#(#pr_vals),*];);
+        let pr_sym = SymMv(
+            keys.iter()
+                .enumerate()
+                .map(|(i, b)| {
+                    let var = Var {
+                        operand: 3 + cx.locals.len() as u8,
+                        field: i as u16,
+                    };
+                    (*b, Poly::var(var, Rational::ONE))
+                })
+                .collect(),
+        );
+        cx.locals.push(ident("pr"));
+        let prr4 = grade_part(&self.table.product(&pr_sym, r4, Product::Geometric), 2);
+        let result = build(lt, |x| {
+            keys.iter().position(|b| *b == x).map(|i| {
+                let il = proc_macro2::Literal::usize_unsuffixed(i);
+                let mut t = quote!(kr * pr[#il]);
+                if wpp.0.contains_key(&x) {
+                    let we = cx.at(wpp, x);
+                    t.extend(quote!(+ r0 * (#we) * k));
+                }
+                if prr4.0.contains_key(&x) {
+                    let re = cx.at(&prr4, x);
+                    t.extend(quote!(- (#re)));
+                }
+                t
+            })
+        });
+        let [p_stmt, r4_stmt, wp_stmt] = stmts;
+        let (vn, ln) = (ident(&vt.name), ident(&lt.name));
+        let d = doc(&format!(
+            "The principal logarithm of a unit `{}` (normalise first otherwise), in closed              form: `exp(log(v)) = ±v`, the sign that makes the scalar part non-negative (the              shortest motion; `log(-v) = log(v)`). Here the bivector part `P` is a rotation              plus a null part (a translation): `<P P>_0 = -sin^2(t) <= 0` and `(P ^ P)^2 = 0`.              The rotation is `pr = P - (P ^ P) P / (2 <P P>_0)`, its half-angle              `t = atan2(sqrt(-<P P>_0), <v>_0)` in `[0, pi/2]` (exact at zero and at a half              turn: no division by the scalar part or by a sine), and the translation              `<v>_0 (P - pr) - <pr <v>_4>_2`; `log = (t / sin t) pr + translation`. A pure              translation (`<P P>_0 = 0`) returns `P` itself.",
+            vt.name
+        ));
+        quote! {
+            impl Log for #vn {
+                type Output = #ln;
+                #d
+                #[inline]
+                #[allow(unused_variables, clippy::neg_multiply, clippy::double_parens)]
+                fn log(self) -> #ln {
+                    let sg: #s = if #r0 < 0.0 { -1.0 } else { 1.0 };
+                    let r0: #s = sg * (#r0);
+                    #p_stmt
+                    #r4_stmt
+                    let sp: #s = #sp;
+                    #wp_stmt
+                    let k: #s = if sp != 0.0 { 0.5 / sp } else { 0.0 };
+                    #pr_stmt
+                    let a = (-sp).max(0.0).sqrt();
+                    let kr = if a > 0.0 { a.atan2(r0) / a } else { 1.0 / r0 };
+                    #result
+                }
+            }
+        }
+    }
+
+    /// `impl EvenVersor for V` when `(a + W) V` stays in `V` for the grade-4 part `W` of
     /// `V ~V`.
     fn root_impl(&mut self, vt: &TypeDef) -> TokenStream {
         let s = self.s.clone();
@@ -638,7 +739,8 @@ impl Gen<'_> {
                 y.0.insert(*b, Poly::var(var, -Rational::ONE));
             }
             cx.locals.push(ident("y"));
-            let vy = self.table.product(&v, &y, Product::Geometric);
+            // On the left: (y v)(y v)~ = y (v ~v) y = 1, as y is a function of v ~v.
+            let vy = self.table.product(&y, &v, Product::Geometric);
             if !vy.support().iter().all(|b| vt.blades().any(|x| x == *b)) {
                 return TokenStream::new();
             }
@@ -680,8 +782,8 @@ impl Gen<'_> {
             "`self` divided by the square root of `self ~self`, in closed form. `x = self ~self` \
              is a scalar `n0` plus a grade-4 part `n4` with `n4 n4 = q` a scalar, so \
              `sqrt(x) = (x + sqrt(N)) / sqrt(2 (n0 + sqrt(N)))` with `N = n0^2 - q`, and \
-             `self / sqrt(x) = self (a - n4) / sqrt(2 a N)`, `a = n0 + sqrt(N)` (for PGA and \
-             CGA motors `q = 0`: `self (1 - n4/(2 n0)) / sqrt(n0)`). `self` is first divided by \
+             `self / sqrt(x) = (a - n4) self / sqrt(2 a N)` (on the left, so that the result times its reverse is `x^(-1/2) x x^(-1/2) = 1` even when `n4` does not commute with `self`), `a = n0 + sqrt(N)` (for PGA and \
+             CGA motors `q = 0`: `(1 - n4/(2 n0)) self / sqrt(n0)`). `self` is first divided by \
              its largest coefficient, so huge and tiny `{}`s normalise without overflow. Not \
              finite for zero.",
             vt.name
