@@ -46,6 +46,12 @@ fn grade_part(m: &SymMv, k: u32) -> SymMv {
     )
 }
 
+/// `m / 2`: the grade-4 locals hold `W/2`, which saves the factors 2 of `B ^ B` and the
+/// halves of `W/2` and `(W B)/2`.
+fn half(m: &SymMv) -> SymMv {
+    SymMv::default().add_scaled(m, Rational::new(1, 2))
+}
+
 /// Whether `p` is a sum of squares with negative coefficients (so never positive).
 fn negative_squares(p: &Poly) -> bool {
     p.0.iter()
@@ -324,7 +330,8 @@ impl Gen<'_> {
         let b = of_type_on(bt, keep);
         let bb = self.table.product(&b, &b, Product::Geometric);
         let sq = cx.poly(&bb.get(0));
-        let (w_stmt, w) = cx.local("w", &grade_part(&bb, 4), None);
+        // `w` holds W/2, `wb` then (W B)/2 and `q` is (W W)/4.
+        let (w_stmt, w) = cx.local("w", &half(&grade_part(&bb, 4)), None);
         let q = self.table.product(&w, &w, Product::Geometric).get(0);
         let wb = grade_part(&self.table.product(&w, &b, Product::Geometric), 2);
         let (wb_stmt, wb) = cx.local("wb", &wb, None);
@@ -376,7 +383,7 @@ impl Gen<'_> {
             let qe = cx.poly(&q);
             (
                 quote! {
-                    let q: #s = #qe;
+                    let q: #s = 4.0 * (#qe);
                     let (l1, l2) = exp_log_squares(s, q);
                     let [c, alpha, beta, s12] = exp_log_coefficients(l1, l2);
                 },
@@ -401,13 +408,13 @@ impl Gen<'_> {
                     }
                     if wbref.0.contains_key(&x) {
                         let e = cx.at(wbref, x);
-                        t.push(quote!(0.5 * beta * #e));
+                        t.push(quote!(beta * #e));
                     }
                     (!t.is_empty()).then(|| sum(t))
                 }
                 4 if wref.0.contains_key(&x) => {
                     let e = cx.at(wref, x);
-                    Some(quote!(0.5 * s12 * #e))
+                    Some(quote!(s12 * #e))
                 }
                 _ => None,
             }
@@ -454,7 +461,8 @@ impl Gen<'_> {
         let (r4_stmt, r4) = cx.local("r4", &grade_part(&v, 4), Some(&sg));
         let pp = self.table.product(&p, &p, Product::Geometric);
         let sp = cx.poly(&pp.get(0));
-        let (wp_stmt, wp) = cx.local("wp", &grade_part(&pp, 4), None);
+        // `wp` holds (P ^ P)/2, so `wpp` is ((P ^ P) P)/2.
+        let (wp_stmt, wp) = cx.local("wp", &half(&grade_part(&pp, 4)), None);
         let qp = self.table.product(&wp, &wp, Product::Geometric).get(0);
         let wpp = grade_part(&self.table.product(&wp, &p, Product::Geometric), 2);
         if qp.is_zero() && negative_squares(&pp.get(0)) {
@@ -464,22 +472,23 @@ impl Gen<'_> {
             quote!(let (mr, mo) = (sp.min(0.0), sp.max(0.0));)
         } else {
             let qe = cx.poly(&qp);
-            quote!(let (mr, mo) = exp_log_squares(sp, #qe);)
+            quote!(let (mr, mo) = exp_log_squares(sp, 4.0 * (#qe));)
         };
         // p_r = (mr p - (W p)/2) / (mr - mo): the part with the smaller square.
         let pr_vals = p.0.keys().map(|b| {
             let pe = cx.at(&p, *b);
             if wpp.0.contains_key(b) {
                 let we = cx.at(&wpp, *b);
-                quote!((mr * #pe - 0.5 * (#we)) * k)
+                quote!((mr * #pe - (#we)) * k)
             } else {
                 quote!(mr * #pe * k)
             }
         });
         let n = proc_macro2::Literal::usize_unsuffixed(p.0.len());
+        let tiny = self.tiny();
         let pr_stmt = quote! {
             let d = mr - mo;
-            let pr: [#s; #n] = if d != 0.0 { let k = 1.0 / d; [#(#pr_vals),*] } else { [0.0; #n] };
+            let pr: [#s; #n] = if d.abs() > #tiny { let k = 1.0 / d; [#(#pr_vals),*] } else { [0.0; #n] };
         };
         let pr_sym = SymMv(
             p.0.keys()
@@ -615,6 +624,16 @@ impl Gen<'_> {
         }
     }
 
+    /// Below this, a square of the bivector part of a unit versor (`-sin^2` of a half-angle)
+    /// is treated as zero when splitting it: dividing by it would overflow, and taking the
+    /// whole of it as one part errs by about a third of it, under the precision.
+    fn tiny(&self) -> TokenStream {
+        float(match self.scalar {
+            ScalarType::F64 => 1e-16,
+            ScalarType::F32 => 1e-7,
+        })
+    }
+
     /// `impl Log for V` when `<P P>_0` is a negative sum of squares and `W W = 0` identically:
     /// `P` is a rotation (or nothing) plus a null part (PGA and CGA motors), so the squares are
     /// `<P P>_0` and `0` with nothing to solve, and the null part needs no scaling.
@@ -665,7 +684,7 @@ impl Gen<'_> {
                 let mut t = quote!(kr * pr[#il]);
                 if wpp.0.contains_key(&x) {
                     let we = cx.at(wpp, x);
-                    t.extend(quote!(+ r0 * (#we) * k));
+                    t.extend(quote!(+ rk * (#we)));
                 }
                 if prr4.0.contains_key(&x) {
                     let re = cx.at(&prr4, x);
@@ -675,9 +694,10 @@ impl Gen<'_> {
             })
         });
         let [p_stmt, r4_stmt, wp_stmt] = stmts;
+        let tiny = self.tiny();
         let (vn, ln) = (ident(&vt.name), ident(&lt.name));
         let d = doc(&format!(
-            "The principal logarithm of a unit `{}` (normalise first otherwise), in closed              form: `exp(log(v)) = ±v`, the sign that makes the scalar part non-negative (the              shortest motion; `log(-v) = log(v)`). Here the bivector part `P` is a rotation              plus a null part (a translation): `<P P>_0 = -sin^2(t) <= 0` and `(P ^ P)^2 = 0`.              The rotation is `pr = P - (P ^ P) P / (2 <P P>_0)`, its half-angle              `t = atan2(sqrt(-<P P>_0), <v>_0)` in `[0, pi/2]` (exact at zero and at a half              turn: no division by the scalar part or by a sine), and the translation              `<v>_0 (P - pr) - <pr <v>_4>_2`; `log = (t / sin t) pr + translation`. A pure              translation (`<P P>_0 = 0`) returns `P` itself.",
+            "The principal logarithm of a unit `{}` (normalise first otherwise), in closed              form: `exp(log(v)) = ±v`, the sign that makes the scalar part non-negative (the              shortest motion; `log(-v) = log(v)`). Here the bivector part `P` is a rotation              plus a null part (a translation): `<P P>_0 = -sin^2(t) <= 0` and `(P ^ P)^2 = 0`.              The rotation is `pr = P - (P ^ P) P / (2 <P P>_0)`, its half-angle              `t = atan2(sqrt(-<P P>_0), <v>_0)` in `[0, pi/2]` (exact at zero and at a half              turn: no division by the scalar part or by a sine), and the translation              `<v>_0 (P - pr) - <pr <v>_4>_2`; `log = (t / sin t) pr + translation`. A pure              translation (`<P P>_0 = 0`) returns `P` itself; below `sin^2 t = 1e-16` (`1e-7` in f32) the split is skipped, as its effect is under the precision.",
             vt.name
         ));
         quote! {
@@ -693,7 +713,8 @@ impl Gen<'_> {
                     #r4_stmt
                     let sp: #s = #sp;
                     #wp_stmt
-                    let k: #s = if sp != 0.0 { 0.5 / sp } else { 0.0 };
+                    let k: #s = if sp < -#tiny { 1.0 / sp } else { 0.0 };
+                    let rk = r0 * k;
                     #pr_stmt
                     let a = (-sp).max(0.0).sqrt();
                     let kr = if a > 0.0 { a.atan2(r0) / a } else { 1.0 / r0 };
