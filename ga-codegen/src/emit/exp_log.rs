@@ -250,14 +250,32 @@ impl Gen<'_> {
             let g2: Vec<Bitmap> = vt.blades().filter(|b| grade(*b) == 2).collect();
             let all = self.exp_target(&spec.types[bi], &|_| true) == Some(vi);
             let keep = move |b: Bitmap| all || g2.contains(&b);
+            let part = if all {
+                ""
+            } else {
+                " (its part on the versor's blades)"
+            };
+            self.closed_forms.push(format!(
+                "{:<12} exp  -> {}{part}",
+                spec.types[bi].name, vt.name
+            ));
             items.extend(self.exp_impl(&spec.types[bi], vt, &keep));
         }
         for vt in spec.types.iter().filter(|t| is_even_versor(t)) {
             let Ok(kind) = classify(&spec.metric, span(vt.blades())) else {
                 continue;
             };
-            items.extend(self.log_impl(vt, kind));
-            items.extend(self.root_impl(vt));
+            let log = self.log_impl(vt, kind);
+            if !log.is_empty() {
+                self.closed_forms.push(format!("{:<12} log", vt.name));
+            }
+            items.extend(log);
+            let root = self.root_impl(vt);
+            if !root.is_empty() {
+                self.closed_forms
+                    .push(format!("{:<12} sqrt, normalize", vt.name));
+            }
+            items.extend(root);
         }
         if items.is_empty() {
             return;
@@ -457,15 +475,28 @@ impl Gen<'_> {
         let mut cx = Ctx::new(vt, s.clone());
         let sg = quote!(sg);
         let r0 = cx.at(&v, 0);
-        let (p_stmt, p) = cx.local("p", &grade_part(&v, 2), Some(&sg));
-        let (r4_stmt, r4) = cx.local("r4", &grade_part(&v, 4), Some(&sg));
+        // Rotation plus null part: the hemisphere sign goes into one factor (see `log_null`), so
+        // the parts are read as stored. Each local is one field up to sign, so these identities
+        // hold for the locals as they do for the fields.
+        let g2 = grade_part(&v, 2);
+        let g2sq = self.table.product(&g2, &g2, Product::Geometric);
+        let g4 = grade_part(&g2sq, 4);
+        let fast = negative_squares(&g2sq.get(0))
+            && self
+                .table
+                .product(&g4, &g4, Product::Geometric)
+                .get(0)
+                .is_zero();
+        let factor = (!fast).then_some(&sg);
+        let (p_stmt, p) = cx.local("p", &g2, factor);
+        let (r4_stmt, r4) = cx.local("r4", &grade_part(&v, 4), factor);
         let pp = self.table.product(&p, &p, Product::Geometric);
         let sp = cx.poly(&pp.get(0));
         // `wp` holds (P ^ P)/2, so `wpp` is ((P ^ P) P)/2.
         let (wp_stmt, wp) = cx.local("wp", &half(&grade_part(&pp, 4)), None);
         let qp = self.table.product(&wp, &wp, Product::Geometric).get(0);
         let wpp = grade_part(&self.table.product(&wp, &p, Product::Geometric), 2);
-        if qp.is_zero() && negative_squares(&pp.get(0)) {
+        if fast {
             return self.log_null(vt, lt, cx, [p_stmt, r4_stmt, wp_stmt], sp, &p, &r4, &wpp);
         }
         let squares = if qp.is_zero() {
@@ -697,7 +728,7 @@ impl Gen<'_> {
         let tiny = self.tiny();
         let (vn, ln) = (ident(&vt.name), ident(&lt.name));
         let d = doc(&format!(
-            "The principal logarithm of a unit `{}` (normalise first otherwise), in closed              form: `exp(log(v)) = ±v`, the sign that makes the scalar part non-negative (the              shortest motion; `log(-v) = log(v)`). Here the bivector part `P` is a rotation              plus a null part (a translation): `<P P>_0 = -sin^2(t) <= 0` and `(P ^ P)^2 = 0`.              The rotation is `pr = P - (P ^ P) P / (2 <P P>_0)`, its half-angle              `t = atan2(sqrt(-<P P>_0), <v>_0)` in `[0, pi/2]` (exact at zero and at a half              turn: no division by the scalar part or by a sine), and the translation              `<v>_0 (P - pr) - <pr <v>_4>_2`; `log = (t / sin t) pr + translation`. A pure              translation (`<P P>_0 = 0`) returns `P` itself; below `sin^2 t = 1e-16` (`1e-7` in f32) the split is skipped, as its effect is under the precision.",
+            "The principal logarithm of a unit `{}` (normalise first otherwise), in closed form: `exp(log(v)) = ±v`, the sign that makes the scalar part non-negative (the shortest motion; `log(-v) = log(v)`: `v` and `-v` give the same translation term and rotation parts of opposite sign, so the sign of `<v>_0` is a factor of the rotation's). Here the bivector part `P` is a rotation plus a null part (a translation): `<P P>_0 = -sin^2(t) <= 0` and `(P ^ P)^2 = 0`. The rotation is `pr = P - (P ^ P) P / (2 <P P>_0)`, its half-angle `t = atan2(sqrt(-<P P>_0), |<v>_0|)` in `[0, pi/2]` (exact at zero and at a half turn: no division by the scalar part or by a sine), and the translation `<v>_0 (P - pr) - <pr <v>_4>_2`; `log = (t / sin t) pr + translation`. A pure translation (`<P P>_0 = 0`) returns `P` itself; below `sin^2 t = 1e-16` (`1e-7` in f32) the split is skipped, as its effect is under the precision.",
             vt.name
         ));
         quote! {
@@ -707,8 +738,7 @@ impl Gen<'_> {
                 #[inline]
                 #[allow(unused_variables, clippy::neg_multiply, clippy::double_parens)]
                 fn log(self) -> #ln {
-                    let sg: #s = if #r0 < 0.0 { -1.0 } else { 1.0 };
-                    let r0: #s = sg * (#r0);
+                    let r0: #s = #r0;
                     #p_stmt
                     #r4_stmt
                     let sp: #s = #sp;
@@ -717,7 +747,8 @@ impl Gen<'_> {
                     let rk = r0 * k;
                     #pr_stmt
                     let a = (-sp).max(0.0).sqrt();
-                    let kr = if a > 0.0 { a.atan2(r0) / a } else { 1.0 / r0 };
+                    let r0a = r0.abs();
+                    let kr = (if a > 0.0 { a.atan2(r0a) / a } else { 1.0 / r0a }).copysign(r0);
                     #result
                 }
             }

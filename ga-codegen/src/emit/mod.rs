@@ -269,6 +269,9 @@ pub struct Generated {
     pub methods: Vec<(String, Method)>,
     /// Operations skipped because identically zero.
     pub zero_ops: usize,
+    /// The closed-form exp/log impls, one line each (`Bivector exp -> Motor`,
+    /// `Motor log -> Bivector`, `Motor sqrt, normalize`).
+    pub closed_forms: Vec<String>,
     code: OnceCell<Result<String, GenError>>,
 }
 
@@ -310,6 +313,8 @@ struct Gen<'a> {
     ops: Vec<OpSummary>,
     methods: Vec<(String, Method)>,
     zero_ops: usize,
+    /// The closed-form exp/log impls emitted, for the summary.
+    closed_forms: Vec<String>,
     /// Type indices ordered by size, for result inference.
     by_size: Vec<usize>,
     /// The generic algebra, for numerical checks at generation time.
@@ -357,6 +362,7 @@ pub fn generate(spec: &Spec, opts: &EmitOptions) -> Result<Generated, GenError> 
         ops: Vec::new(),
         methods: Vec::new(),
         zero_ops: 0,
+        closed_forms: Vec::new(),
         by_size,
         alg: crate::Algebra::new(spec.metric.clone()),
     };
@@ -400,6 +406,7 @@ pub fn generate(spec: &Spec, opts: &EmitOptions) -> Result<Generated, GenError> 
         ops: g.ops,
         methods: g.methods,
         zero_ops: g.zero_ops,
+        closed_forms: g.closed_forms,
         code: OnceCell::new(),
     })
 }
