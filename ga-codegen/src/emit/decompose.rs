@@ -18,6 +18,25 @@ use crate::metric::Metric;
 use proc_macro2::TokenStream;
 use quote::quote;
 
+/// A positive constant as a literal of the scalar type, written with that type's shortest
+/// round-trip digits (so f32 code carries no digits f32 cannot hold).
+pub(super) fn constant(scalar: ScalarType, x: f64) -> TokenStream {
+    match scalar {
+        ScalarType::F64 => float(x),
+        ScalarType::F32 => {
+            let text = format!("{:?}", x as f32);
+            let text = if text.contains('.') || text.contains('e') {
+                text
+            } else {
+                format!("{text}.0")
+            };
+            text.parse::<proc_macro2::Literal>()
+                .map(|l| quote!(#l))
+                .unwrap_or_else(|_| float(x))
+        }
+    }
+}
+
 /// Most basis vectors a bivector may span for the closed form (two commuting parts).
 pub const MAX_SPAN: u32 = 5;
 
@@ -166,15 +185,18 @@ pub fn helpers(scalar: ScalarType) -> TokenStream {
     let s = scalar.tokens();
     // The cube root of the unit roundoff balances the quotient's rounding against the limit's
     // truncation.
-    let tol = float(match scalar {
-        ScalarType::F64 => 6e-6,
-        ScalarType::F32 => 5e-3,
-    });
+    let tol = constant(
+        scalar,
+        match scalar {
+            ScalarType::F64 => 6e-6,
+            ScalarType::F32 => 5e-3,
+        },
+    );
     // Taylor coefficients of ds/dl = sum_k k l^(k-1) / (2k+1)!, k = 1..8, used for |l| < 0.1.
     let series: Vec<TokenStream> = (1..=8u32)
         .map(|k| {
             let fact: f64 = (1..=2 * k + 1).map(f64::from).product();
-            float(f64::from(k) / fact)
+            constant(scalar, f64::from(k) / fact)
         })
         .rev()
         .collect();

@@ -19,7 +19,7 @@
 //! quadratic to solve. A span the decomposition is not closed form on (more than five basis
 //! vectors, or complex squares) gets none of these ([`refusals`] lists them).
 
-use super::decompose::{classify, helpers, span, Refusal, SpanKind};
+use super::decompose::{classify, constant, helpers, span, Refusal, SpanKind};
 use super::render::{doc, float, ident, lit};
 use super::{Gen, OutType, ScalarType};
 use crate::blade::{grade, Bitmap};
@@ -67,7 +67,7 @@ fn is_bivector(t: &TypeDef) -> bool {
 fn is_even_versor(t: &TypeDef) -> bool {
     t.versor
         && t.constants.is_empty()
-        && t.fields.iter().all(|f| grade(f.bitmap) % 2 == 0)
+        && t.fields.iter().all(|f| grade(f.bitmap).is_multiple_of(2))
         && t.fields.iter().any(|f| f.bitmap == 0 && f.sign == 1)
         && t.fields.iter().any(|f| grade(f.bitmap) == 2)
 }
@@ -382,7 +382,7 @@ impl Gen<'_> {
                     .to_string(),
             )
         } else if q.is_zero() {
-            let third = float(1.0 / 3.0);
+            let third = constant(self.scalar, 1.0 / 3.0);
             (
                 quote! {
                     let (c, sn) = exp_log_simple(s);
