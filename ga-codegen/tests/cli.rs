@@ -379,3 +379,43 @@ fn blade_name_that_is_a_keyword() {
         &["keyword_blade.toml", "`enum`", "keyword"],
     );
 }
+
+#[test]
+fn exp_log_refused_above_five_dimensions() {
+    // Without --exp-log a 6-D signature generates, without closed forms for its bivectors.
+    let out = run(&["--signature", "6,0,0"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let code = String::from_utf8_lossy(&out.stdout);
+    assert!(!code.contains("impl Log for"), "a 6-D log was emitted");
+    // With it, a clear error naming the spec, the type and the reason, exit code 2.
+    let out = run(&["--signature", "6,0,0", "--exp-log"]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("type `Bivector`") && err.contains("spans 6 basis vectors"),
+        "{err}"
+    );
+    // Two time-like and two space-like directions: complex squares.
+    let out = run(&["--signature", "2,2,0", "--exp-log"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("complex"));
+    // Every spec in algebras/ gets them: --exp-log accepts it and the code has them.
+    for name in ["cga", "pga3d", "g3", "sta"] {
+        let spec = workspace().join(format!("algebras/{name}.toml"));
+        let out = run(&[spec.to_str().expect("utf-8 path"), "--exp-log"]);
+        assert!(
+            out.status.success(),
+            "{name}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let code = String::from_utf8_lossy(&out.stdout);
+        assert!(
+            code.contains("impl Log for") && code.contains("impl Exp<"),
+            "{name}"
+        );
+    }
+}

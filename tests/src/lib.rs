@@ -1,6 +1,6 @@
 //! Cross-crate integration tests (in `tests/tests/`) and the generated algebras they check.
 //!
-//! Every spec in `algebras/` is generated here (f64) together with a check harness that compares
+//! Every spec in `algebras/` is generated here (f64 and f32) together with a check harness that compares
 //! each generated product and method with the generic [`ga_codegen::Multivector`].
 
 macro_rules! algebra_module {
@@ -48,4 +48,28 @@ algebra_module!(
     "sig201.rs",
     "sig201_checks.rs",
     "G(2,0,1) from `--signature 2,0,1`."
+);
+algebra_module!(
+    pga3d_f32,
+    "pga3d_f32.rs",
+    "pga3d_f32_checks.rs",
+    "G(3,0,1) from `algebras/pga3d.toml`, f32."
+);
+algebra_module!(
+    g3_f32,
+    "g3_f32.rs",
+    "g3_f32_checks.rs",
+    "G(3) from `algebras/g3.toml`, f32."
+);
+algebra_module!(
+    sta_f32,
+    "sta_f32.rs",
+    "sta_f32_checks.rs",
+    "G(1,3) from `algebras/sta.toml`, f32."
+);
+algebra_module!(
+    sig201_f32,
+    "sig201_f32.rs",
+    "sig201_f32_checks.rs",
+    "G(2,0,1) from `--signature 2,0,1`, f32."
 );

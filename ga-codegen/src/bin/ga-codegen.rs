@@ -1,14 +1,17 @@
 //! `ga-codegen`: regenerate an algebra's Rust module from a spec file or a signature.
 //!
 //! ```text
-//! ga-codegen SPEC.toml [-o FILE] [--scalar f32|f64] [--summary] [--runtime PATH] [--library]
-//! ga-codegen --signature P,Q,R [-o FILE] [--scalar f32|f64] [--summary] [--runtime PATH] [--library]
+//! ga-codegen SPEC.toml [-o FILE] [--scalar f32|f64] [--summary] [--runtime PATH] [--library] [--exp-log]
+//! ga-codegen --signature P,Q,R [-o FILE] [--scalar f32|f64] [--summary] [--runtime PATH] [--library] [--exp-log]
 //! ```
 //! Without `-o` the module is printed. `--summary` prints the types and the product table
 //! instead of the code (the time taken goes to stderr, so the listing is reproducible:
 //! `algebras/cga.summary.txt` is `ga-codegen algebras/cga.toml --summary`). `--library` adds
 //! the `serde`/`bytemuck` impls behind cargo features and the `types` module (as the `cga`
-//! crate compiles it). Errors name the file, the type and the blade, and exit with code 2.
+//! crate compiles it). Every bivector and even versor type gets closed-form `exp`, `log`, `sqrt`
+//! and `normalize` where the invariant decomposition is closed form (spans of at most five basis
+//! vectors, real squares); `--exp-log` makes a type that cannot have them an error instead of
+//! a silent omission. Errors name the file, the type and the blade, and exit with code 2.
 
 use ga_codegen::{generate, EmitOptions, ScalarType, Spec};
 use std::path::PathBuf;
@@ -16,8 +19,8 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 const USAGE: &str =
-    "usage: ga-codegen SPEC.toml [-o FILE] [--scalar f32|f64] [--summary] [--runtime PATH] [--library]
-       ga-codegen --signature P,Q,R [-o FILE] [--scalar f32|f64] [--summary] [--runtime PATH] [--library]";
+    "usage: ga-codegen SPEC.toml [-o FILE] [--scalar f32|f64] [--summary] [--runtime PATH] [--library] [--exp-log]
+       ga-codegen --signature P,Q,R [-o FILE] [--scalar f32|f64] [--summary] [--runtime PATH] [--library] [--exp-log]";
 
 struct Args {
     spec: Option<PathBuf>,
@@ -27,6 +30,7 @@ struct Args {
     summary: bool,
     library: bool,
     runtime: Option<String>,
+    exp_log: bool,
 }
 
 fn parse_args() -> Result<Args, String> {
@@ -38,6 +42,7 @@ fn parse_args() -> Result<Args, String> {
         summary: false,
         library: false,
         runtime: None,
+        exp_log: false,
     };
     let mut it = std::env::args().skip(1);
     while let Some(arg) = it.next() {
@@ -53,6 +58,7 @@ fn parse_args() -> Result<Args, String> {
             }
             "--summary" => a.summary = true,
             "--library" => a.library = true,
+            "--exp-log" => a.exp_log = true,
             "--runtime" => a.runtime = Some(it.next().ok_or("--runtime needs a path")?),
             "--signature" => {
                 let v = it.next().ok_or("--signature needs P,Q,R")?;
@@ -120,6 +126,18 @@ fn main() -> ExitCode {
             return ExitCode::from(2);
         }
     };
+    if args.exp_log {
+        let refused = ga_codegen::emit::refusals(&spec);
+        if !refused.is_empty() {
+            for (t, why) in refused {
+                eprintln!(
+                    "error: {}: type `{t}`: no closed-form exp/log: {why}",
+                    spec.source
+                );
+            }
+            return ExitCode::from(2);
+        }
+    }
     let mut opts = EmitOptions {
         scalar: args.scalar,
         library: args.library,

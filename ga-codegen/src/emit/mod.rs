@@ -12,6 +12,8 @@
 //! - `types.rs`: one struct per declared type with its methods and scalar operators;
 //! - `operators.rs`: binary operators between declared types and conversions;
 //! - `sandwich.rs`: fused sandwich products and their matrix (outermorphism) form;
+//! - `decompose.rs`, `exp_log.rs`, `logarithm.rs`, `normalize.rs`: closed-form `exp`, `log`,
+//!   `sqrt` and `normalize` of even versors by the invariant decomposition of bivectors;
 //! - `lanes.rs`: paired-lane (`F64x2`) forms of dense geometric products;
 //! - `library.rs`: serde and bytemuck impls and the list of types, for a library's API;
 //! - `summary.rs`: the human-readable table of what was emitted.
@@ -20,9 +22,13 @@
 //! `syn::File` and formats it with prettyplease, and the `algebra!` macro returns the tokens
 //! as they are.
 
+mod decompose;
+mod exp_log;
 mod infer;
 mod lanes;
 mod library;
+mod logarithm;
+mod normalize;
 mod operators;
 mod quad_lanes;
 mod render;
@@ -30,6 +36,8 @@ mod sandwich;
 mod summary;
 mod types;
 
+pub use decompose::Refusal;
+pub use exp_log::refusals;
 pub use render::snake;
 
 use crate::spec::Spec;
@@ -263,6 +271,9 @@ pub struct Generated {
     pub methods: Vec<(String, Method)>,
     /// Operations skipped because identically zero.
     pub zero_ops: usize,
+    /// The closed-form exp/log impls, one line each (`Bivector exp -> Motor`,
+    /// `Motor log -> Bivector`, `Motor sqrt, normalize`).
+    pub closed_forms: Vec<String>,
     code: OnceCell<Result<String, GenError>>,
 }
 
@@ -304,6 +315,8 @@ struct Gen<'a> {
     ops: Vec<OpSummary>,
     methods: Vec<(String, Method)>,
     zero_ops: usize,
+    /// The closed-form exp/log impls emitted, for the summary.
+    closed_forms: Vec<String>,
     /// Type indices ordered by size, for result inference.
     by_size: Vec<usize>,
     /// The generic algebra, for numerical checks at generation time.
@@ -351,6 +364,7 @@ pub fn generate(spec: &Spec, opts: &EmitOptions) -> Result<Generated, GenError> 
         ops: Vec::new(),
         methods: Vec::new(),
         zero_ops: 0,
+        closed_forms: Vec::new(),
         by_size,
         alg: crate::Algebra::new(spec.metric.clone()),
     };
@@ -366,6 +380,7 @@ pub fn generate(spec: &Spec, opts: &EmitOptions) -> Result<Generated, GenError> 
     for d in &spec.sandwiches {
         g.sandwich(d)?;
     }
+    g.exp_log();
     if opts.library {
         g.library_items();
     }
@@ -393,6 +408,7 @@ pub fn generate(spec: &Spec, opts: &EmitOptions) -> Result<Generated, GenError> 
         ops: g.ops,
         methods: g.methods,
         zero_ops: g.zero_ops,
+        closed_forms: g.closed_forms,
         code: OnceCell::new(),
     })
 }

@@ -1,5 +1,6 @@
 //! The summary of a generated module: its types, then its product table (geometric products
-//! and sandwiches, with result types and term counts), as printed by `ga-codegen --summary`.
+//! and sandwiches, with result types and term counts), then the closed-form exp/log impls, as
+//! printed by `ga-codegen --summary`.
 
 use super::{Generated, Op};
 use std::fmt::Write;
@@ -34,6 +35,14 @@ impl Generated {
                 o.output,
                 o.terms
             );
+        }
+        let _ = writeln!(
+            s,
+            "closed forms ({}): exp, log, sqrt, normalize",
+            self.closed_forms.len()
+        );
+        for c in &self.closed_forms {
+            let _ = writeln!(s, "  {c}");
         }
         let _ = writeln!(s, "lines of code: {}", self.lines());
         s

@@ -4,7 +4,16 @@
 use super::error::SpecErrorKind;
 
 /// Names of items the generated module defines or uses unqualified.
-const GENERATED_ITEMS: &[&str] = &["Scalar", "Sandwich", "F64x2", "F32x4", "Self"];
+const GENERATED_ITEMS: &[&str] = &[
+    "Scalar",
+    "Sandwich",
+    "F64x2",
+    "F32x4",
+    "Self",
+    "Exp",
+    "Log",
+    "EvenVersor",
+];
 
 /// Suffix of the generated versor-matrix types (`MotorPointMatrix` for the matrix form of
 /// `Motor.sandwich(Point)`).
@@ -24,7 +33,7 @@ pub(super) fn check_type_name(name: &str) -> Result<(), SpecErrorKind> {
     if GENERATED_ITEMS.contains(&name) {
         return Err(SpecErrorKind::ReservedTypeName(
             "the generated module defines or uses an item of this name \
-             (`Scalar`, `Sandwich`, `F64x2`, `F32x4`)",
+             (`Scalar`, `Sandwich`, `F64x2`, `F32x4`, `Exp`, `Log`, `EvenVersor`)",
         ));
     }
     if name.ends_with(MATRIX_SUFFIX) {
@@ -62,6 +71,9 @@ mod tests {
             "Scalar",
             "Sandwich",
             "F64x2",
+            "Exp",
+            "Log",
+            "EvenVersor",
             "RVMatrix",
             "RotorPointMatrix",
         ] {

@@ -1,0 +1,320 @@
+//! The invariant decomposition of a bivector (Roelfs and De Keninck, "Graded symmetry groups:
+//! plane and simple", 2021), as the emitter uses it: which spans it is closed form on (decided
+//! at generation time), and the scalar helper functions every emitted `exp` and `log` shares.
+//!
+//! A bivector `B` of an algebra of dimension `n <= 5` is a sum `B1 + B2` of at most two
+//! commuting simple bivectors, `Bi Bi = li` a scalar. With `B B = s + W` (`s` scalar, `W` of
+//! grade 4) and `W W = q` (a scalar for `n <= 5`), `l1 + l2 = s` and `4 l1 l2 = q`, so `l1`
+//! and `l2` are the roots of `l^2 - s l + q/4`. They are real when the metric restricted to
+//! the span has no two time-like and two space-like directions at once (`min(p, q) <= 1`); then
+//! `exp(B) = exp(B1) exp(B2)` is a sum of four terms whose coefficients depend only on `l1`
+//! and `l2` (see [`helpers`]). Above five dimensions a bivector may have three or more parts
+//! and the roots are those of a cubic or worse: the emitter refuses it.
+
+use super::render::float;
+use super::ScalarType;
+use crate::blade::Bitmap;
+use crate::metric::Metric;
+use proc_macro2::TokenStream;
+use quote::quote;
+
+/// A positive constant as a literal of the scalar type, written with that type's shortest
+/// round-trip digits (so f32 code carries no digits f32 cannot hold).
+pub(super) fn constant(scalar: ScalarType, x: f64) -> TokenStream {
+    match scalar {
+        ScalarType::F64 => float(x),
+        ScalarType::F32 => {
+            let text = format!("{:?}", x as f32);
+            let text = if text.contains('.') || text.contains('e') {
+                text
+            } else {
+                format!("{text}.0")
+            };
+            text.parse::<proc_macro2::Literal>()
+                .map(|l| quote!(#l))
+                .unwrap_or_else(|_| float(x))
+        }
+    }
+}
+
+/// Most basis vectors a bivector may span for the closed form (two commuting parts).
+pub const MAX_SPAN: u32 = 5;
+
+/// Why a span gets no closed-form exp and log.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Refusal {
+    /// The bivector spans more than [`MAX_SPAN`] basis vectors: three or more commuting parts.
+    TooManyDimensions(u32),
+    /// Two or more time-like and two or more space-like directions: the squares of the parts
+    /// may be complex.
+    ComplexSquares {
+        /// Directions squaring positive.
+        positive: usize,
+        /// Directions squaring negative.
+        negative: usize,
+    },
+}
+
+impl std::fmt::Display for Refusal {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Refusal::TooManyDimensions(k) => write!(
+                f,
+                "the bivector spans {k} basis vectors: above {MAX_SPAN} it can have three or more commuting simple parts, with no closed-form split"
+            ),
+            Refusal::ComplexSquares { positive, negative } => write!(
+                f,
+                "the span has {positive} positive and {negative} negative directions: the squares of the commuting parts can be complex"
+            ),
+        }
+    }
+}
+
+/// What the decomposition looks like on a span.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SpanKind {
+    /// Basis vectors spanned.
+    pub dimension: u32,
+    /// Directions squaring to +1, -1 and 0 (the inertia of the restricted metric).
+    pub inertia: (usize, usize, usize),
+}
+
+impl SpanKind {
+    /// Whether both commuting parts can be rotations (a definite 4-dimensional subspace), which
+    /// makes exactly equal squares (isoclinic rotations) possible with a non-simple bivector.
+    pub fn double_rotation(&self) -> bool {
+        self.inertia.0 >= 4 || self.inertia.1 >= 4
+    }
+}
+
+/// The union of the basis vectors of `blades`.
+pub fn span(blades: impl IntoIterator<Item = Bitmap>) -> Bitmap {
+    blades.into_iter().fold(0, |a, b| a | b)
+}
+
+/// Decide at generation time whether the closed form applies to bivectors over `span`.
+pub fn classify(metric: &Metric, span: Bitmap) -> Result<SpanKind, Refusal> {
+    let dimension = span.count_ones();
+    if dimension > MAX_SPAN {
+        return Err(Refusal::TooManyDimensions(dimension));
+    }
+    let idx: Vec<usize> = (0..metric.dim()).filter(|i| span >> i & 1 == 1).collect();
+    let inertia = inertia(
+        &idx.iter()
+            .map(|&i| idx.iter().map(|&j| metric.get(i, j).to_f64()).collect())
+            .collect::<Vec<Vec<f64>>>(),
+    );
+    if inertia.0 >= 2 && inertia.1 >= 2 {
+        return Err(Refusal::ComplexSquares {
+            positive: inertia.0,
+            negative: inertia.1,
+        });
+    }
+    Ok(SpanKind { dimension, inertia })
+}
+
+/// Numbers of positive, negative and zero eigenvalues of a small symmetric matrix (cyclic
+/// Jacobi rotations; the metric's entries are small exact numbers, so a relative tolerance
+/// separates zero from non-zero).
+fn inertia(a: &[Vec<f64>]) -> (usize, usize, usize) {
+    let n = a.len();
+    let mut a = a.to_vec();
+    for _ in 0..100 {
+        let off: f64 = (0..n)
+            .flat_map(|i| (0..n).filter(move |&j| j != i).map(move |j| (i, j)))
+            .map(|(i, j)| a[i][j] * a[i][j])
+            .sum();
+        if off < 1e-30 {
+            break;
+        }
+        for p in 0..n {
+            for q in p + 1..n {
+                if a[p][q] == 0.0 {
+                    continue;
+                }
+                let theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
+                let t = theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt());
+                let t = if theta == 0.0 { 1.0 } else { t };
+                let c = 1.0 / (t * t + 1.0).sqrt();
+                let s = t * c;
+                for k in 0..n {
+                    let (akp, akq) = (a[k][p], a[k][q]);
+                    a[k][p] = c * akp - s * akq;
+                    a[k][q] = s * akp + c * akq;
+                }
+                for k in 0..n {
+                    let (apk, aqk) = (a[p][k], a[q][k]);
+                    a[p][k] = c * apk - s * aqk;
+                    a[q][k] = s * apk + c * aqk;
+                }
+            }
+        }
+    }
+    let scale = (0..n).map(|i| a[i][i].abs()).fold(1.0, f64::max);
+    let mut out = (0, 0, 0);
+    for (i, row) in a.iter().enumerate() {
+        let d = row[i];
+        if d > 1e-9 * scale {
+            out.0 += 1;
+        } else if d < -1e-9 * scale {
+            out.1 += 1;
+        } else {
+            out.2 += 1;
+        }
+    }
+    out
+}
+
+/// The scalar helper functions shared by every emitted `exp` and `log` (private items of the
+/// generated module):
+///
+/// - `exp_log_simple(l) -> (c, s)`: for a simple bivector `b` with `b b = l`,
+///   `exp(b) = c + s b`: `cos(t), sin(t)/t` with `t = sqrt(-l)` when `l < 0` (a rotation),
+///   `cosh(t), sinh(t)/t` with `t = sqrt(l)` when `l > 0` (a boost), `1, 1` when `l = 0` (a
+///   translation, `b b = 0`);
+/// - `exp_log_squares(s, q) -> (lo, hi)`: the squares of the two commuting parts, the roots of
+///   `l^2 - s l + q/4`, each computed without cancellation (the larger in magnitude by the
+///   quadratic formula, the other as `q / (4 root)`);
+/// - `exp_log_coefficients(l1, l2) -> [c1 c2, alpha, beta, s1 s2]`: with `Bi = (li B - W B/2) /
+///   (li - lj)`, `exp(B) = c1 c2 + alpha B + beta (W B)/2 + s1 s2 W/2`, where
+///   `alpha = (l1 s1 c2 - l2 c1 s2)/(l1 - l2)` and `beta = (c1 s2 - s1 c2)/(l1 - l2)`. When the
+///   squares are equal to within the cube root of the precision (isoclinic parts, or both zero)
+///   the limits `alpha = (s c + 1)/2`, `beta = s^2/2 - c ds/dl` at the mean are used, with an
+///   error of the order of the squared difference.
+pub fn helpers(scalar: ScalarType) -> TokenStream {
+    let s = scalar.tokens();
+    // The cube root of the unit roundoff balances the quotient's rounding against the limit's
+    // truncation.
+    let tol = constant(
+        scalar,
+        match scalar {
+            ScalarType::F64 => 6e-6,
+            ScalarType::F32 => 5e-3,
+        },
+    );
+    // Taylor coefficients of ds/dl = sum_k k l^(k-1) / (2k+1)!, k = 1..8, used for |l| < 0.1.
+    let series: Vec<TokenStream> = (1..=8u32)
+        .map(|k| {
+            let fact: f64 = (1..=2 * k + 1).map(f64::from).product();
+            constant(scalar, f64::from(k) / fact)
+        })
+        .rev()
+        .collect();
+    quote! {
+        /// `(c, s)` with `exp(b) = c + s b` for a simple bivector `b` squaring to `l`: `cos t,
+        /// sin(t)/t` (`t = sqrt(-l)`, a rotation), `cosh t, sinh(t)/t` (`t = sqrt(l)`, a boost),
+        /// or `1, 1` (`l = 0`, a null bivector: a translation). Exactly `(1, 1)` at zero and for
+        /// squares below the smallest normal number.
+        #[inline]
+        #[allow(dead_code)]
+        fn exp_log_simple(l: #s) -> (#s, #s) {
+            if l < 0.0 {
+                let t = (-l).sqrt();
+                if t == 0.0 { (1.0, 1.0) } else { (t.cos(), t.sin() / t) }
+            } else if l > 0.0 {
+                let t = l.sqrt();
+                if t == 0.0 { (1.0, 1.0) } else { (t.cosh(), t.sinh() / t) }
+            } else {
+                (1.0, 1.0)
+            }
+        }
+
+        /// `d s / d l` of [`exp_log_simple`] at `l`, given its `(c, s)` there: `(c - s)/(2 l)`,
+        /// or its Taylor series near zero, where that quotient cancels.
+        #[inline]
+        #[allow(dead_code)]
+        fn exp_log_simple_dl(l: #s, c: #s, s: #s) -> #s {
+            if l.abs() < 0.1 {
+                let mut acc: #s = 0.0;
+                #( acc = acc * l + #series; )*
+                acc
+            } else {
+                (c - s) / (2.0 * l)
+            }
+        }
+
+        /// The squares `(lo, hi)` of the two commuting simple parts of a bivector `B` with
+        /// `<B B>_0 = s` and `W W = q` (`W = <B B>_4`): the roots of `l^2 - s l + q/4`, the larger
+        /// in magnitude by the quadratic formula and the other as `q / (4 root)`, so neither
+        /// cancels. A negative discriminant (rounding only, for the spans this module accepts) is
+        /// taken as zero.
+        #[inline]
+        #[allow(dead_code)]
+        fn exp_log_squares(s: #s, q: #s) -> (#s, #s) {
+            let d = (s * s - q).max(0.0).sqrt();
+            if s >= 0.0 {
+                let hi = 0.5 * (s + d);
+                let lo = if hi != 0.0 { 0.25 * q / hi } else { 0.0 };
+                (lo.min(hi), hi.max(lo))
+            } else {
+                let lo = 0.5 * (s - d);
+                let hi = if lo != 0.0 { 0.25 * q / lo } else { 0.0 };
+                (lo.min(hi), hi.max(lo))
+            }
+        }
+
+        /// `[c1 c2, alpha, beta, s1 s2]` with `exp(B) = c1 c2 + alpha B + beta (W B)/2 +
+        /// s1 s2 W/2` for a bivector whose commuting parts square to `l1` and `l2`
+        /// (`W = <B B>_4`). `alpha = (l1 s1 c2 - l2 c1 s2)/(l1 - l2)`, `beta = (c1 s2 - s1 c2)/(l1 - l2)`;
+        /// when the squares agree to within the cube root of the precision, the limits
+        /// `alpha = (s c + 1)/2`, `beta = s^2/2 - c ds/dl` at their mean.
+        #[inline]
+        #[allow(dead_code)]
+        fn exp_log_coefficients(l1: #s, l2: #s) -> [#s; 4] {
+            let (c1, s1) = exp_log_simple(l1);
+            let (c2, s2) = exp_log_simple(l2);
+            let d = l1 - l2;
+            if d.abs() > #tol * l1.abs().max(l2.abs()) {
+                [
+                    c1 * c2,
+                    (l1 * s1 * c2 - l2 * c1 * s2) / d,
+                    (c1 * s2 - s1 * c2) / d,
+                    s1 * s2,
+                ]
+            } else {
+                let l = 0.5 * (l1 + l2);
+                let (c, s) = exp_log_simple(l);
+                let ds = exp_log_simple_dl(l, c, s);
+                [c * c, 0.5 * (s * c + 1.0), 0.5 * s * s - c * ds, s * s]
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::spec::Spec;
+
+    fn signature(p: usize, q: usize, r: usize) -> Metric {
+        Spec::for_signature(p, q, r).expect("spec").metric
+    }
+
+    #[test]
+    fn inertia_of_known_metrics() {
+        assert_eq!(inertia(&[vec![0.0, -1.0], vec![-1.0, 0.0]]), (1, 1, 0));
+        assert_eq!(inertia(&[vec![1.0, 0.0], vec![0.0, 0.0]]), (1, 0, 1));
+        assert_eq!(inertia(&[vec![2.0, 1.0], vec![1.0, 2.0]]), (2, 0, 0));
+    }
+
+    #[test]
+    fn spans_refused_and_accepted() {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../algebras/cga.toml");
+        let cga = Spec::from_file(&path).expect("cga.toml").metric;
+        let k = classify(&cga, 0b11111).expect("G(4,1) is closed form");
+        assert_eq!(k.inertia, (4, 1, 0));
+        assert!(k.double_rotation());
+        let e3 = classify(&cga, 0b01110).expect("Euclidean 3D");
+        assert!(!e3.double_rotation());
+        let g6 = signature(6, 0, 0);
+        assert_eq!(classify(&g6, 0b111111), Err(Refusal::TooManyDimensions(6)));
+        assert!(classify(&g6, 0b011111).is_ok());
+        let g22 = signature(2, 2, 0);
+        assert!(matches!(
+            classify(&g22, 0b1111),
+            Err(Refusal::ComplexSquares { .. })
+        ));
+        let pga = signature(3, 0, 1);
+        assert_eq!(classify(&pga, 0b1111).expect("PGA").inertia, (3, 0, 1));
+    }
+}

@@ -1,0 +1,312 @@
+//! The emitted closed-form principal logarithm of an even versor (`impl Log`), by the invariant
+//! decomposition of its bivector part; see [`super::exp_log`] for the whole story.
+
+use super::decompose::SpanKind;
+use super::exp_log::{build, grade_part, half, is_bivector, negative_squares, Ctx};
+use super::render::{doc, float, ident};
+use super::{Gen, ScalarType};
+use crate::blade::Bitmap;
+use crate::rational::Rational;
+use crate::spec::TypeDef;
+use crate::symbolic::{Poly, Product, SymMv, Var};
+use proc_macro2::TokenStream;
+use quote::quote;
+
+impl Gen<'_> {
+    /// `impl Log for V`, into the smallest type holding `V`'s bivector blades.
+    pub(super) fn log_impl(&mut self, vt: &TypeDef, kind: SpanKind) -> TokenStream {
+        let s = self.s.clone();
+        let v = SymMv::of_type(vt, 0);
+        // The smallest bivector type holding every bivector blade of `V`.
+        let g2: Vec<Bitmap> = grade_part(&v, 2).support();
+        let Some(lo) = self.by_size.iter().copied().find(|&i| {
+            let t = &self.spec.types[i];
+            is_bivector(t) && g2.iter().all(|b| t.blades().any(|x| x == *b))
+        }) else {
+            return TokenStream::new();
+        };
+        let spec = self.spec;
+        let lt = &spec.types[lo];
+        let mut cx = Ctx::new(vt, s.clone());
+        let sg = quote!(sg);
+        let r0 = cx.at(&v, 0);
+        // Rotation plus null part: the hemisphere sign goes into one factor (see `log_null`), so
+        // the parts are read as stored. Each local is one field up to sign, so these identities
+        // hold for the locals as they do for the fields.
+        let g2 = grade_part(&v, 2);
+        let g2sq = self.table.product(&g2, &g2, Product::Geometric);
+        let g4 = grade_part(&g2sq, 4);
+        let fast = negative_squares(&g2sq.get(0))
+            && self
+                .table
+                .product(&g4, &g4, Product::Geometric)
+                .get(0)
+                .is_zero();
+        let factor = (!fast).then_some(&sg);
+        let (p_stmt, p) = cx.local("p", &g2, factor);
+        let (r4_stmt, r4) = cx.local("r4", &grade_part(&v, 4), factor);
+        let pp = self.table.product(&p, &p, Product::Geometric);
+        let sp = cx.poly(&pp.get(0));
+        // `wp` holds (P ^ P)/2, so `wpp` is ((P ^ P) P)/2.
+        let (wp_stmt, wp) = cx.local("wp", &half(&grade_part(&pp, 4)), None);
+        let qp = self.table.product(&wp, &wp, Product::Geometric).get(0);
+        let wpp = grade_part(&self.table.product(&wp, &p, Product::Geometric), 2);
+        if fast {
+            return self.log_null(vt, lt, cx, [p_stmt, r4_stmt, wp_stmt], sp, &p, &r4, &wpp);
+        }
+        let squares = if qp.is_zero() {
+            quote!(let (mr, mo) = (sp.min(0.0), sp.max(0.0));)
+        } else {
+            let qe = cx.poly(&qp);
+            quote!(let (mr, mo) = exp_log_squares(sp, 4.0 * (#qe));)
+        };
+        // p_r = (mr p - (W p)/2) / (mr - mo): the part with the smaller square.
+        let pr_vals = p.0.keys().map(|b| {
+            let pe = cx.at(&p, *b);
+            if wpp.0.contains_key(b) {
+                let we = cx.at(&wpp, *b);
+                quote!((mr * #pe - (#we)) * k)
+            } else {
+                quote!(mr * #pe * k)
+            }
+        });
+        let n = proc_macro2::Literal::usize_unsuffixed(p.0.len());
+        let tiny = self.tiny();
+        let pr_stmt = quote! {
+            let d = mr - mo;
+            let pr: [#s; #n] = if d.abs() > #tiny { let k = 1.0 / d; [#(#pr_vals),*] } else { [0.0; #n] };
+        };
+        let pr_sym = SymMv(
+            p.0.keys()
+                .enumerate()
+                .map(|(i, b)| {
+                    let var = Var {
+                        operand: 3 + cx.locals.len() as u8,
+                        field: i as u16,
+                    };
+                    (*b, Poly::var(var, Rational::ONE))
+                })
+                .collect(),
+        );
+        cx.locals.push(ident("pr"));
+        let prr4 = grade_part(&self.table.product(&pr_sym, &r4, Product::Geometric), 2);
+        let uo_vals = p.0.keys().enumerate().map(|(i, b)| {
+            let i = proc_macro2::Literal::usize_unsuffixed(i);
+            let pe = cx.at(&p, *b);
+            if prr4.0.contains_key(b) {
+                let re = cx.at(&prr4, *b);
+                quote!((r0 * (#pe - pr[#i]) - (#re)) * ic)
+            } else {
+                quote!(r0 * (#pe - pr[#i]) * ic)
+            }
+        });
+        let uo_stmt = quote!(let ic = 1.0 / co; let uo: [#s; #n] = [#(#uo_vals),*];);
+        let uo_sym = SymMv(
+            p.0.keys()
+                .enumerate()
+                .map(|(i, b)| {
+                    let var = Var {
+                        operand: 3 + cx.locals.len() as u8,
+                        field: i as u16,
+                    };
+                    (*b, Poly::var(var, Rational::ONE))
+                })
+                .collect(),
+        );
+        cx.locals.push(ident("uo"));
+        let sig = self
+            .table
+            .product(&uo_sym, &uo_sym, Product::Geometric)
+            .get(0);
+        let small = float(match self.scalar {
+            ScalarType::F64 => 1e-5,
+            ScalarType::F32 => 1e-3,
+        });
+        let ko = if sig.is_zero() {
+            quote!(let ko: #s = 1.0;)
+        } else {
+            let se = cx.poly(&sig);
+            quote! {
+                let sig: #s = #se;
+                let ko: #s = if sig.abs() < #small {
+                    1.0 - sig / 6.0 + 0.075 * sig * sig
+                } else if sig > 0.0 {
+                    let x = sig.sqrt(); x.asinh() / x
+                } else {
+                    let x = (-sig).sqrt(); x.min(1.0).asin() / x
+                };
+            }
+        };
+        let keys: Vec<Bitmap> = p.0.keys().copied().collect();
+        let result = build(lt, |x| {
+            keys.iter().position(|b| *b == x).map(|i| {
+                let i = proc_macro2::Literal::usize_unsuffixed(i);
+                quote!(kr * pr[#i] + ko * uo[#i])
+            })
+        });
+        // Isoclinic double rotations: equal squares, the split is not unique; B = theta/a P.
+        let isoclinic = if kind.double_rotation() && !r4.0.is_empty() {
+            let tol = float(match self.scalar {
+                ScalarType::F64 => 1e-12,
+                ScalarType::F32 => 1e-5,
+            });
+            let r4sq = cx.poly(&self.table.product(&r4, &r4, Product::Geometric).get(0));
+            let iso = build(lt, |x| {
+                keys.iter().position(|b| *b == x).map(|i| {
+                    let pe = cx.at(&p, keys[i]);
+                    quote!(k * (#pe))
+                })
+            });
+            quote! {
+                if mo < 0.0 && (mr - mo).abs() <= #tol * mr.abs() {
+                    let a = (-mr).sqrt();
+                    let n4 = (#r4sq).max(0.0).sqrt();
+                    let k = (2.0 * a).atan2(r0 - n4) / (2.0 * a);
+                    return #iso;
+                }
+            }
+        } else {
+            TokenStream::new()
+        };
+        let (vn, ln) = (ident(&vt.name), ident(&lt.name));
+        let d = doc(&format!(
+            "The principal logarithm of a unit `{}` (normalise first otherwise), in closed \
+             form: `exp(log(v)) = ±v`, the sign that makes the scalar part non-negative (the \
+             shortest motion; `log(-v) = log(v)`). The bivector part `P` is split into its \
+             commuting parts `P = pr + po` by its invariants (`pr` the one with the smaller, \
+             non-positive square: the rotation). The rotation's half-angle is \
+             `atan2(|pr|, <v>_0)`, in `[0, pi/2]`, exact at zero and at a half turn (no division \
+             by the scalar part or by a sine); the other part, `uo = (<v>_0 po - <pr <v>_4>_2) / \
+             c` with `c = sqrt(<v>_0^2 + |pr|^2)`, is a translation (kept as it is), a boost \
+             (scaled by `asinh(|uo|)/|uo|`) or a second rotation (`asin(|uo|)/|uo|`). A pure \
+             translation (`pr = 0`) returns the bivector part itself.",
+            vt.name
+        ));
+        quote! {
+            impl Log for #vn {
+                type Output = #ln;
+                #d
+                #[inline]
+                #[allow(unused_variables, clippy::neg_multiply, clippy::double_parens, clippy::needless_return)]
+                fn log(self) -> #ln {
+                    let sg: #s = if #r0 < 0.0 { -1.0 } else { 1.0 };
+                    let r0: #s = sg * (#r0);
+                    #p_stmt
+                    #r4_stmt
+                    let sp: #s = #sp;
+                    #wp_stmt
+                    #squares
+                    #isoclinic
+                    #pr_stmt
+                    let a = (-mr).max(0.0).sqrt();
+                    let th = a.atan2(r0);
+                    let co = (r0 * r0 + a * a).sqrt();
+                    let kr = if a > 0.0 { th / a } else { 1.0 / r0 };
+                    #uo_stmt
+                    #ko
+                    #result
+                }
+            }
+        }
+    }
+
+    /// Below this, a square of the bivector part of a unit versor (`-sin^2` of a half-angle)
+    /// is treated as zero when splitting it: dividing by it would overflow, and taking the
+    /// whole of it as one part errs by about a third of it, under the precision.
+    fn tiny(&self) -> TokenStream {
+        float(match self.scalar {
+            ScalarType::F64 => 1e-16,
+            ScalarType::F32 => 1e-7,
+        })
+    }
+
+    /// `impl Log for V` when `<P P>_0` is a negative sum of squares and `W W = 0` identically:
+    /// `P` is a rotation (or nothing) plus a null part (PGA and CGA motors), so the squares are
+    /// `<P P>_0` and `0` with nothing to solve, and the null part needs no scaling.
+    #[allow(clippy::too_many_arguments)]
+    fn log_null(
+        &mut self,
+        vt: &TypeDef,
+        lt: &TypeDef,
+        mut cx: Ctx<'_>,
+        stmts: [TokenStream; 3],
+        sp: TokenStream,
+        p: &SymMv,
+        r4: &SymMv,
+        wpp: &SymMv,
+    ) -> TokenStream {
+        let s = self.s.clone();
+        let r0 = cx.at(&SymMv::of_type(vt, 0), 0);
+        let keys: Vec<Bitmap> = p.0.keys().copied().collect();
+        // pr = p - (W p) / (2 <P P>_0): the rotation part.
+        let pr_vals = keys.iter().map(|b| {
+            let pe = cx.at(p, *b);
+            if wpp.0.contains_key(b) {
+                let we = cx.at(wpp, *b);
+                quote!(#pe - (#we) * k)
+            } else {
+                pe
+            }
+        });
+        let n = proc_macro2::Literal::usize_unsuffixed(keys.len());
+        let pr_stmt = quote!(let pr: [#s; #n] = [#(#pr_vals),*];);
+        let pr_sym = SymMv(
+            keys.iter()
+                .enumerate()
+                .map(|(i, b)| {
+                    let var = Var {
+                        operand: 3 + cx.locals.len() as u8,
+                        field: i as u16,
+                    };
+                    (*b, Poly::var(var, Rational::ONE))
+                })
+                .collect(),
+        );
+        cx.locals.push(ident("pr"));
+        let prr4 = grade_part(&self.table.product(&pr_sym, r4, Product::Geometric), 2);
+        let result = build(lt, |x| {
+            keys.iter().position(|b| *b == x).map(|i| {
+                let il = proc_macro2::Literal::usize_unsuffixed(i);
+                let mut t = quote!(kr * pr[#il]);
+                if wpp.0.contains_key(&x) {
+                    let we = cx.at(wpp, x);
+                    t.extend(quote!(+ rk * (#we)));
+                }
+                if prr4.0.contains_key(&x) {
+                    let re = cx.at(&prr4, x);
+                    t.extend(quote!(- (#re)));
+                }
+                t
+            })
+        });
+        let [p_stmt, r4_stmt, wp_stmt] = stmts;
+        let tiny = self.tiny();
+        let (vn, ln) = (ident(&vt.name), ident(&lt.name));
+        let d = doc(&format!(
+            "The principal logarithm of a unit `{}` (normalise first otherwise), in closed form: `exp(log(v)) = ±v`, the sign that makes the scalar part non-negative (the shortest motion; `log(-v) = log(v)`: `v` and `-v` give the same translation term and rotation parts of opposite sign, so the sign of `<v>_0` is a factor of the rotation's). Here the bivector part `P` is a rotation plus a null part (a translation): `<P P>_0 = -sin^2(t) <= 0` and `(P ^ P)^2 = 0`. The rotation is `pr = P - (P ^ P) P / (2 <P P>_0)`, its half-angle `t = atan2(sqrt(-<P P>_0), |<v>_0|)` in `[0, pi/2]` (exact at zero and at a half turn: no division by the scalar part or by a sine), and the translation `<v>_0 (P - pr) - <pr <v>_4>_2`; `log = (t / sin t) pr + translation`. A pure translation (`<P P>_0 = 0`) returns `P` itself; below `sin^2 t = 1e-16` (`1e-7` in f32) the split is skipped, as its effect is under the precision.",
+            vt.name
+        ));
+        quote! {
+            impl Log for #vn {
+                type Output = #ln;
+                #d
+                #[inline]
+                #[allow(unused_variables, clippy::neg_multiply, clippy::double_parens)]
+                fn log(self) -> #ln {
+                    let r0: #s = #r0;
+                    #p_stmt
+                    #r4_stmt
+                    let sp: #s = #sp;
+                    #wp_stmt
+                    let k: #s = if sp < -#tiny { 1.0 / sp } else { 0.0 };
+                    let rk = r0 * k;
+                    #pr_stmt
+                    let a = (-sp).max(0.0).sqrt();
+                    let r0a = r0.abs();
+                    let kr = (if a > 0.0 { a.atan2(r0a) / a } else { 1.0 / r0a }).copysign(r0);
+                    #result
+                }
+            }
+        }
+    }
+}

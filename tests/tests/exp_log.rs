@@ -1,0 +1,533 @@
+//! The generated closed-form `exp`, `log`, `sqrt` and `normalize` (issue 26) of every algebra in
+//! `algebras/` and of `--signature 2,0,1`, in f64 and f32, by property tests against the
+//! generic multivector: `exp` against its scaling-and-squaring series, `log(exp(B)) = B` on the
+//! principal branch, `exp(log(V)) = ±V`, `sqrt(V)^2 = V`, and `normalize(k V) = V` with a unit
+//! result.
+
+use ga_codegen::Multivector;
+use proptest::prelude::*;
+
+/// Relative tolerance: the one of the generated-vs-generic checks (1e-12 for f64, 1e-4 for f32).
+fn tol(f32: bool) -> f64 {
+    if f32 {
+        1e-4
+    } else {
+        1e-12
+    }
+}
+
+/// `|got - want| <= tol (1 + |want|)`, coefficientwise, and finite.
+fn close(what: &str, got: &Multivector, want: &Multivector, tol: f64) -> Result<(), String> {
+    let ok = got.coeffs().iter().all(|x| x.is_finite())
+        && got.max_diff(want) <= tol * (1.0 + want.max_abs());
+    if ok {
+        Ok(())
+    } else {
+        Err(format!(
+            "{what}: got {:?}\nwant {:?}\n(diff {:e})",
+            got.coeffs(),
+            want.coeffs(),
+            got.max_diff(want)
+        ))
+    }
+}
+
+/// Equal up to sign.
+fn close_up_to_sign(
+    what: &str,
+    got: &Multivector,
+    want: &Multivector,
+    tol: f64,
+) -> Result<(), String> {
+    close(what, got, want, tol).or_else(|_| close(what, &got.scale(-1.0), want, tol))
+}
+
+/// A multivector with coefficients `c[i] * scale` on the blades named `names` whose grade is in
+/// `grades` (blade signs as named).
+fn on_blades(
+    alg: &std::sync::Arc<ga_codegen::Algebra>,
+    names: &[&str],
+    grades: &[u32],
+    c: &[f64],
+    scale: f64,
+) -> Multivector {
+    let mut m = Multivector::zero(alg);
+    for (i, name) in names.iter().enumerate() {
+        let (b, sign) = alg.parse_blade(name).expect("a blade of the algebra");
+        if grades.contains(&alg.grade(b)) {
+            m.set(b, m.get(b) + f64::from(sign) * c[i % c.len()] * scale);
+        }
+    }
+    m
+}
+
+/// The property tests of one algebra module and its (bivector, versor) pairs.
+macro_rules! suite {
+    ($name:ident, $m:path, $f32:expr, [$(($b:ident, $v:ident)),* $(,)?]) => {
+        mod $name {
+            use super::*;
+            use $m as m;
+            use m::{EvenVersor, Exp, Log};
+
+            proptest! {
+                #![proptest_config(ProptestConfig::with_cases(64))]
+
+                #[test]
+                fn exp_matches_series(c in prop::array::uniform16(-1.0f64..1.0), scale in 0.0f64..3.0) {
+                    let alg = m::algebra();
+                    $({
+                        let b = m::$b::from_multivector(&on_blades(&alg, &m::$v::BLADES, &[2], &c, scale));
+                        let v: m::$v = b.exp();
+                        let want = b.to_multivector().exp();
+                        close(concat!(stringify!($b), " -> ", stringify!($v)), &v.to_multivector(), &want, tol($f32))
+                            .map_err(TestCaseError::fail)?;
+                    })*
+                }
+
+                #[test]
+                fn log_inverts_exp_on_the_principal_branch(c in prop::array::uniform16(-1.0f64..1.0), scale in 0.0f64..0.35) {
+                    let alg = m::algebra();
+                    $({
+                        let b = m::$b::from_multivector(&on_blades(&alg, &m::$v::BLADES, &[2], &c, scale));
+                        let v: m::$v = b.exp();
+                        close(concat!("log exp ", stringify!($v)), &v.log().to_multivector(), &b.to_multivector(), tol($f32))
+                            .map_err(TestCaseError::fail)?;
+                    })*
+                }
+
+                #[test]
+                fn exp_inverts_log_up_to_sign(c in prop::array::uniform16(-1.0f64..1.0), scale in 0.0f64..3.0) {
+                    let alg = m::algebra();
+                    $({
+                        let b = m::$b::from_multivector(&on_blades(&alg, &m::$v::BLADES, &[2], &c, scale));
+                        let v: m::$v = b.exp();
+                        let back: m::$v = v.log().exp();
+                        close_up_to_sign(concat!("exp log ", stringify!($v)), &back.to_multivector(), &v.to_multivector(), tol($f32))
+                            .map_err(TestCaseError::fail)?;
+                        // log(-v) = log(v): the same motion.
+                        close(concat!("log -", stringify!($v)), &(-v).log().to_multivector(), &v.log().to_multivector(), tol($f32))
+                            .map_err(TestCaseError::fail)?;
+                    })*
+                }
+
+                #[test]
+                fn sqrt_squares_back(c in prop::array::uniform16(-1.0f64..1.0), scale in 0.0f64..1.2) {
+                    let alg = m::algebra();
+                    $({
+                        let b = m::$b::from_multivector(&on_blades(&alg, &m::$v::BLADES, &[2], &c, scale));
+                        let v: m::$v = b.exp();
+                        let r = v.sqrt().to_multivector();
+                        close(concat!("sqrt ", stringify!($v)), &r.gp(&r), &v.to_multivector(), tol($f32))
+                            .map_err(TestCaseError::fail)?;
+                    })*
+                }
+
+                #[test]
+                fn normalize_removes_scale_and_drift(
+                    c in prop::array::uniform16(-1.0f64..1.0),
+                    d in prop::array::uniform16(-1.0f64..1.0),
+                    scale in 0.0f64..2.0,
+                    k in -6.0f64..6.0,
+                ) {
+                    let alg = m::algebra();
+                    let k = 10f64.powf(k);
+                    $({
+                        let b = m::$b::from_multivector(&on_blades(&alg, &m::$v::BLADES, &[2], &c, scale));
+                        let v: m::$v = b.exp();
+                        let vm = v.to_multivector();
+                        let scaled = m::$v::from_multivector(&vm.scale(k));
+                        close(concat!("normalize k ", stringify!($v)), &scaled.normalize().to_multivector(), &vm, tol($f32))
+                            .map_err(TestCaseError::fail)?;
+                        // Drift off the versor manifold (every even blade of the type perturbed).
+                        let drift = on_blades(&alg, &m::$v::BLADES, &[0, 2, 4], &d, 0.05);
+                        let n = m::$v::from_multivector(&(&vm + &drift)).normalize().to_multivector();
+                        close(concat!("normalize drift ", stringify!($v)), &n.gp(&n.rev()), &Multivector::scalar(&alg, 1.0), tol($f32))
+                            .map_err(TestCaseError::fail)?;
+                    })*
+                }
+            }
+        }
+    };
+}
+
+suite!(g3, tests::g3, false, [(Bivector, Rotor)]);
+suite!(g3_f32, tests::g3_f32, true, [(Bivector, Rotor)]);
+suite!(
+    pga3d,
+    tests::pga3d,
+    false,
+    [(Line, Motor), (Line, Rotor), (Line, Translator)]
+);
+suite!(
+    pga3d_f32,
+    tests::pga3d_f32,
+    true,
+    [(Line, Motor), (Line, Rotor), (Line, Translator)]
+);
+suite!(sta, tests::sta, false, [(Bivector, Rotor)]);
+suite!(sta_f32, tests::sta_f32, true, [(Bivector, Rotor)]);
+suite!(sig201, tests::sig201, false, [(Bivector, Even)]);
+suite!(sig201_f32, tests::sig201_f32, true, [(Bivector, Even)]);
+suite!(
+    cga,
+    tests::cga,
+    false,
+    [
+        (Bivector, Rotor),
+        (Bivector, Translator),
+        (Bivector, Dilator),
+        (Bivector, Motor),
+        (Bivector, ScaledMotor),
+        (Bivector, Even),
+    ]
+);
+suite!(
+    cga_f32,
+    tests::cga_f32,
+    true,
+    [
+        (Bivector, Rotor),
+        (Bivector, Translator),
+        (Bivector, Dilator),
+        (Bivector, Motor),
+        (Bivector, ScaledMotor),
+        (Bivector, Even),
+    ]
+);
+
+/// The branches that break elsewhere, on exact inputs.
+mod edges {
+    use super::*;
+    use std::f64::consts::FRAC_PI_2;
+    use tests::{cga, g3, pga3d, sta};
+
+    fn near(what: &str, got: &Multivector, want: &Multivector, tol: f64) {
+        if let Err(e) = close(what, got, want, tol) {
+            panic!("{e}");
+        }
+    }
+
+    #[test]
+    fn zero_bivector_is_the_identity_both_ways() {
+        use g3::{Exp as _, Log as _};
+        let r: g3::Rotor = g3::Bivector::default().exp();
+        assert_eq!(r, g3::Rotor::new(1.0, 0.0, 0.0, 0.0));
+        assert_eq!(r.log(), g3::Bivector::default());
+        use pga3d::{Exp as _, Log as _};
+        let m: pga3d::Motor = pga3d::Line::default().exp();
+        assert_eq!(m.s, 1.0);
+        assert_eq!(m.to_array()[1..], [0.0; 7]);
+        assert_eq!(m.log(), pga3d::Line::default());
+        use sta::{Exp as _, Log as _};
+        let l: sta::Rotor = sta::Bivector::default().exp();
+        assert_eq!(l.s, 1.0);
+        assert_eq!(l.log(), sta::Bivector::default());
+        use cga::{Exp as _, Log as _};
+        let e: cga::Even = cga::Bivector::default().exp();
+        assert_eq!(e.s, 1.0);
+        assert_eq!(e.log(), cga::Bivector::default());
+    }
+
+    #[test]
+    fn pure_translations_are_one_plus_the_bivector() {
+        use pga3d::{Exp as _, Log as _};
+        let b = pga3d::Line::new(1.5, -2.0, 3.0, 0.0, 0.0, 0.0);
+        let m: pga3d::Motor = b.exp();
+        assert_eq!(
+            m,
+            pga3d::Motor::new(1.0, 0.0, 0.0, 0.0, 1.5, -2.0, 3.0, 0.0)
+        );
+        assert_eq!(m.log(), b);
+        let t: pga3d::Translator = b.exp();
+        assert_eq!(t.log(), b);
+        use cga::{Exp as _, Log as _};
+        let mut c = cga::Bivector::default();
+        (c.e1i, c.e2i, c.e3i) = (0.25, -4.0, 1e-3);
+        let m: cga::Motor = c.exp();
+        assert_eq!(
+            (m.s, m.e1i, m.e2i, m.e3i, m.e12, m.e123i),
+            (1.0, 0.25, -4.0, 1e-3, 0.0, 0.0)
+        );
+        assert_eq!(m.log(), c);
+        let e: cga::Even = c.exp();
+        near(
+            "cga even translation",
+            &e.log().to_multivector(),
+            &c.to_multivector(),
+            1e-15,
+        );
+    }
+
+    #[test]
+    fn half_turns_at_and_near_pi() {
+        use g3::{Exp as _, Log as _};
+        // Exactly e12: a half-turn (rotation by pi), scalar part exactly zero.
+        let r = g3::Rotor::new(0.0, 0.0, 0.0, 1.0);
+        let want = g3::Bivector::new(0.0, 0.0, FRAC_PI_2);
+        near(
+            "log e12",
+            &r.log().to_multivector(),
+            &want.to_multivector(),
+            1e-15,
+        );
+        // The rotation angle pi - 2e-9, and pi - 1e-15.
+        for eps in [1e-9, 5e-16] {
+            let b = g3::Bivector::new(0.6 * (FRAC_PI_2 - eps), 0.0, 0.8 * (FRAC_PI_2 - eps));
+            let r: g3::Rotor = b.exp();
+            near(
+                "log near pi",
+                &r.log().to_multivector(),
+                &b.to_multivector(),
+                1e-15,
+            );
+        }
+        // Past the half turn: the log takes the short way round (the other sign).
+        let b = g3::Bivector::new(0.0, 0.0, FRAC_PI_2 + 0.25);
+        let r: g3::Rotor = b.exp();
+        let short = g3::Bivector::new(0.0, 0.0, FRAC_PI_2 + 0.25 - std::f64::consts::PI);
+        near(
+            "short way",
+            &r.log().to_multivector(),
+            &short.to_multivector(),
+            1e-15,
+        );
+        // A PGA screw motion with a half turn: rotation by pi about the z axis plus a
+        // translation along it, and the same motor with a scalar part of exactly zero.
+        use pga3d::{Exp as _, Log as _};
+        let b = pga3d::Line::new(0.0, 0.0, 0.7, 0.0, 0.0, FRAC_PI_2);
+        let m: pga3d::Motor = b.exp();
+        near(
+            "pga screw half turn",
+            &m.log().to_multivector(),
+            &b.to_multivector(),
+            1e-15,
+        );
+        let mut exact = m;
+        exact.s = 0.0;
+        near(
+            "pga exact half turn",
+            &exact.log().to_multivector(),
+            &b.to_multivector(),
+            1e-15,
+        );
+        // An off-axis half turn: rotation by pi about a line through (1, 0, 0).
+        let b = pga3d::Line::new(0.0, -FRAC_PI_2, 0.0, 0.0, 0.0, FRAC_PI_2);
+        let m: pga3d::Motor = b.exp();
+        near(
+            "pga off-axis half turn",
+            &m.log().to_multivector(),
+            &b.to_multivector(),
+            1e-15,
+        );
+    }
+
+    #[test]
+    fn tiny_angles() {
+        use g3::{Exp as _, Log as _};
+        let b = g3::Bivector::new(1e-300, -2e-300, 3e-300);
+        let r: g3::Rotor = b.exp();
+        assert_eq!(r, g3::Rotor::new(1.0, 1e-300, -2e-300, 3e-300));
+        let back = r.log();
+        for (x, y) in back.to_array().iter().zip(b.to_array()) {
+            assert!((x - y).abs() <= 1e-15 * y.abs(), "{back:?}");
+        }
+        // A tiny rotation with a unit translation (PGA), and the same in CGA.
+        use pga3d::{Exp as _, Log as _};
+        let b = pga3d::Line::new(1.0, 0.5, -0.25, 1e-160, 0.0, 2e-160);
+        let m: pga3d::Motor = b.exp();
+        near(
+            "pga tiny",
+            &m.log().to_multivector(),
+            &b.to_multivector(),
+            1e-15,
+        );
+        let b = pga3d::Line::new(1.0, 0.5, -0.25, 1e-9, 0.0, 2e-9);
+        let m: pga3d::Motor = b.exp();
+        near(
+            "pga small",
+            &m.to_multivector(),
+            &b.to_multivector().exp(),
+            1e-15,
+        );
+        near(
+            "pga small log",
+            &m.log().to_multivector(),
+            &b.to_multivector(),
+            1e-15,
+        );
+        use cga::{Exp as _, Log as _};
+        let mut c = cga::Bivector::default();
+        (c.e12, c.e1i, c.e3i) = (1e-200, 1.0, -2.0);
+        let m: cga::Motor = c.exp();
+        near(
+            "cga tiny",
+            &m.log().to_multivector(),
+            &c.to_multivector(),
+            1e-15,
+        );
+    }
+
+    #[test]
+    fn huge_and_tiny_scales_normalise() {
+        use pga3d::{EvenVersor as _, Exp as _};
+        let b = pga3d::Line::new(0.3, -1.0, 2.0, 0.4, -0.2, 0.9);
+        let m: pga3d::Motor = b.exp();
+        for k in [1e200, 1e-200, 1e300, 1e-300] {
+            let mk = pga3d::Motor::from_array(m.to_array().map(|x| x * k));
+            near(
+                "normalize scaled",
+                &mk.normalize().to_multivector(),
+                &m.to_multivector(),
+                1e-15,
+            );
+        }
+        // A huge translation stays finite and inverts.
+        use pga3d::Log as _;
+        let t = pga3d::Line::new(1e200, -3e199, 0.0, 0.0, 0.0, 0.0);
+        let m: pga3d::Motor = t.exp();
+        assert_eq!(m.log(), t);
+        use cga::{EvenVersor as _, Exp as _};
+        let mut c = cga::Bivector::default();
+        (c.e12, c.e13, c.e1i, c.eoi) = (0.4, -0.3, 2.0, 0.2);
+        let s: cga::ScaledMotor = c.exp();
+        let sk = cga::ScaledMotor::from_array(s.to_array().map(|x| x * 1e250));
+        near(
+            "cga scaled normalize",
+            &sk.normalize().to_multivector(),
+            &s.to_multivector(),
+            1e-14,
+        );
+    }
+
+    #[test]
+    fn negative_scalar_versors_log_to_the_same_motion() {
+        use sta::{Exp as _, Log as _};
+        let b = sta::Bivector::new(0.3, -0.2, 0.5, 1.1, 0.4, -0.7);
+        let r: sta::Rotor = b.exp();
+        near(
+            "log -R",
+            &(-r).log().to_multivector(),
+            &b.to_multivector(),
+            1e-14,
+        );
+        near(
+            "log R",
+            &r.log().to_multivector(),
+            &b.to_multivector(),
+            1e-14,
+        );
+        use pga3d::{Exp as _, Log as _};
+        let b = pga3d::Line::new(0.3, -1.0, 2.0, 0.4, -0.2, 0.9);
+        let m: pga3d::Motor = b.exp();
+        assert_eq!((-m).log(), m.log());
+    }
+
+    #[test]
+    fn sign_conventions_of_each_algebra() {
+        // G3: exp(-(t/2) e12) turns e1 towards e2 by t; the field e31 stores -e13.
+        use g3::{Exp as _, Sandwich as _};
+        let t = 0.7f64;
+        let r: g3::Rotor = g3::Bivector::new(0.0, 0.0, -t / 2.0).exp();
+        let v = r.sandwich(g3::Vector::new(1.0, 0.0, 0.0));
+        near(
+            "g3 rotation",
+            &v.to_multivector(),
+            &g3::Vector::new(t.cos(), t.sin(), 0.0).to_multivector(),
+            1e-15,
+        );
+        let r31: g3::Rotor = g3::Bivector::new(0.0, -t / 2.0, 0.0).exp();
+        let v = r31.sandwich(g3::Vector::new(0.0, 0.0, 1.0));
+        near(
+            "g3 e31",
+            &v.to_multivector(),
+            &g3::Vector::new(t.sin(), 0.0, t.cos()).to_multivector(),
+            1e-15,
+        );
+        // STA: exp((p/2) e01) is a boost with rapidity p: e0 -> cosh(p) e0 - sinh(p) e1.
+        use sta::{Exp as _, Sandwich as _};
+        let p = 0.9f64;
+        let r: sta::Rotor = sta::Bivector::new(p / 2.0, 0.0, 0.0, 0.0, 0.0, 0.0).exp();
+        let v = r.sandwich(sta::Vector::new(1.0, 0.0, 0.0, 0.0));
+        near(
+            "sta boost",
+            &v.to_multivector(),
+            &sta::Vector::new(p.cosh(), -p.sinh(), 0.0, 0.0).to_multivector(),
+            1e-15,
+        );
+    }
+
+    #[test]
+    fn isoclinic_double_rotation_in_cga() {
+        // e4 = ei/2 - eo squares to 1, so e12 + e3^e4 = e12 + e3i/2 + eo3 is two rotations by
+        // the same angle in orthogonal planes (equal squares: the split is not unique).
+        use cga::{Exp as _, Log as _};
+        for t in [0.3, 1.2, 1e-8] {
+            let mut b = cga::Bivector::default();
+            (b.e12, b.e3i, b.eo3) = (t, t / 2.0, t);
+            let e: cga::Even = b.exp();
+            near(
+                "isoclinic exp",
+                &e.to_multivector(),
+                &b.to_multivector().exp(),
+                1e-14,
+            );
+            near(
+                "isoclinic log",
+                &e.log().to_multivector(),
+                &b.to_multivector(),
+                1e-14,
+            );
+        }
+    }
+}
+
+/// The README's PGA example (the generator section): klein-style motor interpolation through
+/// `log` and `exp`, checked.
+#[test]
+fn readme_pga_motor_interpolation() {
+    use tests::pga3d::{EvenVersor, Exp, Line, Log, Motor, Point, Sandwich};
+    // Two poses: the identity and a screw motion (a quarter turn about the z axis with a lift
+    // of 1 along it). A motor is exp of a line: e12 turns, e03 translates.
+    let a: Motor = Line::default().exp();
+    let b: Motor = Line::new(0.0, 0.0, -0.5, 0.0, 0.0, -std::f64::consts::FRAC_PI_4).exp();
+    // The motion from a to b, as a line, then a * exp(t log(~a b)) for t in [0, 1].
+    let d: Line = (a.rev() * b).log();
+    let at = |t: f64| -> Motor {
+        let step: Motor = (d * t).exp();
+        a * step
+    };
+    let p = Point::new(1.0, 0.0, 0.0, 1.0); // x e032 + y e013 + z e021 + w e123
+    let path: Vec<Point> = (0..=4)
+        .map(|i| at(f64::from(i) / 4.0).sandwich(p))
+        .collect();
+    // Halfway is the square root of the whole motion.
+    let half = at(0.5);
+    let root = a * (a.rev() * b).sqrt();
+    assert!(half
+        .to_array()
+        .iter()
+        .zip(root.to_array())
+        .all(|(x, y)| (x - y).abs() < 1e-15));
+    // The end is b (up to sign: the same motion), and the point climbs a helix: radius 1,
+    // height t.
+    let end = at(1.0);
+    let same = |m: &Motor, n: &Motor| {
+        m.to_array()
+            .iter()
+            .zip(n.to_array())
+            .all(|(x, y)| (x - y).abs() < 1e-15)
+    };
+    assert!(same(&end, &b) || same(&-end, &b));
+    for (i, q) in path.iter().enumerate() {
+        let (x, y, z) = (q.e032 / q.e123, q.e013 / q.e123, q.e021 / q.e123);
+        assert!(
+            ((x * x + y * y).sqrt() - 1.0).abs() < 1e-14,
+            "radius at {i}: {q:?}"
+        );
+        assert!(
+            (z.abs() - f64::from(i as u32) / 4.0).abs() < 1e-14,
+            "height at {i}: {q:?}"
+        );
+    }
+    let _ = EvenVersor::normalize(b);
+}
