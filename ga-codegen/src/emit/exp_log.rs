@@ -20,7 +20,7 @@
 //! vectors, or complex squares) gets none of these ([`refusals`] lists them).
 
 use super::decompose::{classify, constant, helpers, span, Refusal};
-use super::render::{doc, ident, lit};
+use super::render::{doc, ident};
 use super::{Gen, OutType};
 use crate::blade::{grade, Bitmap};
 use crate::rational::Rational;
@@ -114,20 +114,10 @@ impl<'a> Ctx<'a> {
         }
     }
 
-    /// `c1 * m1 + c2 * m2 - ...`, or `0.0`.
+    /// `c1 * m1 + c2 * m2 - ...`, or `0.0` ([`super::render::poly_tokens`] over this
+    /// context's fields and locals).
     pub(super) fn poly(&self, p: &Poly) -> TokenStream {
-        if p.is_zero() {
-            return quote!(0.0);
-        }
-        let mut s = TokenStream::new();
-        for (i, (m, &c)) in p.0.iter().enumerate() {
-            let neg = c < Rational::ZERO;
-            let mag = if neg { -c } else { c };
-            if neg {
-                s.extend(quote!(-));
-            } else if i > 0 {
-                s.extend(quote!(+));
-            }
+        super::render::poly_tokens(p, |m| {
             let mut vars = TokenStream::new();
             for (k, v) in m.iter().enumerate() {
                 if k > 0 {
@@ -135,16 +125,8 @@ impl<'a> Ctx<'a> {
                 }
                 vars.extend(self.var(*v));
             }
-            match (m.is_empty(), mag == Rational::ONE) {
-                (true, _) => s.extend(lit(mag)),
-                (false, true) => s.extend(vars),
-                (false, false) => {
-                    let l = lit(mag);
-                    s.extend(quote!(#l * #vars));
-                }
-            }
-        }
-        s
+            vars
+        })
     }
 
     /// The coefficient of canonical blade `b` of `m` as an expression.
@@ -174,21 +156,28 @@ impl<'a> Ctx<'a> {
         let s = &self.s;
         let n = proc_macro2::Literal::usize_unsuffixed(m.0.len());
         let stmt = quote!(let #id: [#s; #n] = [#(#vals),*];);
+        let sym = self.declare(id, m.0.keys().copied());
+        (stmt, sym)
+    }
+
+    /// Name the next local array `id` (its statement is the caller's) and return the symbolic
+    /// multivector standing for it: element `i` holds the coefficient of the `i`-th blade of
+    /// `blades`.
+    pub(super) fn declare(&mut self, id: Ident, blades: impl Iterator<Item = Bitmap>) -> SymMv {
         let operand = 3 + self.locals.len() as u8;
         self.locals.push(id);
-        let sym = SymMv(
-            m.0.keys()
+        SymMv(
+            blades
                 .enumerate()
                 .map(|(i, b)| {
                     let var = Var {
                         operand,
                         field: i as u16,
                     };
-                    (*b, Poly::var(var, Rational::ONE))
+                    (b, Poly::var(var, Rational::ONE))
                 })
                 .collect(),
-        );
-        (stmt, sym)
+        )
     }
 }
 

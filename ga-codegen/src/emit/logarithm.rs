@@ -6,9 +6,8 @@ use super::exp_log::{build, grade_part, half, is_bivector, negative_squares, Ctx
 use super::render::{doc, float, ident};
 use super::{Gen, ScalarType};
 use crate::blade::Bitmap;
-use crate::rational::Rational;
 use crate::spec::TypeDef;
-use crate::symbolic::{Poly, Product, SymMv, Var};
+use crate::symbolic::{Product, SymMv};
 use proc_macro2::TokenStream;
 use quote::quote;
 
@@ -76,19 +75,7 @@ impl Gen<'_> {
             let d = mr - mo;
             let pr: [#s; #n] = if d.abs() > #tiny { let k = 1.0 / d; [#(#pr_vals),*] } else { [0.0; #n] };
         };
-        let pr_sym = SymMv(
-            p.0.keys()
-                .enumerate()
-                .map(|(i, b)| {
-                    let var = Var {
-                        operand: 3 + cx.locals.len() as u8,
-                        field: i as u16,
-                    };
-                    (*b, Poly::var(var, Rational::ONE))
-                })
-                .collect(),
-        );
-        cx.locals.push(ident("pr"));
+        let pr_sym = cx.declare(ident("pr"), p.0.keys().copied());
         let prr4 = grade_part(&self.table.product(&pr_sym, &r4, Product::Geometric), 2);
         let uo_vals = p.0.keys().enumerate().map(|(i, b)| {
             let i = proc_macro2::Literal::usize_unsuffixed(i);
@@ -101,19 +88,7 @@ impl Gen<'_> {
             }
         });
         let uo_stmt = quote!(let ic = 1.0 / co; let uo: [#s; #n] = [#(#uo_vals),*];);
-        let uo_sym = SymMv(
-            p.0.keys()
-                .enumerate()
-                .map(|(i, b)| {
-                    let var = Var {
-                        operand: 3 + cx.locals.len() as u8,
-                        field: i as u16,
-                    };
-                    (*b, Poly::var(var, Rational::ONE))
-                })
-                .collect(),
-        );
-        cx.locals.push(ident("uo"));
+        let uo_sym = cx.declare(ident("uo"), p.0.keys().copied());
         let sig = self
             .table
             .product(&uo_sym, &uo_sym, Product::Geometric)
@@ -250,19 +225,7 @@ impl Gen<'_> {
         });
         let n = proc_macro2::Literal::usize_unsuffixed(keys.len());
         let pr_stmt = quote!(let pr: [#s; #n] = [#(#pr_vals),*];);
-        let pr_sym = SymMv(
-            keys.iter()
-                .enumerate()
-                .map(|(i, b)| {
-                    let var = Var {
-                        operand: 3 + cx.locals.len() as u8,
-                        field: i as u16,
-                    };
-                    (*b, Poly::var(var, Rational::ONE))
-                })
-                .collect(),
-        );
-        cx.locals.push(ident("pr"));
+        let pr_sym = cx.declare(ident("pr"), keys.iter().copied());
         let prr4 = grade_part(&self.table.product(&pr_sym, r4, Product::Geometric), 2);
         let result = build(lt, |x| {
             keys.iter().position(|b| *b == x).map(|i| {

@@ -151,29 +151,7 @@ impl<'a> Names<'a> {
         p: &Poly,
         mono: impl Fn(&Monomial) -> TokenStream,
     ) -> TokenStream {
-        if p.is_zero() {
-            return quote!(0.0);
-        }
-        let mut s = TokenStream::new();
-        for (i, (m, &c)) in p.0.iter().enumerate() {
-            let neg = c < Rational::ZERO;
-            let mag = if neg { -c } else { c };
-            if neg {
-                s.extend(quote!(-));
-            } else if i > 0 {
-                s.extend(quote!(+));
-            }
-            if m.is_empty() {
-                s.extend(lit(mag));
-            } else if mag == Rational::ONE {
-                s.extend(mono(m));
-            } else {
-                s.extend(lit(mag));
-                s.extend(quote!(*));
-                s.extend(mono(m));
-            }
-        }
-        s
+        poly_tokens(p, mono)
     }
 
     /// The text of `x * y * z`, for docs.
@@ -231,6 +209,34 @@ pub(super) fn doc(text: &str) -> TokenStream {
         }
     });
     quote!(#(#[doc = #lines])*)
+}
+
+/// `c1 * m1 + c2 * m2 - ...` with monomials rendered by `mono`, or `0.0`: every emitted
+/// polynomial goes through here.
+pub(super) fn poly_tokens(p: &Poly, mono: impl Fn(&Monomial) -> TokenStream) -> TokenStream {
+    if p.is_zero() {
+        return quote!(0.0);
+    }
+    let mut s = TokenStream::new();
+    for (i, (m, &c)) in p.0.iter().enumerate() {
+        let neg = c < Rational::ZERO;
+        let mag = if neg { -c } else { c };
+        if neg {
+            s.extend(quote!(-));
+        } else if i > 0 {
+            s.extend(quote!(+));
+        }
+        if m.is_empty() {
+            s.extend(lit(mag));
+        } else if mag == Rational::ONE {
+            s.extend(mono(m));
+        } else {
+            s.extend(lit(mag));
+            s.extend(quote!(*));
+            s.extend(mono(m));
+        }
+    }
+    s
 }
 
 #[cfg(test)]
