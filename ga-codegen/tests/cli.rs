@@ -391,6 +391,12 @@ fn exp_log_refused_above_five_dimensions() {
     );
     let code = String::from_utf8_lossy(&out.stdout);
     assert!(!code.contains("impl Log for"), "a 6-D log was emitted");
+    // ... and says so: a note names the type and the way to make it an error.
+    let note = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        note.contains("note:") && note.contains("type `Bivector` gets no closed-form exp/log"),
+        "{note}"
+    );
     // With it, a clear error naming the spec, the type and the reason, exit code 2.
     let out = run(&["--signature", "6,0,0", "--exp-log"]);
     assert_eq!(out.status.code(), Some(2));

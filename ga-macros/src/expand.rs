@@ -21,6 +21,7 @@ pub(crate) fn expand(tokens: TokenStream) -> syn::Result<TokenStream> {
     let input: Input = syn::parse2(tokens)?;
     let mut opts = EmitOptions {
         scalar: input.scalar,
+        require_exp_log: input.require_exp_log,
         ..EmitOptions::default()
     };
     if let Some(rt) = input.runtime {

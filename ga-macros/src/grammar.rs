@@ -66,6 +66,8 @@ pub(crate) struct Input {
     pub scalar: ScalarType,
     /// `runtime = path` (default `::ga_codegen`).
     pub runtime: Option<String>,
+    /// `exp_log = required`: a type without closed-form exp/log is an error.
+    pub require_exp_log: bool,
 }
 
 /// Where the spec comes from.
@@ -143,7 +145,7 @@ pub(crate) struct SandwichSpans {
 
 const EXPECTED_ITEM: &str = "expected `key = value;`, `type Name { .. }` or \
      `sandwich Versor(Operand) -> Output;` (keys: name, doc, basis, metric, diagonal, scalar, \
-     runtime, path)";
+     runtime, exp_log, path)";
 
 /// Top-level keys that give (part of) the spec, which `path = ...` excludes.
 const SPEC_KEYS: [&str; 5] = ["name", "doc", "basis", "metric", "diagonal"];
@@ -154,6 +156,7 @@ impl Parse for Input {
         let mut spans = Spans::default();
         let mut scalar = None;
         let mut runtime = None;
+        let mut require_exp_log = false;
         let mut path: Option<LitStr> = None;
         // Keys seen, with the range of the key, for "given twice" and "not with `path`".
         let mut seen: Vec<(String, Range)> = Vec::new();
@@ -263,6 +266,19 @@ impl Parse for Input {
                         });
                     }
                     "runtime" => runtime = Some(parse_runtime(input)?),
+                    "exp_log" => {
+                        let t: Ident = input.parse()?;
+                        require_exp_log = match t.to_string().as_str() {
+                            "required" => true,
+                            "optional" => false,
+                            _ => {
+                                return Err(syn::Error::new(
+                                    t.span(),
+                                    "expected `required` or `optional`",
+                                ))
+                            }
+                        };
+                    }
                     "path" => path = Some(input.parse()?),
                     _ => {
                         return Err(syn::Error::new(
@@ -297,7 +313,7 @@ impl Parse for Input {
                     range,
                     format!(
                         "{what} cannot be given with `path = ...`: the spec file gives the whole \
-                         algebra (only `scalar` and `runtime` may be added)"
+                         algebra (only `scalar`, `runtime` and `exp_log` may be added)"
                     ),
                 ));
             }
@@ -305,6 +321,7 @@ impl Parse for Input {
                 source: Source::File(path),
                 scalar,
                 runtime,
+                require_exp_log,
             });
         }
         if spans.basis_list.is_none() {
@@ -317,6 +334,7 @@ impl Parse for Input {
             source: Source::Inline(Box::new(Inline { raw, spans })),
             scalar,
             runtime,
+            require_exp_log,
         })
     }
 }

@@ -77,6 +77,7 @@
 //!            | diagonal = [ Number, .. ] ;          (squares of an orthogonal basis)
 //!            | scalar   = f64 | f32     ;           (default f64)
 //!            | runtime  = path          ;           (default ::ga_codegen)
+//!            | exp_log  = required | optional ;     (default optional: see below)
 //!            | path     = "file.toml"   ;           (the file form)
 //!            | ///doc* type TypeName { field, .. }
 //!            | sandwich Versor(Operand) -> Output ; (`-> Output` optional: inferred)
@@ -90,7 +91,12 @@
 //! ```
 //!
 //! Every key may be given once; `metric` and `diagonal` exclude each other. With
-//! `path = ...` only `scalar` and `runtime` may be added.
+//! `path = ...` only `scalar`, `runtime` and `exp_log` may be added.
+//!
+//! Bivector and even versor types get closed-form `exp`, `log`, `sqrt` and `normalize` (the
+//! `Exp`, `Log` and `EvenVersor` traits, as from the binary) wherever their span allows it (at
+//! most five basis vectors, real squares); `exp_log = required` makes a type that cannot have
+//! them a compile error at its name instead of an omission.
 //!
 //! ## Errors
 //!

@@ -59,6 +59,12 @@ pub(crate) fn gen_error(e: &GenError, raw: &RawSpec, spans: &Spans) -> Range {
         GenError::ZeroSandwich {
             versor, operand, ..
         } => find(versor, operand).map(|r| r.whole),
+        GenError::NoClosedForm { ty, .. } => raw
+            .types
+            .iter()
+            .zip(&spans.types)
+            .find(|(t, _)| &t.name == ty)
+            .map(|(_, r)| r.name),
         GenError::Internal(_) => None,
     }
     .unwrap_or_else(Range::call_site)

@@ -88,6 +88,10 @@ pub struct EmitOptions {
     /// depends on those crates optionally) and a `types` module re-exporting every
     /// generated type. `ga-codegen --library`.
     pub library: bool,
+    /// Make a bivector or even versor type that gets no closed-form `exp`/`log` (its span is
+    /// above the closed-form range, see [`refusals`]) an error ([`GenError::NoClosedForm`])
+    /// instead of an omission. `ga-codegen --exp-log`, `algebra!(exp_log = required; ..)`.
+    pub require_exp_log: bool,
 }
 
 impl Default for EmitOptions {
@@ -96,6 +100,7 @@ impl Default for EmitOptions {
             scalar: ScalarType::F64,
             runtime: "::ga_codegen".to_string(),
             library: false,
+            require_exp_log: false,
         }
     }
 }
@@ -125,6 +130,16 @@ pub enum GenError {
         /// Operand type.
         operand: String,
     },
+    /// Closed-form `exp`/`log` were required ([`EmitOptions::require_exp_log`]) and a type
+    /// cannot have them.
+    NoClosedForm {
+        /// The spec file.
+        file: String,
+        /// The bivector or even versor type.
+        ty: String,
+        /// Why (the span of its blades).
+        reason: String,
+    },
     /// A name that cannot be written in Rust, or emitted code that does not parse (a
     /// generator bug).
     Internal(String),
@@ -139,6 +154,9 @@ impl fmt::Display for GenError {
             ),
             GenError::ZeroSandwich { file, versor, operand } => {
                 write!(f, "{file}: type `{versor}`: `{operand}`: the sandwich is identically zero")
+            }
+            GenError::NoClosedForm { file, ty, reason } => {
+                write!(f, "{file}: type `{ty}`: no closed-form exp/log: {reason}")
             }
             GenError::Internal(m) => write!(f, "internal generator error: {m}"),
         }
@@ -347,6 +365,15 @@ fn check_names(spec: &Spec) -> Result<(), GenError> {
 /// Generate the Rust module for a spec.
 pub fn generate(spec: &Spec, opts: &EmitOptions) -> Result<Generated, GenError> {
     check_names(spec)?;
+    if opts.require_exp_log {
+        if let Some((ty, why)) = refusals(spec).into_iter().next() {
+            return Err(GenError::NoClosedForm {
+                file: spec.source.clone(),
+                ty,
+                reason: why.to_string(),
+            });
+        }
+    }
     let rt: TokenStream = opts
         .runtime
         .parse()
