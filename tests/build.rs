@@ -20,6 +20,11 @@ fn main() {
         "sig201".to_string(),
         Spec::for_signature(2, 0, 1).unwrap_or_else(|e| panic!("{e}")),
     ));
+    // Euclidean 4D: every rotor a double rotation (the isoclinic cases of exp/log).
+    specs.push((
+        "sig400".to_string(),
+        Spec::for_signature(4, 0, 0).unwrap_or_else(|e| panic!("{e}")),
+    ));
     // The f32 twin of every module too (CGA's with 4-lane products), checked with an f32
     // tolerance; the closed-form exp/log tests use both.
     let f32_opts = EmitOptions {

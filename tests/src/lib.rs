@@ -50,6 +50,18 @@ algebra_module!(
     "G(2,0,1) from `--signature 2,0,1`."
 );
 algebra_module!(
+    sig400,
+    "sig400.rs",
+    "sig400_checks.rs",
+    "G(4) from `--signature 4,0,0` (double rotations)."
+);
+algebra_module!(
+    sig400_f32,
+    "sig400_f32.rs",
+    "sig400_f32_checks.rs",
+    "G(4) from `--signature 4,0,0`, f32."
+);
+algebra_module!(
     pga3d_f32,
     "pga3d_f32.rs",
     "pga3d_f32_checks.rs",

@@ -168,6 +168,8 @@ suite!(sta, tests::sta, false, [(Bivector, Rotor)]);
 suite!(sta_f32, tests::sta_f32, true, [(Bivector, Rotor)]);
 suite!(sig201, tests::sig201, false, [(Bivector, Even)]);
 suite!(sig201_f32, tests::sig201_f32, true, [(Bivector, Even)]);
+suite!(sig400, tests::sig400, false, [(Bivector, Even)]);
+suite!(sig400_f32, tests::sig400_f32, true, [(Bivector, Even)]);
 suite!(
     cga,
     tests::cga,

@@ -41,3 +41,8 @@ fn sta_generated_matches_generic() {
 fn signature_201_generated_matches_generic() {
     run("sig201", tests::sig201::checks::check_all(200, 5));
 }
+
+#[test]
+fn signature_400_generated_matches_generic() {
+    run("sig400", tests::sig400::checks::check_all(200, 6));
+}

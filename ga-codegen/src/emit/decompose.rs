@@ -172,14 +172,17 @@ fn inertia(a: &[Vec<f64>]) -> (usize, usize, usize) {
 ///   `exp(b) = c + s b`: `cos(t), sin(t)/t` with `t = sqrt(-l)` when `l < 0` (a rotation),
 ///   `cosh(t), sinh(t)/t` with `t = sqrt(l)` when `l > 0` (a boost), `1, 1` when `l = 0` (a
 ///   translation, `b b = 0`);
+/// - `exp_log_x_over_sin(x, sin x)`: `x / sin x`, by its series near zero (the angle sum and
+///   difference of a double rotation's logarithm);
 /// - `exp_log_squares(s, q) -> (lo, hi)`: the squares of the two commuting parts, the roots of
 ///   `l^2 - s l + q/4`, each computed without cancellation (the larger in magnitude by the
 ///   quadratic formula, the other as `q / (4 root)`);
 /// - `exp_log_coefficients(l1, l2) -> [c1 c2, alpha, beta, s1 s2]`: with `Bi = (li B - W B/2) /
 ///   (li - lj)`, `exp(B) = c1 c2 + alpha B + beta (W B)/2 + s1 s2 W/2`, where
-///   `alpha = (l1 s1 c2 - l2 c1 s2)/(l1 - l2)` and `beta = (c1 s2 - s1 c2)/(l1 - l2)`. When the
-///   squares are equal to within the cube root of the precision (isoclinic parts, or both zero)
-///   the limits `alpha = (s c + 1)/2`, `beta = s^2/2 - c ds/dl` at the mean are used, with an
+///   `alpha = (l1 s1 c2 - l2 c1 s2)/(l1 - l2)` and `beta = (c1 s2 - s1 c2)/(l1 - l2)`; for two
+///   rotations by angles within a factor about 1.4 of each other, by their sum and difference
+///   (`sinc(t1 ± t2)`, no division by `l1 - l2`); when other squares are equal to within the
+///   cube root of the precision (both near zero, or equal boosts) the limits `alpha = (s c + 1)/2`, `beta = s^2/2 - c ds/dl` at the mean are used, with an
 ///   error of the order of the squared difference.
 pub fn helpers(scalar: ScalarType) -> TokenStream {
     let s = scalar.tokens();
@@ -216,6 +219,31 @@ pub fn helpers(scalar: ScalarType) -> TokenStream {
                 if t == 0.0 { (1.0, 1.0) } else { (t.cosh(), t.sinh() / t) }
             } else {
                 (1.0, 1.0)
+            }
+        }
+
+        /// `sin(x) / x`, by its series below `1e-4`.
+        #[inline]
+        #[allow(dead_code)]
+        fn exp_log_sinc(x: #s) -> #s {
+            if x.abs() < 1e-4 {
+                let x2 = x * x;
+                1.0 - x2 * (1.0 / 6.0 - x2 * (1.0 / 120.0))
+            } else {
+                x.sin() / x
+            }
+        }
+
+        /// `x / sin x` given `sn = sin x` (`x` in `[0, pi]`): its series `1 + x^2/6 +
+        /// 7 x^4/360` below `1e-4`, where the quotient would be `0/0` at zero.
+        #[inline]
+        #[allow(dead_code)]
+        fn exp_log_x_over_sin(x: #s, sn: #s) -> #s {
+            if x < 1e-4 {
+                let x2 = x * x;
+                1.0 + x2 * (1.0 / 6.0 + x2 * (7.0 / 360.0))
+            } else {
+                x / sn
             }
         }
 
@@ -256,15 +284,27 @@ pub fn helpers(scalar: ScalarType) -> TokenStream {
         /// `[c1 c2, alpha, beta, s1 s2]` with `exp(B) = c1 c2 + alpha B + beta (W B)/2 +
         /// s1 s2 W/2` for a bivector whose commuting parts square to `l1` and `l2`
         /// (`W = <B B>_4`). `alpha = (l1 s1 c2 - l2 c1 s2)/(l1 - l2)`, `beta = (c1 s2 - s1 c2)/(l1 - l2)`;
-        /// when the squares agree to within the cube root of the precision, the limits
-        /// `alpha = (s c + 1)/2`, `beta = s^2/2 - c ds/dl` at their mean.
+        /// two rotations (`l1, l2 < 0`, `ti = sqrt(-li)`) whose squares are within a factor two
+        /// use the sum and difference of their angles instead, `alpha = (sinc(t1 + t2) +
+        /// sinc(t1 - t2))/2`, `beta = -(sinc(t1 + t2) - sinc(t1 - t2))/(2 t1 t2)`, exact for
+        /// equal angles (isoclinic); otherwise, when the squares agree to within the cube root of
+        /// the precision, the limits `alpha = (s c + 1)/2`, `beta = s^2/2 - c ds/dl` at their
+        /// mean.
         #[inline]
         #[allow(dead_code)]
         fn exp_log_coefficients(l1: #s, l2: #s) -> [#s; 4] {
             let (c1, s1) = exp_log_simple(l1);
             let (c2, s2) = exp_log_simple(l2);
             let d = l1 - l2;
-            if d.abs() > #tol * l1.abs().max(l2.abs()) {
+            let (t1, t2) = ((-l1).max(0.0).sqrt(), (-l2).max(0.0).sqrt());
+            if l1 < 0.0 && l2 < 0.0 && d.abs() <= 0.5 * l1.abs().max(l2.abs())
+                && t1 * t2 >= #s::MIN_POSITIVE
+            {
+                // Two rotations by nearly equal angles: by their sum and difference, which
+                // divides by neither `d` nor a small product of angles.
+                let (fs, fd) = (exp_log_sinc(t1 + t2), exp_log_sinc(t1 - t2));
+                [c1 * c2, 0.5 * (fs + fd), -0.5 * (fs - fd) / (t1 * t2), s1 * s2]
+            } else if d.abs() > #tol * l1.abs().max(l2.abs()) {
                 [
                     c1 * c2,
                     (l1 * s1 * c2 - l2 * c1 * s2) / d,

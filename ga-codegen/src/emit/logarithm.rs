@@ -119,27 +119,9 @@ impl Gen<'_> {
                 quote!(kr * pr[#i] + ko * uo[#i])
             })
         });
-        // Isoclinic double rotations: equal squares, the split is not unique; B = theta/a P.
-        let isoclinic = if kind.double_rotation() && !r4.0.is_empty() {
-            let tol = float(match self.scalar {
-                ScalarType::F64 => 1e-12,
-                ScalarType::F32 => 1e-5,
-            });
-            let r4sq = cx.poly(&self.table.product(&r4, &r4, Product::Geometric).get(0));
-            let iso = build(lt, |x| {
-                keys.iter().position(|b| *b == x).map(|i| {
-                    let pe = cx.at(&p, keys[i]);
-                    quote!(k * (#pe))
-                })
-            });
-            quote! {
-                if mo < 0.0 && (mr - mo).abs() <= #tol * mr.abs() {
-                    let a = (-mr).sqrt();
-                    let n4 = (#r4sq).max(0.0).sqrt();
-                    let k = (2.0 * a).atan2(r0 - n4) / (2.0 * a);
-                    return #iso;
-                }
-            }
+        // Two rotations: by the sum and difference of their angles (`log_double.rs`).
+        let double = if kind.double_rotation() && !r4.0.is_empty() {
+            self.log_double_rotation(&mut cx, lt, &p, &r4)
         } else {
             TokenStream::new()
         };
@@ -154,7 +136,12 @@ impl Gen<'_> {
              by the scalar part or by a sine); the other part, `uo = (<v>_0 po - <pr <v>_4>_2) / \
              c` with `c = sqrt(<v>_0^2 + |pr|^2)`, is a translation (kept as it is), a boost \
              (scaled by `asinh(|uo|)/|uo|`) or a second rotation (`asin(|uo|)/|uo|`). A pure \
-             translation (`pr = 0`) returns the bivector part itself.",
+             translation (`pr = 0`) returns the bivector part itself. Two rotations (`<v>_4` \
+             squares positive) are read from the sum `S` and difference `D` of their angles \
+             instead: `log = f(S) (P + Q)/2 + f(D) (P - Q)/2`, `f(x) = x / sin x`, \
+             `Q = -<P <v>_4>_2 / |<v>_4|`, exact for equal angles (isoclinic) and near them; the \
+             double half turn (`v` a unit 4-blade, whose logarithm is not unique) returns one of \
+             its logarithms.",
             vt.name
         ));
         quote! {
@@ -171,7 +158,7 @@ impl Gen<'_> {
                     let sp: #s = #sp;
                     #wp_stmt
                     #squares
-                    #isoclinic
+                    #double
                     #pr_stmt
                     let a = (-mr).max(0.0).sqrt();
                     let th = a.atan2(r0);

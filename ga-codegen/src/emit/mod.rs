@@ -27,6 +27,7 @@ mod exp_log;
 mod infer;
 mod lanes;
 mod library;
+mod log_double;
 mod logarithm;
 mod normalize;
 mod operators;
