@@ -286,7 +286,8 @@ impl Gen<'_> {
                 fn log(self) -> Self::Output;
             }
 
-            /// Closed-form normalisation and square root of an even versor.
+            /// Closed-form normalisation and square root of an even versor (its inverse is the
+            /// type's inherent `inverse`, `~self / <self ~self>_0`).
             pub trait EvenVersor: ::core::marker::Sized {
                 /// `self / sqrt(self ~self)`, where `self ~self` is a scalar plus a grade-4 part.
                 fn normalize(self) -> Self;

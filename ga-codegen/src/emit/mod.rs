@@ -12,7 +12,7 @@
 //! - `types.rs`: one struct per declared type with its methods and scalar operators;
 //! - `operators.rs`: binary operators between declared types and conversions;
 //! - `sandwich.rs`: fused sandwich products and their matrix (outermorphism) form;
-//! - `decompose.rs`, `exp_log.rs`, `logarithm.rs`, `normalize.rs`: closed-form `exp`, `log`,
+//! - `decompose.rs`, `exp_log.rs`, `logarithm.rs`, `log_double.rs`, `normalize.rs`: closed-form `exp`, `log`,
 //!   `sqrt` and `normalize` of even versors by the invariant decomposition of bivectors;
 //! - `lanes.rs`: paired-lane (`F64x2`) forms of dense geometric products;
 //! - `library.rs`: serde and bytemuck impls and the list of types, for a library's API;
