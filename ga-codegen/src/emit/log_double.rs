@@ -3,7 +3,7 @@
 //! difference of their angles so that nearly equal angles (isoclinic rotations) lose nothing;
 //! see [`super::exp_log`] for the whole story.
 
-use super::exp_log::{build, grade_part, Ctx};
+use super::exp_log::{build, grade_part, negative_squares, Ctx};
 use super::render::{float, ident};
 use super::{Gen, ScalarType};
 use crate::blade::Bitmap;
@@ -35,7 +35,13 @@ impl Gen<'_> {
     ) -> TokenStream {
         let s = self.s.clone();
         let keys: Vec<Bitmap> = p.0.keys().copied().collect();
-        let r4sq = cx.poly(&self.table.product(r4, r4, Product::Geometric).get(0));
+        // A type whose grade-4 part never squares positive (CGA's similarities: a negative sum
+        // of squares) holds no double rotation.
+        let r4sq = self.table.product(r4, r4, Product::Geometric).get(0);
+        if r4sq.is_zero() || negative_squares(&r4sq) {
+            return TokenStream::new();
+        }
+        let r4sq = cx.poly(&r4sq);
         let pr4 = grade_part(&self.table.product(p, r4, Product::Geometric), 2);
         if pr4.0.keys().any(|b| !keys.contains(b)) {
             return TokenStream::new();
