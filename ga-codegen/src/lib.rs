@@ -37,7 +37,7 @@ pub use spec::{Spec, SpecError};
 #[cfg(feature = "codegen")]
 pub mod emit;
 #[cfg(feature = "codegen")]
-pub use emit::{generate, EmitOptions, GenError, Generated, Method, Op, ScalarType};
+pub use emit::{generate, generate_wgsl, EmitOptions, GenError, Generated, Method, Op, ScalarType};
 #[cfg(feature = "codegen")]
 pub mod checks;
 #[cfg(feature = "codegen")]

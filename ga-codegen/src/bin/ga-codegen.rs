@@ -3,7 +3,10 @@
 //! ```text
 //! ga-codegen SPEC.toml [-o FILE] [--scalar f32|f64] [--summary] [--runtime PATH] [--library] [--exp-log]
 //! ga-codegen --signature P,Q,R [-o FILE] [--scalar f32|f64] [--summary] [--runtime PATH] [--library] [--exp-log]
+//! ga-codegen SPEC.toml|--signature P,Q,R --wgsl [-o FILE]
 //! ```
+//! `--wgsl` writes the algebra as WGSL instead (f32 structs, products, reverses, fused
+//! sandwiches and sandwich matrices; see `ga_codegen::generate_wgsl`).
 //! Without `-o` the module is printed. `--summary` prints the types and the product table
 //! instead of the code (the time taken goes to stderr, so the listing is reproducible:
 //! `algebras/cga.summary.txt` is `ga-codegen algebras/cga.toml --summary`). `--library` adds
@@ -20,7 +23,8 @@ use std::time::Instant;
 
 const USAGE: &str =
     "usage: ga-codegen SPEC.toml [-o FILE] [--scalar f32|f64] [--summary] [--runtime PATH] [--library] [--exp-log]
-       ga-codegen --signature P,Q,R [-o FILE] [--scalar f32|f64] [--summary] [--runtime PATH] [--library] [--exp-log]";
+       ga-codegen --signature P,Q,R [-o FILE] [--scalar f32|f64] [--summary] [--runtime PATH] [--library] [--exp-log]
+       ga-codegen SPEC.toml|--signature P,Q,R --wgsl [-o FILE]";
 
 struct Args {
     spec: Option<PathBuf>,
@@ -31,6 +35,8 @@ struct Args {
     library: bool,
     runtime: Option<String>,
     exp_log: bool,
+    wgsl: bool,
+    scalar_given: bool,
 }
 
 fn parse_args() -> Result<Args, String> {
@@ -43,6 +49,8 @@ fn parse_args() -> Result<Args, String> {
         library: false,
         runtime: None,
         exp_log: false,
+        wgsl: false,
+        scalar_given: false,
     };
     let mut it = std::env::args().skip(1);
     while let Some(arg) = it.next() {
@@ -50,6 +58,7 @@ fn parse_args() -> Result<Args, String> {
             "-h" | "--help" => return Err(String::new()),
             "-o" | "--output" => a.out = Some(it.next().ok_or("-o needs a file")?.into()),
             "--scalar" => {
+                a.scalar_given = true;
                 a.scalar = match it.next().as_deref() {
                     Some("f32") => ScalarType::F32,
                     Some("f64") => ScalarType::F64,
@@ -59,6 +68,7 @@ fn parse_args() -> Result<Args, String> {
             "--summary" => a.summary = true,
             "--library" => a.library = true,
             "--exp-log" => a.exp_log = true,
+            "--wgsl" => a.wgsl = true,
             "--runtime" => a.runtime = Some(it.next().ok_or("--runtime needs a path")?),
             "--signature" => {
                 let v = it.next().ok_or("--signature needs P,Q,R")?;
@@ -75,6 +85,12 @@ fn parse_args() -> Result<Args, String> {
     }
     if a.spec.is_some() == a.signature.is_some() {
         return Err("give either a spec file or --signature P,Q,R".into());
+    }
+    if a.wgsl && (a.summary || a.library || a.runtime.is_some() || a.scalar_given) {
+        return Err(
+            "--wgsl writes f32 WGSL and takes only -o (not --scalar, --summary, --library or --runtime)"
+                .into(),
+        );
     }
     Ok(a)
 }
@@ -134,6 +150,9 @@ fn main() -> ExitCode {
             );
         }
     }
+    if args.wgsl {
+        return write_wgsl(&spec, args.out.as_deref(), start);
+    }
     let mut opts = EmitOptions {
         scalar: args.scalar,
         library: args.library,
@@ -184,6 +203,33 @@ fn main() -> ExitCode {
         }
         None if !args.summary => print!("{code}"),
         None => {}
+    }
+    ExitCode::SUCCESS
+}
+
+/// `--wgsl`: the WGSL source to `out` or stdout.
+fn write_wgsl(spec: &Spec, out: Option<&std::path::Path>, start: Instant) -> ExitCode {
+    let code = match ga_codegen::generate_wgsl(spec) {
+        Ok(c) => c,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    let ms = start.elapsed().as_secs_f64() * 1e3;
+    match out {
+        Some(path) => {
+            if let Err(e) = std::fs::write(path, &code) {
+                eprintln!("error: cannot write {}: {e}", path.display());
+                return ExitCode::from(2);
+            }
+            eprintln!(
+                "wrote {} ({} lines of WGSL, {ms:.1} ms)",
+                path.display(),
+                code.lines().count()
+            );
+        }
+        None => print!("{code}"),
     }
     ExitCode::SUCCESS
 }

@@ -14,6 +14,7 @@
 //! - `sandwich.rs`: fused sandwich products and their matrix (outermorphism) form;
 //! - `decompose.rs`, `exp_log.rs`, `logarithm.rs`, `log_double.rs`, `normalize.rs`: closed-form `exp`, `log`,
 //!   `sqrt` and `normalize` of even versors by the invariant decomposition of bivectors;
+//! - `wgsl.rs`: the same types, products and sandwiches as WGSL (`generate_wgsl`);
 //! - `lanes.rs`: paired-lane (`F64x2`) forms of dense geometric products;
 //! - `library.rs`: serde and bytemuck impls and the list of types, for a library's API;
 //! - `summary.rs`: the human-readable table of what was emitted.
@@ -36,10 +37,12 @@ mod render;
 mod sandwich;
 mod summary;
 mod types;
+mod wgsl;
 
 pub use decompose::Refusal;
 pub use exp_log::refusals;
 pub use render::snake;
+pub use wgsl::generate_wgsl;
 
 use crate::spec::Spec;
 use crate::symbolic::BladeTable;
@@ -363,25 +366,15 @@ fn check_names(spec: &Spec) -> Result<(), GenError> {
     Ok(())
 }
 
-/// Generate the Rust module for a spec.
-pub fn generate(spec: &Spec, opts: &EmitOptions) -> Result<Generated, GenError> {
-    check_names(spec)?;
-    if opts.require_exp_log {
-        if let Some((ty, why)) = refusals(spec).into_iter().next() {
-            return Err(GenError::NoClosedForm {
-                file: spec.source.clone(),
-                ty,
-                reason: why.to_string(),
-            });
-        }
-    }
+/// The generator state for a checked spec.
+fn gen<'a>(spec: &'a Spec, opts: &EmitOptions) -> Result<Gen<'a>, GenError> {
     let rt: TokenStream = opts
         .runtime
         .parse()
         .map_err(|e| GenError::Internal(format!("runtime path `{}`: {e}", opts.runtime)))?;
     let mut by_size: Vec<usize> = (0..spec.types.len()).collect();
     by_size.sort_by_key(|&i| spec.types[i].fields.len() + spec.types[i].constants.len());
-    let mut g = Gen {
+    Ok(Gen {
         spec,
         table: BladeTable::new(&spec.metric),
         scalar: opts.scalar,
@@ -395,7 +388,22 @@ pub fn generate(spec: &Spec, opts: &EmitOptions) -> Result<Generated, GenError> 
         closed_forms: Vec::new(),
         by_size,
         alg: crate::Algebra::new(spec.metric.clone()),
-    };
+    })
+}
+
+/// Generate the Rust module for a spec.
+pub fn generate(spec: &Spec, opts: &EmitOptions) -> Result<Generated, GenError> {
+    check_names(spec)?;
+    if opts.require_exp_log {
+        if let Some((ty, why)) = refusals(spec).into_iter().next() {
+            return Err(GenError::NoClosedForm {
+                file: spec.source.clone(),
+                ty,
+                reason: why.to_string(),
+            });
+        }
+    }
+    let mut g = gen(spec, opts)?;
     g.header();
     for ti in 0..spec.types.len() {
         g.type_def(ti);

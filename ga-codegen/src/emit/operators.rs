@@ -37,7 +37,7 @@ impl Op {
 
 impl Gen<'_> {
     /// The symbolic result of `a op b`.
-    fn apply(&mut self, op: Op, a: &SymMv, b: &SymMv) -> SymMv {
+    pub(super) fn apply(&mut self, op: Op, a: &SymMv, b: &SymMv) -> SymMv {
         match op {
             Op::Geometric => self.table.product(a, b, Product::Geometric),
             Op::Outer => self.table.product(a, b, Product::Outer),

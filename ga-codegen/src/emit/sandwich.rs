@@ -17,6 +17,26 @@ use proc_macro2::{Ident, TokenStream};
 use quote::quote;
 use std::collections::BTreeMap;
 
+/// What [`Gen::sandwich_parts`] computes for one sandwich.
+pub(super) struct SandwichParts {
+    /// Versor, operand and output type indices.
+    pub versor: usize,
+    pub operand: usize,
+    pub output: usize,
+    /// `coef[k][j]`, see [`linear_form`].
+    pub coef: Vec<Vec<Poly>>,
+    /// The straight-line program of the fused sandwich.
+    pub kernel: Kernel,
+    /// The matrix entries, row by row, in terms of `matrix_lets`' temporaries.
+    pub matrix: Vec<TokenStream>,
+    /// The temporaries of the matrix form.
+    pub matrix_lets: TokenStream,
+    /// The doc: the expansion, and the factored form's cost when there is one.
+    pub doc: String,
+    /// Terms of the expansion.
+    pub terms: usize,
+}
+
 /// A straight-line program for a sandwich: temporaries computed in order, then one expression
 /// per output field (in terms of `a`, the versor, `b`, the operand, and the temporaries).
 pub(super) struct Kernel {
@@ -214,9 +234,10 @@ impl Gen<'_> {
         (Kernel { temps, outputs }, matrix)
     }
 
-    /// The fused sandwich `impl Sandwich<X> for V`, the matrix type `VXMatrix` with `apply`,
-    /// and `V::x_matrix()`.
-    pub(super) fn sandwich(&mut self, d: &SandwichDef) -> Result<(), GenError> {
+    /// Everything a sandwich's emitters need: the types, the linear form, the straight-line
+    /// kernel (the factored program where one is proven cheaper), the matrix entries and the
+    /// doc with its expansion.
+    pub(super) fn sandwich_parts(&mut self, d: &SandwichDef) -> Result<SandwichParts, GenError> {
         let (r, ideal, oi) = self.sandwich_output(d)?;
         let spec = self.spec;
         let (tv, tx, to) = (
@@ -225,11 +246,10 @@ impl Gen<'_> {
             &spec.types[oi],
         );
         let coef = linear_form(&r, tx, to);
-        let nx = tx.fields.len();
         let (mut kernel, matrix) = self.sandwich_kernel(tv, tx, to, &coef);
         // The matrix form keeps the pairwise products of the term-by-term kernel.
-        let lets = kernel.lets();
-        let (mut sdoc, nterms) = self.sandwich_doc(tv, tx, to, &coef);
+        let matrix_lets = kernel.lets();
+        let (mut doc, terms) = self.sandwich_doc(tv, tx, to, &coef);
         // A cheaper straight-line program (two half products sharing work), proven equal to
         // the expansion, replaces the term-by-term body (see `factor`).
         let case = crate::factor::SandwichCase {
@@ -253,11 +273,44 @@ impl Gen<'_> {
                     .collect(),
             };
             let (m, ad) = prog.ops();
-            sdoc.push_str(&format!(
+            doc.push_str(&format!(
                 "\n\nComputed as {} ({m} multiplies, {ad} adds).",
                 prog.form
             ));
         }
+        Ok(SandwichParts {
+            versor: d.versor,
+            operand: d.operand,
+            output: oi,
+            coef,
+            kernel,
+            matrix,
+            matrix_lets,
+            doc,
+            terms,
+        })
+    }
+
+    /// The fused sandwich `impl Sandwich<X> for V`, the matrix type `VXMatrix` with `apply`,
+    /// and `V::x_matrix()`.
+    pub(super) fn sandwich(&mut self, d: &SandwichDef) -> Result<(), GenError> {
+        let parts = self.sandwich_parts(d)?;
+        let spec = self.spec;
+        let (tv, tx, to) = (
+            &spec.types[parts.versor],
+            &spec.types[parts.operand],
+            &spec.types[parts.output],
+        );
+        let SandwichParts {
+            coef,
+            kernel,
+            matrix,
+            matrix_lets: lets,
+            doc: sdoc,
+            terms: nterms,
+            ..
+        } = parts;
+        let nx = tx.fields.len();
         let (vn, xn, on) = (ident(&tv.name), ident(&tx.name), ident(&to.name));
         let s = &self.s;
         let mat = ident(&format!("{}{}Matrix", tv.name, tx.name));
