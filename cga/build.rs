@@ -1,4 +1,5 @@
-//! Generates the G(4,1) types from `algebras/cga.toml` at build time, in f64 and f32.
+//! Generates the G(4,1) types from `algebras/cga.toml` at build time, in f64 and f32, and as
+//! WGSL.
 
 use ga_codegen::{generate, EmitOptions, ScalarType, Spec};
 use std::path::PathBuf;
@@ -27,4 +28,7 @@ fn main() {
         let code = g.code().unwrap_or_else(|e| panic!("{e}"));
         std::fs::write(out.join(file), code).expect("write generated code");
     }
+    // The same algebra as WGSL, for shaders (`cga::f32::WGSL`).
+    let wgsl = ga_codegen::generate_wgsl(&spec).unwrap_or_else(|e| panic!("{e}"));
+    std::fs::write(out.join("cga.wgsl"), wgsl).expect("write generated WGSL");
 }

@@ -137,6 +137,10 @@ pub mod f64 {
 pub mod f32 {
     include!(concat!(env!("OUT_DIR"), "/cga_f32.rs"));
     pub use crate::ext32::dual_quat::DualQuat;
+    /// The same types, products, sandwiches and sandwich matrices as WGSL (f32), generated
+    /// from `algebras/cga.toml` like this module (`ga-codegen algebras/cga.toml --wgsl`):
+    /// prepend it to a shader to call `motor_sandwich_point(m, p)` and the rest on the GPU.
+    pub const WGSL: &str = include_str!(concat!(env!("OUT_DIR"), "/cga.wgsl"));
     pub use crate::ext32::objects::{Circle, FlatPoint, Line, Plane, PointPair, Sphere};
     pub use crate::ext32::scaled::Similarity;
 }

@@ -38,6 +38,8 @@
 pub mod blend;
 pub mod deformers;
 mod error;
+#[cfg(feature = "gpu")]
+pub mod gpu;
 pub mod input;
 #[cfg(test)]
 mod layering;

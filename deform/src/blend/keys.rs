@@ -164,6 +164,77 @@ impl PreparedKeys {
         Ok(())
     }
 
+    /// The prepared keys as 16 `f32`s each, in the layout of the GPU shader's entry point for
+    /// the method (`deform::gpu`): motors (8 coefficients), dual quaternions (`q.xyzw`,
+    /// `d.xyzw`), each with its log-scale at 8; affine maps (columns `x, y, z, t`); the
+    /// equation (17) rows and `eo` at 12. `None` for [`BlendMethod::MotorLog`], which has no
+    /// GPU form.
+    pub fn pack_f32(&self, out: &mut Vec<f32>) -> Option<()> {
+        out.clear();
+        let mut put = |v: &[f64], log_scale: Option<f64>| {
+            let mut a = [0.0f32; 16];
+            for (x, y) in a.iter_mut().zip(v) {
+                *x = *y as f32;
+            }
+            if let Some(l) = log_scale {
+                a[8] = l as f32;
+            }
+            out.extend_from_slice(&a);
+        };
+        match self.method {
+            BlendMethod::MotorLog => return None,
+            BlendMethod::MotorLinear => {
+                for (m, l) in self.motors.iter().zip(&self.log_scales) {
+                    put(&m.to_array(), Some(*l));
+                }
+            }
+            BlendMethod::DualQuaternion => {
+                for ((q, d), l) in self.quats.iter().zip(&self.log_scales) {
+                    put(&[q.x, q.y, q.z, q.w, d.x, d.y, d.z, d.w], Some(*l));
+                }
+            }
+            BlendMethod::Matrix => {
+                for a in &self.affines {
+                    let (m, t) = (a.matrix3, a.translation);
+                    put(
+                        &[
+                            m.x_axis.x, m.x_axis.y, m.x_axis.z, m.y_axis.x, m.y_axis.y, m.y_axis.z,
+                            m.z_axis.x, m.z_axis.y, m.z_axis.z, t.x, t.y, t.z,
+                        ],
+                        None,
+                    );
+                }
+            }
+            BlendMethod::MatrixF32 => {
+                for a in &self.affines_f32 {
+                    let (m, t) = (a.matrix3, a.translation);
+                    let v = [
+                        m.x_axis.x, m.x_axis.y, m.x_axis.z, m.y_axis.x, m.y_axis.y, m.y_axis.z,
+                        m.z_axis.x, m.z_axis.y, m.z_axis.z, t.x, t.y, t.z,
+                    ];
+                    put(&v.map(f64::from), None);
+                }
+            }
+            BlendMethod::Conformal | BlendMethod::ConformalProjected => {
+                for c in &self.conformal {
+                    let r = c.rows;
+                    let mut v = [0.0; 13];
+                    v[..4].copy_from_slice(&r[0]);
+                    v[4..8].copy_from_slice(&r[1]);
+                    v[8..12].copy_from_slice(&r[2]);
+                    v[12] = c.eo;
+                    put(&v, None);
+                }
+            }
+        }
+        Some(())
+    }
+
+    /// Whether any key scales.
+    pub fn scaled(&self) -> bool {
+        self.scaled
+    }
+
     /// The blend method.
     pub fn method(&self) -> BlendMethod {
         self.method

@@ -298,6 +298,11 @@ impl KeyWeights {
         self.key_count
     }
 
+    /// Weights per vertex.
+    pub fn width(&self) -> usize {
+        self.width
+    }
+
     /// The weights of vertex `i`.
     #[inline]
     pub fn row(&self, i: usize) -> Row<'_> {
@@ -390,6 +395,12 @@ impl BoundBlend {
     /// The blend method.
     pub fn method(&self) -> BlendMethod {
         self.method
+    }
+
+    /// The rest points in the frame of their blended rest transform (`p'_i = M_i^-1 p_i`):
+    /// what `pose` moves.
+    pub fn local(&self) -> &[DVec3] {
+        &self.local
     }
 
     /// Number of vertices.

@@ -1,0 +1,250 @@
+//! A [`BoundBlend`] on the GPU: its rest points and weights uploaded once, each pose uploads
+//! only the keys and reads the positions back.
+
+use super::{GpuContext, GpuError};
+use crate::blend::{BlendMethod, BoundBlend, PreparedKeys};
+use cga::ScaledMotor;
+use glam::DVec3;
+use wgpu::util::DeviceExt as _;
+
+/// Invocations per workgroup (the shader's `@workgroup_size`).
+const GROUP: u32 = 64;
+/// Workgroups per dispatch row (the guaranteed limit of one dimension).
+const ROW_GROUPS: u32 = 65_535;
+
+/// The shader entry point of a method, or `None` when it has no GPU form.
+fn entry_point(method: BlendMethod) -> Option<&'static str> {
+    Some(match method {
+        BlendMethod::MotorLog => return None,
+        BlendMethod::MotorLinear => "skin_motor",
+        BlendMethod::DualQuaternion => "skin_dual_quaternion",
+        BlendMethod::Matrix | BlendMethod::MatrixF32 => "skin_matrix",
+        BlendMethod::Conformal => "skin_conformal",
+        BlendMethod::ConformalProjected => "skin_conformal_projected",
+    })
+}
+
+/// A bound blend on the GPU ([`GpuBlend::bind`] once, [`GpuBlend::pose`] per frame). Same
+/// results as [`BoundBlend::pose`] in `f32`.
+#[derive(Debug)]
+pub struct GpuBlend {
+    method: BlendMethod,
+    vertices: usize,
+    width: usize,
+    key_count: usize,
+    pipeline: wgpu::ComputePipeline,
+    bind_group: wgpu::BindGroup,
+    params: wgpu::Buffer,
+    keys: wgpu::Buffer,
+    out: wgpu::Buffer,
+    staging: wgpu::Buffer,
+    groups: (u32, u32),
+    prepared: PreparedKeys,
+    packed: Vec<f32>,
+}
+
+fn bytes_f32(v: &[f32]) -> Vec<u8> {
+    v.iter().flat_map(|x| x.to_le_bytes()).collect()
+}
+
+fn bytes_u32(v: &[u32]) -> Vec<u8> {
+    v.iter().flat_map(|x| x.to_le_bytes()).collect()
+}
+
+impl GpuBlend {
+    /// Upload `blend`'s rest points and weights and build its pipeline.
+    ///
+    /// # Errors
+    /// [`GpuError::Unsupported`] for log blending, [`GpuError::TooLarge`] when a buffer
+    /// exceeds the device's limits.
+    pub fn bind(ctx: &GpuContext, blend: &BoundBlend) -> Result<GpuBlend, GpuError> {
+        let method = blend.method();
+        let entry = entry_point(method).ok_or(GpuError::Unsupported(method.name()))?;
+        let weights = blend.weights();
+        let (n, width) = (blend.vertex_count(), weights.width());
+        let mut joints = Vec::with_capacity(n * width);
+        let mut w = Vec::with_capacity(n * width);
+        for i in 0..n {
+            let row = weights.row(i);
+            for (k, x) in row.pairs() {
+                joints.push(k as u32);
+                w.push(x as f32);
+            }
+        }
+        let rest: Vec<f32> = blend
+            .local()
+            .iter()
+            .flat_map(|p| [p.x as f32, p.y as f32, p.z as f32])
+            .collect();
+        let limits = ctx.device.limits();
+        let largest = (n * width * 4).max(n * 12).max(blend.key_count() * 64) as u64;
+        if largest > u64::from(limits.max_storage_buffer_binding_size) {
+            return Err(GpuError::TooLarge(format!(
+                "a buffer of {largest} bytes, the device binds at most {}",
+                limits.max_storage_buffer_binding_size
+            )));
+        }
+        let groups_total = (n as u32).div_ceil(GROUP).max(1);
+        let groups = (
+            groups_total.min(ROW_GROUPS),
+            groups_total.div_ceil(ROW_GROUPS),
+        );
+        let device = &ctx.device;
+        let source = format!("{}\n{}", cga::f32::WGSL, include_str!("skin.wgsl"));
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("deform skinning"),
+            source: wgpu::ShaderSource::Wgsl(source.into()),
+        });
+        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some(entry),
+            layout: None,
+            module: &module,
+            entry_point: Some(entry),
+            compilation_options: Default::default(),
+            cache: None,
+        });
+        let storage = |label: &str, contents: &[u8], extra: wgpu::BufferUsages| {
+            // Never empty: a zero-sized binding is invalid.
+            let contents = if contents.is_empty() {
+                &[0u8; 16][..]
+            } else {
+                contents
+            };
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents,
+                usage: wgpu::BufferUsages::STORAGE | extra,
+            })
+        };
+        let rest = storage("rest", &bytes_f32(&rest), wgpu::BufferUsages::empty());
+        let joints = storage("joints", &bytes_u32(&joints), wgpu::BufferUsages::empty());
+        let w = storage("weights", &bytes_f32(&w), wgpu::BufferUsages::empty());
+        let keys = storage(
+            "keys",
+            &vec![0u8; (blend.key_count() * 64).max(16)],
+            wgpu::BufferUsages::COPY_DST,
+        );
+        let out_size = (n * 12).max(16) as u64;
+        let out = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("positions"),
+            size: out_size,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let staging = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("positions read back"),
+            size: out_size,
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let params = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("params"),
+            size: 16,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let layout = pipeline.get_bind_group_layout(0);
+        let entries: Vec<wgpu::BindGroupEntry> = [&params, &rest, &joints, &w, &keys, &out]
+            .into_iter()
+            .enumerate()
+            .map(|(i, b)| wgpu::BindGroupEntry {
+                binding: i as u32,
+                resource: b.as_entire_binding(),
+            })
+            .collect();
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("skinning"),
+            layout: &layout,
+            entries: &entries,
+        });
+        Ok(GpuBlend {
+            method,
+            vertices: n,
+            width,
+            key_count: blend.key_count(),
+            pipeline,
+            bind_group,
+            params,
+            keys,
+            out,
+            staging,
+            groups,
+            prepared: PreparedKeys::default(),
+            packed: Vec::new(),
+        })
+    }
+
+    /// The blend method.
+    pub fn method(&self) -> BlendMethod {
+        self.method
+    }
+
+    /// `out[i]` = vertex `i` posed by `keys`, computed on the GPU and read back.
+    ///
+    /// # Errors
+    /// [`GpuError::Blend`] for keys that are not finite scaled motors, a key count or an `out`
+    /// length that does not fit the bound blend (`out` is then untouched);
+    /// [`GpuError::Readback`] when the device fails.
+    pub fn pose(
+        &mut self,
+        ctx: &GpuContext,
+        keys: &[ScaledMotor],
+        out: &mut [DVec3],
+    ) -> Result<(), GpuError> {
+        crate::blend::check_key_count("this deformer", self.key_count, keys.len())?;
+        crate::blend::check_positions(self.vertices, out.len())?;
+        self.prepared.prepare(keys, self.method)?;
+        self.prepared
+            .pack_f32(&mut self.packed)
+            .ok_or(GpuError::Unsupported(self.method.name()))?;
+        let (queue, device) = (&ctx.queue, &ctx.device);
+        if !self.packed.is_empty() {
+            queue.write_buffer(&self.keys, 0, &bytes_f32(&self.packed));
+        }
+        let params = [
+            self.vertices as u32,
+            self.width as u32,
+            self.groups.0 * GROUP,
+            u32::from(self.prepared.scaled()),
+        ];
+        queue.write_buffer(&self.params, 0, &bytes_u32(&params));
+        let mut encoder = device.create_command_encoder(&Default::default());
+        {
+            let mut pass = encoder.begin_compute_pass(&Default::default());
+            pass.set_pipeline(&self.pipeline);
+            pass.set_bind_group(0, &self.bind_group, &[]);
+            pass.dispatch_workgroups(self.groups.0, self.groups.1, 1);
+        }
+        let size = (self.vertices * 12) as u64;
+        if size > 0 {
+            encoder.copy_buffer_to_buffer(&self.out, 0, &self.staging, 0, size);
+        }
+        queue.submit([encoder.finish()]);
+        if size == 0 {
+            return Ok(());
+        }
+        let slice = self.staging.slice(..size);
+        let (tx, rx) = std::sync::mpsc::channel();
+        slice.map_async(wgpu::MapMode::Read, move |r| {
+            let _ = tx.send(r);
+        });
+        device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map_err(|e| GpuError::Readback(e.to_string()))?;
+        rx.recv()
+            .map_err(|e| GpuError::Readback(e.to_string()))?
+            .map_err(|e| GpuError::Readback(e.to_string()))?;
+        {
+            let data = slice
+                .get_mapped_range()
+                .map_err(|e| GpuError::Readback(e.to_string()))?;
+            for (o, c) in out.iter_mut().zip(data.chunks_exact(12)) {
+                let f =
+                    |k: usize| f64::from(f32::from_le_bytes([c[k], c[k + 1], c[k + 2], c[k + 3]]));
+                *o = DVec3::new(f(0), f(4), f(8));
+            }
+        }
+        self.staging.unmap();
+        Ok(())
+    }
+}

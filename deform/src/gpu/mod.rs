@@ -1,0 +1,51 @@
+//! Posing on the GPU through wgpu (the `gpu` feature): the same blends as [`crate::blend`],
+//! as compute passes over buffers uploaded once at bind, in `f32`.
+//!
+//! **May use**: the mesh foundation, blending and skinning. The shader (`skin.wgsl`) is
+//! written once against the WGSL that the generator makes from `algebras/cga.toml`
+//! ([`cga::f32::WGSL`]): motor blending calls the generated `motor_sandwich_point`.
+//!
+//! Every [`BlendMethod`](crate::BlendMethod) but log blending has a GPU form: matrix LBS
+//! (f64 and f32 keys), dual quaternions, equation (17) both ways, motor blending.
+//!
+//! ```no_run
+//! # fn main() -> Result<(), Box<dyn std::error::Error>> {
+//! use deform::gpu::{GpuBlend, GpuContext};
+//! let ctx = GpuContext::new()?; // GpuError::NoAdapter without a GPU or a software driver
+//! # let blend: deform::blend::BoundBlend = unimplemented!();
+//! # let keys: Vec<cga::ScaledMotor> = vec![];
+//! let gpu = GpuBlend::bind(&ctx, &blend)?;
+//! let mut out = vec![glam::DVec3::ZERO; blend.vertex_count()];
+//! gpu.pose(&ctx, &keys, &mut out)?;
+//! # Ok(())
+//! # }
+//! ```
+
+mod blend;
+mod context;
+
+pub use blend::GpuBlend;
+pub use context::GpuContext;
+
+/// Why the GPU cannot pose.
+#[derive(Debug, thiserror::Error)]
+pub enum GpuError {
+    /// No adapter (no GPU and no software driver such as Mesa's lavapipe).
+    #[error("no GPU adapter: {0}")]
+    NoAdapter(String),
+    /// The adapter refused a device.
+    #[error("the GPU adapter refused a device: {0}")]
+    Device(String),
+    /// The method has no GPU form.
+    #[error("{0} blending has no GPU form")]
+    Unsupported(&'static str),
+    /// The keys are invalid, or the pose does not fit the bound mesh.
+    #[error(transparent)]
+    Blend(#[from] crate::blend::BlendError),
+    /// More vertices, weights or keys than one GPU buffer holds.
+    #[error("too large for the GPU: {0}")]
+    TooLarge(String),
+    /// Reading the result back failed.
+    #[error("reading back from the GPU failed: {0}")]
+    Readback(String),
+}
