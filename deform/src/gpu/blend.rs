@@ -78,7 +78,7 @@ impl GpuBlend {
             .collect();
         let limits = ctx.device.limits();
         let largest = (n * width * 4).max(n * 12).max(blend.key_count() * 64) as u64;
-        if largest > u64::from(limits.max_storage_buffer_binding_size) {
+        if largest > limits.max_storage_buffer_binding_size {
             return Err(GpuError::TooLarge(format!(
                 "a buffer of {largest} bytes, the device binds at most {}",
                 limits.max_storage_buffer_binding_size
