@@ -60,6 +60,16 @@ impl GpuContext {
         format!("{} on {:?}", self.info.name, self.info.backend)
     }
 
+    /// The device, to run other shaders (the generated WGSL of [`cga::f32::WGSL`]) on it.
+    pub fn device(&self) -> &wgpu::Device {
+        &self.device
+    }
+
+    /// The device's queue.
+    pub fn queue(&self) -> &wgpu::Queue {
+        &self.queue
+    }
+
     /// Whether the adapter is a software rasteriser (lavapipe, WARP) rather than a GPU.
     pub fn is_software(&self) -> bool {
         self.info.device_type == wgpu::DeviceType::Cpu

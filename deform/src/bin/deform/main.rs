@@ -10,6 +10,7 @@ mod budget;
 mod cli;
 mod commands;
 mod finish;
+mod gpu_pose;
 mod input_files;
 mod interrupt;
 mod numbers;

@@ -117,6 +117,10 @@ pub struct SkinArgs {
     /// The skinning backend.
     #[arg(long, value_parser = backend(), default_value = "cga")]
     pub backend: Backend,
+    /// Pose on the GPU (wgpu; every backend but motor-log), in f32: needs a program built
+    /// with `--features gpu`, and a GPU or Mesa's lavapipe (otherwise exit code 2).
+    #[arg(long)]
+    pub gpu: bool,
     /// A joint edit JOINT=MOTOR.json (joint name or skin joint index; the motor acts in the
     /// joint's own frame: rotate or dilate about its pivot, translate along its axes).
     #[arg(long = "edit", value_parser = parse_edit)]
@@ -220,6 +224,13 @@ pub fn run(a: &SkinArgs) -> Result<()> {
     for note in &rig.report.notes {
         report.add("note", note.as_str());
     }
+    let mut gpu = if a.gpu {
+        let g = crate::gpu_pose::GpuPoser::open(bound.blend())?;
+        report.add("device", g.adapter());
+        Some(g)
+    } else {
+        None
+    };
     report.add("load_ms", load_ms);
     report.add("bind_ms", bind_ms);
     let dmat = match &a.dmat_animation {
@@ -324,7 +335,10 @@ pub fn run(a: &SkinArgs) -> Result<()> {
                 pose.skin_motors()?
             }
         };
-        pose_ms += time_pose(&bound, motors, &mut posed)?;
+        pose_ms += match &mut gpu {
+            Some(g) => g.pose(motors, &mut posed)?,
+            None => time_pose(&bound, motors, &mut posed)?,
+        };
         if let Some(o) = &other {
             o.pose(motors, &mut other_posed)?;
             linf = posed

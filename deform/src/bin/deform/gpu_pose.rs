@@ -1,0 +1,61 @@
+//! `--gpu`: posing through `deform::gpu` when the program is built with the `gpu` feature.
+
+use anyhow::Result;
+use glam::DVec3;
+
+/// A bound blend on the GPU, with its device.
+#[cfg(feature = "gpu")]
+pub struct GpuPoser {
+    ctx: deform::gpu::GpuContext,
+    blend: deform::gpu::GpuBlend,
+}
+
+#[cfg(feature = "gpu")]
+impl GpuPoser {
+    /// Upload `blend` to the first adapter, or say why not (no adapter: exit code 2).
+    pub fn open(blend: &deform::blend::BoundBlend) -> Result<GpuPoser> {
+        let ctx = deform::gpu::GpuContext::new().map_err(|e| {
+            anyhow::anyhow!("--gpu: {e} (install a GPU driver, or Mesa's lavapipe)")
+        })?;
+        let blend =
+            deform::gpu::GpuBlend::bind(&ctx, blend).map_err(|e| anyhow::anyhow!("--gpu: {e}"))?;
+        Ok(GpuPoser { ctx, blend })
+    }
+
+    /// The adapter, for the report.
+    pub fn adapter(&self) -> String {
+        self.ctx.adapter()
+    }
+
+    /// Pose on the GPU and read back; the milliseconds it took.
+    pub fn pose(&mut self, keys: &[cga::ScaledMotor], out: &mut [DVec3]) -> Result<f64> {
+        let t = std::time::Instant::now();
+        self.blend.pose(&self.ctx, keys, out)?;
+        Ok(t.elapsed().as_secs_f64() * 1e3)
+    }
+}
+
+/// Without the `gpu` feature `--gpu` is refused.
+#[cfg(not(feature = "gpu"))]
+pub struct GpuPoser(std::convert::Infallible);
+
+#[cfg(not(feature = "gpu"))]
+impl GpuPoser {
+    /// Always the error that says how to build with the GPU.
+    pub fn open(_: &deform::blend::BoundBlend) -> Result<GpuPoser> {
+        anyhow::bail!(
+            "--gpu: this deform was built without the `gpu` feature (cargo run --release -p \
+             deform --features gpu -- skin ... --gpu)"
+        )
+    }
+
+    /// Never called: no value exists.
+    pub fn adapter(&self) -> String {
+        match self.0 {}
+    }
+
+    /// Never called: no value exists.
+    pub fn pose(&mut self, _: &[cga::ScaledMotor], _: &mut [DVec3]) -> Result<f64> {
+        match self.0 {}
+    }
+}
