@@ -349,3 +349,55 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         );
     }
 }
+
+/// A spline-aligned deformer's blend (contiguous key runs, rest keys that are not the
+/// identity, so the bound points are in the frame of their blended rest transform) posed on
+/// the GPU like on the CPU, for every method with a GPU form.
+#[test]
+fn spline_blend_on_the_gpu() {
+    use deform::deformers::spline::{SplineDeformer, WeightScheme};
+    let Some(ctx) = context() else { return };
+    let positions: Vec<DVec3> = (0..3000)
+        .map(|i| {
+            let t = i as f64 / 2999.0;
+            DVec3::new(3.0 * t, 0.2 * (31.0 * t).sin(), 0.2 * (17.0 * t).cos())
+        })
+        .collect();
+    let lambda: Vec<f64> = (0..3000).map(|i| i as f64 / 2999.0).collect();
+    let key = |angle: f64, x: f64, s: f64| {
+        let q = DQuat::from_axis_angle(DVec3::Z, angle);
+        ScaledMotor::from_scale_rotation_translation(s, q, DVec3::new(x, 0.0, 0.0))
+    };
+    let rest: Vec<ScaledMotor> = (0..5)
+        .map(|j| key(0.1 * j as f64, 0.75 * j as f64, 1.0))
+        .collect();
+    let pose: Vec<ScaledMotor> = (0..5)
+        .map(|j| key(0.5 * j as f64, 0.6 * j as f64, 1.0 + 0.1 * j as f64))
+        .collect();
+    let diag = diagonal(&positions);
+    for method in BlendMethod::ALL {
+        if method == BlendMethod::MotorLog {
+            continue;
+        }
+        let d = SplineDeformer::bind_with_lambda(
+            &positions,
+            lambda.clone(),
+            &rest,
+            WeightScheme::BSpline,
+            method,
+        )
+        .expect("bind");
+        let mut want = vec![DVec3::ZERO; positions.len()];
+        d.blend().pose(&pose, &mut want).expect("cpu pose");
+        let mut gpu = GpuBlend::bind(&ctx, d.blend()).expect("gpu bind");
+        let mut got = vec![DVec3::ZERO; positions.len()];
+        gpu.pose(&ctx, &pose, &mut got).expect("gpu pose");
+        let err = got
+            .iter()
+            .zip(&want)
+            .map(|(a, b)| (*a - *b).length())
+            .fold(0.0, f64::max)
+            / diag;
+        assert!(err <= 1e-5, "spline {}: {err:e}", method.name());
+    }
+}
