@@ -179,7 +179,8 @@ impl GpuBlend {
         self.method
     }
 
-    /// `out[i]` = vertex `i` posed by `keys`, computed on the GPU and read back.
+    /// `out[i]` = vertex `i` posed by `keys`, computed on the GPU and read back
+    /// ([`GpuBlend::run`] then [`GpuBlend::read_back`]).
     ///
     /// # Errors
     /// [`GpuError::Blend`] for keys that are not finite scaled motors, a key count or an `out`
@@ -191,8 +192,18 @@ impl GpuBlend {
         keys: &[ScaledMotor],
         out: &mut [DVec3],
     ) -> Result<(), GpuError> {
-        crate::blend::check_key_count("this deformer", self.key_count, keys.len())?;
         crate::blend::check_positions(self.vertices, out.len())?;
+        self.run(ctx, keys)?;
+        self.read_back(ctx, out)
+    }
+
+    /// Upload `keys`, pose every vertex on the GPU and wait for it; the positions stay in
+    /// [`GpuBlend::positions`] (three `f32` per vertex) for drawing or [`GpuBlend::read_back`].
+    ///
+    /// # Errors
+    /// As [`GpuBlend::pose`].
+    pub fn run(&mut self, ctx: &GpuContext, keys: &[ScaledMotor]) -> Result<(), GpuError> {
+        crate::blend::check_key_count("this deformer", self.key_count, keys.len())?;
         self.prepared.prepare(keys, self.method)?;
         self.prepared
             .pack_f32(&mut self.packed)
@@ -215,14 +226,34 @@ impl GpuBlend {
             pass.set_bind_group(0, &self.bind_group, &[]);
             pass.dispatch_workgroups(self.groups.0, self.groups.1, 1);
         }
-        let size = (self.vertices * 12) as u64;
-        if size > 0 {
-            encoder.copy_buffer_to_buffer(&self.out, 0, &self.staging, 0, size);
-        }
         queue.submit([encoder.finish()]);
+        device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map_err(|e| GpuError::Readback(e.to_string()))?;
+        Ok(())
+    }
+
+    /// The posed positions on the GPU (`x, y, z` as `f32` per vertex) after
+    /// [`GpuBlend::run`].
+    pub fn positions(&self) -> &wgpu::Buffer {
+        &self.out
+    }
+
+    /// Copy the positions of the last [`GpuBlend::run`] into `out`.
+    ///
+    /// # Errors
+    /// [`GpuError::Blend`] for an `out` of the wrong length (untouched then),
+    /// [`GpuError::Readback`] when the device fails.
+    pub fn read_back(&self, ctx: &GpuContext, out: &mut [DVec3]) -> Result<(), GpuError> {
+        crate::blend::check_positions(self.vertices, out.len())?;
+        let size = (self.vertices * 12) as u64;
         if size == 0 {
             return Ok(());
         }
+        let device = &ctx.device;
+        let mut encoder = device.create_command_encoder(&Default::default());
+        encoder.copy_buffer_to_buffer(&self.out, 0, &self.staging, 0, size);
+        ctx.queue.submit([encoder.finish()]);
         let slice = self.staging.slice(..size);
         let (tx, rx) = std::sync::mpsc::channel();
         slice.map_async(wgpu::MapMode::Read, move |r| {
@@ -246,5 +277,13 @@ impl GpuBlend {
         }
         self.staging.unmap();
         Ok(())
+    }
+
+    /// Bytes one pose reads and writes in device memory, not counting the keys (which stay in
+    /// cache): per vertex its rest point (12), `width` joint indices and weights (8 each) and
+    /// its result (12). Over the device's memory bandwidth this is the least time a pose can
+    /// take.
+    pub fn bytes_per_pose(&self) -> usize {
+        self.vertices * (24 + 8 * self.width)
     }
 }
