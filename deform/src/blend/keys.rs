@@ -165,11 +165,11 @@ impl PreparedKeys {
     }
 
     /// The prepared keys as 16 `f32`s each, in the layout of the GPU shader's entry point for
-    /// the method (`deform::gpu`): motors (8 coefficients), dual quaternions (`q.xyzw`,
-    /// `d.xyzw`), each with its log-scale at 8; affine maps (columns `x, y, z, t`); the
-    /// equation (17) rows and `eo` at 12. `None` for [`BlendMethod::MotorLog`], which has no
-    /// GPU form.
-    pub fn pack_f32(&self, out: &mut Vec<f32>) -> Option<()> {
+    /// the method (`deform::gpu`): logarithms (10 bivector coefficients), motors (8
+    /// coefficients), dual quaternions (`q.xyzw`, `d.xyzw`), each of the last two with its
+    /// log-scale at 8; affine maps (columns `x, y, z, t`); the equation (17) rows and `eo` at
+    /// 12.
+    pub fn pack_f32(&self, out: &mut Vec<f32>) {
         out.clear();
         let mut put = |v: &[f64], log_scale: Option<f64>| {
             let mut a = [0.0f32; 16];
@@ -182,7 +182,11 @@ impl PreparedKeys {
             out.extend_from_slice(&a);
         };
         match self.method {
-            BlendMethod::MotorLog => return None,
+            BlendMethod::MotorLog => {
+                for b in &self.logs {
+                    put(&b.to_array(), None);
+                }
+            }
             BlendMethod::MotorLinear => {
                 for (m, l) in self.motors.iter().zip(&self.log_scales) {
                     put(&m.to_array(), Some(*l));
@@ -227,7 +231,6 @@ impl PreparedKeys {
                 }
             }
         }
-        Some(())
     }
 
     /// Whether any key scales.

@@ -12,16 +12,16 @@ const GROUP: u32 = 64;
 /// Workgroups per dispatch row (the guaranteed limit of one dimension).
 const ROW_GROUPS: u32 = 65_535;
 
-/// The shader entry point of a method, or `None` when it has no GPU form.
-fn entry_point(method: BlendMethod) -> Option<&'static str> {
-    Some(match method {
-        BlendMethod::MotorLog => return None,
+/// The shader entry point of a method.
+fn entry_point(method: BlendMethod) -> &'static str {
+    match method {
+        BlendMethod::MotorLog => "skin_log",
         BlendMethod::MotorLinear => "skin_motor",
         BlendMethod::DualQuaternion => "skin_dual_quaternion",
         BlendMethod::Matrix | BlendMethod::MatrixF32 => "skin_matrix",
         BlendMethod::Conformal => "skin_conformal",
         BlendMethod::ConformalProjected => "skin_conformal_projected",
-    })
+    }
 }
 
 /// A bound blend on the GPU ([`GpuBlend::bind`] once, [`GpuBlend::pose`] per frame). Same
@@ -55,11 +55,10 @@ impl GpuBlend {
     /// Upload `blend`'s rest points and weights and build its pipeline.
     ///
     /// # Errors
-    /// [`GpuError::Unsupported`] for log blending, [`GpuError::TooLarge`] when a buffer
-    /// exceeds the device's limits.
+    /// [`GpuError::TooLarge`] when a buffer exceeds the device's limits.
     pub fn bind(ctx: &GpuContext, blend: &BoundBlend) -> Result<GpuBlend, GpuError> {
         let method = blend.method();
-        let entry = entry_point(method).ok_or(GpuError::Unsupported(method.name()))?;
+        let entry = entry_point(method);
         let weights = blend.weights();
         let (n, width) = (blend.vertex_count(), weights.width());
         let mut joints = Vec::with_capacity(n * width);
@@ -205,9 +204,7 @@ impl GpuBlend {
     pub fn run(&mut self, ctx: &GpuContext, keys: &[ScaledMotor]) -> Result<(), GpuError> {
         crate::blend::check_key_count("this deformer", self.key_count, keys.len())?;
         self.prepared.prepare(keys, self.method)?;
-        self.prepared
-            .pack_f32(&mut self.packed)
-            .ok_or(GpuError::Unsupported(self.method.name()))?;
+        self.prepared.pack_f32(&mut self.packed);
         let (queue, device) = (&ctx.queue, &ctx.device);
         if !self.packed.is_empty() {
             queue.write_buffer(&self.keys, 0, &bytes_f32(&self.packed));

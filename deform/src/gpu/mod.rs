@@ -5,8 +5,9 @@
 //! written once against the WGSL that the generator makes from `algebras/cga.toml`
 //! ([`cga::f32::WGSL`]): motor blending calls the generated `motor_sandwich_point`.
 //!
-//! Every [`BlendMethod`](crate::BlendMethod) but log blending has a GPU form: matrix LBS
-//! (f64 and f32 keys), dual quaternions, equation (17) both ways, motor blending.
+//! Every [`BlendMethod`](crate::BlendMethod) has a GPU form: log blending (the generated
+//! closed-form `exp` in WGSL), motor blending, dual quaternions, matrix LBS (f64 and f32
+//! keys), equation (17) both ways.
 //!
 //! ```no_run
 //! # fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -36,9 +37,6 @@ pub enum GpuError {
     /// The adapter refused a device.
     #[error("the GPU adapter refused a device: {0}")]
     Device(String),
-    /// The method has no GPU form.
-    #[error("{0} blending has no GPU form")]
-    Unsupported(&'static str),
     /// The keys are invalid, or the pose does not fit the bound mesh.
     #[error(transparent)]
     Blend(#[from] crate::blend::BlendError),

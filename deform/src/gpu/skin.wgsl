@@ -1,6 +1,7 @@
 // Skinning and key blending on the GPU, one invocation per vertex. Written once against the
-// generated CGA functions (`cga::f32::WGSL`, prepended): `motor_gp_motor`, `motor_rev` and
-// the fused `motor_sandwich_point` are the generator's, not copies.
+// generated CGA functions (`cga::f32::WGSL`, prepended): `motor_gp_motor`, `motor_rev`, the
+// fused `motor_sandwich_point` and `scaled_motor_sandwich_point` and the closed-form
+// `bivector_exp_scaled_motor` are the generator's, not copies.
 //
 // Buffers (filled by `deform::gpu::GpuBlend`): per vertex its rest point in the frame of its
 // rest transform (3 floats) and `width` (key, weight) pairs; per key 16 floats packed by
@@ -61,6 +62,32 @@ fn aligned_weight(base: u32, j: u32) -> f32 {
         + key(k, 3u) * key(k0, 3u);
     let w = weights[base + j];
     return select(w, -w, d < 0.0);
+}
+
+// Log blending, the papers' equation (1): keys are the logarithms of the (scaled) motors
+// (bivectors: eo1, eo2, eo3, eoi, e12, e13, e23, e1i, e2i, e3i); exp(sum w log M) by the
+// generated closed-form exponential, applied by the generated fused sandwich, down-projected.
+@compute @workgroup_size(64)
+fn skin_log(@builtin(global_invocation_id) id: vec3<u32>) {
+    let i = vertex_index(id);
+    if i >= params.n {
+        return;
+    }
+    let base = i * params.width;
+    var b: array<f32, 10>;
+    for (var j = 0u; j < params.width; j++) {
+        let w = weights[base + j];
+        let k = joints[base + j];
+        for (var c = 0u; c < 10u; c++) {
+            b[c] += w * key(k, c);
+        }
+    }
+    let m = bivector_exp_scaled_motor(
+        Bivector(b[0], b[1], b[2], b[3], b[4], b[5], b[6], b[7], b[8], b[9]),
+    );
+    let p = rest_point(i);
+    let x = scaled_motor_sandwich_point(m, Point(p.x, p.y, p.z, 0.5 * dot(p, p)));
+    store(i, vec3<f32>(x.e1, x.e2, x.e3) / x.eo);
 }
 
 // Motor blending: keys are motors (s, e12, e13, e23, e1i, e2i, e3i, e123i; log-scale at 8);

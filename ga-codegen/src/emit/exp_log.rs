@@ -207,9 +207,9 @@ pub(super) fn build(t: &TypeDef, value: impl Fn(Bitmap) -> Option<TokenStream>) 
 impl Gen<'_> {
     /// The exp, log, sqrt and normalisation impls of every eligible type, and (when any is
     /// emitted) the three traits and the shared helpers.
-    pub(super) fn exp_log(&mut self) {
+    /// Every (bivector type, versor type) pair that gets an `exp`.
+    pub(super) fn exp_pairs(&mut self) -> Vec<(usize, usize)> {
         let spec = self.spec;
-        let mut items = TokenStream::new();
         let mut pairs: Vec<(usize, usize)> = Vec::new();
         for (bi, bt) in spec.types.iter().enumerate() {
             if !is_bivector(bt) || classify(&spec.metric, span(bt.blades())).is_err() {
@@ -234,11 +234,29 @@ impl Gen<'_> {
                 }
             }
         }
+        pairs
+    }
+
+    /// The blades of `B` that the `exp` of a pair of [`Gen::exp_pairs`] reads: all of them
+    /// (`true`) for the smallest type holding the full exponential, else `V`'s bivector blades.
+    pub(super) fn exp_keep(
+        &mut self,
+        bi: usize,
+        vi: usize,
+    ) -> (bool, impl Fn(Bitmap) -> bool + use<>) {
+        let spec = self.spec;
+        let g2: Vec<Bitmap> = spec.types[vi].blades().filter(|b| grade(*b) == 2).collect();
+        let all = self.exp_target(&spec.types[bi], &|_| true) == Some(vi);
+        (all, move |b: Bitmap| all || g2.contains(&b))
+    }
+
+    pub(super) fn exp_log(&mut self) {
+        let spec = self.spec;
+        let mut items = TokenStream::new();
+        let pairs = self.exp_pairs();
         for &(bi, vi) in &pairs {
             let vt = &spec.types[vi];
-            let g2: Vec<Bitmap> = vt.blades().filter(|b| grade(*b) == 2).collect();
-            let all = self.exp_target(&spec.types[bi], &|_| true) == Some(vi);
-            let keep = move |b: Bitmap| all || g2.contains(&b);
+            let (all, keep) = self.exp_keep(bi, vi);
             let part = if all {
                 ""
             } else {
@@ -326,24 +344,43 @@ impl Gen<'_> {
         m.support().iter().all(|b| vt.blades().any(|x| x == *b))
     }
 
-    /// `impl Exp<V> for B`.
-    fn exp_impl(
+    /// The pieces of `exp` of `B` (restricted to `keep`) into `V`, shared by the Rust
+    /// (`impl Exp<V> for B`) and the WGSL renderers: the expressions over `self`'s fields and
+    /// the locals `w` (`W/2`) and `wb` (`(W B)/2`), the branch, and each field of `V`.
+    pub(super) fn exp_parts(
         &mut self,
         bt: &TypeDef,
         vt: &TypeDef,
         keep: &dyn Fn(Bitmap) -> bool,
-    ) -> TokenStream {
+    ) -> ExpParts {
         let s = self.s.clone();
-        let mut cx = Ctx::new(bt, s.clone());
+        let mut cx = Ctx::new(bt, s);
         let b = of_type_on(bt, keep);
         let bb = self.table.product(&b, &b, Product::Geometric);
-        let sq = cx.poly(&bb.get(0));
+        let square = cx.poly(&bb.get(0));
         // `w` holds W/2, `wb` then (W B)/2 and `q` is (W W)/4.
-        let (w_stmt, w) = cx.local("w", &half(&grade_part(&bb, 4)), None);
+        let wm = half(&grade_part(&bb, 4));
+        let w_vals: Vec<TokenStream> = wm.0.values().map(|p| cx.poly(p)).collect();
+        let w = if wm.0.is_empty() {
+            SymMv::default()
+        } else {
+            cx.declare(ident("w"), wm.0.keys().copied())
+        };
         let q = self.table.product(&w, &w, Product::Geometric).get(0);
-        let wb = grade_part(&self.table.product(&w, &b, Product::Geometric), 2);
-        let (wb_stmt, wb) = cx.local("wb", &wb, None);
-        let (bn, vn) = (ident(&bt.name), ident(&vt.name));
+        let wbm = grade_part(&self.table.product(&w, &b, Product::Geometric), 2);
+        let wb_vals: Vec<TokenStream> = wbm.0.values().map(|p| cx.poly(p)).collect();
+        let wb = if wbm.0.is_empty() {
+            SymMv::default()
+        } else {
+            cx.declare(ident("wb"), wbm.0.keys().copied())
+        };
+        let branch = if w.0.is_empty() {
+            ExpBranch::Simple
+        } else if q.is_zero() {
+            ExpBranch::Null
+        } else {
+            ExpBranch::General(cx.poly(&q))
+        };
         let restricted = bt.blades().any(|x| !keep(x));
         let part = if restricted {
             let names: Vec<String> = bt
@@ -360,51 +397,7 @@ impl Gen<'_> {
         } else {
             String::new()
         };
-        let (coeffs, branch) = if w.0.is_empty() {
-            (
-                quote! {
-                    let (c, sn) = exp_log_simple(s);
-                    let [alpha, beta, s12]: [#s; 3] = [sn, 0.0, 0.0];
-                },
-                "`self` is simple (`B B = s` is a scalar): `exp(B) = c + (sin(t)/t) B` with \
-                 `c = cos t`, `t = sqrt(-s)` for `s < 0` (a rotation by `2t`), `cosh`/`sinh` for \
-                 `s > 0` (a boost), `1 + B` for `s = 0` (a translation)."
-                    .to_string(),
-            )
-        } else if q.is_zero() {
-            let third = constant(self.scalar, 1.0 / 3.0);
-            (
-                quote! {
-                    let (c, sn) = exp_log_simple(s);
-                    let beta = if s != 0.0 { (c - sn) / s } else { #third };
-                    let [alpha, s12] = [sn, sn];
-                },
-                "`W = <B B>_4` squares to zero identically, so `B = B1 + B2` with `B1 B1 = s` \
-                 and `B2` null (a rotation or boost plus a translation along its axis): \
-                 `exp(B) = c + (sin(t)/t) (B + W/2) + ((c - sin(t)/t)/s) W B/2`, `t = sqrt(-s)` \
-                 (`cosh`/`sinh` for `s > 0`); at `s = 0` (a pure translation) the last \
-                 coefficient is its limit `1/3` (and `W B = 0`), the quotient's rounding is \
-                 multiplied by `W B / 2 = s B2`, so it stays at the precision of `B2`."
-                    .to_string(),
-            )
-        } else {
-            let qe = cx.poly(&q);
-            (
-                quote! {
-                    let q: #s = 4.0 * (#qe);
-                    let (l1, l2) = exp_log_squares(s, q);
-                    let [c, alpha, beta, s12] = exp_log_coefficients(l1, l2);
-                },
-                "General: `B B = s + W`, `W W = q`; the commuting parts square to the roots \
-                 `l1, l2` of `l^2 - s l + q/4` (real on this span) and \
-                 `exp(B) = c1 c2 + alpha B + beta (W B)/2 + s1 s2 W/2` with the coefficients \
-                 of `exp_log_coefficients` (each part a rotation, boost or translation by the \
-                 sign of its square; equal squares by the limit)."
-                    .to_string(),
-            )
-        };
-        let bref = &b;
-        let (wref, wbref) = (&w, &wb);
+        let (bref, wref, wbref) = (&b, &w, &wb);
         let value = |x: Bitmap| -> Option<TokenStream> {
             match grade(x) {
                 0 => Some(quote!(c)),
@@ -427,7 +420,91 @@ impl Gen<'_> {
                 _ => None,
             }
         };
-        let result = build(vt, value);
+        let fields = vt
+            .fields
+            .iter()
+            .map(|f| match value(f.bitmap) {
+                Some(v) if f.sign < 0 => quote!(-(#v)),
+                Some(v) => v,
+                None => quote!(0.0),
+            })
+            .collect();
+        ExpParts {
+            square,
+            w: w_vals,
+            wb: wb_vals,
+            branch,
+            fields,
+            part,
+        }
+    }
+
+    /// `impl Exp<V> for B`.
+    fn exp_impl(
+        &mut self,
+        bt: &TypeDef,
+        vt: &TypeDef,
+        keep: &dyn Fn(Bitmap) -> bool,
+    ) -> TokenStream {
+        let s = self.s.clone();
+        let parts = self.exp_parts(bt, vt, keep);
+        let sq = &parts.square;
+        let local = |name: &str, vals: &[TokenStream]| {
+            if vals.is_empty() {
+                return TokenStream::new();
+            }
+            let id = ident(name);
+            let n = proc_macro2::Literal::usize_unsuffixed(vals.len());
+            quote!(let #id: [#s; #n] = [#(#vals),*];)
+        };
+        let (w_stmt, wb_stmt) = (local("w", &parts.w), local("wb", &parts.wb));
+        let (bn, vn) = (ident(&bt.name), ident(&vt.name));
+        let part = &parts.part;
+        let (coeffs, branch) = match &parts.branch {
+            ExpBranch::Simple => (
+                quote! {
+                    let (c, sn) = exp_log_simple(s);
+                    let [alpha, beta, s12]: [#s; 3] = [sn, 0.0, 0.0];
+                },
+                "`self` is simple (`B B = s` is a scalar): `exp(B) = c + (sin(t)/t) B` with \
+                 `c = cos t`, `t = sqrt(-s)` for `s < 0` (a rotation by `2t`), `cosh`/`sinh` for \
+                 `s > 0` (a boost), `1 + B` for `s = 0` (a translation)."
+                    .to_string(),
+            ),
+            ExpBranch::Null => {
+                let third = constant(self.scalar, 1.0 / 3.0);
+                (
+                    quote! {
+                        let (c, sn) = exp_log_simple(s);
+                        let beta = if s != 0.0 { (c - sn) / s } else { #third };
+                        let [alpha, s12] = [sn, sn];
+                    },
+                    "`W = <B B>_4` squares to zero identically, so `B = B1 + B2` with `B1 B1 = s` \
+                     and `B2` null (a rotation or boost plus a translation along its axis): \
+                     `exp(B) = c + (sin(t)/t) (B + W/2) + ((c - sin(t)/t)/s) W B/2`, `t = sqrt(-s)` \
+                     (`cosh`/`sinh` for `s > 0`); at `s = 0` (a pure translation) the last \
+                     coefficient is its limit `1/3` (and `W B = 0`), the quotient's rounding is \
+                     multiplied by `W B / 2 = s B2`, so it stays at the precision of `B2`."
+                        .to_string(),
+                )
+            }
+            ExpBranch::General(qe) => (
+                quote! {
+                    let q: #s = 4.0 * (#qe);
+                    let (l1, l2) = exp_log_squares(s, q);
+                    let [c, alpha, beta, s12] = exp_log_coefficients(l1, l2);
+                },
+                "General: `B B = s + W`, `W W = q`; the commuting parts square to the roots \
+                 `l1, l2` of `l^2 - s l + q/4` (real on this span) and \
+                 `exp(B) = c1 c2 + alpha B + beta (W B)/2 + s1 s2 W/2` with the coefficients \
+                 of `exp_log_coefficients` (each part a rotation, boost or translation by the \
+                 sign of its square; equal squares by the limit)."
+                    .to_string(),
+            ),
+        };
+        let fields = vt.fields.iter().map(|f| ident(&f.name));
+        let values = &parts.fields;
+        let result = quote!(#vn { #(#fields: #values),* });
         let d = doc(&format!(
             "The exponential{part}, in closed form (invariant decomposition). {branch} \
              Exact to rounding for every finite bivector whose square does not overflow."
@@ -447,4 +524,30 @@ impl Gen<'_> {
             }
         }
     }
+}
+
+/// Which closed form an `exp` takes (see [`Gen::exp_parts`]).
+pub(super) enum ExpBranch {
+    /// `B` is simple.
+    Simple,
+    /// `W W = 0`: a rotation or boost plus a null part.
+    Null,
+    /// Two commuting parts; `(W W)/4` as an expression.
+    General(TokenStream),
+}
+
+/// The pieces of one `exp`, see [`Gen::exp_parts`].
+pub(super) struct ExpParts {
+    /// `<B B>_0`.
+    pub square: TokenStream,
+    /// The elements of the local `w` (`W/2`), empty when `W = 0`.
+    pub w: Vec<TokenStream>,
+    /// The elements of the local `wb` (`(W B)/2`).
+    pub wb: Vec<TokenStream>,
+    /// The closed form taken.
+    pub branch: ExpBranch,
+    /// Each field of the result type, in terms of `c`, `alpha`, `beta`, `s12` and the locals.
+    pub fields: Vec<TokenStream>,
+    /// " of the part of `self` on ..." when `B` is restricted, else empty.
+    pub part: String,
 }

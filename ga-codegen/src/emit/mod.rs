@@ -38,6 +38,7 @@ mod sandwich;
 mod summary;
 mod types;
 mod wgsl;
+mod wgsl_exp;
 
 pub use decompose::Refusal;
 pub use exp_log::refusals;

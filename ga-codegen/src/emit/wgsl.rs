@@ -3,6 +3,8 @@
 //! the Rust module (zero terms dropped, constant coefficients, the factored sandwich kernels),
 //! named after the blades, with the same expansions as comments.
 //!
+//! The closed-form exponentials come too (`bivector_exp_motor`, see `wgsl_exp.rs`).
+//!
 //! Names: `motor_gp_point` (geometric product), `_op_` (outer), `_lc_` (left contraction),
 //! `_add_`, `_sub_`; `motor_rev`; `motor_sandwich_point` and `motor_point_matrix` with
 //! `motor_point_matrix_apply`. A matrix is `array<array<f32, C>, R>` (rows are the output
@@ -50,6 +52,7 @@ pub fn generate_wgsl(spec: &Spec) -> Result<String, GenError> {
     for d in &spec.sandwiches {
         g.wgsl_sandwich(&mut out, d)?;
     }
+    g.wgsl_exps(&mut out);
     Ok(out)
 }
 
