@@ -180,7 +180,6 @@ fn bad_poses_are_refused_and_leave_out_untouched() {
 #[test]
 fn generated_wgsl_agrees_with_generated_rust() {
     use cga::f32::{Motor, Point, Sandwich};
-    use wgpu::util::DeviceExt as _;
     let Some(ctx) = context() else { return };
     let n = 4096usize;
     // A small deterministic generator of values in [-1, 1).
@@ -215,10 +214,7 @@ fn generated_wgsl_agrees_with_generated_rust() {
         .flat_map(|q| [q.e1, q.e2, q.e3, q.ei])
         .flat_map(|x| x.to_le_bytes())
         .collect();
-    let shader = format!(
-        "{}\n{}",
-        cga::f32::WGSL,
-        r#"
+    let shader = r#"
 @group(0) @binding(0) var<storage, read> ma: array<Motor>;
 @group(0) @binding(1) var<storage, read> mb: array<Motor>;
 @group(0) @binding(2) var<storage, read> pts: array<Point>;
@@ -235,85 +231,14 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     out_p[2u * i] = motor_sandwich_point(ma[i], pts[i]);
     out_p[2u * i + 1u] = motor_point_matrix_apply(motor_point_matrix(ma[i]), pts[i]);
 }
-"#
-    );
-    let device = ctx.device();
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some("generated wgsl check"),
-        source: wgpu::ShaderSource::Wgsl(shader.into()),
-    });
-    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-        label: None,
-        layout: None,
-        module: &module,
-        entry_point: Some("main"),
-        compilation_options: Default::default(),
-        cache: None,
-    });
-    let input = |bytes: Vec<u8>| {
-        device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: None,
-            contents: &bytes,
-            usage: wgpu::BufferUsages::STORAGE,
-        })
-    };
-    let output = |size: usize, usage: wgpu::BufferUsages| {
-        device.create_buffer(&wgpu::BufferDescriptor {
-            label: None,
-            size: size as u64,
-            usage,
-            mapped_at_creation: false,
-        })
-    };
-    let ins = [
-        input(floats(a.iter().map(|m| m.to_array()).collect())),
-        input(floats(b.iter().map(|m| m.to_array()).collect())),
-        input(pts),
+"#;
+    let inputs = [
+        floats(a.iter().map(|m| m.to_array()).collect()),
+        floats(b.iter().map(|m| m.to_array()).collect()),
+        pts,
     ];
-    let store = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC;
-    let read = wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST;
-    let (mb_size, pb_size) = (n * 32, 2 * n * 16);
-    let outs = [output(mb_size, store), output(pb_size, store)];
-    let back = [output(mb_size, read), output(pb_size, read)];
-    let layout = pipeline.get_bind_group_layout(0);
-    let entries: Vec<wgpu::BindGroupEntry> = ins
-        .iter()
-        .chain(&outs)
-        .enumerate()
-        .map(|(i, b)| wgpu::BindGroupEntry {
-            binding: i as u32,
-            resource: b.as_entire_binding(),
-        })
-        .collect();
-    let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: None,
-        layout: &layout,
-        entries: &entries,
-    });
-    let mut enc = device.create_command_encoder(&Default::default());
-    {
-        let mut pass = enc.begin_compute_pass(&Default::default());
-        pass.set_pipeline(&pipeline);
-        pass.set_bind_group(0, &group, &[]);
-        pass.dispatch_workgroups((n as u32).div_ceil(64), 1, 1);
-    }
-    enc.copy_buffer_to_buffer(&outs[0], 0, &back[0], 0, mb_size as u64);
-    enc.copy_buffer_to_buffer(&outs[1], 0, &back[1], 0, pb_size as u64);
-    ctx.queue().submit([enc.finish()]);
-    for b in &back {
-        b.slice(..)
-            .map_async(wgpu::MapMode::Read, |r| r.expect("map"));
-    }
-    device
-        .poll(wgpu::PollType::wait_indefinitely())
-        .expect("poll");
-    let read_f32 = |b: &wgpu::Buffer| -> Vec<f32> {
-        let data = b.slice(..).get_mapped_range().expect("mapped");
-        data.chunks_exact(4)
-            .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))
-            .collect()
-    };
-    let (gm, gp) = (read_f32(&back[0]), read_f32(&back[1]));
+    let out = run_kernel(&ctx, shader, &inputs, &[n * 32, 2 * n * 16], n as u32);
+    let (gm, gp) = (&out[0], &out[1]);
     let close = |what: &str, i: usize, got: &[f32], want: &[f32]| {
         for (g, w) in got.iter().zip(want) {
             assert!(

@@ -7,26 +7,25 @@ use ga_codegen::Multivector;
 use proptest::prelude::*;
 use std::f64::consts::FRAC_PI_2;
 
-/// `theta1 e12 + theta2 e34` turned into general position by the rotor `exp(c)` (so that both
-/// planes mix every blade), as a generic multivector of G(4).
-fn double_rotation(theta1: f64, theta2: f64, c: &[f64; 6]) -> Multivector {
+/// The G(4) bivector with coefficients `c` on `e12, e13, e14, e23, e24, e34`.
+fn bivector(c: &[f64; 6]) -> Multivector {
     let alg = tests::sig400::algebra();
-    let mut b0 = Multivector::zero(&alg);
-    let mut turn = Multivector::zero(&alg);
+    let mut m = Multivector::zero(&alg);
     for (i, name) in ["e12", "e13", "e14", "e23", "e24", "e34"]
         .iter()
         .enumerate()
     {
         let (bl, sign) = alg.parse_blade(name).expect("a G(4) blade");
-        turn.set(bl, f64::from(sign) * c[i]);
-        if *name == "e12" {
-            b0.set(bl, f64::from(sign) * theta1);
-        }
-        if *name == "e34" {
-            b0.set(bl, f64::from(sign) * theta2);
-        }
+        m.set(bl, f64::from(sign) * c[i]);
     }
-    let r = turn.exp();
+    m
+}
+
+/// `theta1 e12 + theta2 e34` turned into general position by the rotor `exp(c)` (so that both
+/// planes mix every blade), as a generic multivector of G(4).
+fn double_rotation(theta1: f64, theta2: f64, c: &[f64; 6]) -> Multivector {
+    let r = bivector(c).exp();
+    let b0 = bivector(&[theta1, 0.0, 0.0, 0.0, 0.0, theta2]);
     r.gp(&b0).gp(&r.rev())
 }
 
@@ -109,15 +108,7 @@ fn exact_double_half_turn() {
     let (i4, sign) = alg.parse_blade("e1234").expect("pseudoscalar");
     for s in [1.0, -1.0] {
         for c in [[0.0; 6], [0.3, -0.2, 0.9, 0.1, -0.7, 0.4]] {
-            let mut turn = Multivector::zero(&alg);
-            for (i, name) in ["e12", "e13", "e14", "e23", "e24", "e34"]
-                .iter()
-                .enumerate()
-            {
-                let (bl, sg) = alg.parse_blade(name).expect("a G(4) blade");
-                turn.set(bl, f64::from(sg) * c[i]);
-            }
-            let r = turn.exp();
+            let r = bivector(&c).exp();
             let mut p = Multivector::zero(&alg);
             p.set(i4, f64::from(sign) * s);
             let v = Even::from_multivector(&r.gp(&p).gp(&r.rev()));

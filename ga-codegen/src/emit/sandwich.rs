@@ -37,6 +37,20 @@ pub(super) struct SandwichParts {
     pub terms: usize,
 }
 
+impl SandwichParts {
+    /// The versor, operand and output types.
+    pub fn types<'s>(
+        &self,
+        spec: &'s crate::spec::Spec,
+    ) -> (&'s TypeDef, &'s TypeDef, &'s TypeDef) {
+        (
+            &spec.types[self.versor],
+            &spec.types[self.operand],
+            &spec.types[self.output],
+        )
+    }
+}
+
 /// A straight-line program for a sandwich: temporaries computed in order, then one expression
 /// per output field (in terms of `a`, the versor, `b`, the operand, and the temporaries).
 pub(super) struct Kernel {
@@ -295,12 +309,7 @@ impl Gen<'_> {
     /// and `V::x_matrix()`.
     pub(super) fn sandwich(&mut self, d: &SandwichDef) -> Result<(), GenError> {
         let parts = self.sandwich_parts(d)?;
-        let spec = self.spec;
-        let (tv, tx, to) = (
-            &spec.types[parts.versor],
-            &spec.types[parts.operand],
-            &spec.types[parts.output],
-        );
+        let (tv, tx, to) = parts.types(self.spec);
         let SandwichParts {
             coef,
             kernel,

@@ -175,12 +175,7 @@ impl Gen<'_> {
         d: &crate::spec::SandwichDef,
     ) -> Result<(), GenError> {
         let parts = self.sandwich_parts(d)?;
-        let spec = self.spec;
-        let (tv, tx, to) = (
-            &spec.types[parts.versor],
-            &spec.types[parts.operand],
-            &spec.types[parts.output],
-        );
+        let (tv, tx, to) = parts.types(self.spec);
         let (sv, sx) = (snake(&tv.name), snake(&tx.name));
         out.push('\n');
         comment(out, &parts.doc);
