@@ -183,13 +183,7 @@ fn generated_wgsl_agrees_with_generated_rust() {
     let Some(ctx) = context() else { return };
     let n = 4096usize;
     // A small deterministic generator of values in [-1, 1).
-    let mut state = 0x9e37_79b9_7f4a_7c15u64;
-    let mut next = move || {
-        state = state
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        ((state >> 40) as f32 / (1u64 << 24) as f32) * 2.0 - 1.0
-    };
+    let mut next = uniform(0x9e37_79b9_7f4a_7c15u64);
     // Unit motors: a normalised rotor part, and the `e123i` that the versor condition
     // `M ~M = 1` asks for (`s e123i = e12 e3i - e13 e2i + e23 e1i`).
     let mut motor = || {
@@ -315,6 +309,17 @@ fn spline_blend_on_the_gpu() {
     }
 }
 
+/// A deterministic generator of `f32`s in `[-1, 1)` (a linear congruential one).
+fn uniform(seed: u64) -> impl FnMut() -> f32 {
+    let mut state = seed;
+    move || {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        ((state >> 40) as f32 / (1u64 << 24) as f32) * 2.0 - 1.0
+    }
+}
+
 /// Run `main` of `shader` (the generated CGA WGSL prepended) once per element over storage
 /// buffers: `inputs` at bindings 0.., then one output of each size in bytes; the outputs read
 /// back as `f32`s.
@@ -416,13 +421,7 @@ fn generated_wgsl_exp_agrees_with_generated_rust() {
     use cga::f32::{Bivector, Exp, Motor, ScaledMotor};
     let Some(ctx) = context() else { return };
     let n = 2048usize;
-    let mut state = 0x51f1_5eed_u64;
-    let mut next = move || {
-        state = state
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        ((state >> 40) as f32 / (1u64 << 24) as f32) * 2.0 - 1.0
-    };
+    let mut next = uniform(0x51f1_5eed_u64);
     let b: Vec<Bivector> = (0..n)
         .map(|i| {
             let scale = 10f32.powf(-6.0 * (i % 7) as f32 / 6.0);
