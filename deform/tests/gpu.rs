@@ -469,3 +469,41 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         }
     }
 }
+
+/// An FFD lattice in the motor form (`ControlBinding::motor_blend`: explicit key lists, the
+/// lattice block of each vertex) posed on the GPU like on the CPU, for every method.
+#[test]
+fn ffd_motor_form_on_the_gpu() {
+    use deform::control::ControlForm;
+    use deform::ffd::{Ffd, FfdOptions};
+    let Some(ctx) = context() else { return };
+    let mesh = deform::shapes::tube(1.0, 10.0, 16, 21);
+    let diag = diagonal(&mesh.positions);
+    for method in BlendMethod::ALL {
+        let options = FfdOptions {
+            form: ControlForm::Motor(method),
+            ..FfdOptions::default()
+        };
+        let ffd = Ffd::bind(&mesh, [2, 3, 2], None, options).expect("bind");
+        let blend = ffd.binding().motor_blend().expect("motor form");
+        let keys: Vec<ScaledMotor> = (0..blend.key_count())
+            .map(|j| {
+                let f = j as f64 / blend.key_count() as f64;
+                let q = DQuat::from_axis_angle(DVec3::new(1.0, f, 0.3).normalize(), 0.8 * f);
+                ScaledMotor::from_scale_rotation_translation(1.0 + 0.2 * f, q, DVec3::splat(f))
+            })
+            .collect();
+        let mut want = vec![DVec3::ZERO; mesh.positions.len()];
+        blend.pose(&keys, &mut want).expect("cpu pose");
+        let mut gpu = GpuBlend::bind(&ctx, blend).expect("gpu bind");
+        let mut got = vec![DVec3::ZERO; mesh.positions.len()];
+        gpu.pose(&ctx, &keys, &mut got).expect("gpu pose");
+        let err = got
+            .iter()
+            .zip(&want)
+            .map(|(a, b)| (*a - *b).length())
+            .fold(0.0, f64::max)
+            / diag;
+        assert!(err <= 1e-5, "ffd {}: {err:e}", method.name());
+    }
+}

@@ -95,6 +95,15 @@ impl ControlBinding {
         self.form
     }
 
+    /// The bound blend of the motor form (`None` in the positional form): what `pose_using`
+    /// poses with motor-valued control points, for `deform::gpu::GpuBlend::bind`.
+    pub fn motor_blend(&self) -> Option<&BoundBlend> {
+        match &self.inner {
+            Inner::Positional { .. } => None,
+            Inner::Motor(b) => Some(b),
+        }
+    }
+
     /// The weights.
     pub fn weights(&self) -> &KeyWeights {
         match &self.inner {
