@@ -15,7 +15,7 @@ const LAYERS: &[(&str, &[&str])] = &[
     ("surgery", &["mesh", "skinning"]),
     ("render", &["mesh"]),
     ("input", &["mesh"]),
-    ("gpu", &["mesh", "blend", "skinning"]),
+    ("gpu", &["mesh", "blend"]),
 ];
 
 fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {

@@ -457,30 +457,6 @@ mod edges {
             1e-15,
         );
     }
-
-    #[test]
-    fn isoclinic_double_rotation_in_cga() {
-        // e4 = ei/2 - eo squares to 1, so e12 + e3^e4 = e12 + e3i/2 + eo3 is two rotations by
-        // the same angle in orthogonal planes (equal squares: the split is not unique).
-        use cga::{Exp as _, Log as _};
-        for t in [0.3, 1.2, 1e-8] {
-            let mut b = cga::Bivector::default();
-            (b.e12, b.e3i, b.eo3) = (t, t / 2.0, t);
-            let e: cga::Even = b.exp();
-            near(
-                "isoclinic exp",
-                &e.to_multivector(),
-                &b.to_multivector().exp(),
-                1e-14,
-            );
-            near(
-                "isoclinic log",
-                &e.log().to_multivector(),
-                &b.to_multivector(),
-                1e-14,
-            );
-        }
-    }
 }
 
 /// The README's PGA example (the generator section): klein-style motor interpolation through

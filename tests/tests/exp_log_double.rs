@@ -136,7 +136,8 @@ fn exact_double_half_turn() {
     );
 }
 
-/// Nearly isoclinic in CGA's `Even` (e12 and e3 ^ e4, e4 = ei/2 - eo), against the series.
+/// Isoclinic and nearly isoclinic in CGA's `Even` (e12 and e3 ^ e4 with e4 = ei/2 - eo, which
+/// squares to 1: two rotations by about the same angle), against the series.
 #[test]
 fn nearly_isoclinic_in_cga() {
     use tests::cga::{Bivector, Even, Exp, Log};
@@ -145,6 +146,8 @@ fn nearly_isoclinic_in_cga() {
         (0.5, 0.5 + 1e-4),
         (1.2, 1.2 - 1e-11),
         (0.3, 0.3),
+        (1.2, 1.2),
+        (1e-8, 1e-8),
     ] {
         let mut b = Bivector::default();
         (b.e12, b.e3i, b.eo3) = (t1, t2 / 2.0, t2);

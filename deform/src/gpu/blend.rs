@@ -41,6 +41,8 @@ pub struct GpuBlend {
     groups: (u32, u32),
     prepared: PreparedKeys,
     packed: Vec<f32>,
+    /// `packed` as bytes, reused from pose to pose.
+    packed_bytes: Vec<u8>,
 }
 
 fn bytes_f32(v: &[f32]) -> Vec<u8> {
@@ -170,6 +172,7 @@ impl GpuBlend {
             groups,
             prepared: PreparedKeys::default(),
             packed: Vec::new(),
+            packed_bytes: Vec::new(),
         })
     }
 
@@ -207,7 +210,10 @@ impl GpuBlend {
         self.prepared.pack_f32(&mut self.packed);
         let (queue, device) = (&ctx.queue, &ctx.device);
         if !self.packed.is_empty() {
-            queue.write_buffer(&self.keys, 0, &bytes_f32(&self.packed));
+            self.packed_bytes.clear();
+            self.packed_bytes
+                .extend(self.packed.iter().flat_map(|x| x.to_le_bytes()));
+            queue.write_buffer(&self.keys, 0, &self.packed_bytes);
         }
         let params = [
             self.vertices as u32,

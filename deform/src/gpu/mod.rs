@@ -1,7 +1,7 @@
 //! Posing on the GPU through wgpu (the `gpu` feature): the same blends as [`crate::blend`],
 //! as compute passes over buffers uploaded once at bind, in `f32`.
 //!
-//! **May use**: the mesh foundation, blending and skinning. The shader (`skin.wgsl`) is
+//! **May use**: the mesh foundation and blending. The shader (`skin.wgsl`) is
 //! written once against the WGSL that the generator makes from `algebras/cga.toml`
 //! ([`cga::f32::WGSL`]): motor blending calls the generated `motor_sandwich_point`.
 //!

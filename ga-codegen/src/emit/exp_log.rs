@@ -142,22 +142,24 @@ impl<'a> Ctx<'a> {
         m: &SymMv,
         factor: Option<&TokenStream>,
     ) -> (TokenStream, SymMv) {
+        let (vals, sym) = self.local_values(name, m);
+        let vals: Vec<TokenStream> = match factor {
+            Some(f) => vals.into_iter().map(|e| quote!(#f * (#e))).collect(),
+            None => vals,
+        };
+        (array_let(name, &vals, &self.s), sym)
+    }
+
+    /// The elements of a local array `name` holding `m` on its support (rendered, for any
+    /// language's statement), and the symbolic local that stands for it; nothing when `m` is
+    /// zero.
+    pub(super) fn local_values(&mut self, name: &str, m: &SymMv) -> (Vec<TokenStream>, SymMv) {
         if m.0.is_empty() {
-            return (TokenStream::new(), SymMv::default());
+            return (Vec::new(), SymMv::default());
         }
-        let id = ident(name);
-        let vals = m.0.values().map(|p| {
-            let e = self.poly(p);
-            match factor {
-                Some(f) => quote!(#f * (#e)),
-                None => e,
-            }
-        });
-        let s = &self.s;
-        let n = proc_macro2::Literal::usize_unsuffixed(m.0.len());
-        let stmt = quote!(let #id: [#s; #n] = [#(#vals),*];);
-        let sym = self.declare(id, m.0.keys().copied());
-        (stmt, sym)
+        let vals = m.0.values().map(|p| self.poly(p)).collect();
+        let sym = self.declare(ident(name), m.0.keys().copied());
+        (vals, sym)
     }
 
     /// Name the next local array `id` (its statement is the caller's) and return the symbolic
@@ -179,6 +181,16 @@ impl<'a> Ctx<'a> {
                 .collect(),
         )
     }
+}
+
+/// `let name: [s; n] = [vals];`, or nothing for no values.
+pub(super) fn array_let(name: &str, vals: &[TokenStream], s: &TokenStream) -> TokenStream {
+    if vals.is_empty() {
+        return TokenStream::new();
+    }
+    let id = ident(name);
+    let n = proc_macro2::Literal::usize_unsuffixed(vals.len());
+    quote!(let #id: [#s; #n] = [#(#vals),*];)
 }
 
 /// `terms` summed, or `0.0`.
@@ -359,21 +371,10 @@ impl Gen<'_> {
         let bb = self.table.product(&b, &b, Product::Geometric);
         let square = cx.poly(&bb.get(0));
         // `w` holds W/2, `wb` then (W B)/2 and `q` is (W W)/4.
-        let wm = half(&grade_part(&bb, 4));
-        let w_vals: Vec<TokenStream> = wm.0.values().map(|p| cx.poly(p)).collect();
-        let w = if wm.0.is_empty() {
-            SymMv::default()
-        } else {
-            cx.declare(ident("w"), wm.0.keys().copied())
-        };
+        let (w_vals, w) = cx.local_values("w", &half(&grade_part(&bb, 4)));
         let q = self.table.product(&w, &w, Product::Geometric).get(0);
         let wbm = grade_part(&self.table.product(&w, &b, Product::Geometric), 2);
-        let wb_vals: Vec<TokenStream> = wbm.0.values().map(|p| cx.poly(p)).collect();
-        let wb = if wbm.0.is_empty() {
-            SymMv::default()
-        } else {
-            cx.declare(ident("wb"), wbm.0.keys().copied())
-        };
+        let (wb_vals, wb) = cx.local_values("wb", &wbm);
         let branch = if w.0.is_empty() {
             ExpBranch::Simple
         } else if q.is_zero() {
@@ -449,15 +450,7 @@ impl Gen<'_> {
         let s = self.s.clone();
         let parts = self.exp_parts(bt, vt, keep);
         let sq = &parts.square;
-        let local = |name: &str, vals: &[TokenStream]| {
-            if vals.is_empty() {
-                return TokenStream::new();
-            }
-            let id = ident(name);
-            let n = proc_macro2::Literal::usize_unsuffixed(vals.len());
-            quote!(let #id: [#s; #n] = [#(#vals),*];)
-        };
-        let (w_stmt, wb_stmt) = (local("w", &parts.w), local("wb", &parts.wb));
+        let (w_stmt, wb_stmt) = (array_let("w", &parts.w, &s), array_let("wb", &parts.wb, &s));
         let (bn, vn) = (ident(&bt.name), ident(&vt.name));
         let part = &parts.part;
         let (coeffs, branch) = match &parts.branch {

@@ -57,9 +57,13 @@ pub fn generate_wgsl(spec: &Spec) -> Result<String, GenError> {
 }
 
 /// WGSL text of tokens rendered by the Rust emitter (expressions only), with field access
-/// written tight (`a.e12`).
-fn text(t: &TokenStream) -> String {
-    t.to_string().replace(" . ", ".")
+/// and indexing written tight (`a.e12`, `w[0]`); `self` (the operand of a Rust method) is `a`,
+/// as `self` is reserved in WGSL.
+pub(super) fn text(t: &TokenStream) -> String {
+    t.to_string()
+        .replace("self . ", "a.")
+        .replace(" . ", ".")
+        .replace(" [", "[")
 }
 
 /// `// text` lines.

@@ -6,17 +6,9 @@
 
 use super::exp_log::ExpBranch;
 use super::render::{float_text, snake};
+use super::wgsl::text;
 use super::Gen;
-use proc_macro2::TokenStream;
 use std::fmt::Write as _;
-
-/// WGSL text of an expression over `self` (the bivector, `a` in WGSL) and the locals.
-fn text(t: &TokenStream) -> String {
-    t.to_string()
-        .replace("self . ", "a.")
-        .replace(" . ", ".")
-        .replace(" [", "[")
-}
 
 /// The shared scalar helpers, as in `decompose::helpers` (f32).
 fn helpers() -> String {
