@@ -425,3 +425,25 @@ fn exp_log_refused_above_five_dimensions() {
         );
     }
 }
+
+#[test]
+fn output_onto_the_spec_is_refused_and_the_spec_kept() {
+    let dir = std::env::temp_dir().join(format!("ga-codegen-self-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let spec = dir.join("g3.toml");
+    let text = std::fs::read_to_string(workspace().join("algebras/g3.toml")).expect("g3.toml");
+    std::fs::write(&spec, &text).expect("write spec");
+    let path = spec.to_str().expect("utf-8 path");
+    // Also through another spelling of the same path.
+    let other = dir.join(".").join("g3.toml");
+    for args in [
+        vec![path, "-o", path],
+        vec![path, "--wgsl", "-o", other.to_str().expect("utf-8 path")],
+    ] {
+        let out = run(&args);
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        assert!(String::from_utf8_lossy(&out.stderr).contains("that is the spec file"));
+        assert_eq!(std::fs::read_to_string(&spec).expect("spec"), text);
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

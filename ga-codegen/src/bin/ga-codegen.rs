@@ -129,6 +129,10 @@ fn main() -> ExitCode {
             return ExitCode::from(2);
         }
     };
+    if let Err(e) = output_is_not_the_spec(args.spec.as_deref(), args.out.as_deref()) {
+        eprintln!("error: {e}");
+        return ExitCode::from(2);
+    }
     let start = Instant::now();
     let spec = match (&args.spec, args.signature) {
         (Some(p), _) => Spec::from_file(p),
@@ -232,4 +236,25 @@ fn write_wgsl(spec: &Spec, out: Option<&std::path::Path>, start: Instant) -> Exi
         None => print!("{code}"),
     }
     ExitCode::SUCCESS
+}
+
+/// `-o` must not name the spec file: writing there would destroy the user's input.
+fn output_is_not_the_spec(
+    spec: Option<&std::path::Path>,
+    out: Option<&std::path::Path>,
+) -> Result<(), String> {
+    let (Some(spec), Some(out)) = (spec, out) else {
+        return Ok(());
+    };
+    let same = match (spec.canonicalize(), out.canonicalize()) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => false,
+    };
+    if same {
+        return Err(format!(
+            "-o {}: that is the spec file; write the generated code elsewhere",
+            out.display()
+        ));
+    }
+    Ok(())
 }
