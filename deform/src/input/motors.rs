@@ -17,11 +17,11 @@
 use super::InputError;
 use cga::ScaledMotor;
 use glam::{DQuat, DVec3};
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
 /// A rotation as written: axis, angle in degrees, centre.
-#[derive(Clone, Debug, Default, PartialEq, Deserialize)]
+#[derive(Clone, Debug, Default, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct RotateSpec {
     /// The axis direction (any non-zero length).
@@ -29,25 +29,25 @@ pub struct RotateSpec {
     /// The angle in degrees (right-hand rule).
     pub degrees: f64,
     /// A point on the axis (default the origin); also the centre of `scale`.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub center: Option<[f64; 3]>,
 }
 
-/// A motor as written in JSON.
-#[derive(Clone, Debug, Default, PartialEq, Deserialize)]
+/// A motor as written in JSON (and written back by [`serde_json::to_string`]).
+#[derive(Clone, Debug, Default, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct MotorSpec {
     /// Rotation about an axis through a centre.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rotate: Option<RotateSpec>,
     /// Translation, applied last.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub translate: Option<[f64; 3]>,
     /// Uniform scale about the rotation's centre (or the origin), applied first.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub scale: Option<f64>,
     /// The centre of `scale` when there is no rotation.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub center: Option<[f64; 3]>,
 }
 

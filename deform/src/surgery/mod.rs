@@ -44,6 +44,7 @@ mod cut;
 mod drill;
 mod nearest;
 mod refine;
+mod ray;
 mod soup;
 mod split;
 mod tear;
@@ -51,6 +52,7 @@ mod weights;
 mod weld;
 
 pub use bvh::FaceBvh;
+pub use ray::RayHit;
 pub use cut::{CutOptions, CutPiece, CutResult};
 pub use drill::{Drill, DrillOptions, DrillResult};
 pub use split::VertexOrigin;

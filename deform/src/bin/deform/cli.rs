@@ -3,7 +3,7 @@
 //! `shared_args.rs`). Every subcommand shares the motor JSON format, the selection format,
 //! `-o`, `--png`, `--json` and `--quiet`.
 
-use crate::commands::{arap, cage, cut, demo, drill, fabrik, ffd, handles, skin, spline, tear};
+use crate::commands::{arap, cage, cut, demo, drill, fabrik, ffd, handles, skin, spline, tear, view};
 use clap::{Parser, Subcommand};
 
 /// Mesh deformation with conformal geometric algebra motors.
@@ -67,6 +67,9 @@ pub enum Command {
     /// incision opens (--open pulls its lips apart); the result stays skinned and animatable.
     #[command(after_long_help = TEAR_COUNTS)]
     Tear(tear::TearArgs),
+    /// The interactive editor: serve a page on this machine (loopback unless --host) that
+    /// deforms the model (or the demo's scenes) by hand, live; prints the address to open.
+    View(view::ViewArgs),
 }
 
 impl Command {
@@ -84,6 +87,7 @@ impl Command {
             Command::Cut(a) => cut::run(a),
             Command::Drill(a) => drill::run(a),
             Command::Tear(a) => tear::run(a),
+            Command::View(a) => view::run(a),
         }
     }
 }

@@ -12,3 +12,4 @@ pub mod handles;
 pub mod skin;
 pub mod spline;
 pub mod tear;
+pub mod view;

@@ -1,0 +1,346 @@
+// The editor page: panels, mouse, the socket to the server, and the frame loop.
+"use strict";
+const $ = (id) => document.getElementById(id);
+const canvas = $("view"), camera = new Camera(), gizmo = new Gizmo(camera);
+const renderer = new Renderer(canvas);
+const ed = {
+  state: null, rest: null, positions: null, groupsOf: null, n: 0, bbox: null,
+  groups: [], // per group: { c, s, q, t }
+  joints: [], // joint frames [x y z qx qy qz qw] of the last pose
+  edits: {}, // joint -> { s, q, t }
+  plane: null, // { c, q, t }
+  seq: 0, received: 0, inflight: 0, sentAt: new Map(), dirty: false,
+  playing: false, clock: 0, lastTick: 0,
+  frames: [], poseMs: 0, roundTrip: 0, fieldRange: [0, 0], errors: [],
+};
+window.editor = ed;
+
+// --- the socket -----------------------------------------------------------------------------
+const socket = new WebSocket((location.protocol === "https:" ? "wss://" : "ws://") + location.host + "/ws" + location.search);
+socket.binaryType = "arraybuffer";
+ed.socket = socket;
+function send(request) { if (socket.readyState === 1) socket.send(JSON.stringify(request)); }
+socket.onclose = () => say("connection closed: reload the page to start a new session");
+socket.onmessage = (e) => (typeof e.data === "string" ? onText(JSON.parse(e.data)) : onBinary(e.data));
+
+function say(text, isError = true) {
+  $("message").textContent = text;
+  if (isError) ed.errors.push(text);
+}
+
+function onBinary(buf) {
+  const kind = new Uint32Array(buf, 0, 1)[0];
+  if (kind === 1) {
+    const [n, m] = new Uint32Array(buf, 4, 2);
+    ed.n = n;
+    ed.rest = new Float32Array(new Float64Array(buf, 16, 3 * n));
+    renderer.setMesh(n, new Uint32Array(buf.slice(16 + 24 * n, 16 + 24 * n + 12 * m)));
+    ed.positions = ed.rest.slice();
+    renderer.setPositions(ed.positions);
+    ed.groupsOf = new Uint8Array(n);
+    const min = [Infinity, Infinity, Infinity], max = [-Infinity, -Infinity, -Infinity];
+    for (let i = 0; i < 3 * n; i++) { min[i % 3] = Math.min(min[i % 3], ed.rest[i]); max[i % 3] = Math.max(max[i % 3], ed.rest[i]); }
+    ed.bbox = { min, max };
+    camera.frame(min, max);
+    ed.plane = null; $("plane").checked = false;
+  } else if (kind === 2) {
+    const seq = new Uint32Array(buf, 4, 1)[0];
+    ed.poseMs = new Float32Array(buf, 8, 1)[0];
+    ed.positions = new Float32Array(new Float64Array(buf, 16));
+    renderer.setPositions(ed.positions);
+    ed.received = Math.max(ed.received, seq);
+    if (ed.sentAt.has(seq)) { ed.roundTrip = performance.now() - ed.sentAt.get(seq); ed.sentAt.delete(seq); }
+    ed.inflight = Math.max(0, ed.inflight - 1);
+    ed.frames.push(performance.now());
+  } else if (kind === 3) {
+    const [min, max] = new Float32Array(buf, 4, 2);
+    ed.fieldRange = [min, max];
+    renderer.setScalar(new Float32Array(buf.slice(12)), min, max);
+    legend();
+  } else if (kind === 4) {
+    const n = new Uint32Array(buf, 4, 1)[0];
+    ed.groupsOf = new Uint8Array(buf.slice(8, 8 + n));
+    renderer.setGroups(ed.groupsOf);
+  }
+}
+
+function onText(m) {
+  if (m.type === "state") return onState(m);
+  if (m.type === "error") return say(m.message);
+  if (m.type === "binding") { $("busy").textContent = m.what + " ..."; ed.busySince = performance.now(); return; }
+  if (m.type === "posed") {
+    if (m.joints) ed.joints = m.joints;
+    ed.energy = m.energy;
+    return;
+  }
+  if (m.type === "file") return download(m);
+  if (m.type === "motors") {
+    m.motors.forEach((x, g) => { if (ed.groups[g]) Object.assign(ed.groups[g], { s: x[0], q: x.slice(1, 5), t: x.slice(5, 8) }); });
+    ed.dirty = true;
+  }
+}
+
+function fill(select, items, value) {
+  select.replaceChildren(...items.map((x) => { const o = document.createElement("option"); o.value = o.textContent = x; return o; }));
+  if (value !== undefined) select.value = value;
+}
+
+function onState(s) {
+  const first = !ed.state || ed.state.scene !== s.scene;
+  ed.state = s;
+  $("busy").textContent = "";
+  ed.bindShown = performance.now() - (ed.busySince || performance.now());
+  fill($("scene"), s.scenes, s.scene);
+  const rig = s.kind === "rig";
+  $("mesh-tools").classList.toggle("hidden", rig);
+  $("rig-tools").classList.toggle("hidden", !rig);
+  document.querySelectorAll(".rig-only").forEach((e) => e.classList.toggle("hidden", !rig));
+  document.querySelectorAll(".mesh-only").forEach((e) => e.classList.toggle("hidden", rig));
+  const field = $("field").value;
+  fill($("field"), s.fields, s.fields.includes(field) && !first ? field : "displacement");
+  if (!rig) {
+    fill($("method"), s.methods, s.method); fill($("blend"), s.blends, s.blend);
+    $("iterations").value = s.iterations;
+    $("iterations-row").classList.toggle("hidden", s.method !== "arap");
+    // Keep each group's gizmo; new groups start at the identity about their rest centre.
+    ed.groups = s.groups.map((g, i) => {
+      const old = first ? null : ed.groups[i];
+      return old ? Object.assign(old, { c: g.center }) : { c: g.center, s: 1, q: Q.id(), t: [0, 0, 0] };
+    });
+    const keep = Math.min(+$("group").value || 0, s.groups.length);
+    fill($("group"), [...s.groups.map((g, i) => `${i}`), `${s.groups.length}`], `${keep}`);
+    [...$("group").options].forEach((o, i) => { o.textContent = i < s.groups.length ? `group ${i} (${s.groups[i].vertices} vertices)` : "new group"; });
+    $("replay").textContent = "Replay: deform " + (s.method === "spline" ? "spline" : s.method) + " MODEL --select selection.json --motors motors.json" + (s.method === "arap" ? "" : " --blend " + s.blend);
+  } else {
+    if (first) { ed.edits = {}; ed.clock = s.rig.animations.length ? s.rig.animations[0].start : 0; }
+    fill($("animation"), ["(rest)", ...s.rig.animations.map((a, i) => `${i}: ${a.name}`)], first ? (s.rig.animations.length ? "0: " + s.rig.animations[0].name : "(rest)") : $("animation").value);
+    if (first) fill($("backend"), s.rig.backends, s.rig.backends[0]);
+    const joint = $("joint").value;
+    fill($("joint"), ["(none)", ...s.rig.joints.map((j, i) => `${i}: ${j}`)], first ? "(none)" : joint);
+    $("undo").disabled = s.rig.undo === 0; $("redo").disabled = s.rig.redo === 0;
+    $("replay").textContent = ".glb keeps the cuts and the joint edits baked in: deform skin MODEL.glb replays it";
+  }
+  ed.dirty = true;
+  sendField();
+  retarget();
+}
+
+function download(m) {
+  const bytes = m.base64 ? Uint8Array.from(atob(m.text), (c) => c.charCodeAt(0)) : new TextEncoder().encode(m.text);
+  const a = document.createElement("a");
+  a.href = URL.createObjectURL(new Blob([bytes])); a.download = m.name;
+  ed.lastFile = m;
+  document.body.append(a); a.click(); a.remove();
+}
+
+// --- motors and rig frames --------------------------------------------------------------------
+function motorSpec(g) {
+  const r = Q.toAxisDegrees(g.q), spec = { translate: g.t, scale: g.s };
+  if (r) spec.rotate = { axis: r.axis, degrees: r.degrees, center: g.c }; else spec.center = g.c;
+  return spec;
+}
+function jointSpec(e) {
+  const r = Q.toAxisDegrees(e.q), spec = { translate: e.t, scale: e.s };
+  if (r) spec.rotate = { axis: r.axis, degrees: r.degrees };
+  return spec;
+}
+function animationIndex() { const v = $("animation").value; return v === "(rest)" ? null : parseInt(v, 10); }
+function pump() {
+  if (!ed.state || socket.readyState !== 1 || ed.inflight >= 2) return;
+  if (ed.state.kind === "rig") {
+    if (!ed.dirty && !ed.playing) return;
+    const edits = Object.entries(ed.edits).map(([j, e]) => ({ joint: +j, motor: jointSpec(e) }));
+    ed.seq++; ed.inflight++; ed.sentAt.set(ed.seq, performance.now());
+    send({ op: "rig", seq: ed.seq, animation: animationIndex(), time: ed.clock, backend: $("backend").value, edits });
+  } else {
+    if (!ed.dirty || ed.groups.length === 0) return;
+    ed.seq++; ed.inflight++; ed.sentAt.set(ed.seq, performance.now());
+    send({ op: "motors", seq: ed.seq, motors: ed.groups.map(motorSpec) });
+  }
+  ed.dirty = false;
+}
+
+// --- gizmo targets ------------------------------------------------------------------------------
+const WORLD = [[1, 0, 0], [0, 1, 0], [0, 0, 1]];
+function groupTarget(g) {
+  return {
+    scalable: true,
+    origin: () => V.add(g.c, g.t), axes: () => WORLD,
+    snapshot: () => ({ s: g.s, q: g.q.slice(), t: g.t.slice() }),
+    apply: (st, op) => {
+      if (op.kind === "translate") g.t = V.add(st.t, V.scale(op.axis, op.amount));
+      if (op.kind === "rotate") g.q = Q.normalize(Q.mul(Q.axisAngle(op.axis, op.angle), st.q));
+      if (op.kind === "scale") g.s = st.s * op.factor;
+      ed.dirty = true;
+    },
+  };
+}
+function jointTarget(j) {
+  const e = ed.edits[j] || (ed.edits[j] = { s: 1, q: Q.id(), t: [0, 0, 0] });
+  const frame = () => ed.joints[j] || [0, 0, 0, 0, 0, 0, 1];
+  return {
+    scalable: true,
+    origin: () => frame().slice(0, 3),
+    axes: () => WORLD.map((a) => Q.rotate(frame().slice(3, 7), a)),
+    snapshot: () => ({ s: e.s, q: e.q.slice(), t: e.t.slice() }),
+    apply: (st, op) => {
+      const local = (i) => Q.rotate(st.q, WORLD[i]);
+      if (op.kind === "translate") {
+        const i = gizmo.drag.handle.axis;
+        e.t = V.add(st.t, V.scale(local(i), op.amount));
+      }
+      if (op.kind === "rotate") e.q = Q.normalize(Q.mul(st.q, Q.axisAngle(WORLD[op.axisIndex], op.angle)));
+      if (op.kind === "scale") e.s = st.s * op.factor;
+      ed.dirty = true;
+    },
+  };
+}
+function planeTarget() {
+  if (!ed.plane) ed.plane = { c: V.scale(V.add(ed.bbox.min, ed.bbox.max), 0.5), q: Q.id(), t: [0, 0, 0] };
+  const p = ed.plane;
+  return {
+    scalable: false,
+    origin: () => V.add(p.c, p.t), axes: () => WORLD,
+    snapshot: () => ({ q: p.q.slice(), t: p.t.slice() }),
+    apply: (st, op) => {
+      if (op.kind === "translate") p.t = V.add(st.t, V.scale(op.axis, op.amount));
+      if (op.kind === "rotate") p.q = Q.normalize(Q.mul(Q.axisAngle(op.axis, op.angle), st.q));
+    },
+  };
+}
+function retarget() {
+  const s = ed.state;
+  gizmo.target = null;
+  if (!s) return;
+  if (s.kind === "rig") {
+    if ($("plane").checked) gizmo.target = planeTarget();
+    else if ($("joint").value !== "(none)") gizmo.target = jointTarget(parseInt($("joint").value, 10));
+  } else {
+    const g = ed.groups[+$("group").value];
+    if (g) gizmo.target = groupTarget(g);
+  }
+}
+
+// --- overlays -----------------------------------------------------------------------------------
+function planeLines() {
+  if (!$("plane").checked || !ed.plane) return [];
+  const p = V.add(ed.plane.c, ed.plane.t), n = Q.rotate(ed.plane.q, [1, 0, 0]), L = V.len(V.sub(ed.bbox.max, ed.bbox.min)) * 0.35;
+  const u = Q.rotate(ed.plane.q, [0, 1, 0]), w = Q.rotate(ed.plane.q, [0, 0, 1]);
+  const c = (a, b) => V.add(p, V.add(V.scale(u, a * L), V.scale(w, b * L)));
+  return [{ points: [c(-1, -1), c(1, -1), c(1, 1), c(-1, 1), c(-1, -1)], ink: [1, 0.6, 0.2, 1], strip: true },
+    { points: [p, V.add(p, V.scale(n, L * 0.5))], ink: [1, 0.6, 0.2, 1], strip: true }];
+}
+function legend() {
+  const bar = $("legend-bar"), c = bar.getContext("2d");
+  for (let x = 0; x < bar.width; x++) {
+    const t = x / (bar.width - 1);
+    // The shader's viridis, at a few stops (close enough for a legend).
+    const stops = [[68, 1, 84], [59, 82, 139], [33, 145, 140], [94, 201, 98], [253, 231, 37]];
+    const f = t * 4, i = Math.min(3, Math.floor(f)), k = f - i;
+    const col = stops[i].map((v, j) => Math.round(v + (stops[i + 1][j] - v) * k));
+    c.fillStyle = `rgb(${col})`; c.fillRect(x, 0, 1, bar.height);
+  }
+  const fmt = (x) => (Math.abs(x) >= 1000 || (Math.abs(x) < 0.01 && x !== 0) ? x.toExponential(2) : x.toFixed(3));
+  $("legend-min").textContent = fmt(ed.fieldRange[0]); $("legend-max").textContent = fmt(ed.fieldRange[1]);
+}
+function sendField() {
+  send({ op: "field", name: $("field").value, group: +$("group").value || 0 });
+}
+
+// --- panels -------------------------------------------------------------------------------------
+$("scene").onchange = () => { ed.state = null; send({ op: "scene", name: $("scene").value }); };
+const sendMethod = () => send({ op: "method", method: $("method").value, blend: $("blend").value, iterations: +$("iterations").value });
+$("method").onchange = sendMethod; $("blend").onchange = sendMethod; $("iterations").onchange = sendMethod;
+$("group").onchange = () => { retarget(); sendField(); };
+$("field").onchange = () => { sendField(); ed.dirty = true; };
+$("clear").onclick = () => send({ op: "clear-groups" });
+$("reset").onclick = () => { const g = ed.groups[+$("group").value]; if (g) Object.assign(g, { s: 1, q: Q.id(), t: [0, 0, 0] }); ed.dirty = true; };
+$("reset-joint").onclick = () => { delete ed.edits[$("joint").value.split(":")[0]]; retarget(); ed.dirty = true; };
+$("joint").onchange = retarget; $("plane").onchange = retarget;
+$("backend").onchange = () => { ed.dirty = true; };
+$("animation").onchange = () => { const a = ed.state.rig.animations[animationIndex()]; ed.clock = a ? a.start : 0; ed.dirty = true; };
+$("play").onclick = () => { ed.playing = !ed.playing; $("play").textContent = ed.playing ? "Pause" : "Play"; ed.lastTick = performance.now(); };
+$("time").oninput = () => {
+  const a = ed.state.rig.animations[animationIndex()];
+  if (a) { ed.clock = a.start + (a.end - a.start) * +$("time").value; ed.dirty = true; }
+};
+$("cut").onclick = () => {
+  if (!$("plane").checked || !ed.plane) return say("turn on the cut plane and place it first");
+  send({ op: "cut", point: V.add(ed.plane.c, ed.plane.t), normal: Q.rotate(ed.plane.q, [1, 0, 0]), cap: true });
+};
+$("undo").onclick = () => send({ op: "undo" });
+$("redo").onclick = () => send({ op: "redo" });
+$("frame").onclick = () => ed.bbox && camera.frame(ed.bbox.min, ed.bbox.max);
+document.querySelectorAll("[data-export]").forEach((b) => { b.onclick = () => send({ op: "export", what: b.dataset.export }); });
+for (const what of ["selection", "motors"]) {
+  $("load-" + what).onchange = async (e) => {
+    const f = e.target.files[0]; if (!f) return;
+    if (f.size > 3 << 20) return say(`${f.name}: larger than 3 MiB`);
+    send({ op: "load", what, text: await f.text() }); e.target.value = "";
+  };
+}
+addEventListener("keydown", (e) => { if (e.key === "f" && e.target === document.body) $("frame").click(); });
+
+// --- mouse --------------------------------------------------------------------------------------
+let mouse = null;
+const tool = () => document.querySelector("input[name=tool]:checked").value;
+function paintAt(x, y) {
+  const r = camera.ray(x, y), size = V.len(V.sub(ed.bbox.max, ed.bbox.min));
+  send({ op: "paint", origin: r.origin, direction: r.direction, radius: +$("brush").value * size, group: +$("group").value, erase: tool() === "erase" });
+}
+canvas.addEventListener("contextmenu", (e) => e.preventDefault());
+canvas.addEventListener("pointerdown", (e) => {
+  canvas.setPointerCapture(e.pointerId);
+  const x = e.offsetX, y = e.offsetY;
+  if (e.button === 0 && !e.shiftKey && gizmo.target && gizmo.begin(x, y)) { mouse = { mode: "gizmo", x, y }; return; }
+  const painting = e.button === 0 && !e.shiftKey && ed.state && ed.state.kind === "mesh" && tool() !== "move";
+  mouse = { mode: painting ? "paint" : e.button === 2 || e.shiftKey ? "pan" : "orbit", x, y };
+  if (painting) paintAt(x, y);
+});
+canvas.addEventListener("pointermove", (e) => {
+  const x = e.offsetX, y = e.offsetY;
+  if (!mouse) { gizmo.move(x, y); return; }
+  if (mouse.mode === "gizmo") gizmo.move(x, y);
+  else if (mouse.mode === "paint") paintAt(x, y);
+  else if (mouse.mode === "pan") camera.pan(x - mouse.x, y - mouse.y);
+  else camera.orbit(x - mouse.x, y - mouse.y);
+  mouse.x = x; mouse.y = y;
+});
+canvas.addEventListener("pointerup", () => {
+  if (mouse && mouse.mode === "paint") send({ op: "bind" });
+  gizmo.end(); mouse = null;
+});
+canvas.addEventListener("wheel", (e) => { e.preventDefault(); camera.zoom(Math.sign(e.deltaY)); }, { passive: false });
+
+// --- the frame loop -------------------------------------------------------------------------------
+function tick(now) {
+  const dpr = window.devicePixelRatio || 1, w = canvas.clientWidth, h = canvas.clientHeight;
+  if (canvas.width !== Math.round(w * dpr) || canvas.height !== Math.round(h * dpr)) { canvas.width = Math.round(w * dpr); canvas.height = Math.round(h * dpr); }
+  if (ed.playing && ed.state && ed.state.kind === "rig") {
+    const a = ed.state.rig.animations[animationIndex()];
+    if (a) {
+      const span = Math.max(a.end - a.start, 1e-6);
+      ed.clock = a.start + ((ed.clock - a.start + (now - ed.lastTick) / 1000) % span);
+      $("time").value = (ed.clock - a.start) / span;
+    }
+  }
+  ed.lastTick = now;
+  pump();
+  const { viewProj } = camera.matrices(w, h);
+  const { f } = camera.basis();
+  const lines = [...gizmo.lines(), ...planeLines()];
+  renderer.draw({ viewProj, light: V.scale(f, -1), colourBy: $("field").value !== "group", wireframe: $("wireframe").checked, lines });
+  ed.frames = ed.frames.filter((t) => now - t < 1000);
+  const s = ed.state;
+  if (s) {
+    $("stats").textContent = [
+      `${s.vertices} vertices, ${s.triangles} triangles`,
+      `positions ${ed.frames.length} / s, round trip ${ed.roundTrip.toFixed(1)} ms`,
+      `pose ${ed.poseMs.toFixed(2)} ms, bind ${s.bind_ms.toFixed(1)} ms`,
+      ed.energy != null ? `ARAP energy ${ed.energy.toExponential(3)}` : "",
+      s.stale ? "groups changed: binding on release" : "",
+    ].filter(Boolean).join("\n");
+  }
+  requestAnimationFrame(tick);
+}
+requestAnimationFrame(tick);

@@ -1,0 +1,257 @@
+//! The editor's wire format. The page sends JSON text frames (one [`Request`] each); the
+//! server answers with JSON text frames ([`Reply`]) and binary frames for the bulk data
+//! (a little-endian `u32` kind, then its payload, every array 4-byte aligned):
+//!
+//! | kind | payload |
+//! |---|---|
+//! | 1 mesh | `u32 n, u32 m, u32 0, f64 rest[3n], u32 triangles[3m]` |
+//! | 2 positions | `u32 seq, f32 pose_ms, u32 0, f64 posed[3n]` |
+//!
+//! Positions travel in f64, exactly as the library computed them (the page draws them in
+//! f32; a client can compare them with its own pose bit for bit).
+//! | 3 field | `f32 min, f32 max, f32 value[n]` |
+//! | 4 groups | `u32 n, u8 group_plus_one[n]` (0: in no group; padded to 4 bytes) |
+
+use deform::input::MotorSpec;
+use glam::DVec3;
+use serde::{Deserialize, Serialize};
+
+/// Frame kinds of the binary frames.
+pub const MESH: u32 = 1;
+pub const POSITIONS: u32 = 2;
+pub const FIELD: u32 = 3;
+pub const GROUPS: u32 = 4;
+
+/// One joint edit of a rig: `motor` in the joint's own frame.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EditSpec {
+    pub joint: usize,
+    pub motor: MotorSpec,
+}
+
+/// What the page asks for.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(tag = "op", rename_all = "kebab-case", deny_unknown_fields)]
+pub enum Request {
+    /// Open a scene by name (one of [`Reply::State`]'s `scenes`).
+    Scene { name: String },
+    /// Paint: the vertices within `radius` of where the ray first meets the posed surface join
+    /// group `group` (`group == groups` starts a new one), or leave their group (`erase`).
+    Paint {
+        origin: [f64; 3],
+        direction: [f64; 3],
+        radius: f64,
+        group: usize,
+        #[serde(default)]
+        erase: bool,
+    },
+    /// Forget every group.
+    ClearGroups,
+    /// Bind the method to the current groups (after a paint stroke).
+    Bind,
+    /// Choose the method (`handles`, `arap`, `spline`), its blend and ARAP's iterations per
+    /// frame; rebinds.
+    Method {
+        method: String,
+        blend: String,
+        #[serde(default)]
+        iterations: Option<usize>,
+    },
+    /// Pose the handle groups: one motor per group (the CLI's motor JSON).
+    Motors { seq: u32, motors: Vec<MotorSpec> },
+    /// Pose the rig at `time` of `animation` (none: rest) with joint edits, by `backend`.
+    Rig {
+        seq: u32,
+        animation: Option<usize>,
+        time: f64,
+        backend: String,
+        #[serde(default)]
+        edits: Vec<EditSpec>,
+    },
+    /// Colour by a field (one of the state's `fields`); `group` for per-group fields.
+    Field {
+        name: String,
+        #[serde(default)]
+        group: usize,
+    },
+    /// Cut the rig by the plane through `point` with normal `normal`, in the posed frame.
+    Cut {
+        point: [f64; 3],
+        normal: [f64; 3],
+        #[serde(default = "yes")]
+        cap: bool,
+    },
+    /// Undo or redo the last surgery.
+    Undo,
+    Redo,
+    /// A file of the current state: `obj`, `motors`, `selection`, `edits`.
+    Export { what: String },
+    /// Load a selection (`selection`, the CLI's JSON) or motors (`motors`).
+    Load { what: String, text: String },
+}
+
+impl Request {
+    /// What a request that may take a while (a bind, a cut) is doing, for the page to show.
+    pub fn slow(&self) -> Option<&'static str> {
+        match self {
+            Request::Scene { .. } => Some("opening the scene"),
+            Request::Bind | Request::Method { .. } | Request::Load { .. } => Some("binding"),
+            Request::Cut { .. } => Some("cutting"),
+            Request::Undo | Request::Redo => Some("rebinding"),
+            _ => None,
+        }
+    }
+}
+
+fn yes() -> bool {
+    true
+}
+
+/// One handle group as the page draws it.
+#[derive(Clone, Debug, Serialize)]
+pub struct GroupInfo {
+    pub vertices: usize,
+    /// Its centroid at rest.
+    pub center: [f64; 3],
+}
+
+/// An animation of the rig.
+#[derive(Clone, Debug, Serialize)]
+pub struct AnimationInfo {
+    pub name: String,
+    pub start: f64,
+    pub end: f64,
+}
+
+/// What the page needs of a rig.
+#[derive(Clone, Debug, Serialize)]
+pub struct RigInfo {
+    pub animations: Vec<AnimationInfo>,
+    pub joints: Vec<String>,
+    pub backends: Vec<&'static str>,
+    pub undo: usize,
+    pub redo: usize,
+}
+
+/// What the server says in text frames.
+#[derive(Clone, Debug, Serialize)]
+#[serde(tag = "type", rename_all = "kebab-case")]
+pub enum Reply {
+    /// The whole editing state (after a scene, a bind, a method change or a surgery).
+    State {
+        scene: String,
+        scenes: Vec<String>,
+        /// `mesh` (handles, ARAP, spline) or `rig`.
+        kind: &'static str,
+        method: String,
+        methods: Vec<&'static str>,
+        blend: String,
+        blends: Vec<&'static str>,
+        iterations: usize,
+        groups: Vec<GroupInfo>,
+        fields: Vec<&'static str>,
+        rig: Option<RigInfo>,
+        bind_ms: f64,
+        vertices: usize,
+        triangles: usize,
+        /// Whether the groups changed since the last bind.
+        stale: bool,
+    },
+    /// A bind started (it may take a while); the page shows it.
+    Binding { what: String },
+    /// A pose was not made, or a request was refused, and why.
+    Error { message: String },
+    /// Per-pose figures beside the positions frame.
+    Posed {
+        seq: u32,
+        pose_ms: f64,
+        /// ARAP's energy after the frame's iterations.
+        energy: Option<f64>,
+        /// The rig's joint positions (world) and frames (unit quaternions `x y z w`).
+        joints: Option<Vec<[f64; 7]>>,
+    },
+    /// A file for the page to save (`.glb` as base64).
+    File {
+        name: String,
+        text: String,
+        base64: bool,
+    },
+    /// Motors loaded from a file, as scale, rotation (`x y z w`) and translation about each
+    /// group's rest centre.
+    Motors { motors: Vec<[f64; 8]> },
+}
+
+/// A binary frame: kind, then the payload words.
+pub struct Frame(pub Vec<u8>);
+
+impl Frame {
+    fn new(kind: u32, capacity: usize) -> Frame {
+        let mut v = Vec::with_capacity(4 + capacity);
+        v.extend_from_slice(&kind.to_le_bytes());
+        Frame(v)
+    }
+    fn u32(&mut self, x: u32) -> &mut Self {
+        self.0.extend_from_slice(&x.to_le_bytes());
+        self
+    }
+    fn f32(&mut self, x: f64) -> &mut Self {
+        self.0.extend_from_slice(&(x as f32).to_le_bytes());
+        self
+    }
+    fn points(&mut self, p: &[DVec3]) -> &mut Self {
+        for q in p {
+            for x in q.to_array() {
+                self.0.extend_from_slice(&x.to_le_bytes());
+            }
+        }
+        self
+    }
+
+    /// Kind 1: rest positions and triangles.
+    pub fn mesh(rest: &[DVec3], triangles: &[[u32; 3]]) -> Frame {
+        let mut f = Frame::new(MESH, 12 + 24 * rest.len() + 12 * triangles.len());
+        f.u32(rest.len() as u32).u32(triangles.len() as u32).u32(0);
+        f.points(rest);
+        for t in triangles {
+            f.u32(t[0]).u32(t[1]).u32(t[2]);
+        }
+        f
+    }
+
+    /// Kind 2: posed positions.
+    pub fn positions(seq: u32, pose_ms: f64, posed: &[DVec3]) -> Frame {
+        let mut f = Frame::new(POSITIONS, 12 + 24 * posed.len());
+        f.u32(seq).f32(pose_ms).u32(0).points(posed);
+        f
+    }
+
+    /// Kind 3: a scalar per vertex and its range (non-finite values drawn as the minimum).
+    pub fn field(values: &[f64]) -> Frame {
+        let finite = values.iter().copied().filter(|x| x.is_finite());
+        let min = finite.clone().fold(f64::INFINITY, f64::min);
+        let max = finite.fold(f64::NEG_INFINITY, f64::max);
+        let (min, max) = if min <= max { (min, max) } else { (0.0, 0.0) };
+        let mut f = Frame::new(FIELD, 8 + 4 * values.len());
+        f.f32(min).f32(max);
+        for &x in values {
+            f.f32(if x.is_finite() { x } else { min });
+        }
+        f
+    }
+
+    /// Kind 4: each vertex's group plus one (0: none; groups past 254 shown as 255).
+    pub fn groups(owner: &[u32]) -> Frame {
+        let mut f = Frame::new(GROUPS, 4 + owner.len() + 3);
+        f.u32(owner.len() as u32);
+        f.0.extend(
+            owner
+                .iter()
+                .map(|&g| if g == u32::MAX { 0 } else { (g + 1).min(255) as u8 }),
+        );
+        while f.0.len() % 4 != 0 {
+            f.0.push(0);
+        }
+        f
+    }
+}
