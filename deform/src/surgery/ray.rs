@@ -121,7 +121,11 @@ mod tests {
             let a = i as f64 * 0.731;
             let o = DVec3::new(3.0 * a.cos(), 0.37 * (i % 7) as f64 - 1.2, 3.0 * a.sin());
             // Aim near the centre, some rays past the sphere.
-            let target = DVec3::new((i % 5) as f64 * 0.3 - 0.6, (i % 3) as f64 * 0.45 - 0.45, 0.1);
+            let target = DVec3::new(
+                (i % 5) as f64 * 0.3 - 0.6,
+                (i % 3) as f64 * 0.45 - 0.45,
+                0.1,
+            );
             let d = target - o;
             let got = bvh.ray_hit(&mesh, o, d);
             let want = scan(&mesh, o, d);
@@ -147,8 +151,12 @@ mod tests {
         let bvh = FaceBvh::new(&mesh);
         let o = DVec3::new(0.0, 0.0, 5.0);
         assert!(bvh.ray_hit(&mesh, o, DVec3::ZERO).is_none());
-        assert!(bvh.ray_hit(&mesh, o, DVec3::new(f64::NAN, 0.0, -1.0)).is_none());
-        assert!(bvh.ray_hit(&mesh, DVec3::splat(f64::INFINITY), -DVec3::Z).is_none());
+        assert!(bvh
+            .ray_hit(&mesh, o, DVec3::new(f64::NAN, 0.0, -1.0))
+            .is_none());
+        assert!(bvh
+            .ray_hit(&mesh, DVec3::splat(f64::INFINITY), -DVec3::Z)
+            .is_none());
         // Pointing away.
         assert!(bvh.ray_hit(&mesh, o, DVec3::Z).is_none());
         // Axis-aligned (zero components, infinite inverses) still hits.

@@ -3,7 +3,9 @@
 //! `shared_args.rs`). Every subcommand shares the motor JSON format, the selection format,
 //! `-o`, `--png`, `--json` and `--quiet`.
 
-use crate::commands::{arap, cage, cut, demo, drill, fabrik, ffd, handles, skin, spline, tear, view};
+use crate::commands::{
+    arap, cage, cut, demo, drill, fabrik, ffd, handles, skin, spline, tear, view,
+};
 use clap::{Parser, Subcommand};
 
 /// Mesh deformation with conformal geometric algebra motors.

@@ -35,7 +35,9 @@ pub struct EditSpec {
 #[serde(tag = "op", rename_all = "kebab-case", deny_unknown_fields)]
 pub enum Request {
     /// Open a scene by name (one of [`Reply::State`]'s `scenes`).
-    Scene { name: String },
+    Scene {
+        name: String,
+    },
     /// Paint: the vertices within `radius` of where the ray first meets the posed surface join
     /// group `group` (`group == groups` starts a new one), or leave their group (`erase`).
     Paint {
@@ -59,7 +61,10 @@ pub enum Request {
         iterations: Option<usize>,
     },
     /// Pose the handle groups: one motor per group (the CLI's motor JSON).
-    Motors { seq: u32, motors: Vec<MotorSpec> },
+    Motors {
+        seq: u32,
+        motors: Vec<MotorSpec>,
+    },
     /// Pose the rig at `time` of `animation` (none: rest) with joint edits, by `backend`.
     Rig {
         seq: u32,
@@ -86,9 +91,14 @@ pub enum Request {
     Undo,
     Redo,
     /// A file of the current state: `obj`, `motors`, `selection`, `edits`.
-    Export { what: String },
+    Export {
+        what: String,
+    },
     /// Load a selection (`selection`, the CLI's JSON) or motors (`motors`).
-    Load { what: String, text: String },
+    Load {
+        what: String,
+        text: String,
+    },
 }
 
 impl Request {
@@ -244,11 +254,13 @@ impl Frame {
     pub fn groups(owner: &[u32]) -> Frame {
         let mut f = Frame::new(GROUPS, 4 + owner.len() + 3);
         f.u32(owner.len() as u32);
-        f.0.extend(
-            owner
-                .iter()
-                .map(|&g| if g == u32::MAX { 0 } else { (g + 1).min(255) as u8 }),
-        );
+        f.0.extend(owner.iter().map(|&g| {
+            if g == u32::MAX {
+                0
+            } else {
+                (g + 1).min(255) as u8
+            }
+        }));
         while f.0.len() % 4 != 0 {
             f.0.push(0);
         }

@@ -214,7 +214,11 @@ impl RigEdit {
         let made = cut
             .pieces
             .iter()
-            .flat_map(|p| p.origin.iter().map(|o| if o.is_input() { 0.0 } else { 1.0 }))
+            .flat_map(|p| {
+                p.origin
+                    .iter()
+                    .map(|o| if o.is_input() { 0.0 } else { 1.0 })
+            })
             .collect();
         self.history.push(Version { rig: new, made });
         self.redo.clear();

@@ -207,9 +207,8 @@ fn run_session(scenes: Vec<Scene>, mailbox: &Mailbox, tx: &mpsc::Sender<Out>) {
                 return;
             }
         }
-        let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-            session.handle(request)
-        }));
+        let result =
+            std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| session.handle(request)));
         let ok = match result {
             Ok(Ok(out)) => out.into_iter().all(send),
             Ok(Err(e)) => report(e),

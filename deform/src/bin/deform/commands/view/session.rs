@@ -12,8 +12,8 @@ use deform::arap::{Arap, ArapOptions, ArapScratch, Stop, Targets};
 use deform::input::{parse_group_motors, parse_selection_json, MotorSpec};
 use deform::surgery::FaceBvh;
 use deform::{
-    BlendMethod, BoundBlend, Deformer, HandleOptions, Mesh, MotorHandles, PoseScratch, PreparedKeys,
-    SplineDeformer, SplineOptions,
+    BlendMethod, BoundBlend, Deformer, HandleOptions, Mesh, MotorHandles, PoseScratch,
+    PreparedKeys, SplineDeformer, SplineOptions,
 };
 use glam::DVec3;
 use std::time::Instant;
@@ -358,7 +358,11 @@ impl Session {
         if self.groups.len() >= need {
             let t = Instant::now();
             self.bound = self.bind_method().with_context(|| {
-                format!("cannot bind {} to {} groups", self.method.name(), self.groups.len())
+                format!(
+                    "cannot bind {} to {} groups",
+                    self.method.name(),
+                    self.groups.len()
+                )
             })?;
             self.bind_ms = ms(t);
         } else {
@@ -433,7 +437,10 @@ impl Session {
         self.groups
             .iter()
             .map(|g| {
-                g.iter().map(|&v| self.mesh.positions[v as usize]).sum::<DVec3>() / g.len() as f64
+                g.iter()
+                    .map(|&v| self.mesh.positions[v as usize])
+                    .sum::<DVec3>()
+                    / g.len() as f64
             })
             .collect()
     }
@@ -445,8 +452,7 @@ impl Session {
         match &mut self.bound {
             Bound::Handles { blend, scratch, .. } => {
                 let rest = vec![ScaledMotor::IDENTITY; blend.key_count()];
-                *blend =
-                    BoundBlend::bind(&self.mesh.positions, blend.weights().clone(), &rest, b)?;
+                *blend = BoundBlend::bind(&self.mesh.positions, blend.weights().clone(), &rest, b)?;
                 *scratch = blend.scratch();
             }
             Bound::Spline { .. } | Bound::Arap { .. } | Bound::None => return self.bind(),

@@ -1,0 +1,8 @@
+//! `deform view` over its socket: the program is started on an ephemeral port and driven as
+//! the page drives it; what comes back is compared with the library's own poses, and hostile
+//! clients (no token, a foreign Origin, malformed, oversized and out-of-order messages) must
+//! never bring the server down.
+
+mod client;
+mod hostile;
+mod poses;

@@ -1,0 +1,245 @@
+//! What the server poses is what the library poses: handles (painted over the socket), a live
+//! blend switch, ARAP with the session's warm start, a rig with a joint edit, and a cut with
+//! undo and redo.
+
+use crate::client::{Frame, Server};
+use cga::ScaledMotor;
+use deform::arap::{Arap, ArapOptions, Stop, Targets};
+use deform::input::{parse_key_list, parse_selection_json};
+use deform::shapes::{icosphere, tube, tube_ring};
+use deform::skinning::{procedural_arm, JointEdit, Skinning};
+use deform::surgery::{CutOptions, Frame as SurgeryFrame, Surgery};
+use deform::{BlendMethod, Deformer, HandleOptions, MotorHandles};
+use glam::{DQuat, DVec3};
+use serde_json::{json, Value};
+
+fn worst(a: &[DVec3], b: &[DVec3]) -> f64 {
+    assert_eq!(a.len(), b.len(), "vertex counts");
+    a.iter()
+        .zip(b)
+        .map(|(p, q)| (*p - *q).length())
+        .fold(0.0, f64::max)
+}
+
+fn exported(c: &mut crate::client::Client, what: &str) -> String {
+    c.send(json!({"op": "export", "what": what}));
+    c.until(false, |f| match f {
+        Frame::Text(v) if v["type"] == "file" => Some(v["text"].as_str().unwrap().to_string()),
+        _ => None,
+    })
+}
+
+#[test]
+fn painted_handles_pose_as_the_library_poses_them_and_the_blend_switches_live() {
+    let server = Server::start(&[]);
+    let mut c = server.connect(None).expect("connects");
+    let s = c.state();
+    assert_eq!(s["scene"], "sphere");
+    assert_eq!(s["groups"].as_array().unwrap().len(), 3);
+    // Paint a fourth group where a ray from +z meets the sphere, then bind.
+    c.send(
+        json!({"op": "paint", "origin": [0.0, 0.0, 5.0], "direction": [0.0, 0.0, -1.0],
+        "radius": 0.3, "group": 3}),
+    );
+    let painted = c.until(false, |f| match f {
+        Frame::Groups(g) => Some(g.clone()),
+        _ => None,
+    });
+    let s = c.state();
+    assert_eq!(s["groups"].as_array().unwrap().len(), 4);
+    assert_eq!(s["stale"], true);
+    c.send(json!({"op": "bind"}));
+    assert_eq!(c.state()["stale"], false);
+    let mesh = icosphere(1.0, 4);
+    let selection = exported(&mut c, "selection");
+    let sel = parse_selection_json(&selection, mesh.vertex_count(), "export").unwrap();
+    assert_eq!(sel.groups.len(), 4);
+    for &v in &sel.groups[3] {
+        let p = mesh.positions[v as usize];
+        assert!((p - DVec3::Z).length() < 0.31, "painted vertex {v} at {p}");
+    }
+    assert!(sel.groups[3].len() > 10);
+    for (g, vs) in sel.groups.iter().enumerate() {
+        assert!(vs.iter().all(|&v| painted[v as usize] as usize == g + 1));
+    }
+    let grouped: usize = sel.groups.iter().map(Vec::len).sum();
+    assert_eq!(painted.iter().filter(|&&g| g > 0).count(), grouped);
+
+    let specs = json!([{}, {"translate": [0, 0.8, 0], "scale": 1.4, "center": [0, 1, 0]},
+        {"rotate": {"axis": [1, 0, 0], "degrees": 90, "center": [1, 0, 0]}},
+        {"translate": [0, 0, 0.5], "rotate": {"axis": [0, 1, 0], "degrees": 30, "center": [0, 0, 1]}}]);
+    let keys = parse_key_list(&specs.to_string(), "specs").unwrap();
+    c.send(json!({"op": "motors", "seq": 7, "motors": specs}));
+    let got = c.positions(7);
+    let rest = [ScaledMotor::IDENTITY; 4];
+    for method in [BlendMethod::MotorLog, BlendMethod::DualQuaternion] {
+        if method != BlendMethod::MotorLog {
+            c.send(json!({"op": "method", "method": "handles", "blend": method.name()}));
+            assert_eq!(c.state()["blend"], method.name());
+        }
+        let got = if method == BlendMethod::MotorLog {
+            got.clone()
+        } else {
+            c.positions(0)
+        };
+        let options = HandleOptions {
+            method,
+            ..HandleOptions::default()
+        };
+        let handles = MotorHandles::bind_with(&mesh, &sel.sets(), &rest, options).unwrap();
+        let mut want = mesh.positions.clone();
+        handles.pose(&keys, &mut want).unwrap();
+        let e = worst(&got, &want);
+        assert!(e <= 1e-12, "{}: {e}", method.name());
+        assert!(worst(&got, &mesh.positions) > 0.4, "it moved");
+    }
+    // Colour by group 3's harmonic coordinate: 1 on its handle, in [0, 1] everywhere.
+    // (Requests are answered in order: the last field before the export's file is ours.)
+    c.send(json!({"op": "field", "name": "harmonic", "group": 3}));
+    c.send(json!({"op": "export", "what": "motors"}));
+    let mut field = Vec::new();
+    c.until(false, |f| match f {
+        Frame::Field(v) => {
+            field = v.clone();
+            None
+        }
+        Frame::Text(v) if v["type"] == "file" => Some(()),
+        _ => None,
+    });
+    assert_eq!(field.len(), mesh.vertex_count());
+    assert!(field.iter().all(|x| (-1e-6..=1.0 + 1e-6).contains(x)));
+    assert!(sel.groups[3]
+        .iter()
+        .all(|&v| (field[v as usize] - 1.0).abs() < 1e-6));
+    // The exported motors replay the same pose.
+    let motors: Value = serde_json::from_str(&exported(&mut c, "motors")).unwrap();
+    let replay = deform::input::parse_group_motors(&motors.to_string(), "m", 4).unwrap();
+    for (a, b) in replay.iter().zip(&keys) {
+        let p = DVec3::new(0.3, -0.2, 0.9);
+        assert!((a.transform_point(p) - b.transform_point(p)).length() < 1e-12);
+    }
+}
+
+#[test]
+fn arap_frames_warm_start_from_the_last_one_as_a_pose_loop_with_one_scratch_does() {
+    let server = Server::start(&[]);
+    let mut c = server.connect(None).expect("connects");
+    c.state();
+    c.send(json!({"op": "scene", "name": "beam"}));
+    let s = c.state();
+    assert_eq!(s["method"], "arap");
+    let first = c.positions(0);
+    let end = json!({"translate": [-3.0, 4.0, 0.0],
+        "rotate": {"axis": [0, 0, 1], "degrees": 60, "center": [10, 0, 0]}});
+    c.send(json!({"op": "motors", "seq": 1, "motors": [{}, end]}));
+    let second = c.positions(1);
+
+    let beam = tube(1.0, 10.0, 6, 41);
+    let (g0, g1) = (tube_ring(6, 0), tube_ring(6, 40));
+    let arap = Arap::bind(&beam, &[], &[&g0, &g1], ArapOptions::default()).unwrap();
+    let mut scratch = arap.scratch().unwrap();
+    let mut out = beam.positions.clone();
+    let identity = [ScaledMotor::IDENTITY; 2];
+    let stop = Stop::Iterations(2);
+    arap.pose_using(
+        &Targets::Motors(&identity),
+        stop,
+        &mut scratch,
+        &mut out,
+        |_, _| {},
+    )
+    .unwrap();
+    assert!(worst(&first, &out) <= 1e-12, "{}", worst(&first, &out));
+    let keys = parse_key_list(&json!([{}, end]).to_string(), "k").unwrap();
+    arap.pose_using(
+        &Targets::Motors(&keys),
+        stop,
+        &mut scratch,
+        &mut out,
+        |_, _| {},
+    )
+    .unwrap();
+    assert!(worst(&second, &out) <= 1e-12, "{}", worst(&second, &out));
+    let tip = keys[1].transform_point(beam.positions[g1[0] as usize]);
+    assert!(
+        (second[g1[0] as usize] - tip).length() < 1e-9,
+        "the handle follows its motor"
+    );
+}
+
+#[test]
+fn the_rig_poses_as_the_library_poses_it_and_a_cut_undoes_and_redoes() {
+    let server = Server::start(&[]);
+    let mut c = server.connect(None).expect("connects");
+    c.state();
+    c.send(json!({"op": "scene", "name": "arm"}));
+    let s = c.state();
+    assert_eq!(s["kind"], "rig");
+    let rig = procedural_arm(24, 81);
+    assert_eq!(s["vertices"], rig.mesh.vertex_count());
+    c.send(
+        json!({"op": "rig", "seq": 3, "animation": 0, "time": 1.0, "backend": "motor-log",
+        "edits": [{"joint": 1, "motor": {"scale": 1.3}}]}),
+    );
+    let got = c.positions(3);
+    let edit = JointEdit {
+        joint: 1,
+        motor: ScaledMotor::from_scale_rotation_translation(1.3, DQuat::IDENTITY, DVec3::ZERO),
+    };
+    let pose = rig.pose(Some(0), 1.0, &[edit]).unwrap();
+    let skin = Skinning::bind(&rig, BlendMethod::MotorLog).unwrap();
+    let mut want = rig.mesh.positions.clone();
+    skin.pose(pose.skin_motors().unwrap(), &mut want).unwrap();
+    assert!(worst(&got, &want) <= 1e-12, "{}", worst(&got, &want));
+
+    // Cut in the posed frame; both pieces stay on the skeleton.
+    let (point, normal) = (DVec3::new(2.6, 0.0, 0.0), DVec3::new(1.0, 0.3, 0.0));
+    c.send(json!({"op": "cut", "point": point.to_array(), "normal": normal.to_array()}));
+    let (cut_mesh, triangles) = c.until(false, |f| match f {
+        Frame::Mesh { rest, triangles } => Some((rest.len(), triangles.len())),
+        _ => None,
+    });
+    let s = c.state();
+    assert_eq!(s["rig"]["undo"], 1);
+    let n = normal.normalize();
+    let plane = cga::Plane::from_normal_distance(n, n.dot(point));
+    let frame = SurgeryFrame::Posed {
+        positions: &want,
+        skin: &pose.skin_matrices,
+    };
+    let cut = Surgery::new(&rig.mesh, &rig.influences)
+        .unwrap()
+        .cut(
+            &plane,
+            frame,
+            &CutOptions {
+                cap: true,
+                ..CutOptions::default()
+            },
+        )
+        .unwrap();
+    let pieces: usize = cut.pieces.iter().map(|p| p.mesh.mesh.vertex_count()).sum();
+    assert_eq!(cut_mesh, pieces);
+    let faces: usize = cut
+        .pieces
+        .iter()
+        .map(|p| p.mesh.mesh.triangle_count())
+        .sum();
+    assert_eq!(triangles, faces);
+    assert!(cut_mesh > rig.mesh.vertex_count());
+    // The cut rig animates.
+    c.send(
+        json!({"op": "rig", "seq": 4, "animation": 0, "time": 2.0, "backend": "dual-quaternion"}),
+    );
+    assert_eq!(c.positions(4).len(), cut_mesh);
+    c.send(json!({"op": "undo"}));
+    let s = c.state();
+    assert_eq!(
+        (s["vertices"].as_u64(), s["rig"]["redo"].as_u64()),
+        (Some(rig.mesh.vertex_count() as u64), Some(1))
+    );
+    c.send(json!({"op": "redo"}));
+    assert_eq!(c.state()["vertices"], cut_mesh);
+    c.send(json!({"op": "redo"}));
+    assert!(c.error().contains("nothing to redo"));
+}
