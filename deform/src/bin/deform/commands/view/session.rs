@@ -248,6 +248,7 @@ impl Session {
             Content::Rig(rig) => {
                 self.rig = Some(RigEdit::new(rig.clone())?);
                 self.set_groups(Vec::new());
+                self.stale = false;
                 self.load_rig_mesh()
             }
         }

@@ -13,7 +13,9 @@ const ed = {
   playing: false, clock: 0, lastTick: 0,
   frames: [], poseMs: 0, roundTrip: 0, fieldRange: [0, 0], errors: [],
 };
+// For scripted sessions (the browser test): the editor's state, camera, gizmo and renderer.
 window.editor = ed;
+Object.assign(ed, { camera, gizmo, renderer });
 
 // --- the socket -----------------------------------------------------------------------------
 const socket = new WebSocket((location.protocol === "https:" ? "wss://" : "ws://") + location.host + "/ws" + location.search);

@@ -4,15 +4,15 @@
 const MESH_VS = `#version 300 es
 in vec3 position; in vec3 normal; in float scalar; in float group;
 uniform mat4 viewProj; uniform vec2 range;
-out vec3 vNormal; out float vT; out float vGroup;
+out vec3 vNormal; out float vT; flat out int vGroup;
 void main() {
-  vNormal = normal; vGroup = group;
+  vNormal = normal; vGroup = int(group + 0.5);
   vT = range.y > range.x ? clamp((scalar - range.x) / (range.y - range.x), 0.0, 1.0) : 0.0;
   gl_Position = viewProj * vec4(position, 1.0);
 }`;
 const MESH_FS = `#version 300 es
 precision highp float;
-in vec3 vNormal; in float vT; in float vGroup;
+in vec3 vNormal; in float vT; flat in int vGroup;
 uniform vec3 light; uniform int colourBy; uniform vec2 range;
 out vec4 colour;
 vec3 ramp(float t) { // viridis, as the PNG previews
@@ -26,7 +26,7 @@ const vec3 palette[8] = vec3[8](vec3(0.95,0.35,0.2), vec3(0.2,0.6,0.95), vec3(0.
 void main() {
   vec3 n = normalize(vNormal); if (!gl_FrontFacing) n = -n;
   vec3 base = colourBy == 1 && range.y > range.x ? ramp(vT) : vec3(0.78, 0.76, 0.72);
-  if (vGroup > 0.5) base = mix(base, palette[int(vGroup - 1.0) % 8], 0.75);
+  if (vGroup > 0) base = mix(base, palette[(vGroup - 1) % 8], 0.75);
   float d = max(dot(n, light), 0.0);
   colour = vec4(base * (0.3 + 0.7 * d), 1.0);
 }`;

@@ -1,0 +1,123 @@
+// The editor in a real browser (Debian's Chromium, headless, driven by playwright-core): open
+// the page `deform view` prints, paint a handle region, drag its gizmo and check that the mesh
+// on the server moved as the drag says, switch the method, play the rig's animation, cut it and
+// undo. Fails on any console error; keeps a screenshot of each step under OUT and checks that
+// none is blank.
+//
+//   node deform/tests/view/browser.mjs PATH/TO/deform OUT
+import fs from 'node:fs';
+import path from 'node:path';
+import { startServer, openPage, until, settled, drag, paintGroup, arrow, drawnShare } from './driver.mjs';
+
+const [program, out] = process.argv.slice(2);
+if (!program || !out) { console.error('usage: browser.mjs DEFORM OUT'); process.exit(2); }
+fs.mkdirSync(out, { recursive: true });
+const { server, url } = await startServer(program);
+const problems = [];
+const { browser, page } = await openPage(url, problems);
+let shots = 0;
+
+function check(ok, what) {
+  if (!ok) throw new Error(what);
+  console.log(`ok: ${what}`);
+}
+async function shot(name) {
+  const file = path.join(out, `${++shots}-${name}.png`);
+  await page.waitForTimeout(150);
+  await page.screenshot({ path: file });
+  const drawn = await drawnShare(page);
+  check(drawn > 0.02, `${name}: ${(100 * drawn).toFixed(1)}% of the canvas drawn (${file})`);
+}
+
+try {
+  await until(page, () => editor.state && editor.n > 0 && editor.positions, null, 'the first scene');
+  check(await page.evaluate(() => editor.state.scene) === 'sphere', 'the page opens the demo sphere');
+  await shot('open');
+
+  // Paint a new handle group where the sphere faces the camera.
+  const front = await page.evaluate(() => {
+    const c = editor.camera;
+    return c.screen(V.norm(V.sub(c.eye(), c.target)));
+  });
+  await paintGroup(page, 3, front);
+  const painted = await page.evaluate(() => editor.groupsOf.filter((g) => g === 4).length);
+  check(painted > 5, `painting made group 3 (${painted} vertices)`);
+  await shot('painted');
+
+  // Drag the gizmo's x arrow of the new group.
+  await page.check('input[name=tool][value=move]');
+  await settled(page);
+  const a = await arrow(page);
+  await drag(page, a.p, [a.p[0] + 90 * a.dir[0], a.p[1] + 90 * a.dir[1]]);
+  await settled(page);
+  const moved = await page.evaluate(() => {
+    const t = editor.groups[3].t;
+    let worst = 0, count = 0;
+    for (let v = 0; v < editor.n; v++) {
+      if (editor.groupsOf[v] !== 4) continue;
+      count++;
+      for (let k = 0; k < 3; k++) worst = Math.max(worst, Math.abs(editor.positions[3 * v + k] - editor.rest[3 * v + k] - t[k]));
+    }
+    return { t, worst, count };
+  });
+  check(moved.t[0] > 0.05 && Math.abs(moved.t[1]) < 1e-9 && Math.abs(moved.t[2]) < 1e-9, `the drag moved group 3 along x by ${moved.t[0].toFixed(3)}`);
+  check(moved.worst < 1e-5, `the server moved its ${moved.count} vertices by exactly that (worst ${moved.worst.toExponential(2)})`);
+  await shot('dragged');
+
+  // Switch the method: ARAP keeps the handle where the drag put it.
+  await page.selectOption('#method', 'arap');
+  await until(page, () => editor.state.method === 'arap', null, 'ARAP bound');
+  await settled(page);
+  const arap = await page.evaluate(() => {
+    const t = editor.groups[3].t;
+    let worst = 0, far = 0;
+    for (let v = 0; v < editor.n; v++) {
+      const d = Math.hypot(...[0, 1, 2].map((k) => editor.positions[3 * v + k] - editor.rest[3 * v + k]));
+      far = Math.max(far, d);
+      if (editor.groupsOf[v] === 4) for (let k = 0; k < 3; k++) worst = Math.max(worst, Math.abs(editor.positions[3 * v + k] - editor.rest[3 * v + k] - t[k]));
+    }
+    return { worst, far };
+  });
+  check(arap.worst < 1e-5 && arap.far > 0.05, `ARAP: the handle stays put (${arap.worst.toExponential(2)}), the surface moved (${arap.far.toFixed(3)})`);
+  await shot('arap');
+
+  // The rig: play its animation.
+  await page.selectOption('#scene', 'arm');
+  await until(page, () => editor.state && editor.state.kind === 'rig', null, 'the arm rig');
+  await settled(page);
+  const before = await page.evaluate(() => editor.received);
+  await page.click('#play');
+  await page.waitForTimeout(1500);
+  await page.click('#play');
+  await settled(page);
+  const played = await page.evaluate((b) => {
+    let d = 0;
+    for (let i = 0; i < editor.positions.length; i++) d = Math.max(d, Math.abs(editor.positions[i] - editor.rest[i]));
+    return { frames: editor.received - b, moved: d };
+  }, before);
+  check(played.frames >= 5 && played.moved > 0.1, `the animation played: ${played.frames} frames in 1.5 s, largest move ${played.moved.toFixed(2)}`);
+  await shot('played');
+
+  // Cut with the plane through the middle of the arm, then undo.
+  const vertices = await page.evaluate(() => editor.state.vertices);
+  await page.check('#plane');
+  await shot('plane');
+  await page.click('#cut');
+  await until(page, (n) => editor.state.rig.undo === 1 && editor.state.vertices > n, vertices, 'the cut');
+  await settled(page);
+  check(true, `the cut made ${await page.evaluate(() => editor.state.vertices) - vertices} vertices`);
+  await shot('cut');
+  await page.click('#undo');
+  await until(page, (n) => editor.state.rig.undo === 0 && editor.state.vertices === n, vertices, 'the undo');
+  check(true, `undo restored the ${vertices} vertices of the uncut arm`);
+  await shot('undone');
+  check(problems.length === 0, `no console errors${problems.length ? ': ' + problems.join('; ') : ''}`);
+} catch (e) {
+  console.error(`FAILED: ${e.message}`);
+  for (const p of problems) console.error(p);
+  await page.screenshot({ path: path.join(out, 'failure.png') }).catch(() => {});
+  process.exitCode = 1;
+} finally {
+  await browser.close();
+  server.kill();
+}
