@@ -26,7 +26,9 @@ impl Drop for Server {
 impl Server {
     /// `deform view ARGS --port 0`; waits for the address it prints.
     pub fn start(args: &[&str]) -> Server {
-        let mut child = Command::new(env!("CARGO_BIN_EXE_deform"))
+        // Tests get the program from cargo; the report example runs the release build.
+        let program = option_env!("CARGO_BIN_EXE_deform").unwrap_or("target/release/deform");
+        let mut child = Command::new(program)
             .arg("view")
             .args(args)
             .args(["--port", "0"])

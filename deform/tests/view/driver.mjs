@@ -19,7 +19,7 @@ export async function startServer(program, args = []) {
 }
 
 /// Headless Chromium (Debian's, or $CHROMIUM) and a page that records console errors.
-export async function openPage(url, problems) {
+export async function openPage(url, problems, viewport = { width: 1200, height: 760 }) {
   // playwright-core from $PLAYWRIGHT_DIR, else .ci/node (where .ci/run installs it).
   const require = createRequire(path.resolve(process.env.PLAYWRIGHT_DIR ?? path.join(root, '.ci/node')) + '/');
   const { chromium } = require('playwright-core');
@@ -28,7 +28,7 @@ export async function openPage(url, problems) {
     args: ['--no-sandbox', '--disable-gpu', '--disable-background-networking', '--disable-component-update',
       '--disable-sync', '--no-first-run', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
   });
-  const page = await browser.newPage({ viewport: { width: 1200, height: 760 } });
+  const page = await browser.newPage({ viewport });
   page.on('console', (m) => { if (m.type() === 'error') problems.push(`console error: ${m.text()}`); });
   page.on('pageerror', (e) => problems.push(`page error: ${e.message}`));
   await page.goto(url);
@@ -41,7 +41,7 @@ export const until = (page, fn, arg, what, timeout = 120000) =>
 
 /// Every pose the page sent has come back.
 export const settled = (page) =>
-  until(page, () => editor.inflight === 0 && editor.received === editor.seq && !editor.dirty, null, 'the last pose');
+  until(page, () => editor.received === editor.seq && !editor.dirty, null, 'the last pose');
 
 /// A mouse drag between canvas pixels, in `steps` moves `pause` ms apart.
 export async function drag(page, from, to, steps = 12, pause = 16) {
@@ -73,6 +73,7 @@ export const arrow = (page) => page.evaluate(() => {
 /// The share of canvas pixels that are not the background.
 export const drawnShare = (page) => page.evaluate(() => {
   const gl = editor.renderer.gl, w = gl.drawingBufferWidth, h = gl.drawingBufferHeight;
+  editor.redraw(); // read in the same task as the draw (the drawing buffer is not preserved)
   const px = new Uint8Array(4 * w * h);
   gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, px);
   let n = 0;

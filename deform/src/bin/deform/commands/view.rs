@@ -22,7 +22,7 @@ use scenes::{demo_scenes, Content, Method, Scene};
 use std::hash::{BuildHasher, Hasher};
 use std::io::Write;
 use std::net::{IpAddr, Ipv4Addr, SocketAddr};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 #[derive(Args, Debug)]
@@ -54,7 +54,7 @@ fn token() -> String {
 }
 
 /// The scene of the model on the command line.
-fn model_scene(a: &ViewArgs, path: &PathBuf) -> Result<Scene> {
+fn model_scene(a: &ViewArgs, path: &Path) -> Result<Scene> {
     let ext = path
         .extension()
         .and_then(|e| e.to_str())
@@ -65,12 +65,12 @@ fn model_scene(a: &ViewArgs, path: &PathBuf) -> Result<Scene> {
             bail!("--select is for a mesh; a rig's joints are its handles");
         }
         let rig = read_rig(&RigInput {
-            model: path.clone(),
+            model: path.to_path_buf(),
             skeleton: None,
             weights: None,
             allow_external: false,
         })?;
-        Content::Rig(rig)
+        Content::Rig(Box::new(rig))
     } else {
         let mesh = read_mesh(path)?;
         let groups = match &a.select {

@@ -144,34 +144,40 @@ pub struct RigInfo {
     pub redo: usize,
 }
 
+/// The whole editing state, as [`Reply::State`] sends it.
+#[derive(Clone, Debug, Serialize)]
+pub struct StateInfo {
+    pub scene: String,
+    pub scenes: Vec<String>,
+    /// `mesh` (handles, ARAP, spline) or `rig`.
+    pub kind: &'static str,
+    pub method: String,
+    pub methods: Vec<&'static str>,
+    pub blend: String,
+    pub blends: Vec<&'static str>,
+    pub iterations: usize,
+    pub groups: Vec<GroupInfo>,
+    pub fields: Vec<&'static str>,
+    pub rig: Option<RigInfo>,
+    pub bind_ms: f64,
+    pub vertices: usize,
+    pub triangles: usize,
+    /// Whether the groups changed since the last bind.
+    pub stale: bool,
+}
+
 /// What the server says in text frames.
 #[derive(Clone, Debug, Serialize)]
 #[serde(tag = "type", rename_all = "kebab-case")]
 pub enum Reply {
     /// The whole editing state (after a scene, a bind, a method change or a surgery).
-    State {
-        scene: String,
-        scenes: Vec<String>,
-        /// `mesh` (handles, ARAP, spline) or `rig`.
-        kind: &'static str,
-        method: String,
-        methods: Vec<&'static str>,
-        blend: String,
-        blends: Vec<&'static str>,
-        iterations: usize,
-        groups: Vec<GroupInfo>,
-        fields: Vec<&'static str>,
-        rig: Option<RigInfo>,
-        bind_ms: f64,
-        vertices: usize,
-        triangles: usize,
-        /// Whether the groups changed since the last bind.
-        stale: bool,
-    },
+    State(Box<StateInfo>),
     /// A bind started (it may take a while); the page shows it.
     Binding { what: String },
     /// A pose was not made, or a request was refused, and why.
     Error { message: String },
+    /// Something the page should say that is not an error (what to do next).
+    Note { message: String },
     /// Per-pose figures beside the positions frame.
     Posed {
         seq: u32,
@@ -261,7 +267,7 @@ impl Frame {
                 (g + 1).min(255) as u8
             }
         }));
-        while f.0.len() % 4 != 0 {
+        while !f.0.len().is_multiple_of(4) {
             f.0.push(0);
         }
         f

@@ -43,7 +43,7 @@ pub enum Content {
         method: Method,
     },
     /// A skinned rig (animations, joints, surgery).
-    Rig(Rig),
+    Rig(Box<Rig>),
 }
 
 /// A named scene.
@@ -103,6 +103,6 @@ pub fn demo_scenes() -> Vec<Scene> {
                 method: Method::Spline,
             },
         ),
-        scene("arm", Content::Rig(procedural_arm(24, 81))),
+        scene("arm", Content::Rig(Box::new(procedural_arm(24, 81)))),
     ]
 }

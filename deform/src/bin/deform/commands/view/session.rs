@@ -2,7 +2,7 @@
 //! method and the latest pose. Requests in, replies out; no I/O here, so the server and the
 //! tests drive it the same way.
 
-use super::protocol::{Frame, GroupInfo, Reply, Request};
+use super::protocol::{Frame, GroupInfo, Reply, Request, StateInfo};
 use super::rig_edit::RigEdit;
 use super::scenes::{Content, Method, Scene};
 use crate::timing::ms;
@@ -32,8 +32,8 @@ enum Bound {
     /// Too few groups (or a failed bind): the rest pose.
     None,
     Handles {
-        handles: MotorHandles,
-        blend: BoundBlend,
+        handles: Box<MotorHandles>,
+        blend: Box<BoundBlend>,
         scratch: PreparedKeys,
     },
     Arap {
@@ -246,7 +246,7 @@ impl Session {
                 Ok(out)
             }
             Content::Rig(rig) => {
-                self.rig = Some(RigEdit::new(rig.clone())?);
+                self.rig = Some(RigEdit::new((**rig).clone())?);
                 self.set_groups(Vec::new());
                 self.stale = false;
                 self.load_rig_mesh()
@@ -367,7 +367,7 @@ impl Session {
             })?;
             self.bind_ms = ms(t);
         } else {
-            out.push(Out::Text(Reply::Error {
+            out.push(Out::Text(Reply::Note {
                 message: format!(
                     "{} needs {need} handle group(s) or more: paint them on the surface",
                     self.method.name()
@@ -391,10 +391,10 @@ impl Session {
                     ..HandleOptions::default()
                 };
                 let handles = MotorHandles::bind_with(&self.mesh, &sets, &rest, options)?;
-                let blend = handles.blend().clone();
+                let blend = Box::new(handles.blend().clone());
                 let scratch = blend.scratch();
                 Bound::Handles {
-                    handles,
+                    handles: Box::new(handles),
                     blend,
                     scratch,
                 }
@@ -453,7 +453,8 @@ impl Session {
         match &mut self.bound {
             Bound::Handles { blend, scratch, .. } => {
                 let rest = vec![ScaledMotor::IDENTITY; blend.key_count()];
-                *blend = BoundBlend::bind(&self.mesh.positions, blend.weights().clone(), &rest, b)?;
+                **blend =
+                    BoundBlend::bind(&self.mesh.positions, blend.weights().clone(), &rest, b)?;
                 *scratch = blend.scratch();
             }
             Bound::Spline { .. } | Bound::Arap { .. } | Bound::None => return self.bind(),
@@ -568,7 +569,7 @@ impl Session {
     /// The whole state, for the page's panels.
     fn state(&self) -> Out {
         let centres = self.centres();
-        Out::Text(Reply::State {
+        Out::Text(Reply::State(Box::new(StateInfo {
             scene: self.scenes[self.scene].name.clone(),
             scenes: self.scenes.iter().map(|s| s.name.clone()).collect(),
             kind: if self.rig.is_some() { "rig" } else { "mesh" },
@@ -599,7 +600,7 @@ impl Session {
             vertices: self.mesh.vertex_count(),
             triangles: self.mesh.triangle_count(),
             stale: self.stale,
-        })
+        })))
     }
 
     /// A file of the current state.

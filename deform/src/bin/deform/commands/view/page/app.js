@@ -9,9 +9,12 @@ const ed = {
   joints: [], // joint frames [x y z qx qy qz qw] of the last pose
   edits: {}, // joint -> { s, q, t }
   plane: null, // { c, q, t }
-  seq: 0, received: 0, inflight: 0, sentAt: new Map(), dirty: false,
+  seq: 0, received: 0, sentAt: new Map(), dirty: false,
   playing: false, clock: 0, lastTick: 0,
   frames: [], poseMs: 0, roundTrip: 0, fieldRange: [0, 0], errors: [],
+  // What arrived since the last frame: uploaded once, just before drawing (a GPU upload can
+  // wait for the frame in flight; poses can arrive faster than frames are drawn).
+  upload: { positions: false, field: false, groups: false },
 };
 // For scripted sessions (the browser test): the editor's state, camera, gizmo and renderer.
 window.editor = ed;
@@ -23,7 +26,11 @@ socket.binaryType = "arraybuffer";
 ed.socket = socket;
 function send(request) { if (socket.readyState === 1) socket.send(JSON.stringify(request)); }
 socket.onclose = () => say("connection closed: reload the page to start a new session");
-socket.onmessage = (e) => (typeof e.data === "string" ? onText(JSON.parse(e.data)) : onBinary(e.data));
+socket.onmessage = (e) => {
+  const t = performance.now();
+  if (typeof e.data === "string") onText(JSON.parse(e.data)); else onBinary(e.data);
+  ed.messageMs = performance.now() - t;
+};
 
 function say(text, isError = true) {
   $("message").textContent = text;
@@ -38,8 +45,8 @@ function onBinary(buf) {
     ed.rest = new Float32Array(new Float64Array(buf, 16, 3 * n));
     renderer.setMesh(n, new Uint32Array(buf.slice(16 + 24 * n, 16 + 24 * n + 12 * m)));
     ed.positions = ed.rest.slice();
-    renderer.setPositions(ed.positions);
     ed.groupsOf = new Uint8Array(n);
+    ed.upload = { positions: true, field: false, groups: false };
     const min = [Infinity, Infinity, Infinity], max = [-Infinity, -Infinity, -Infinity];
     for (let i = 0; i < 3 * n; i++) { min[i % 3] = Math.min(min[i % 3], ed.rest[i]); max[i % 3] = Math.max(max[i % 3], ed.rest[i]); }
     ed.bbox = { min, max };
@@ -49,26 +56,29 @@ function onBinary(buf) {
     const seq = new Uint32Array(buf, 4, 1)[0];
     ed.poseMs = new Float32Array(buf, 8, 1)[0];
     ed.positions = new Float32Array(new Float64Array(buf, 16));
-    renderer.setPositions(ed.positions);
+    ed.upload.positions = true;
+    // A pose answers its request and every older one (the server drops a pose that a newer
+    // one replaced before it started).
     ed.received = Math.max(ed.received, seq);
-    if (ed.sentAt.has(seq)) { ed.roundTrip = performance.now() - ed.sentAt.get(seq); ed.sentAt.delete(seq); }
-    ed.inflight = Math.max(0, ed.inflight - 1);
+    if (ed.sentAt.has(seq)) ed.roundTrip = performance.now() - ed.sentAt.get(seq);
+    for (const s of ed.sentAt.keys()) if (s <= seq) ed.sentAt.delete(s);
     ed.frames.push(performance.now());
   } else if (kind === 3) {
     const [min, max] = new Float32Array(buf, 4, 2);
     ed.fieldRange = [min, max];
-    renderer.setScalar(new Float32Array(buf.slice(12)), min, max);
-    legend();
+    ed.field = new Float32Array(buf.slice(12));
+    ed.upload.field = true;
   } else if (kind === 4) {
     const n = new Uint32Array(buf, 4, 1)[0];
     ed.groupsOf = new Uint8Array(buf.slice(8, 8 + n));
-    renderer.setGroups(ed.groupsOf);
+    ed.upload.groups = true;
   }
 }
 
 function onText(m) {
   if (m.type === "state") return onState(m);
-  if (m.type === "error") return say(m.message);
+  if (m.type === "error") { ed.received = ed.seq; return say(m.message); }
+  if (m.type === "note") return say(m.message, false);
   if (m.type === "binding") { $("busy").textContent = m.what + " ..."; ed.busySince = performance.now(); return; }
   if (m.type === "posed") {
     if (m.joints) ed.joints = m.joints;
@@ -148,15 +158,15 @@ function jointSpec(e) {
 }
 function animationIndex() { const v = $("animation").value; return v === "(rest)" ? null : parseInt(v, 10); }
 function pump() {
-  if (!ed.state || socket.readyState !== 1 || ed.inflight >= 2) return;
+  if (!ed.state || socket.readyState !== 1 || ed.seq - ed.received >= 2) return;
   if (ed.state.kind === "rig") {
     if (!ed.dirty && !ed.playing) return;
     const edits = Object.entries(ed.edits).map(([j, e]) => ({ joint: +j, motor: jointSpec(e) }));
-    ed.seq++; ed.inflight++; ed.sentAt.set(ed.seq, performance.now());
+    ed.seq++; ed.sentAt.set(ed.seq, performance.now());
     send({ op: "rig", seq: ed.seq, animation: animationIndex(), time: ed.clock, backend: $("backend").value, edits });
   } else {
     if (!ed.dirty || ed.groups.length === 0) return;
-    ed.seq++; ed.inflight++; ed.sentAt.set(ed.seq, performance.now());
+    ed.seq++; ed.sentAt.set(ed.seq, performance.now());
     send({ op: "motors", seq: ed.seq, motors: ed.groups.map(motorSpec) });
   }
   ed.dirty = false;
@@ -315,6 +325,20 @@ canvas.addEventListener("pointerup", () => {
 canvas.addEventListener("wheel", (e) => { e.preventDefault(); camera.zoom(Math.sign(e.deltaY)); }, { passive: false });
 
 // --- the frame loop -------------------------------------------------------------------------------
+// Upload what arrived, then draw the mesh and the overlays.
+function draw() {
+  const { viewProj } = camera.matrices(canvas.clientWidth, canvas.clientHeight);
+  const { f } = camera.basis();
+  const lines = [...gizmo.lines(), ...planeLines()];
+  const t0 = performance.now();
+  if (ed.upload.positions) renderer.setPositions(ed.positions);
+  if (ed.upload.field) { renderer.setScalar(ed.field, ...ed.fieldRange); legend(); }
+  if (ed.upload.groups) renderer.setGroups(ed.groupsOf);
+  ed.upload = { positions: false, field: false, groups: false };
+  renderer.draw({ viewProj, light: V.scale(f, -1), colourBy: $("field").value !== "group", wireframe: $("wireframe").checked, lines });
+  ed.drawMs = performance.now() - t0;
+}
+ed.redraw = draw;
 function tick(now) {
   const dpr = window.devicePixelRatio || 1, w = canvas.clientWidth, h = canvas.clientHeight;
   if (canvas.width !== Math.round(w * dpr) || canvas.height !== Math.round(h * dpr)) { canvas.width = Math.round(w * dpr); canvas.height = Math.round(h * dpr); }
@@ -328,15 +352,21 @@ function tick(now) {
   }
   ed.lastTick = now;
   pump();
-  const { viewProj } = camera.matrices(w, h);
-  const { f } = camera.basis();
-  const lines = [...gizmo.lines(), ...planeLines()];
-  renderer.draw({ viewProj, light: V.scale(f, -1), colourBy: $("field").value !== "group", wireframe: $("wireframe").checked, lines });
+  // Draw only when something shows a change: a software GL (no GPU) takes long per frame, and
+  // a browser busy drawing delivers the socket's messages late.
+  const key = JSON.stringify([w, h, camera.target, camera.distance, camera.yaw, camera.pitch, gizmo.hover && [gizmo.hover.kind, gizmo.hover.axis],
+    gizmo.target && gizmo.target.origin(), ed.groups, ed.edits, ed.plane, $("plane").checked, $("wireframe").checked, $("field").value, ed.joints]);
+  if (key !== ed.viewKey || ed.upload.positions || ed.upload.field || ed.upload.groups) {
+    ed.viewKey = key;
+    draw();
+    ed.frameMs = now - (ed.lastFrame || now); ed.lastFrame = now; ed.drawn = (ed.drawn || 0) + 1;
+  }
   ed.frames = ed.frames.filter((t) => now - t < 1000);
   const s = ed.state;
   if (s) {
     $("stats").textContent = [
       `${s.vertices} vertices, ${s.triangles} triangles`,
+      `frame ${ed.frameMs.toFixed(1)} ms (draw ${ed.drawMs.toFixed(1)} ms), last message ${(ed.messageMs || 0).toFixed(1)} ms`,
       `positions ${ed.frames.length} / s, round trip ${ed.roundTrip.toFixed(1)} ms`,
       `pose ${ed.poseMs.toFixed(2)} ms, bind ${s.bind_ms.toFixed(1)} ms`,
       ed.energy != null ? `ARAP energy ${ed.energy.toExponential(3)}` : "",

@@ -50,7 +50,12 @@ function compile(gl, vs, fs) {
 
 class Renderer {
   constructor(canvas) {
-    const gl = canvas.getContext("webgl2", { antialias: true, preserveDrawingBuffer: true });
+    // Multisampling costs a software GL (no GPU: SwiftShader, llvmpipe) half its frame rate.
+    const probe = document.createElement("canvas").getContext("webgl2");
+    const info = probe && probe.getExtension("WEBGL_debug_renderer_info");
+    const name = info ? String(probe.getParameter(info.UNMASKED_RENDERER_WEBGL)) : "";
+    this.software = /swiftshader|llvmpipe|software/i.test(name);
+    const gl = canvas.getContext("webgl2", { antialias: !this.software });
     if (!gl) throw new Error("this browser has no WebGL2");
     this.gl = gl; this.canvas = canvas;
     this.mesh = compile(gl, MESH_VS, MESH_FS); this.line = compile(gl, LINE_VS, LINE_FS);
@@ -102,7 +107,9 @@ class Renderer {
       const ux = p[b] - p[a], uy = p[b + 1] - p[a + 1], uz = p[b + 2] - p[a + 2];
       const vx = p[c] - p[a], vy = p[c + 1] - p[a + 1], vz = p[c + 2] - p[a + 2];
       const nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
-      for (const j of [a, b, c]) { nrm[j] += nx; nrm[j + 1] += ny; nrm[j + 2] += nz; }
+      nrm[a] += nx; nrm[a + 1] += ny; nrm[a + 2] += nz;
+      nrm[b] += nx; nrm[b + 1] += ny; nrm[b + 2] += nz;
+      nrm[c] += nx; nrm[c + 1] += ny; nrm[c + 2] += nz;
     }
     this.positions = p;
     gl.bindBuffer(gl.ARRAY_BUFFER, this.buf.position); gl.bufferData(gl.ARRAY_BUFFER, p, gl.DYNAMIC_DRAW);

@@ -1,0 +1,99 @@
+// End-to-end frame rates of `deform view` on a large mesh (issue 24's speed targets), in
+// headless Chromium: paint 4 handle groups (timing each bind from the mouse release to the
+// page's bound state), then drag a gizmo for a few seconds with handles and with ARAP (2
+// iterations per frame) and count the poses that came back (edit in, positions received and
+// drawn) per second.
+//
+//   cargo build --release -p deform
+//   node benches/view/fps.mjs target/release/deform ../shared/data/meshes/large/armadillo-50k.obj
+//
+// Runs the server and the browser on this machine (both cores shared); the browser draws with
+// SwiftShader (software GL), so "drawn" is a floor for a machine with a GPU.
+import { startServer, openPage, until, settled, drag, paintGroup, arrow } from '../../deform/tests/view/driver.mjs';
+
+const [program, model, seconds = '4', size = '1200x760'] = process.argv.slice(2);
+if (!program || !model) { console.error('usage: fps.mjs DEFORM MODEL [SECONDS]'); process.exit(2); }
+const { server, url } = await startServer(program, [model]);
+const problems = [];
+const [width, height] = size.split('x').map(Number);
+const { browser, page } = await openPage(url, problems, { width, height });
+const rows = [];
+
+// Drag the current gizmo's x arrow back and forth for `s` seconds; poses and drawn frames per s.
+async function measureDrag(name, s) {
+  await page.check('input[name=tool][value=move]');
+  await settled(page);
+  const a = await arrow(page);
+  const start = await page.evaluate(() => {
+    return { received: editor.received, drawn: editor.drawn || 0, t: performance.now() };
+  });
+  const b = await page.locator('#view').boundingBox();
+  await page.mouse.move(b.x + a.p[0], b.y + a.p[1]);
+  await page.mouse.down();
+  const t0 = Date.now();
+  let k = 0;
+  while (Date.now() - t0 < s * 1000) {
+    const off = 60 * Math.sin(k++ / 10);
+    await page.mouse.move(b.x + a.p[0] + off * a.dir[0], b.y + a.p[1] + off * a.dir[1]);
+    await page.waitForTimeout(8);
+  }
+  await page.mouse.up();
+  const end = await page.evaluate((st) => {
+    const t = (performance.now() - st.t) / 1000;
+    return { poses: (editor.received - st.received) / t, drawn: (editor.drawn - st.drawn) / t, roundTrip: editor.roundTrip, poseMs: editor.poseMs };
+  }, start);
+  rows.push({ name, ...end });
+}
+
+try {
+  await until(page, () => editor.state && editor.n > 0, null, 'the model');
+  const n = await page.evaluate(() => editor.n);
+  // Four groups: points of the surface under a cross around the middle of the view.
+  const spots = await page.evaluate(() => {
+    // The drawn pixel nearest each of four points around the middle of the view.
+    const gl = editor.renderer.gl, w = gl.drawingBufferWidth, h = gl.drawingBufferHeight, px = new Uint8Array(4 * w * h);
+    editor.redraw();
+    gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, px);
+    const c = editor.camera, m = c.screen(c.target), k = w / c.w;
+    return [[0, -0.2], [0, 0.2], [-0.1, 0], [0.1, 0]].map(([x, y]) => {
+      const want = [m[0] + x * c.w, m[1] + y * c.h];
+      let best = null, bd = Infinity;
+      for (let j = 0; j < h; j += 4) for (let i = 0; i < w; i += 4) {
+        const o = 4 * (j * w + i);
+        if (Math.abs(px[o] - 33) + Math.abs(px[o + 1] - 36) + Math.abs(px[o + 2] - 41) <= 24) continue;
+        const p = [i / k, (h - 1 - j) / k], d = Math.hypot(p[0] - want[0], p[1] - want[1]);
+        if (d < bd) { bd = d; best = p; }
+      }
+      return best;
+    });
+  });
+  for (let g = 0; g < 4; g++) {
+    const t = Date.now();
+    await paintGroup(page, g, spots[g]);
+    const ms = Date.now() - t;
+    const s = await page.evaluate(() => editor.state);
+    rows.push({ name: `bind ${g + 1} handle group(s)`, bindMs: s.bind_ms, pageMs: ms, vertices: s.groups[g].vertices });
+  }
+  await page.selectOption('#group', '1');
+  await measureDrag('handles (motor-log), dragging', +seconds);
+  await page.selectOption('#method', 'arap');
+  const t = Date.now();
+  await until(page, () => editor.state.method === 'arap' && !editor.state.stale, null, 'ARAP bound');
+  rows.push({ name: 'bind ARAP', bindMs: await page.evaluate(() => editor.state.bind_ms), pageMs: Date.now() - t });
+  await measureDrag('ARAP, 2 iterations per frame, dragging', +seconds);
+  console.log(`deform view on ${model} (${n} vertices)`);
+  for (const r of rows) {
+    if (r.poses !== undefined) {
+      console.log(`${r.name}: ${r.poses.toFixed(1)} poses/s received, ${r.drawn.toFixed(1)} frames/s drawn, pose ${r.poseMs.toFixed(1)} ms, round trip ${r.roundTrip.toFixed(1)} ms`);
+    } else {
+      console.log(`${r.name}: server ${r.bindMs.toFixed(0)} ms, seen by the page ${r.pageMs} ms${r.vertices ? `, ${r.vertices} vertices painted` : ''}`);
+    }
+  }
+  if (problems.length) { console.error(problems.join('\n')); process.exitCode = 1; }
+} catch (e) {
+  console.error(`FAILED: ${e.message}`);
+  process.exitCode = 1;
+} finally {
+  await browser.close();
+  server.kill();
+}
