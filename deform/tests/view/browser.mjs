@@ -81,6 +81,29 @@ try {
   check(arap.worst < 1e-5 && arap.far > 0.05, `ARAP: the handle stays put (${arap.worst.toExponential(2)}), the surface moved (${arap.far.toFixed(3)})`);
   await shot('arap');
 
+  // A lattice: click a control point, drag its arrow; the bar follows.
+  await page.selectOption('#scene', 'lattice');
+  await until(page, () => editor.state && editor.state.scene === 'lattice' && editor.controls, null, 'the lattice');
+  await settled(page);
+  const corner = await page.evaluate(() => {
+    const i = editor.groups.length - 1;
+    return { i, at: editor.camera.screen(editor.groups[i].c) };
+  });
+  const b = await page.locator('#view').boundingBox();
+  await page.mouse.click(b.x + corner.at[0], b.y + corner.at[1]);
+  check(await page.evaluate(() => $("group").value) === `${corner.i}`, `clicking control point ${corner.i} selects it`);
+  // (The corner is at the canvas's right edge: grab its arrow halfway and pull it inwards.)
+  const la = await arrow(page, 0.5);
+  await drag(page, la.p, [la.p[0] - 80 * la.dir[0], la.p[1] - 80 * la.dir[1]]);
+  await settled(page);
+  const bent = await page.evaluate(() => {
+    let d = 0;
+    for (let i = 0; i < editor.positions.length; i++) d = Math.max(d, Math.abs(editor.positions[i] - editor.rest[i]));
+    return d;
+  });
+  check(bent > 0.05, `dragging the control point moved the bar (${bent.toFixed(3)})`);
+  await shot('lattice');
+
   // The rig: play its animation.
   await page.selectOption('#scene', 'arm');
   await until(page, () => editor.state && editor.state.kind === 'rig', null, 'the arm rig');

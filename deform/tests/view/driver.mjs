@@ -63,12 +63,12 @@ export async function paintGroup(page, group, at) {
   await until(page, (g) => editor.state.groups.length === g + 1 && !editor.state.stale, group, `group ${group} bound`);
 }
 
-/// The canvas pixel of the x arrow's grip of the gizmo, and the arrow's screen direction.
-export const arrow = (page) => page.evaluate(() => {
-  const g = editor.gizmo, p = g.grip('translate', 0), c = editor.camera.screen(g.target.origin());
+/// The canvas pixel of the gizmo's x arrow at `at` of its length, and its screen direction.
+export const arrow = (page, at = 0.8) => page.evaluate((at) => {
+  const g = editor.gizmo, p = g.grip('translate', 0, at), c = editor.camera.screen(g.target.origin());
   const d = [p[0] - c[0], p[1] - c[1]], l = Math.hypot(d[0], d[1]);
   return { p, dir: [d[0] / l, d[1] / l] };
-});
+}, at);
 
 /// The share of canvas pixels that are not the background.
 export const drawnShare = (page) => page.evaluate(() => {

@@ -3,6 +3,10 @@
 //! clients (no token, a foreign Origin, malformed, oversized and out-of-order messages) must
 //! never bring the server down.
 
+#[path = "../common/mod.rs"]
+mod common;
+
 mod client;
 mod hostile;
+mod models;
 mod poses;

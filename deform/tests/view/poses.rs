@@ -243,3 +243,68 @@ fn the_rig_poses_as_the_library_poses_it_and_a_cut_undoes_and_redoes() {
     c.send(json!({"op": "redo"}));
     assert!(c.error().contains("nothing to redo"));
 }
+
+#[test]
+fn lattice_and_cage_control_points_pose_as_the_library_poses_them() {
+    use deform::cage::{CageDeformer, CageOptions};
+    use deform::control::ControlForm;
+    use deform::ffd::{Ffd, FfdOptions};
+    let server = Server::start(&[]);
+    let mut c = server.connect(None).expect("connects");
+    c.state();
+    let bar = tube(1.0, 10.0, 16, 41);
+    // A twist of the far layer of points about the bar's axis (and a small lift each).
+    let spec = |i: usize, p: [f64; 3]| {
+        if p[0] > 9.0 {
+            json!({"rotate": {"axis": [1, 0, 0], "degrees": 60, "center": [p[0], 0, 0]}, "translate": [0, i as f64 * 0.01, 0]})
+        } else {
+            json!({})
+        }
+    };
+    for (scene, blend) in [("lattice", "motor-log"), ("cage", "positional")] {
+        c.send(json!({"op": "scene", "name": scene}));
+        let mut s = c.state();
+        if blend == "positional" {
+            c.send(
+                json!({"op": "method", "method": scene.replace("lattice", "ffd"), "blend": blend}),
+            );
+            s = c.state();
+        }
+        assert_eq!(s["blend"], blend);
+        let points: Vec<[f64; 3]> =
+            serde_json::from_value(s["controls"]["points"].clone()).unwrap();
+        let specs: Vec<Value> = points
+            .iter()
+            .enumerate()
+            .map(|(i, p)| spec(i, *p))
+            .collect();
+        let keys = parse_key_list(&json!(specs).to_string(), "k").unwrap();
+        c.send(json!({"op": "motors", "seq": 11, "motors": specs}));
+        let got = c.positions(11);
+        let mut want = bar.positions.clone();
+        if scene == "lattice" {
+            assert_eq!(points.len(), 36);
+            let ffd = Ffd::bind(&bar, [4, 3, 3], None, FfdOptions::default()).unwrap();
+            ffd.pose(&keys, &mut want).unwrap();
+        } else {
+            let mut cage = tube(1.6, 12.0, 4, 6);
+            cage.positions.iter_mut().for_each(|p| p.x -= 1.0);
+            assert_eq!(points.len(), cage.vertex_count());
+            let options = CageOptions {
+                form: ControlForm::Positional,
+                ..CageOptions::default()
+            };
+            let d = CageDeformer::bind(&bar, &cage, options).unwrap();
+            d.pose(&keys, &mut want).unwrap();
+        }
+        assert!(
+            worst(&got, &want) <= 1e-12,
+            "{scene}: {}",
+            worst(&got, &want)
+        );
+        assert!(worst(&got, &bar.positions) > 0.5, "{scene}: it moved");
+        // Painting belongs to handle groups.
+        c.send(json!({"op": "paint", "origin": [5, 0, 5], "direction": [0, 0, -1], "radius": 0.5, "group": 0}));
+        assert!(c.error().contains("lattice or cage"));
+    }
+}

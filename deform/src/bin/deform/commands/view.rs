@@ -7,6 +7,7 @@
 //! (tokio-tungstenite), message size limits and a small surface; the editing itself runs on
 //! plain threads, one per connection, so binds and poses never block the server.
 
+mod controls;
 mod mailbox;
 mod protocol;
 mod rig_edit;
@@ -81,6 +82,7 @@ fn model_scene(a: &ViewArgs, path: &Path) -> Result<Scene> {
             mesh,
             groups,
             method: Method::Handles,
+            cage: None,
         }
     };
     let name = path

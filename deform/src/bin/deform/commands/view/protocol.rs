@@ -126,6 +126,13 @@ pub struct GroupInfo {
     pub center: [f64; 3],
 }
 
+/// A lattice's or cage's control points at rest and the lines between them.
+#[derive(Clone, Debug, Serialize)]
+pub struct ControlsInfo {
+    pub points: Vec<[f64; 3]>,
+    pub edges: Vec<[u32; 2]>,
+}
+
 /// An animation of the rig.
 #[derive(Clone, Debug, Serialize)]
 pub struct AnimationInfo {
@@ -158,6 +165,8 @@ pub struct StateInfo {
     pub iterations: usize,
     pub groups: Vec<GroupInfo>,
     pub fields: Vec<&'static str>,
+    /// The control points when the method is a lattice or a cage (then the motors are theirs).
+    pub controls: Option<ControlsInfo>,
     pub rig: Option<RigInfo>,
     pub bind_ms: f64,
     pub vertices: usize,

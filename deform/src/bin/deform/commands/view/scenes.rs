@@ -16,17 +16,34 @@ pub enum Method {
     Arap,
     /// Spline-aligned deformation, groups as keys (the first and last bound the spine).
     Spline,
+    /// Free-form deformation: a motor per point of a lattice over the mesh's box.
+    Ffd,
+    /// A motor per vertex of the scene's cage (mean value coordinates).
+    Cage,
 }
 
 impl Method {
-    pub const ALL: [Method; 3] = [Method::Handles, Method::Arap, Method::Spline];
+    pub const ALL: [Method; 5] = [
+        Method::Handles,
+        Method::Arap,
+        Method::Spline,
+        Method::Ffd,
+        Method::Cage,
+    ];
 
     pub fn name(self) -> &'static str {
         match self {
             Method::Handles => "handles",
             Method::Arap => "arap",
             Method::Spline => "spline",
+            Method::Ffd => "ffd",
+            Method::Cage => "cage",
         }
+    }
+
+    /// Whether its keys are control points (a lattice's or a cage's), not painted groups.
+    pub fn controls(self) -> bool {
+        matches!(self, Method::Ffd | Method::Cage)
     }
 
     pub fn parse(name: &str) -> Option<Method> {
@@ -41,6 +58,8 @@ pub enum Content {
         mesh: Mesh,
         groups: Vec<Vec<u32>>,
         method: Method,
+        /// A cage around the mesh (for [`Method::Cage`]).
+        cage: Option<Mesh>,
     },
     /// A skinned rig (animations, joints, surgery).
     Rig(Box<Rig>),
@@ -67,8 +86,15 @@ fn scene(name: &str, content: Content) -> Scene {
     }
 }
 
-/// The demo scenes: motor handles on a sphere, an ARAP beam, a spline bar and the rigged arm
-/// (animated, for skinning and surgery).
+/// A square tube of 6 rings around the 10-long bar (the demo's cage).
+fn bar_cage() -> Mesh {
+    let mut c = tube(1.6, 12.0, 4, 6);
+    c.positions.iter_mut().for_each(|p| p.x -= 1.0);
+    c
+}
+
+/// The demo scenes: motor handles on a sphere, an ARAP beam, a spline bar, a bar in an FFD
+/// lattice and one in a cage, and the rigged arm (animated, for skinning and surgery).
 pub fn demo_scenes() -> Vec<Scene> {
     let ball = icosphere(1.0, 4);
     let sphere_groups = vec![
@@ -85,6 +111,7 @@ pub fn demo_scenes() -> Vec<Scene> {
                 mesh: ball,
                 groups: sphere_groups,
                 method: Method::Handles,
+                cage: None,
             },
         ),
         scene(
@@ -93,6 +120,7 @@ pub fn demo_scenes() -> Vec<Scene> {
                 mesh: beam,
                 groups: vec![tube_ring(6, 0), tube_ring(6, 40)],
                 method: Method::Arap,
+                cage: None,
             },
         ),
         scene(
@@ -101,6 +129,25 @@ pub fn demo_scenes() -> Vec<Scene> {
                 mesh: bar,
                 groups: vec![tube_ring(16, 0), tube_ring(16, 20), tube_ring(16, 40)],
                 method: Method::Spline,
+                cage: None,
+            },
+        ),
+        scene(
+            "lattice",
+            Content::Mesh {
+                mesh: tube(1.0, 10.0, 16, 41),
+                groups: Vec::new(),
+                method: Method::Ffd,
+                cage: None,
+            },
+        ),
+        scene(
+            "cage",
+            Content::Mesh {
+                mesh: tube(1.0, 10.0, 16, 41),
+                groups: Vec::new(),
+                method: Method::Cage,
+                cage: Some(bar_cage()),
             },
         ),
         scene("arm", Content::Rig(Box::new(procedural_arm(24, 81)))),

@@ -1,15 +1,21 @@
 //! One editing session (one browser connection): the scene, the handle groups, the bound
 //! method and the latest pose. Requests in, replies out; no I/O here, so the server and the
-//! tests drive it the same way.
+//! tests drive it the same way. `report` says what the page shows (state, fields), `keep` what
+//! it saves and loads.
 
-use super::protocol::{Frame, GroupInfo, Reply, Request, StateInfo};
+mod keep;
+mod report;
+
+use super::controls::{self, Controls};
+use super::protocol::{Frame, Reply, Request};
 use super::rig_edit::RigEdit;
 use super::scenes::{Content, Method, Scene};
 use crate::timing::ms;
 use anyhow::{anyhow, bail, Context, Result};
 use cga::ScaledMotor;
 use deform::arap::{Arap, ArapOptions, ArapScratch, Stop, Targets};
-use deform::input::{parse_group_motors, parse_selection_json, MotorSpec};
+use deform::control::ControlForm;
+use deform::input::MotorSpec;
 use deform::surgery::FaceBvh;
 use deform::{
     BlendMethod, BoundBlend, Deformer, HandleOptions, Mesh, MotorHandles, PoseScratch,
@@ -45,6 +51,11 @@ enum Bound {
         rest: Vec<ScaledMotor>,
         scratch: PoseScratch,
     },
+    /// An FFD lattice or a cage: one motor per control point.
+    Control {
+        controls: Box<Controls>,
+        scratch: PoseScratch,
+    },
 }
 
 /// The field the mesh is coloured by.
@@ -68,6 +79,10 @@ pub struct Session {
     blend: BlendMethod,
     iterations: usize,
     bound: Bound,
+    /// The scene's cage, if it has one.
+    cage: Option<Mesh>,
+    /// Lattices and cages: the positional form (else the motor form with `blend`).
+    positional: bool,
     bind_ms: f64,
     specs: Vec<MotorSpec>,
     rig: Option<RigEdit>,
@@ -98,6 +113,8 @@ impl Session {
             blend: BlendMethod::MotorLog,
             iterations: 2,
             bound: Bound::None,
+            cage: None,
+            positional: false,
             bind_ms: 0.0,
             specs: Vec::new(),
             rig: None,
@@ -144,20 +161,7 @@ impl Session {
                 iterations,
             } => {
                 self.mesh_only("a method")?;
-                let m = Method::parse(&method).ok_or_else(|| anyhow!("no method {method:?}"))?;
-                let b: BlendMethod = blend.parse()?;
-                let k = iterations.unwrap_or(self.iterations);
-                if !(1..=50).contains(&k) {
-                    bail!("iterations per frame: {k} is not in 1..=50");
-                }
-                let rebind = m != self.method || k != self.iterations && m == Method::Arap;
-                self.iterations = k;
-                if !rebind && b != self.blend {
-                    return self.reblend(b);
-                }
-                self.method = m;
-                self.blend = b;
-                self.bind()
+                self.set_method(&method, &blend, iterations)
             }
             Request::Motors { seq, motors } => self.pose_motors(seq, motors),
             Request::Rig {
@@ -211,6 +215,44 @@ impl Session {
         }
     }
 
+    /// A new method, blend (or `positional` for lattices and cages) and ARAP iterations per
+    /// frame: rebinds, or only re-blends when the weights stay.
+    fn set_method(
+        &mut self,
+        method: &str,
+        blend: &str,
+        iterations: Option<usize>,
+    ) -> Result<Vec<Out>> {
+        let m = Method::parse(method).ok_or_else(|| anyhow!("no method {method:?}"))?;
+        if m == Method::Cage && self.cage.is_none() {
+            bail!("this scene has no cage (the demo's \"cage\" scene has one)");
+        }
+        let positional = blend == "positional";
+        if positional && !m.controls() {
+            bail!("positional blending is for lattices and cages");
+        }
+        let b: BlendMethod = if positional {
+            self.blend
+        } else {
+            blend.parse()?
+        };
+        let k = iterations.unwrap_or(self.iterations);
+        if !(1..=50).contains(&k) {
+            bail!("iterations per frame: {k} is not in 1..=50");
+        }
+        let rebind = m != self.method
+            || positional != self.positional
+            || k != self.iterations && m == Method::Arap;
+        self.iterations = k;
+        if !rebind && b != self.blend {
+            return self.reblend(b);
+        }
+        self.method = m;
+        self.blend = b;
+        self.positional = positional;
+        self.bind()
+    }
+
     fn mesh_only(&self, what: &str) -> Result<()> {
         if self.rig.is_some() {
             bail!("{what}: this scene is a rig (joints and surgery, not handle groups)");
@@ -231,8 +273,11 @@ impl Session {
                 mesh,
                 groups,
                 method,
+                cage,
             } => {
                 self.rig = None;
+                self.cage = cage.clone();
+                self.positional = false;
                 self.mesh = mesh.clone();
                 self.method = *method;
                 self.blend = BlendMethod::MotorLog;
@@ -293,6 +338,9 @@ impl Session {
         erase: bool,
     ) -> Result<Vec<Out>> {
         self.mesh_only("paint")?;
+        if self.method.controls() {
+            bail!("paint groups for handles, ARAP or the spline; a lattice or cage moves by its points");
+        }
         if !(radius.is_finite() && radius >= 0.0) {
             bail!("paint radius {radius} is not a finite length");
         }
@@ -354,7 +402,11 @@ impl Session {
         self.stale = false;
         self.bound = Bound::None;
         self.posed = self.mesh.positions.clone();
-        let need = if self.method == Method::Spline { 2 } else { 1 };
+        let need = match self.method {
+            Method::Spline => 2,
+            Method::Ffd | Method::Cage => 0,
+            Method::Handles | Method::Arap => 1,
+        };
         let mut out = Vec::new();
         if self.groups.len() >= need {
             let t = Instant::now();
@@ -366,6 +418,10 @@ impl Session {
                 )
             })?;
             self.bind_ms = ms(t);
+            let k = self.key_count();
+            if self.specs.len() != k {
+                self.specs = vec![MotorSpec::default(); k];
+            }
         } else {
             out.push(Out::Text(Reply::Note {
                 message: format!(
@@ -423,7 +479,34 @@ impl Session {
                     scratch,
                 }
             }
+            Method::Ffd | Method::Cage => {
+                let form = if self.positional {
+                    ControlForm::Positional
+                } else {
+                    ControlForm::Motor(self.blend)
+                };
+                let controls = match &self.cage {
+                    Some(cage) if self.method == Method::Cage => {
+                        controls::cage(&self.mesh, cage, form)?
+                    }
+                    _ => controls::lattice(&self.mesh, form)?,
+                };
+                let scratch = controls.deformer.scratch();
+                Bound::Control {
+                    controls: Box::new(controls),
+                    scratch,
+                }
+            }
         })
+    }
+
+    /// The number of motors a pose takes: one per control point of a lattice or cage, else
+    /// one per group.
+    fn key_count(&self) -> usize {
+        match &self.bound {
+            Bound::Control { controls, .. } => controls.points.len(),
+            _ => self.groups.len(),
+        }
     }
 
     /// The spline's rest keys: a translation to each group's centre.
@@ -457,7 +540,9 @@ impl Session {
                     BoundBlend::bind(&self.mesh.positions, blend.weights().clone(), &rest, b)?;
                 *scratch = blend.scratch();
             }
-            Bound::Spline { .. } | Bound::Arap { .. } | Bound::None => return self.bind(),
+            Bound::Spline { .. } | Bound::Arap { .. } | Bound::Control { .. } | Bound::None => {
+                return self.bind()
+            }
         }
         self.bind_ms = ms(t);
         let mut out = vec![self.state()];
@@ -469,12 +554,14 @@ impl Session {
     /// Pose the groups by `specs` (one per group).
     fn pose_motors(&mut self, seq: u32, specs: Vec<MotorSpec>) -> Result<Vec<Out>> {
         self.mesh_only("motors")?;
-        if specs.len() != self.groups.len() {
-            bail!(
-                "{} motors for {} groups (send one per group)",
-                specs.len(),
-                self.groups.len()
-            );
+        let k = self.key_count();
+        if specs.len() != k {
+            let what = if self.method.controls() && !matches!(self.bound, Bound::None) {
+                "control points"
+            } else {
+                "groups"
+            };
+            bail!("{} motors for {k} {what} (send one per key)", specs.len());
         }
         let motors = specs
             .iter()
@@ -510,6 +597,11 @@ impl Session {
                     rest.iter().zip(&motors).map(|(r, m)| r.then(*m)).collect();
                 spline.pose_using(&keys, scratch, &mut self.posed)?
             }
+            Bound::Control { controls, scratch } => {
+                controls
+                    .deformer
+                    .pose_using(&motors, scratch, &mut self.posed)?
+            }
         }
         let pose_ms = ms(t);
         self.specs = specs;
@@ -524,173 +616,5 @@ impl Session {
         ];
         out.extend(self.field_frame());
         Ok(out)
-    }
-
-    /// The fields this scene can be coloured by.
-    fn fields(&self) -> Vec<&'static str> {
-        if self.rig.is_some() {
-            return vec!["displacement", "dqs-difference", "piece", "made"];
-        }
-        let mut f = vec!["displacement", "group"];
-        match self.bound {
-            Bound::Handles { .. } => f.push("harmonic"),
-            Bound::Spline { .. } => f.push("lambda"),
-            _ => {}
-        }
-        f
-    }
-
-    /// The current field's values, as a frame.
-    fn field_frame(&self) -> Option<Out> {
-        let n = self.mesh.vertex_count();
-        let displacement = || -> Vec<f64> {
-            (0..n)
-                .map(|v| (self.posed[v] - self.mesh.positions[v]).length())
-                .collect()
-        };
-        let values: Vec<f64> = match (self.field.name.as_str(), &self.bound, &self.rig) {
-            ("displacement", ..) => displacement(),
-            ("group", ..) => self
-                .owner
-                .iter()
-                .map(|&g| if g == NONE { -1.0 } else { g as f64 })
-                .collect(),
-            ("harmonic", Bound::Handles { handles, .. }, _) => {
-                let j = self.field.group.min(self.groups.len().saturating_sub(1));
-                (0..n).map(|i| handles.coordinate(i, j)).collect()
-            }
-            ("lambda", Bound::Spline { spline, .. }, _) => spline.lambda().to_vec(),
-            (name, _, Some(rig)) => rig.field(name, &self.posed)?,
-            _ => displacement(),
-        };
-        Some(Out::Binary(Frame::field(&values)))
-    }
-
-    /// The whole state, for the page's panels.
-    fn state(&self) -> Out {
-        let centres = self.centres();
-        Out::Text(Reply::State(Box::new(StateInfo {
-            scene: self.scenes[self.scene].name.clone(),
-            scenes: self.scenes.iter().map(|s| s.name.clone()).collect(),
-            kind: if self.rig.is_some() { "rig" } else { "mesh" },
-            method: self.method.name().into(),
-            methods: Method::ALL.map(Method::name).to_vec(),
-            blend: self.blend.name().into(),
-            blends: [
-                BlendMethod::MotorLog,
-                BlendMethod::MotorLinear,
-                BlendMethod::DualQuaternion,
-                BlendMethod::Matrix,
-            ]
-            .map(BlendMethod::name)
-            .to_vec(),
-            iterations: self.iterations,
-            groups: self
-                .groups
-                .iter()
-                .zip(centres)
-                .map(|(g, c)| GroupInfo {
-                    vertices: g.len(),
-                    center: c.to_array(),
-                })
-                .collect(),
-            fields: self.fields(),
-            rig: self.rig.as_ref().map(RigEdit::info),
-            bind_ms: self.bind_ms,
-            vertices: self.mesh.vertex_count(),
-            triangles: self.mesh.triangle_count(),
-            stale: self.stale,
-        })))
-    }
-
-    /// A file of the current state.
-    fn export(&self, what: &str) -> Result<Vec<Out>> {
-        let scene = &self.scenes[self.scene].name;
-        let (name, text) = match what {
-            "obj" => {
-                let posed = Mesh::new(self.posed.clone(), self.mesh.triangles.clone());
-                let mut bytes = Vec::new();
-                deform::io::write_obj_to(&posed, &mut bytes)?;
-                (format!("{scene}-posed.obj"), String::from_utf8(bytes)?)
-            }
-            "motors" => {
-                self.mesh_only("motors")?;
-                let map: serde_json::Map<String, serde_json::Value> = self
-                    .specs
-                    .iter()
-                    .enumerate()
-                    .map(|(g, s)| Ok((g.to_string(), serde_json::to_value(s)?)))
-                    .collect::<Result<_>>()?;
-                (
-                    format!("{scene}-motors.json"),
-                    serde_json::to_string_pretty(&map)?,
-                )
-            }
-            "selection" => {
-                self.mesh_only("selection")?;
-                let map: serde_json::Map<String, serde_json::Value> = self
-                    .groups
-                    .iter()
-                    .enumerate()
-                    .map(|(g, vs)| (g.to_string(), serde_json::json!(vs)))
-                    .collect();
-                (
-                    format!("{scene}-selection.json"),
-                    serde_json::to_string(&map)?,
-                )
-            }
-            "glb" => {
-                use base64::Engine;
-                let rig = self
-                    .rig
-                    .as_ref()
-                    .ok_or_else(|| anyhow!("glb: this scene has no rig (export obj)"))?;
-                let bytes = rig.glb()?;
-                (
-                    format!("{scene}-edited.glb"),
-                    base64::engine::general_purpose::STANDARD.encode(bytes),
-                )
-            }
-            "edits" => {
-                let rig = self
-                    .rig
-                    .as_ref()
-                    .ok_or_else(|| anyhow!("edits: this scene has no rig"))?;
-                (format!("{scene}-edits.json"), rig.edits_json()?)
-            }
-            _ => bail!("cannot export {what:?} (obj, glb, motors, selection, edits)"),
-        };
-        let base64 = what == "glb";
-        Ok(vec![Out::Text(Reply::File { name, text, base64 })])
-    }
-
-    /// Load a selection or motors the page read from a file, through the CLI's parsers.
-    fn load(&mut self, what: &str, text: &str) -> Result<Vec<Out>> {
-        self.mesh_only("load")?;
-        match what {
-            "selection" => {
-                let sel = parse_selection_json(text, self.mesh.vertex_count(), "selection")?;
-                self.set_groups(sel.groups);
-                let mut out = vec![Out::Binary(Frame::groups(&self.owner))];
-                out.extend(self.bind()?);
-                Ok(out)
-            }
-            "motors" => {
-                let motors = parse_group_motors(text, "motors", self.groups.len())?;
-                // The gizmo keeps scale, rotation and translation about each group's centre.
-                let centres = self.centres();
-                let motors = motors
-                    .iter()
-                    .zip(centres)
-                    .map(|(m, c)| {
-                        let (s, q, _) = m.to_scale_rotation_translation();
-                        let t = m.transform_point(c) - c;
-                        [s, q.x, q.y, q.z, q.w, t.x, t.y, t.z]
-                    })
-                    .collect();
-                Ok(vec![Out::Text(Reply::Motors { motors })])
-            }
-            _ => bail!("cannot load {what:?} (selection, motors)"),
-        }
     }
 }

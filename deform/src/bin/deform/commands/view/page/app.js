@@ -114,15 +114,30 @@ function onState(s) {
     fill($("method"), s.methods, s.method); fill($("blend"), s.blends, s.blend);
     $("iterations").value = s.iterations;
     $("iterations-row").classList.toggle("hidden", s.method !== "arap");
-    // Keep each group's gizmo; new groups start at the identity about their rest centre.
-    ed.groups = s.groups.map((g, i) => {
-      const old = first ? null : ed.groups[i];
-      return old ? Object.assign(old, { c: g.center }) : { c: g.center, s: 1, q: Q.id(), t: [0, 0, 0] };
+    // The keys: a lattice's or cage's control points, else the painted groups. Keep each
+    // key's gizmo; new keys start at the identity about their rest centre.
+    const keys = s.controls ? s.controls.points : s.groups.map((g) => g.center);
+    const sameKind = !first && !!ed.controls === !!s.controls && ed.groups.length === keys.length;
+    ed.controls = s.controls;
+    ed.groups = keys.map((c, i) => {
+      const old = sameKind || (!first && !s.controls && !ed.controls) ? ed.groups[i] : null;
+      return old ? Object.assign(old, { c }) : { c, s: 1, q: Q.id(), t: [0, 0, 0] };
     });
-    const keep = Math.min(+$("group").value || 0, s.groups.length);
-    fill($("group"), [...s.groups.map((g, i) => `${i}`), `${s.groups.length}`], `${keep}`);
-    [...$("group").options].forEach((o, i) => { o.textContent = i < s.groups.length ? `group ${i} (${s.groups[i].vertices} vertices)` : "new group"; });
-    $("replay").textContent = "Replay: deform " + (s.method === "spline" ? "spline" : s.method) + " MODEL --select selection.json --motors motors.json" + (s.method === "arap" ? "" : " --blend " + s.blend);
+    const keep = Math.min(+$("group").value || 0, s.controls ? keys.length - 1 : keys.length);
+    fill($("group"), [...keys.map((g, i) => `${i}`), ...(s.controls ? [] : [`${keys.length}`])], `${keep}`);
+    [...$("group").options].forEach((o, i) => {
+      o.textContent = s.controls ? `control point ${i}` : i < s.groups.length ? `group ${i} (${s.groups[i].vertices} vertices)` : "new group";
+    });
+    document.querySelectorAll(".paint-only").forEach((e) => e.classList.toggle("hidden", !!s.controls));
+    if (s.controls) $("tool").querySelector("[value=move]").checked = true;
+    const blendFlag = s.blend === "positional" ? " --positional" : " --blend " + s.blend;
+    $("replay").textContent = "Replay: deform " + {
+      handles: "handles MODEL --select selection.json --motors motors.json" + blendFlag,
+      arap: "arap MODEL --select selection.json --motors motors.json",
+      spline: "spline MODEL --select selection.json (keys: the groups' motors after their centres)",
+      ffd: "ffd MODEL --lattice 4x3x3 --motors motors.json" + blendFlag,
+      cage: "cage MODEL --cage CAGE --motors motors.json" + blendFlag,
+    }[s.method];
   } else {
     if (first) { ed.edits = {}; ed.clock = s.rig.animations.length ? s.rig.animations[0].start : 0; }
     fill($("animation"), ["(rest)", ...s.rig.animations.map((a, i) => `${i}: ${a.name}`)], first ? (s.rig.animations.length ? "0: " + s.rig.animations[0].name : "(rest)") : $("animation").value);
@@ -234,6 +249,24 @@ function retarget() {
 }
 
 // --- overlays -----------------------------------------------------------------------------------
+// The lattice or cage, each point moved by its motor (a motor about the point moves it by t).
+function controlLines() {
+  if (!ed.controls || !ed.state || ed.state.kind !== "mesh") return [];
+  const p = ed.groups.map((g) => V.add(g.c, g.t)), ink = [0.95, 0.45, 0.35, 1];
+  const lines = [{ points: ed.controls.edges.flatMap(([a, b]) => [p[a], p[b]]), ink, strip: false }];
+  for (const q of p) lines.push({ points: gizmo.square(q, 3), ink, strip: true });
+  return lines;
+}
+// The control point drawn within a few pixels of (x, y), or -1.
+function controlAt(x, y) {
+  if (!ed.controls) return -1;
+  let best = -1, bd = 8;
+  ed.groups.forEach((g, i) => {
+    const s = camera.screen(V.add(g.c, g.t));
+    if (s && Math.hypot(s[0] - x, s[1] - y) < bd) { bd = Math.hypot(s[0] - x, s[1] - y); best = i; }
+  });
+  return best;
+}
 function planeLines() {
   if (!$("plane").checked || !ed.plane) return [];
   const p = V.add(ed.plane.c, ed.plane.t), n = Q.rotate(ed.plane.q, [1, 0, 0]), L = V.len(V.sub(ed.bbox.max, ed.bbox.min)) * 0.35;
@@ -305,6 +338,8 @@ canvas.addEventListener("pointerdown", (e) => {
   canvas.setPointerCapture(e.pointerId);
   const x = e.offsetX, y = e.offsetY;
   if (e.button === 0 && !e.shiftKey && gizmo.target && gizmo.begin(x, y)) { mouse = { mode: "gizmo", x, y }; return; }
+  const point = e.button === 0 && !e.shiftKey ? controlAt(x, y) : -1;
+  if (point >= 0) { $("group").value = `${point}`; retarget(); sendField(); mouse = { mode: "none", x, y }; return; }
   const painting = e.button === 0 && !e.shiftKey && ed.state && ed.state.kind === "mesh" && tool() !== "move";
   mouse = { mode: painting ? "paint" : e.button === 2 || e.shiftKey ? "pan" : "orbit", x, y };
   if (painting) paintAt(x, y);
@@ -314,6 +349,7 @@ canvas.addEventListener("pointermove", (e) => {
   if (!mouse) { gizmo.move(x, y); return; }
   if (mouse.mode === "gizmo") gizmo.move(x, y);
   else if (mouse.mode === "paint") paintAt(x, y);
+  else if (mouse.mode === "none") return;
   else if (mouse.mode === "pan") camera.pan(x - mouse.x, y - mouse.y);
   else camera.orbit(x - mouse.x, y - mouse.y);
   mouse.x = x; mouse.y = y;
@@ -329,7 +365,7 @@ canvas.addEventListener("wheel", (e) => { e.preventDefault(); camera.zoom(Math.s
 function draw() {
   const { viewProj } = camera.matrices(canvas.clientWidth, canvas.clientHeight);
   const { f } = camera.basis();
-  const lines = [...gizmo.lines(), ...planeLines()];
+  const lines = [...controlLines(), ...gizmo.lines(), ...planeLines()];
   const t0 = performance.now();
   if (ed.upload.positions) renderer.setPositions(ed.positions);
   if (ed.upload.field) { renderer.setScalar(ed.field, ...ed.fieldRange); legend(); }

@@ -59,11 +59,12 @@ class Gizmo {
     }
     return best;
   }
-  // Screen position of a handle's grip (axis tip, ring point, centre), for tests and hints.
-  grip(kind, axis) {
+  // Screen position of a handle's grip (a point `at` along an arrow, a ring point, the centre),
+  // for scripted sessions.
+  grip(kind, axis, at = 0.8) {
     const h = this.handles().find((q) => q.kind === kind && q.axis === axis);
     if (!h) return null;
-    const pt = kind === "translate" ? V.add(h.points[0], V.scale(V.sub(h.points[1], h.points[0]), 0.8))
+    const pt = kind === "translate" ? V.add(h.points[0], V.scale(V.sub(h.points[1], h.points[0]), at))
       : kind === "rotate" ? h.points[0] : this.target.origin();
     return this.camera.screen(pt);
   }

@@ -1,0 +1,104 @@
+//! Files of a session: export the pose, selection, motors, edits or the rig; load a selection
+//! or motors through the CLI's parsers.
+
+use super::{Bound, Out, Session};
+use crate::commands::view::protocol::{Frame, Reply};
+use anyhow::{anyhow, bail, Result};
+use deform::input::{parse_group_motors, parse_selection_json};
+use deform::Mesh;
+
+impl Session {
+    /// A file of the current state.
+    pub(super) fn export(&self, what: &str) -> Result<Vec<Out>> {
+        let scene = &self.scenes[self.scene].name;
+        let (name, text) = match what {
+            "obj" => {
+                let posed = Mesh::new(self.posed.clone(), self.mesh.triangles.clone());
+                let mut bytes = Vec::new();
+                deform::io::write_obj_to(&posed, &mut bytes)?;
+                (format!("{scene}-posed.obj"), String::from_utf8(bytes)?)
+            }
+            "motors" => {
+                self.mesh_only("motors")?;
+                let map: serde_json::Map<String, serde_json::Value> = self
+                    .specs
+                    .iter()
+                    .enumerate()
+                    .map(|(g, s)| Ok((g.to_string(), serde_json::to_value(s)?)))
+                    .collect::<Result<_>>()?;
+                (
+                    format!("{scene}-motors.json"),
+                    serde_json::to_string_pretty(&map)?,
+                )
+            }
+            "selection" => {
+                self.mesh_only("selection")?;
+                let map: serde_json::Map<String, serde_json::Value> = self
+                    .groups
+                    .iter()
+                    .enumerate()
+                    .map(|(g, vs)| (g.to_string(), serde_json::json!(vs)))
+                    .collect();
+                (
+                    format!("{scene}-selection.json"),
+                    serde_json::to_string(&map)?,
+                )
+            }
+            "glb" => {
+                use base64::Engine;
+                let rig = self
+                    .rig
+                    .as_ref()
+                    .ok_or_else(|| anyhow!("glb: this scene has no rig (export obj)"))?;
+                let bytes = rig.glb()?;
+                (
+                    format!("{scene}-edited.glb"),
+                    base64::engine::general_purpose::STANDARD.encode(bytes),
+                )
+            }
+            "edits" => {
+                let rig = self
+                    .rig
+                    .as_ref()
+                    .ok_or_else(|| anyhow!("edits: this scene has no rig"))?;
+                (format!("{scene}-edits.json"), rig.edits_json()?)
+            }
+            _ => bail!("cannot export {what:?} (obj, glb, motors, selection, edits)"),
+        };
+        let base64 = what == "glb";
+        Ok(vec![Out::Text(Reply::File { name, text, base64 })])
+    }
+
+    /// Load a selection or motors the page read from a file, through the CLI's parsers.
+    pub(super) fn load(&mut self, what: &str, text: &str) -> Result<Vec<Out>> {
+        self.mesh_only("load")?;
+        match what {
+            "selection" => {
+                let sel = parse_selection_json(text, self.mesh.vertex_count(), "selection")?;
+                self.set_groups(sel.groups);
+                let mut out = vec![Out::Binary(Frame::groups(&self.owner))];
+                out.extend(self.bind()?);
+                Ok(out)
+            }
+            "motors" => {
+                let motors = parse_group_motors(text, "motors", self.key_count())?;
+                // The gizmo keeps scale, rotation and translation about each key's centre.
+                let centres = match &self.bound {
+                    Bound::Control { controls, .. } => controls.points.clone(),
+                    _ => self.centres(),
+                };
+                let motors = motors
+                    .iter()
+                    .zip(centres)
+                    .map(|(m, c)| {
+                        let (s, q, _) = m.to_scale_rotation_translation();
+                        let t = m.transform_point(c) - c;
+                        [s, q.x, q.y, q.z, q.w, t.x, t.y, t.z]
+                    })
+                    .collect();
+                Ok(vec![Out::Text(Reply::Motors { motors })])
+            }
+            _ => bail!("cannot load {what:?} (selection, motors)"),
+        }
+    }
+}

@@ -1,0 +1,103 @@
+//! What the page is shown of a session: the whole state and the colour fields.
+
+use super::{Bound, Out, Session, NONE};
+use crate::commands::view::protocol::{ControlsInfo, Frame, GroupInfo, Reply, StateInfo};
+use crate::commands::view::rig_edit::RigEdit;
+use crate::commands::view::scenes::Method;
+use deform::BlendMethod;
+
+impl Session {
+    /// The fields this scene can be coloured by.
+    pub(super) fn fields(&self) -> Vec<&'static str> {
+        if self.rig.is_some() {
+            return vec!["displacement", "dqs-difference", "piece", "made"];
+        }
+        let mut f = vec!["displacement", "group"];
+        match self.bound {
+            Bound::Handles { .. } => f.push("harmonic"),
+            Bound::Spline { .. } => f.push("lambda"),
+            _ => {}
+        }
+        f
+    }
+
+    /// The current field's values, as a frame.
+    pub(super) fn field_frame(&self) -> Option<Out> {
+        let n = self.mesh.vertex_count();
+        let displacement = || -> Vec<f64> {
+            (0..n)
+                .map(|v| (self.posed[v] - self.mesh.positions[v]).length())
+                .collect()
+        };
+        let values: Vec<f64> = match (self.field.name.as_str(), &self.bound, &self.rig) {
+            ("displacement", ..) => displacement(),
+            ("group", ..) => self
+                .owner
+                .iter()
+                .map(|&g| if g == NONE { -1.0 } else { g as f64 })
+                .collect(),
+            ("harmonic", Bound::Handles { handles, .. }, _) => {
+                let j = self.field.group.min(self.groups.len().saturating_sub(1));
+                (0..n).map(|i| handles.coordinate(i, j)).collect()
+            }
+            ("lambda", Bound::Spline { spline, .. }, _) => spline.lambda().to_vec(),
+            (name, _, Some(rig)) => rig.field(name, &self.posed)?,
+            _ => displacement(),
+        };
+        Some(Out::Binary(Frame::field(&values)))
+    }
+
+    /// The whole state, for the page's panels.
+    pub(super) fn state(&self) -> Out {
+        let centres = self.centres();
+        Out::Text(Reply::State(Box::new(StateInfo {
+            scene: self.scenes[self.scene].name.clone(),
+            scenes: self.scenes.iter().map(|s| s.name.clone()).collect(),
+            kind: if self.rig.is_some() { "rig" } else { "mesh" },
+            method: self.method.name().into(),
+            methods: Method::ALL
+                .into_iter()
+                .filter(|m| *m != Method::Cage || self.cage.is_some())
+                .map(Method::name)
+                .collect(),
+            blend: if self.positional {
+                "positional".into()
+            } else {
+                self.blend.name().into()
+            },
+            blends: [
+                BlendMethod::MotorLog,
+                BlendMethod::MotorLinear,
+                BlendMethod::DualQuaternion,
+                BlendMethod::Matrix,
+            ]
+            .map(BlendMethod::name)
+            .into_iter()
+            .chain(self.method.controls().then_some("positional"))
+            .collect(),
+            controls: match &self.bound {
+                Bound::Control { controls, .. } => Some(ControlsInfo {
+                    points: controls.points.iter().map(|p| p.to_array()).collect(),
+                    edges: controls.edges.clone(),
+                }),
+                _ => None,
+            },
+            iterations: self.iterations,
+            groups: self
+                .groups
+                .iter()
+                .zip(centres)
+                .map(|(g, c)| GroupInfo {
+                    vertices: g.len(),
+                    center: c.to_array(),
+                })
+                .collect(),
+            fields: self.fields(),
+            rig: self.rig.as_ref().map(RigEdit::info),
+            bind_ms: self.bind_ms,
+            vertices: self.mesh.vertex_count(),
+            triangles: self.mesh.triangle_count(),
+            stale: self.stale,
+        })))
+    }
+}
