@@ -9,7 +9,7 @@
 //
 // Runs the server and the browser on this machine (both cores shared); the browser draws with
 // SwiftShader (software GL), so "drawn" is a floor for a machine with a GPU.
-import { startServer, openPage, until, settled, drag, paintGroup, arrow } from '../../deform/tests/view/driver.mjs';
+import { startServer, openPage, until, settled, drag, paintGroup, arrow, drawnNear } from '../../deform/tests/view/driver.mjs';
 
 const [program, model, seconds = '4', size = '1200x760'] = process.argv.slice(2);
 if (!program || !model) { console.error('usage: fps.mjs DEFORM MODEL [SECONDS]'); process.exit(2); }
@@ -49,24 +49,11 @@ try {
   await until(page, () => editor.state && editor.n > 0, null, 'the model');
   const n = await page.evaluate(() => editor.n);
   // Four groups: points of the surface under a cross around the middle of the view.
-  const spots = await page.evaluate(() => {
-    // The drawn pixel nearest each of four points around the middle of the view.
-    const gl = editor.renderer.gl, w = gl.drawingBufferWidth, h = gl.drawingBufferHeight, px = new Uint8Array(4 * w * h);
-    editor.redraw();
-    gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, px);
-    const c = editor.camera, m = c.screen(c.target), k = w / c.w;
-    return [[0, -0.2], [0, 0.2], [-0.1, 0], [0.1, 0]].map(([x, y]) => {
-      const want = [m[0] + x * c.w, m[1] + y * c.h];
-      let best = null, bd = Infinity;
-      for (let j = 0; j < h; j += 4) for (let i = 0; i < w; i += 4) {
-        const o = 4 * (j * w + i);
-        if (Math.abs(px[o] - 33) + Math.abs(px[o + 1] - 36) + Math.abs(px[o + 2] - 41) <= 24) continue;
-        const p = [i / k, (h - 1 - j) / k], d = Math.hypot(p[0] - want[0], p[1] - want[1]);
-        if (d < bd) { bd = d; best = p; }
-      }
-      return best;
-    });
+  const middle = await page.evaluate(() => {
+    const c = editor.camera, m = c.screen(c.target);
+    return [[0, -0.2], [0, 0.2], [-0.1, 0], [0.1, 0]].map(([x, y]) => [m[0] + x * c.w, m[1] + y * c.h]);
   });
+  const spots = await drawnNear(page, middle);
   for (let g = 0; g < 4; g++) {
     const t = Date.now();
     await paintGroup(page, g, spots[g]);

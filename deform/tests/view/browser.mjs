@@ -7,7 +7,7 @@
 //   node deform/tests/view/browser.mjs PATH/TO/deform OUT
 import fs from 'node:fs';
 import path from 'node:path';
-import { startServer, openPage, until, settled, drag, paintGroup, arrow, drawnShare } from './driver.mjs';
+import { startServer, openPage, until, settled, drag, paintGroup, arrow, drawnShare, drawnNear } from './driver.mjs';
 
 const [program, out] = process.argv.slice(2);
 if (!program || !out) { console.error('usage: browser.mjs DEFORM OUT'); process.exit(2); }
@@ -134,6 +134,20 @@ try {
   await until(page, (n) => editor.state.rig.undo === 0 && editor.state.vertices === n, vertices, 'the undo');
   check(true, `undo restored the ${vertices} vertices of the uncut arm`);
   await shot('undone');
+
+  // Drill where the arm is drawn nearest the middle of the view; the result animates.
+  await page.check('input[name=rig-tool][value=drill]');
+  const [spot] = await drawnNear(page, [await page.evaluate(() => editor.camera.screen(editor.camera.target))]);
+  await page.mouse.click(b.x + spot[0], b.y + spot[1]);
+  await until(page, (n) => editor.state.rig.undo === 1 && editor.state.vertices !== n, vertices, 'the drill');
+  const made = await page.evaluate(() => editor.state.vertices);
+  await page.selectOption('#field', 'made');
+  await page.click('#play');
+  await page.waitForTimeout(600);
+  await page.click('#play');
+  await settled(page);
+  check(await page.evaluate(() => editor.positions.length / 3) === made, `the drilled arm (${made} vertices) animates`);
+  await shot('drilled');
   check(problems.length === 0, `no console errors${problems.length ? ': ' + problems.join('; ') : ''}`);
 } catch (e) {
   console.error(`FAILED: ${e.message}`);

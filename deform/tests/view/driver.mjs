@@ -70,6 +70,24 @@ export const arrow = (page, at = 0.8) => page.evaluate((at) => {
   return { p, dir: [d[0] / l, d[1] / l] };
 }, at);
 
+/// For each canvas point of `wanted`, the nearest canvas pixel where something is drawn.
+export const drawnNear = (page, wanted) => page.evaluate((wanted) => {
+  const gl = editor.renderer.gl, w = gl.drawingBufferWidth, h = gl.drawingBufferHeight, px = new Uint8Array(4 * w * h);
+  editor.redraw();
+  gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, px);
+  const k = w / editor.camera.w;
+  return wanted.map((want) => {
+    let best = null, bd = Infinity;
+    for (let j = 0; j < h; j += 2) for (let i = 0; i < w; i += 2) {
+      const o = 4 * (j * w + i);
+      if (Math.abs(px[o] - 33) + Math.abs(px[o + 1] - 36) + Math.abs(px[o + 2] - 41) <= 24) continue;
+      const p = [i / k, (h - 1 - j) / k], d = Math.hypot(p[0] - want[0], p[1] - want[1]);
+      if (d < bd) { bd = d; best = p; }
+    }
+    return best;
+  });
+}, wanted);
+
 /// The share of canvas pixels that are not the background.
 export const drawnShare = (page) => page.evaluate(() => {
   const gl = editor.renderer.gl, w = gl.drawingBufferWidth, h = gl.drawingBufferHeight;

@@ -218,7 +218,12 @@ fn mutated_requests_never_stop_the_server() {
         json!({"op": "scene", "name": "arm"}),
         json!({"op": "rig", "seq": 2, "animation": 0, "time": 0.5, "backend": "matrix", "edits": [{"joint": 1, "motor": {"scale": 1.1}}]}),
         json!({"op": "cut", "point": [3, 0, 0], "normal": [1, 0, 0]}),
+        json!({"op": "tear", "rays": [[[5.0, 0.05, 5.0], [0, 0, -1]], [[6.0, 0.05, 5.0], [0, 0, -1]]], "open": 0.2}),
+        json!({"op": "drill", "origin": [5.0, 0.05, 5.0], "direction": [0, 0, -1], "radius": 0.01, "depth": 0.15}),
         json!({"op": "undo"}),
+        json!({"op": "scene", "name": "lattice"}),
+        json!({"op": "motors", "seq": 3, "motors": [{"translate": [0, 1, 0]}]}),
+        json!({"op": "method", "method": "cage", "blend": "positional"}),
         json!({"op": "scene", "name": "sphere"}),
     ];
     let mut rng = Lcg(0x5eed);

@@ -308,3 +308,76 @@ fn lattice_and_cage_control_points_pose_as_the_library_poses_them() {
         assert!(c.error().contains("lattice or cage"));
     }
 }
+
+#[test]
+fn tears_and_drills_from_rays_make_what_the_library_makes_and_undo() {
+    use deform::surgery::{Drill, DrillOptions, FaceBvh, Scalpel, TearOptions};
+    let server = Server::start(&[]);
+    let mut c = server.connect(None).expect("connects");
+    c.state();
+    c.send(json!({"op": "scene", "name": "arm"}));
+    let s = c.state();
+    let rig = procedural_arm(24, 81);
+    let n = rig.mesh.vertex_count();
+    assert_eq!(s["vertices"], n);
+    // The library's own reading of the same rays (rest pose: nothing posed yet).
+    let b = rig.mesh.bounding_box().unwrap();
+    let size = (b.max - b.min).length();
+    let bvh = FaceBvh::new(&rig.mesh);
+    let down = -DVec3::Z;
+    let hit = |x: f64| {
+        bvh.ray_hit(&rig.mesh, DVec3::new(x, 0.05, 5.0), down)
+            .unwrap()
+            .point
+    };
+    let surgery = Surgery::new(&rig.mesh, &rig.influences).unwrap();
+
+    let rays: Vec<Value> = [4.6, 5.4, 6.3]
+        .iter()
+        .map(|x| json!([[x, 0.05, 5.0], [0, 0, -1]]))
+        .collect();
+    c.send(json!({"op": "tear", "rays": rays, "open": 0.2}));
+    let torn = c.state();
+    let blades: Vec<Scalpel> = [4.6, 5.4, 6.3]
+        .iter()
+        .map(|&x| Scalpel {
+            a: hit(x) - 0.02 * size * down,
+            b: hit(x) + 0.08 * size * down,
+        })
+        .collect();
+    let options = TearOptions {
+        open: 0.2,
+        ..TearOptions::default()
+    };
+    let tear = surgery.tear(&blades, SurgeryFrame::Rest, &options).unwrap();
+    assert_eq!(torn["vertices"], tear.mesh.mesh.vertex_count());
+    assert!(tear.mesh.mesh.vertex_count() > n);
+    c.send(json!({"op": "undo"}));
+    assert_eq!(c.state()["vertices"], n);
+
+    c.send(json!({"op": "drill", "origin": [5.0, 0.05, 5.0], "direction": [0, 0, -1], "radius": 0.01, "depth": 0.15}));
+    let drilled = c.state();
+    let drill = Drill {
+        tip: hit(5.0) - 0.25 * 0.15 * size * down,
+        end: hit(5.0) + 0.15 * size * down,
+        radius: 0.01 * size,
+    };
+    let hole = surgery
+        .drill(&drill, SurgeryFrame::Rest, &DrillOptions::default())
+        .unwrap();
+    assert_eq!(drilled["vertices"], hole.mesh.mesh.vertex_count());
+    assert_ne!(hole.mesh.mesh.vertex_count(), n);
+    assert_eq!(
+        drilled["rig"]["undo"], 1,
+        "the tear was undone, so the drill is the only step"
+    );
+    // Rays that miss, and silly sizes, are refused with the rig unchanged.
+    c.send(json!({"op": "drill", "origin": [5.0, 50.0, 5.0], "direction": [0, 0, -1], "radius": 0.01, "depth": 0.15}));
+    assert!(c.error().contains("aim at the surface"));
+    c.send(json!({"op": "drill", "origin": [5.0, 0.05, 5.0], "direction": [0, 0, -1], "radius": -1, "depth": 0.15}));
+    assert!(c.error().contains("positive"));
+    c.send(json!({"op": "tear", "rays": [[[5.0, 50.0, 5.0], [0, 0, -1]]]}));
+    assert!(c.error().contains("met the surface 0"));
+    c.send(json!({"op": "undo"}));
+    assert_eq!(c.state()["vertices"], n);
+}

@@ -87,6 +87,21 @@ pub enum Request {
         #[serde(default = "yes")]
         cap: bool,
     },
+    /// Tear the rig's skin along the surface under a stroke: one ray (origin, direction) per
+    /// sample, in the posed frame; `open` pulls the lips apart.
+    Tear {
+        rays: Vec<[[f64; 3]; 2]>,
+        #[serde(default)]
+        open: f64,
+    },
+    /// Drill where the ray meets the posed surface: `radius` and `depth` are fractions of the
+    /// mesh's size.
+    Drill {
+        origin: [f64; 3],
+        direction: [f64; 3],
+        radius: f64,
+        depth: f64,
+    },
     /// Undo or redo the last surgery.
     Undo,
     Redo,
@@ -108,6 +123,8 @@ impl Request {
             Request::Scene { .. } => Some("opening the scene"),
             Request::Bind | Request::Method { .. } | Request::Load { .. } => Some("binding"),
             Request::Cut { .. } => Some("cutting"),
+            Request::Tear { .. } => Some("tearing"),
+            Request::Drill { .. } => Some("drilling"),
             Request::Undo | Request::Redo => Some("rebinding"),
             _ => None,
         }
@@ -146,6 +163,8 @@ pub struct AnimationInfo {
 pub struct RigInfo {
     pub animations: Vec<AnimationInfo>,
     pub joints: Vec<String>,
+    /// Each joint's nearest ancestor that is a joint (-1: none), for drawing the skeleton.
+    pub parents: Vec<i64>,
     pub backends: Vec<&'static str>,
     pub undo: usize,
     pub redo: usize,

@@ -1,13 +1,15 @@
 //! A rig in the editor: animation and joint edits posed by a chosen backend, the per-vertex
-//! difference to dual-quaternion skinning, and cuts with undo and redo.
+//! difference to dual-quaternion skinning, and cuts, tears and drills with undo and redo.
 
 use super::protocol::{AnimationInfo, EditSpec, Reply, RigInfo};
 use crate::timing::ms;
 use anyhow::{anyhow, bail, Result};
 use deform::skinning::{
-    bake_edits, glb_bytes, GlbOptions, JointEdit, KeyframeBlend, Rig, RigPose, Skinning,
+    bake_edits, glb_bytes, GlbOptions, JointEdit, KeyframeBlend, Rig, RigPart, RigPose, Skinning,
 };
-use deform::surgery::{CutOptions, Frame, Surgery};
+use deform::surgery::{
+    CutOptions, Drill, DrillOptions, Frame, Scalpel, Surgery, TearOptions, VertexOrigin,
+};
 use deform::{BlendMethod, PreparedKeys};
 use glam::DVec3;
 use std::time::Instant;
@@ -185,6 +187,35 @@ impl RigEdit {
         }
     }
 
+    /// The posed frame of the last pose (the rest frame before any).
+    fn frame<'a>(&'a self, posed: &'a [DVec3]) -> Frame<'a> {
+        if posed.len() == self.rig().mesh.vertex_count() && !self.pose.skin_matrices.is_empty() {
+            Frame::Posed {
+                positions: posed,
+                skin: &self.pose.skin_matrices,
+            }
+        } else {
+            Frame::Rest
+        }
+    }
+
+    /// A tool's result as the new version of the rig (undoable).
+    fn push(&mut self, parts: &[RigPart], origin: &[VertexOrigin]) -> Result<()> {
+        let rig = self.rig().with_parts(parts)?;
+        let made = origin
+            .iter()
+            .map(|o| if o.is_input() { 0.0 } else { 1.0 })
+            .collect();
+        self.history.push(Version { rig, made });
+        self.redo.clear();
+        self.rebind(self.backend)
+    }
+
+    fn surgery(&self) -> Result<Surgery> {
+        let rig = self.rig();
+        Ok(Surgery::new(&rig.mesh, &rig.influences)?)
+    }
+
     /// Cut by the plane through `point` with normal `normal`, in the frame of `posed` (the
     /// last pose), and re-rig the pieces.
     pub fn cut(&mut self, point: DVec3, normal: DVec3, cap: bool, posed: &[DVec3]) -> Result<()> {
@@ -193,36 +224,32 @@ impl RigEdit {
         }
         let n = normal.normalize();
         let plane = cga::Plane::from_normal_distance(n, n.dot(point));
-        let rig = self.rig();
-        let surgery = Surgery::new(&rig.mesh, &rig.influences)?;
-        let frame = if posed.len() == rig.mesh.vertex_count() && !self.pose.skin_matrices.is_empty()
-        {
-            Frame::Posed {
-                positions: posed,
-                skin: &self.pose.skin_matrices,
-            }
-        } else {
-            Frame::Rest
-        };
         let options = CutOptions {
             cap,
             ..CutOptions::default()
         };
-        let cut = surgery.cut(&plane, frame, &options)?;
+        let cut = self.surgery()?.cut(&plane, self.frame(posed), &options)?;
         let parts: Vec<_> = cut.pieces.iter().map(|p| p.mesh.part()).collect();
-        let new = rig.with_parts(&parts)?;
-        let made = cut
-            .pieces
-            .iter()
-            .flat_map(|p| {
-                p.origin
-                    .iter()
-                    .map(|o| if o.is_input() { 0.0 } else { 1.0 })
-            })
-            .collect();
-        self.history.push(Version { rig: new, made });
-        self.redo.clear();
-        self.rebind(self.backend)
+        let origin: Vec<VertexOrigin> = cut.pieces.iter().flat_map(|p| p.origin.clone()).collect();
+        self.push(&parts, &origin)
+    }
+
+    /// Tear with the scalpel at successive positions, in the frame of `posed`.
+    pub fn tear(&mut self, blades: &[Scalpel], open: f64, posed: &[DVec3]) -> Result<()> {
+        let options = TearOptions {
+            open,
+            ..TearOptions::default()
+        };
+        let tear = self.surgery()?.tear(blades, self.frame(posed), &options)?;
+        self.push(&[tear.mesh.part()], &tear.origin)
+    }
+
+    /// Drill a hole, in the frame of `posed`.
+    pub fn drill(&mut self, drill: &Drill, posed: &[DVec3]) -> Result<()> {
+        let result = self
+            .surgery()?
+            .drill(drill, self.frame(posed), &DrillOptions::default())?;
+        self.push(&[result.mesh.part()], &result.origin)
     }
 
     pub fn undo(&mut self) -> Result<()> {
@@ -260,6 +287,20 @@ impl RigEdit {
                 .joints
                 .iter()
                 .map(|&n| rig.nodes[n].name.clone())
+                .collect(),
+            parents: rig
+                .joints
+                .iter()
+                .map(|&n| {
+                    let mut p = rig.nodes[n].parent;
+                    while let Some(q) = p {
+                        if let Some(j) = rig.joints.iter().position(|&x| x == q) {
+                            return j as i64;
+                        }
+                        p = rig.nodes[q].parent;
+                    }
+                    -1
+                })
                 .collect(),
             backends: BACKENDS.map(BlendMethod::name).to_vec(),
             undo: self.history.len() - 1,

@@ -16,7 +16,7 @@ use cga::ScaledMotor;
 use deform::arap::{Arap, ArapOptions, ArapScratch, Stop, Targets};
 use deform::control::ControlForm;
 use deform::input::MotorSpec;
-use deform::surgery::FaceBvh;
+use deform::surgery::{Drill, FaceBvh, RayHit, Scalpel};
 use deform::{
     BlendMethod, BoundBlend, Deformer, HandleOptions, Mesh, MotorHandles, PoseScratch,
     PreparedKeys, SplineDeformer, SplineOptions,
@@ -198,6 +198,7 @@ impl Session {
                 rig.cut(v3(point), v3(normal), cap, &self.posed)?;
                 self.load_rig_mesh()
             }
+            Request::Tear { .. } | Request::Drill { .. } => self.tool(request),
             Request::Undo | Request::Redo => {
                 let rig = self
                     .rig
@@ -350,9 +351,7 @@ impl Session {
                 self.groups.len()
             );
         }
-        let posed = Mesh::new(self.posed.clone(), self.mesh.triangles.clone());
-        self.bvh.refit(&posed);
-        let Some(hit) = self.bvh.ray_hit(&posed, origin, direction) else {
+        let Some(hit) = self.hit(origin, direction) else {
             return Ok(Vec::new());
         };
         let r2 = radius * radius;
@@ -395,6 +394,70 @@ impl Session {
         self.specs = specs;
         self.posed = posed;
         Ok(vec![Out::Binary(Frame::groups(&self.owner)), self.state()])
+    }
+
+    /// Where the ray first meets the posed surface.
+    fn hit(&mut self, origin: DVec3, direction: DVec3) -> Option<RayHit> {
+        let posed = Mesh::new(self.posed.clone(), self.mesh.triangles.clone());
+        self.bvh.refit(&posed);
+        self.bvh.ray_hit(&posed, origin, direction)
+    }
+
+    /// Tear along the surface under a stroke (rays from the eye), or drill where a ray meets it.
+    fn tool(&mut self, request: Request) -> Result<Vec<Out>> {
+        if self.rig.is_none() {
+            bail!("surgery needs a rig: open the arm or a .glb");
+        }
+        // The blade and the drill are sized by the mesh.
+        let size = self
+            .mesh
+            .bounding_box()
+            .map_or(1.0, |b| (b.max - b.min).length());
+        match request {
+            Request::Tear { rays, open } => {
+                let mut blades = Vec::new();
+                for [o, d] in rays {
+                    let d = v3(d).normalize_or_zero();
+                    if let Some(h) = self.hit(v3(o), d) {
+                        blades.push(Scalpel {
+                            a: h.point - 0.02 * size * d,
+                            b: h.point + 0.08 * size * d,
+                        });
+                    }
+                }
+                if blades.len() < 2 {
+                    bail!(
+                        "tear: the stroke met the surface {} time(s); draw across it",
+                        blades.len()
+                    );
+                }
+                let rig = self.rig.as_mut().expect("checked");
+                rig.tear(&blades, open, &self.posed)?;
+            }
+            Request::Drill {
+                origin,
+                direction,
+                radius,
+                depth,
+            } => {
+                if !(radius > 0.0 && radius.is_finite() && depth > 0.0 && depth.is_finite()) {
+                    bail!("drill: radius {radius} and depth {depth} must be positive fractions");
+                }
+                let d = v3(direction).normalize_or_zero();
+                let h = self
+                    .hit(v3(origin), d)
+                    .ok_or_else(|| anyhow!("drill: aim at the surface"))?;
+                let drill = Drill {
+                    tip: h.point - 0.25 * depth * size * d,
+                    end: h.point + depth * size * d,
+                    radius: radius * size,
+                };
+                let rig = self.rig.as_mut().expect("checked");
+                rig.drill(&drill, &self.posed)?;
+            }
+            _ => unreachable!("tool() takes a tear or a drill"),
+        }
+        self.load_rig_mesh()
     }
 
     /// Bind the method to the groups; with too few groups the rest pose (and a note).

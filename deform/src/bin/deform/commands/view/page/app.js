@@ -257,15 +257,23 @@ function controlLines() {
   for (const q of p) lines.push({ points: gizmo.square(q, 3), ink, strip: true });
   return lines;
 }
-// The control point drawn within a few pixels of (x, y), or -1.
-function controlAt(x, y) {
-  if (!ed.controls) return -1;
+// The point of `points` drawn within a few pixels of (x, y), or -1.
+function nearestDrawn(points, x, y) {
   let best = -1, bd = 8;
-  ed.groups.forEach((g, i) => {
-    const s = camera.screen(V.add(g.c, g.t));
+  points.forEach((p, i) => {
+    const s = camera.screen(p);
     if (s && Math.hypot(s[0] - x, s[1] - y) < bd) { bd = Math.hypot(s[0] - x, s[1] - y); best = i; }
   });
   return best;
+}
+const controlAt = (x, y) => (ed.controls ? nearestDrawn(ed.groups.map((g) => V.add(g.c, g.t)), x, y) : -1);
+const jointAt = (x, y) => (ed.state && ed.state.kind === "rig" ? nearestDrawn(ed.joints.map((j) => j.slice(0, 3)), x, y) : -1);
+// The skeleton as posed: a line from each joint to its parent joint, a square per joint.
+function skeletonLines() {
+  if (!ed.state || ed.state.kind !== "rig" || !ed.joints.length) return [];
+  const p = ed.joints.map((j) => j.slice(0, 3)), parents = ed.state.rig.parents, ink = [0.3, 0.9, 1, 1];
+  const bones = p.flatMap((q, i) => (parents[i] >= 0 && p[parents[i]] ? [p[parents[i]], q] : []));
+  return [{ points: bones, ink, strip: false }, ...p.map((q) => ({ points: gizmo.square(q, 3), ink, strip: true }))];
 }
 function planeLines() {
   if (!$("plane").checked || !ed.plane) return [];
@@ -340,6 +348,15 @@ canvas.addEventListener("pointerdown", (e) => {
   if (e.button === 0 && !e.shiftKey && gizmo.target && gizmo.begin(x, y)) { mouse = { mode: "gizmo", x, y }; return; }
   const point = e.button === 0 && !e.shiftKey ? controlAt(x, y) : -1;
   if (point >= 0) { $("group").value = `${point}`; retarget(); sendField(); mouse = { mode: "none", x, y }; return; }
+  const rigTool = ed.state && ed.state.kind === "rig" && e.button === 0 && !e.shiftKey ? document.querySelector("input[name=rig-tool]:checked").value : null;
+  const joint = rigTool === "joint" ? jointAt(x, y) : -1;
+  if (joint >= 0) { $("joint").selectedIndex = joint + 1; $("plane").checked = false; retarget(); mouse = { mode: "none", x, y }; return; }
+  if (rigTool === "drill") {
+    const r = camera.ray(x, y);
+    send({ op: "drill", origin: r.origin, direction: r.direction, radius: +$("drill-radius").value, depth: 0.15 });
+    mouse = { mode: "none", x, y }; return;
+  }
+  if (rigTool === "scalpel") { const r = camera.ray(x, y); mouse = { mode: "scalpel", x, y, rays: [[r.origin, r.direction]] }; return; }
   const painting = e.button === 0 && !e.shiftKey && ed.state && ed.state.kind === "mesh" && tool() !== "move";
   mouse = { mode: painting ? "paint" : e.button === 2 || e.shiftKey ? "pan" : "orbit", x, y };
   if (painting) paintAt(x, y);
@@ -350,12 +367,17 @@ canvas.addEventListener("pointermove", (e) => {
   if (mouse.mode === "gizmo") gizmo.move(x, y);
   else if (mouse.mode === "paint") paintAt(x, y);
   else if (mouse.mode === "none") return;
+  else if (mouse.mode === "scalpel") {
+    if (Math.hypot(x - mouse.x, y - mouse.y) < 6) return;
+    const r = camera.ray(x, y); mouse.rays.push([r.origin, r.direction]);
+  }
   else if (mouse.mode === "pan") camera.pan(x - mouse.x, y - mouse.y);
   else camera.orbit(x - mouse.x, y - mouse.y);
   mouse.x = x; mouse.y = y;
 });
 canvas.addEventListener("pointerup", () => {
   if (mouse && mouse.mode === "paint") send({ op: "bind" });
+  if (mouse && mouse.mode === "scalpel" && mouse.rays.length >= 2) send({ op: "tear", rays: mouse.rays, open: +$("open").value });
   gizmo.end(); mouse = null;
 });
 canvas.addEventListener("wheel", (e) => { e.preventDefault(); camera.zoom(Math.sign(e.deltaY)); }, { passive: false });
@@ -365,7 +387,7 @@ canvas.addEventListener("wheel", (e) => { e.preventDefault(); camera.zoom(Math.s
 function draw() {
   const { viewProj } = camera.matrices(canvas.clientWidth, canvas.clientHeight);
   const { f } = camera.basis();
-  const lines = [...controlLines(), ...gizmo.lines(), ...planeLines()];
+  const lines = [...controlLines(), ...skeletonLines(), ...gizmo.lines(), ...planeLines()];
   const t0 = performance.now();
   if (ed.upload.positions) renderer.setPositions(ed.positions);
   if (ed.upload.field) { renderer.setScalar(ed.field, ...ed.fieldRange); legend(); }
