@@ -146,7 +146,10 @@ impl Client {
             return match m {
                 Message::Text(t) => {
                     let v: Value = serde_json::from_str(&t).expect("JSON replies");
-                    if v["type"] == "error" && v["message"].as_str().unwrap().contains("internal") {
+                    if v["type"] == "error"
+                        && v["message"].as_str().unwrap().contains("internal error")
+                    {
+                        eprintln!("server: {}", v["message"]);
                         self.internal_errors += 1;
                     }
                     Frame::Text(v)

@@ -235,12 +235,13 @@ fn mutated_requests_never_stop_the_server() {
             mutate(&mut request, &mut rng);
         }
         sent += 1;
+        let text = request.to_string();
         if c.send_raw(Message::Text(request.to_string().into()))
             .is_err()
             || !c.answers()
         {
             closed += 1;
-            assert_eq!(c.internal_errors, 0, "request {i} hit a bug");
+            assert_eq!(c.internal_errors, 0, "request {i} hit a bug: {text}");
             assert!(server.alive(), "request {i} stopped the server");
             c = server
                 .connect(None)
