@@ -63,6 +63,13 @@ try {
   check(moved.t[0] > 0.05 && Math.abs(moved.t[1]) < 1e-9 && Math.abs(moved.t[2]) < 1e-9, `the drag moved group 3 along x by ${moved.t[0].toFixed(3)}`);
   check(moved.worst < 1e-5, `the server moved its ${moved.count} vertices by exactly that (worst ${moved.worst.toExponential(2)})`);
   await shot('dragged');
+  // Undo the drag, then redo it (Ctrl+Z, Ctrl+Shift+Z).
+  await page.keyboard.press('Control+z');
+  await settled(page);
+  check(await page.evaluate(() => editor.groups[3].t[0]) === 0, 'Ctrl+Z undid the drag');
+  await page.keyboard.press('Control+Shift+z');
+  await settled(page);
+  check(await page.evaluate((t) => editor.groups[3].t[0] === t, moved.t[0]), 'Ctrl+Shift+Z redid it');
 
   // Switch the method: ARAP keeps the handle where the drag put it.
   await page.selectOption('#method', 'arap');

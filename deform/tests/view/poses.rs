@@ -381,3 +381,49 @@ fn tears_and_drills_from_rays_make_what_the_library_makes_and_undo() {
     c.send(json!({"op": "undo"}));
     assert_eq!(c.state()["vertices"], n);
 }
+
+#[test]
+fn arap_energy_and_local_step_are_the_library_options() {
+    use deform::arap::{ArapEnergy, LocalStep};
+    let server = Server::start(&[]);
+    let mut c = server.connect(None).expect("connects");
+    c.state();
+    c.send(json!({"op": "scene", "name": "beam"}));
+    c.state();
+    let end = json!({"translate": [0.0, 3.0, 1.0]});
+    c.send(json!({"op": "motors", "seq": 1, "motors": [{}, end]}));
+    c.positions(1);
+    c.send(
+        json!({"op": "method", "method": "arap", "blend": "motor-log", "iterations": 3,
+        "energy": "spokes", "local_step": "svd"}),
+    );
+    let s = c.state();
+    assert_eq!(
+        (s["energy"].as_str(), s["local_step"].as_str()),
+        (Some("spokes"), Some("svd"))
+    );
+    // The rebind poses the current motors from the rest pose.
+    let got = c.positions(0);
+    let beam = tube(1.0, 10.0, 6, 41);
+    let (g0, g1) = (tube_ring(6, 0), tube_ring(6, 40));
+    let options = ArapOptions {
+        energy: ArapEnergy::Spokes,
+        local_step: LocalStep::Svd,
+        ..ArapOptions::default()
+    };
+    let arap = Arap::bind(&beam, &[], &[&g0, &g1], options).unwrap();
+    let keys = parse_key_list(&json!([{}, end]).to_string(), "k").unwrap();
+    let mut out = beam.positions.clone();
+    let mut scratch = arap.scratch().unwrap();
+    arap.pose_using(
+        &Targets::Motors(&keys),
+        Stop::Iterations(3),
+        &mut scratch,
+        &mut out,
+        |_, _| {},
+    )
+    .unwrap();
+    assert!(worst(&got, &out) <= 1e-12, "{}", worst(&got, &out));
+    c.send(json!({"op": "method", "method": "arap", "blend": "motor-log", "energy": "elastic"}));
+    assert!(c.error().contains("no ARAP energy"));
+}

@@ -59,6 +59,12 @@ pub enum Request {
         blend: String,
         #[serde(default)]
         iterations: Option<usize>,
+        /// ARAP's energy: `spokes` or `spokes-and-rims`.
+        #[serde(default)]
+        energy: Option<String>,
+        /// ARAP's local step: `rotor` (the paper's) or `svd`.
+        #[serde(default)]
+        local_step: Option<String>,
     },
     /// Pose the handle groups: one motor per group (the CLI's motor JSON).
     Motors {
@@ -182,6 +188,8 @@ pub struct StateInfo {
     pub blend: String,
     pub blends: Vec<&'static str>,
     pub iterations: usize,
+    pub energy: &'static str,
+    pub local_step: &'static str,
     pub groups: Vec<GroupInfo>,
     pub fields: Vec<&'static str>,
     /// The control points when the method is a lattice or a cage (then the motors are theirs).

@@ -13,7 +13,7 @@ use super::scenes::{Content, Method, Scene};
 use crate::timing::ms;
 use anyhow::{anyhow, bail, Context, Result};
 use cga::ScaledMotor;
-use deform::arap::{Arap, ArapOptions, ArapScratch, Stop, Targets};
+use deform::arap::{Arap, ArapEnergy, ArapOptions, ArapScratch, LocalStep, Stop, Targets};
 use deform::control::ControlForm;
 use deform::input::MotorSpec;
 use deform::surgery::{Drill, FaceBvh, RayHit, Scalpel};
@@ -78,6 +78,8 @@ pub struct Session {
     method: Method,
     blend: BlendMethod,
     iterations: usize,
+    /// ARAP's energy and local step.
+    arap: ArapOptions,
     bound: Bound,
     /// The scene's cage, if it has one.
     cage: Option<Mesh>,
@@ -112,6 +114,7 @@ impl Session {
             method: Method::Handles,
             blend: BlendMethod::MotorLog,
             iterations: 2,
+            arap: ArapOptions::default(),
             bound: Bound::None,
             cage: None,
             positional: false,
@@ -159,9 +162,28 @@ impl Session {
                 method,
                 blend,
                 iterations,
+                energy,
+                local_step,
             } => {
                 self.mesh_only("a method")?;
-                self.set_method(&method, &blend, iterations)
+                let mut arap = self.arap;
+                if let Some(e) = energy {
+                    arap.energy = match e.as_str() {
+                        "spokes" => ArapEnergy::Spokes,
+                        "spokes-and-rims" => ArapEnergy::SpokesAndRims,
+                        _ => bail!("no ARAP energy {e:?} (spokes, spokes-and-rims)"),
+                    };
+                }
+                if let Some(l) = local_step {
+                    arap.local_step = match l.as_str() {
+                        "rotor" => LocalStep::Rotor,
+                        "svd" => LocalStep::Svd,
+                        _ => bail!("no ARAP local step {l:?} (rotor, svd)"),
+                    };
+                }
+                let changed = arap != self.arap;
+                self.arap = arap;
+                self.set_method(&method, &blend, iterations, changed)
             }
             Request::Motors { seq, motors } => self.pose_motors(seq, motors),
             Request::Rig {
@@ -223,6 +245,7 @@ impl Session {
         method: &str,
         blend: &str,
         iterations: Option<usize>,
+        arap_changed: bool,
     ) -> Result<Vec<Out>> {
         let m = Method::parse(method).ok_or_else(|| anyhow!("no method {method:?}"))?;
         if m == Method::Cage && self.cage.is_none() {
@@ -243,7 +266,7 @@ impl Session {
         }
         let rebind = m != self.method
             || positional != self.positional
-            || k != self.iterations && m == Method::Arap;
+            || (k != self.iterations || arap_changed) && m == Method::Arap;
         self.iterations = k;
         if !rebind && b != self.blend {
             return self.reblend(b);
@@ -519,7 +542,7 @@ impl Session {
                 }
             }
             Method::Arap => {
-                let arap = Arap::bind(&self.mesh, &[], &sets, ArapOptions::default())?;
+                let arap = Arap::bind(&self.mesh, &[], &sets, self.arap)?;
                 let scratch = arap.scratch()?;
                 Bound::Arap {
                     arap: Box::new(arap),

@@ -99,6 +99,7 @@ function fill(select, items, value) {
 
 function onState(s) {
   const first = !ed.state || ed.state.scene !== s.scene;
+  if (first) { ed.history = []; ed.future = []; }
   ed.state = s;
   $("busy").textContent = "";
   ed.bindShown = performance.now() - (ed.busySince || performance.now());
@@ -113,7 +114,8 @@ function onState(s) {
   if (!rig) {
     fill($("method"), s.methods, s.method); fill($("blend"), s.blends, s.blend);
     $("iterations").value = s.iterations;
-    $("iterations-row").classList.toggle("hidden", s.method !== "arap");
+    $("energy").value = s.energy; $("local-step").value = s.local_step;
+    $("arap-options").classList.toggle("hidden", s.method !== "arap");
     // The keys: a lattice's or cage's control points, else the painted groups. Keep each
     // key's gizmo; new keys start at the identity about their rest centre.
     const keys = s.controls ? s.controls.points : s.groups.map((g) => g.center);
@@ -300,10 +302,27 @@ function sendField() {
   send({ op: "field", name: $("field").value, group: +$("group").value || 0 });
 }
 
+// --- undo and redo of gizmo edits (motors of groups, control points and joints) --------------------
+const snapshot = () => JSON.stringify({ groups: ed.groups, edits: ed.edits });
+ed.history = []; ed.future = [];
+function restore(from, to) {
+  if (!from.length) return say("nothing to undo or redo", false);
+  to.push(snapshot());
+  const s = JSON.parse(from.pop());
+  if (s.groups.length === ed.groups.length) s.groups.forEach((g, i) => Object.assign(ed.groups[i], g));
+  ed.edits = s.edits;
+  retarget(); ed.dirty = true;
+}
+$("undo-edit").onclick = () => restore(ed.history, ed.future);
+$("redo-edit").onclick = () => restore(ed.future, ed.history);
+addEventListener("keydown", (e) => {
+  if ((e.ctrlKey || e.metaKey) && e.key.toLowerCase() === "z") { e.preventDefault(); (e.shiftKey ? $("redo-edit") : $("undo-edit")).click(); }
+});
+
 // --- panels -------------------------------------------------------------------------------------
 $("scene").onchange = () => { ed.state = null; send({ op: "scene", name: $("scene").value }); };
-const sendMethod = () => send({ op: "method", method: $("method").value, blend: $("blend").value, iterations: +$("iterations").value });
-$("method").onchange = sendMethod; $("blend").onchange = sendMethod; $("iterations").onchange = sendMethod;
+const sendMethod = () => send({ op: "method", method: $("method").value, blend: $("blend").value, iterations: +$("iterations").value, energy: $("energy").value, local_step: $("local-step").value });
+for (const id of ["method", "blend", "iterations", "energy", "local-step"]) $(id).onchange = sendMethod;
 $("group").onchange = () => { retarget(); sendField(); };
 $("field").onchange = () => { sendField(); ed.dirty = true; };
 $("clear").onclick = () => send({ op: "clear-groups" });
@@ -345,7 +364,11 @@ canvas.addEventListener("contextmenu", (e) => e.preventDefault());
 canvas.addEventListener("pointerdown", (e) => {
   canvas.setPointerCapture(e.pointerId);
   const x = e.offsetX, y = e.offsetY;
-  if (e.button === 0 && !e.shiftKey && gizmo.target && gizmo.begin(x, y)) { mouse = { mode: "gizmo", x, y }; return; }
+  const before = snapshot();
+  if (e.button === 0 && !e.shiftKey && gizmo.target && gizmo.begin(x, y)) {
+    ed.history.push(before); ed.future = []; if (ed.history.length > 200) ed.history.shift();
+    mouse = { mode: "gizmo", x, y }; return;
+  }
   const point = e.button === 0 && !e.shiftKey ? controlAt(x, y) : -1;
   if (point >= 0) { $("group").value = `${point}`; retarget(); sendField(); mouse = { mode: "none", x, y }; return; }
   const rigTool = ed.state && ed.state.kind === "rig" && e.button === 0 && !e.shiftKey ? document.querySelector("input[name=rig-tool]:checked").value : null;

@@ -83,6 +83,11 @@ impl Session {
                 _ => None,
             },
             iterations: self.iterations,
+            energy: self.arap.energy.name(),
+            local_step: match self.arap.local_step {
+                deform::arap::LocalStep::Rotor => "rotor",
+                deform::arap::LocalStep::Svd => "svd",
+            },
             groups: self
                 .groups
                 .iter()
