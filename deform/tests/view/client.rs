@@ -9,6 +9,15 @@ use std::time::Duration;
 use tungstenite::stream::MaybeTlsStream;
 use tungstenite::{Message, WebSocket};
 
+/// The largest distance between corresponding points.
+pub fn worst(a: &[DVec3], b: &[DVec3]) -> f64 {
+    assert_eq!(a.len(), b.len(), "vertex counts");
+    a.iter()
+        .zip(b)
+        .map(|(p, q)| (*p - *q).length())
+        .fold(0.0, f64::max)
+}
+
 /// A running `deform view`, stopped on drop.
 pub struct Server {
     child: Child,

@@ -2,7 +2,7 @@
 //! as the library poses them), a glTF rig from the shared data, and models the program must
 //! refuse before it serves anything.
 
-use crate::client::Server;
+use crate::client::{worst, Server};
 use cga::ScaledMotor;
 use deform::input::parse_key_list;
 use deform::shapes::{tube, tube_ring};
@@ -14,14 +14,6 @@ use std::path::PathBuf;
 use std::process::Command;
 
 use crate::common;
-
-fn worst(a: &[DVec3], b: &[DVec3]) -> f64 {
-    assert_eq!(a.len(), b.len(), "vertex counts");
-    a.iter()
-        .zip(b)
-        .map(|(p, q)| (*p - *q).length())
-        .fold(0.0, f64::max)
-}
 
 /// A fresh folder for this test's files.
 fn folder(name: &str) -> PathBuf {

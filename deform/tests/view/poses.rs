@@ -2,7 +2,7 @@
 //! blend switch, ARAP with the session's warm start, a rig with a joint edit, and a cut with
 //! undo and redo.
 
-use crate::client::{Frame, Server};
+use crate::client::{worst, Frame, Server};
 use cga::ScaledMotor;
 use deform::arap::{Arap, ArapOptions, Stop, Targets};
 use deform::input::{parse_key_list, parse_selection_json};
@@ -12,14 +12,6 @@ use deform::surgery::{CutOptions, Frame as SurgeryFrame, Surgery};
 use deform::{BlendMethod, Deformer, HandleOptions, MotorHandles};
 use glam::{DQuat, DVec3};
 use serde_json::{json, Value};
-
-fn worst(a: &[DVec3], b: &[DVec3]) -> f64 {
-    assert_eq!(a.len(), b.len(), "vertex counts");
-    a.iter()
-        .zip(b)
-        .map(|(p, q)| (*p - *q).length())
-        .fold(0.0, f64::max)
-}
 
 fn exported(c: &mut crate::client::Client, what: &str) -> String {
     c.send(json!({"op": "export", "what": what}));
