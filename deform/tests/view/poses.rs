@@ -224,6 +224,33 @@ fn the_rig_poses_as_the_library_poses_it_and_a_cut_undoes_and_redoes() {
         json!({"op": "rig", "seq": 4, "animation": 0, "time": 2.0, "backend": "dual-quaternion"}),
     );
     assert_eq!(c.positions(4).len(), cut_mesh);
+    // The cut rig with its edit baked, as .glb (validated by .ci/run with the others).
+    c.send(
+        json!({"op": "rig", "seq": 6, "animation": 0, "time": 1.0, "backend": "motor-log",
+        "edits": [{"joint": 1, "motor": {"scale": 1.3}}]}),
+    );
+    c.positions(6);
+    c.send(json!({"op": "export", "what": "glb"}));
+    let (name, text) = c.until(false, |f| match f {
+        Frame::Text(v) if v["type"] == "file" => {
+            assert_eq!(v["base64"], true);
+            Some((
+                v["name"].as_str().unwrap().to_string(),
+                v["text"].as_str().unwrap().to_string(),
+            ))
+        }
+        _ => None,
+    });
+    use base64::Engine;
+    let bytes = base64::engine::general_purpose::STANDARD
+        .decode(text)
+        .unwrap();
+    let back =
+        deform::skinning::parse_gltf(&bytes, &name, None).expect("the exported .glb reads back");
+    assert_eq!(back.mesh.vertex_count(), cut_mesh);
+    let out = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../target/gltf-out");
+    std::fs::create_dir_all(&out).unwrap();
+    std::fs::write(out.join(format!("view-{name}")), &bytes).unwrap();
     c.send(json!({"op": "undo"}));
     let s = c.state();
     assert_eq!(
