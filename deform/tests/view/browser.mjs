@@ -44,7 +44,22 @@ try {
   check(painted > 5, `painting made group 3 (${painted} vertices)`);
   await shot('painted');
 
-  // Drag the gizmo's x arrow of the new group.
+  // Lasso a fifth group below it.
+  await page.check('input[name=tool][value=lasso]');
+  await page.selectOption('#group', '4');
+  {
+    const b = await page.locator('#view').boundingBox(), [x, y] = [front[0], front[1] + 60];
+    await page.mouse.move(b.x + x - 25, b.y + y - 20);
+    await page.mouse.down();
+    for (const [dx, dy] of [[25, -20], [25, 20], [-25, 20], [-25, -20]]) { await page.mouse.move(b.x + x + dx, b.y + y + dy, { steps: 4 }); }
+    await page.mouse.up();
+  }
+  await until(page, () => editor.state.groups.length === 5 && !editor.state.stale, null, 'the lassoed group bound');
+  const lassoed = await page.evaluate(() => editor.groupsOf.filter((g) => g === 5).length);
+  check(lassoed > 5, `the lasso made group 4 (${lassoed} vertices)`);
+  await page.selectOption('#group', '3');
+
+  // Drag the gizmo's x arrow of group 3.
   await page.check('input[name=tool][value=move]');
   await settled(page);
   const a = await arrow(page);

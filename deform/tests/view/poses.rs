@@ -446,3 +446,56 @@ fn arap_energy_and_local_step_are_the_library_options() {
     c.send(json!({"op": "method", "method": "arap", "blend": "motor-log", "energy": "elastic"}));
     assert!(c.error().contains("no ARAP energy"));
 }
+
+#[test]
+fn a_lasso_takes_the_vertices_seen_inside_it_and_not_those_behind() {
+    use glam::DMat4;
+    let server = Server::start(&[]);
+    let mut c = server.connect(None).expect("connects");
+    c.state();
+    c.send(json!({"op": "clear-groups"}));
+    c.state();
+    let eye = DVec3::new(0.0, 0.0, 5.0);
+    let m = DMat4::perspective_rh_gl(0.8, 1.0, 0.1, 100.0)
+        * DMat4::look_at_rh(eye, DVec3::ZERO, DVec3::Y);
+    let polygon = json!([[-0.1, -0.1], [0.1, -0.1], [0.1, 0.1], [-0.1, 0.1]]);
+    c.send(
+        json!({"op": "lasso", "eye": eye.to_array(), "view_proj": m.to_cols_array(),
+        "polygon": polygon, "group": 0}),
+    );
+    let owner = c.until(false, |f| match f {
+        Frame::Groups(g) => Some(g.clone()),
+        _ => None,
+    });
+    let mesh = icosphere(1.0, 4);
+    let chosen: Vec<usize> = (0..mesh.vertex_count())
+        .filter(|&v| owner[v] == 1)
+        .collect();
+    let project = |p: DVec3| {
+        let q = m * p.extend(1.0);
+        (q.x / q.w, q.y / q.w)
+    };
+    let inside = |p: DVec3| {
+        let (x, y) = project(p);
+        x.abs() < 0.1 && y.abs() < 0.1
+    };
+    assert!(chosen.len() > 5);
+    assert!(chosen
+        .iter()
+        .all(|&v| mesh.positions[v].z > 0.5 && inside(mesh.positions[v])));
+    // Every front vertex inside is taken; the back ones that project inside are not.
+    let front = (0..mesh.vertex_count())
+        .filter(|&v| inside(mesh.positions[v]) && mesh.positions[v].z > 0.0);
+    assert_eq!(front.count(), chosen.len());
+    let behind = (0..mesh.vertex_count())
+        .filter(|&v| inside(mesh.positions[v]) && mesh.positions[v].z < 0.0);
+    assert!(
+        behind.count() > 5,
+        "the back of the sphere projects inside too"
+    );
+    c.send(
+        json!({"op": "lasso", "eye": eye.to_array(), "view_proj": m.to_cols_array(),
+        "polygon": [[0, 0], [1, 1]], "group": 1}),
+    );
+    assert!(c.error().contains("3 to 10000"));
+}

@@ -48,6 +48,16 @@ pub enum Request {
         #[serde(default)]
         erase: bool,
     },
+    /// Lasso: the vertices seen from `eye` whose projection by `view_proj` (column-major 4x4)
+    /// falls inside `polygon` (normalised device coordinates) join `group` (or leave it).
+    Lasso {
+        eye: [f64; 3],
+        view_proj: [f64; 16],
+        polygon: Vec<[f64; 2]>,
+        group: usize,
+        #[serde(default)]
+        erase: bool,
+    },
     /// Forget every group.
     ClearGroups,
     /// Bind the method to the current groups (after a paint stroke).

@@ -5,6 +5,7 @@
 
 mod keep;
 mod report;
+mod select;
 
 use super::controls::{self, Controls};
 use super::protocol::{Frame, Reply, Request};
@@ -149,6 +150,13 @@ impl Session {
                 group,
                 erase,
             } => self.paint(v3(origin), v3(direction), radius, group, erase),
+            Request::Lasso {
+                eye,
+                view_proj,
+                polygon,
+                group,
+                erase,
+            } => self.lasso(v3(eye), view_proj, &polygon, group, erase),
             Request::ClearGroups => {
                 self.mesh_only("clear groups")?;
                 self.set_groups(Vec::new());
@@ -277,7 +285,7 @@ impl Session {
         self.bind()
     }
 
-    fn mesh_only(&self, what: &str) -> Result<()> {
+    pub(super) fn mesh_only(&self, what: &str) -> Result<()> {
         if self.rig.is_some() {
             bail!("{what}: this scene is a rig (joints and surgery, not handle groups)");
         }
@@ -339,7 +347,7 @@ impl Session {
         Ok(out)
     }
 
-    fn set_groups(&mut self, groups: Vec<Vec<u32>>) {
+    pub(super) fn set_groups(&mut self, groups: Vec<Vec<u32>>) {
         self.owner = vec![NONE; self.mesh.vertex_count()];
         for (g, vs) in groups.iter().enumerate() {
             for &v in vs {
@@ -352,75 +360,8 @@ impl Session {
         self.stale = true;
     }
 
-    /// Paint or erase around where the ray meets the posed surface.
-    fn paint(
-        &mut self,
-        origin: DVec3,
-        direction: DVec3,
-        radius: f64,
-        group: usize,
-        erase: bool,
-    ) -> Result<Vec<Out>> {
-        self.mesh_only("paint")?;
-        if self.method.controls() {
-            bail!("paint groups for handles, ARAP or the spline; a lattice or cage moves by its points");
-        }
-        if !(radius.is_finite() && radius >= 0.0) {
-            bail!("paint radius {radius} is not a finite length");
-        }
-        if group > self.groups.len() || group >= 250 {
-            bail!(
-                "group {group}: paint an existing group (0..{}) or the next new one",
-                self.groups.len()
-            );
-        }
-        let Some(hit) = self.hit(origin, direction) else {
-            return Ok(Vec::new());
-        };
-        let r2 = radius * radius;
-        let mut changed = false;
-        for (v, p) in self.posed.iter().enumerate() {
-            if (*p - hit.point).length_squared() > r2 {
-                continue;
-            }
-            let want = if erase {
-                if self.owner[v] == group as u32 {
-                    NONE
-                } else {
-                    self.owner[v]
-                }
-            } else {
-                group as u32
-            };
-            changed |= want != self.owner[v];
-            self.owner[v] = want;
-        }
-        if !changed {
-            return Ok(Vec::new());
-        }
-        // Groups from owners, renumbered without gaps (an emptied group disappears).
-        let mut groups: Vec<Vec<u32>> = vec![Vec::new(); self.groups.len() + 1];
-        for (v, &g) in self.owner.iter().enumerate() {
-            if g != NONE {
-                groups[g as usize].push(v as u32);
-            }
-        }
-        let mut specs = std::mem::take(&mut self.specs);
-        specs.push(MotorSpec::default());
-        let (groups, specs): (Vec<_>, Vec<_>) = groups
-            .into_iter()
-            .zip(specs)
-            .filter(|(g, _)| !g.is_empty())
-            .unzip();
-        let posed = std::mem::take(&mut self.posed);
-        self.set_groups(groups);
-        self.specs = specs;
-        self.posed = posed;
-        Ok(vec![Out::Binary(Frame::groups(&self.owner)), self.state()])
-    }
-
     /// Where the ray first meets the posed surface.
-    fn hit(&mut self, origin: DVec3, direction: DVec3) -> Option<RayHit> {
+    pub(super) fn hit(&mut self, origin: DVec3, direction: DVec3) -> Option<RayHit> {
         let posed = Mesh::new(self.posed.clone(), self.mesh.triangles.clone());
         self.bvh.refit(&posed);
         self.bvh.ray_hit(&posed, origin, direction)

@@ -277,6 +277,12 @@ function skeletonLines() {
   const bones = p.flatMap((q, i) => (parents[i] >= 0 && p[parents[i]] ? [p[parents[i]], q] : []));
   return [{ points: bones, ink, strip: false }, ...p.map((q) => ({ points: gizmo.square(q, 3), ink, strip: true }))];
 }
+// The lasso being drawn, just in front of the eye.
+function lassoLines() {
+  if (!mouse || mouse.mode !== "lasso") return [];
+  const pts = [...mouse.polygon, mouse.polygon[0]].map(([x, y]) => { const r = camera.ray(x, y); return V.add(r.origin, V.scale(r.direction, camera.distance * 0.2)); });
+  return [{ points: pts, ink: [1, 1, 0.4, 1], strip: true }];
+}
 function planeLines() {
   if (!$("plane").checked || !ed.plane) return [];
   const p = V.add(ed.plane.c, ed.plane.t), n = Q.rotate(ed.plane.q, [1, 0, 0]), L = V.len(V.sub(ed.bbox.max, ed.bbox.min)) * 0.35;
@@ -381,14 +387,16 @@ canvas.addEventListener("pointerdown", (e) => {
   }
   if (rigTool === "scalpel") { const r = camera.ray(x, y); mouse = { mode: "scalpel", x, y, rays: [[r.origin, r.direction]] }; return; }
   const painting = e.button === 0 && !e.shiftKey && ed.state && ed.state.kind === "mesh" && tool() !== "move";
-  mouse = { mode: painting ? "paint" : e.button === 2 || e.shiftKey ? "pan" : "orbit", x, y };
-  if (painting) paintAt(x, y);
+  const lasso = painting && tool() === "lasso";
+  mouse = { mode: lasso ? "lasso" : painting ? "paint" : e.button === 2 || e.shiftKey ? "pan" : "orbit", x, y, polygon: [[x, y]] };
+  if (painting && !lasso) paintAt(x, y);
 });
 canvas.addEventListener("pointermove", (e) => {
   const x = e.offsetX, y = e.offsetY;
   if (!mouse) { gizmo.move(x, y); return; }
   if (mouse.mode === "gizmo") gizmo.move(x, y);
   else if (mouse.mode === "paint") paintAt(x, y);
+  else if (mouse.mode === "lasso") { if (Math.hypot(x - mouse.x, y - mouse.y) < 4) return; mouse.polygon.push([x, y]); }
   else if (mouse.mode === "none") return;
   else if (mouse.mode === "scalpel") {
     if (Math.hypot(x - mouse.x, y - mouse.y) < 6) return;
@@ -400,6 +408,11 @@ canvas.addEventListener("pointermove", (e) => {
 });
 canvas.addEventListener("pointerup", () => {
   if (mouse && mouse.mode === "paint") send({ op: "bind" });
+  if (mouse && mouse.mode === "lasso" && mouse.polygon.length >= 3) {
+    const polygon = mouse.polygon.map(([px, py]) => [2 * px / camera.w - 1, 1 - 2 * py / camera.h]);
+    send({ op: "lasso", eye: camera.eye(), view_proj: camera.viewProj, polygon, group: +$("group").value, erase: false });
+    send({ op: "bind" });
+  }
   if (mouse && mouse.mode === "scalpel" && mouse.rays.length >= 2) send({ op: "tear", rays: mouse.rays, open: +$("open").value });
   gizmo.end(); mouse = null;
 });
@@ -410,7 +423,7 @@ canvas.addEventListener("wheel", (e) => { e.preventDefault(); camera.zoom(Math.s
 function draw() {
   const { viewProj } = camera.matrices(canvas.clientWidth, canvas.clientHeight);
   const { f } = camera.basis();
-  const lines = [...controlLines(), ...skeletonLines(), ...gizmo.lines(), ...planeLines()];
+  const lines = [...controlLines(), ...skeletonLines(), ...gizmo.lines(), ...planeLines(), ...lassoLines()];
   const t0 = performance.now();
   if (ed.upload.positions) renderer.setPositions(ed.positions);
   if (ed.upload.field) { renderer.setScalar(ed.field, ...ed.fieldRange); legend(); }
@@ -436,7 +449,7 @@ function tick(now) {
   // Draw only when something shows a change: a software GL (no GPU) takes long per frame, and
   // a browser busy drawing delivers the socket's messages late.
   const key = JSON.stringify([w, h, camera.target, camera.distance, camera.yaw, camera.pitch, gizmo.hover && [gizmo.hover.kind, gizmo.hover.axis],
-    gizmo.target && gizmo.target.origin(), ed.groups, ed.edits, ed.plane, $("plane").checked, $("wireframe").checked, $("field").value, ed.joints]);
+    gizmo.target && gizmo.target.origin(), ed.groups, ed.edits, ed.plane, mouse && mouse.polygon && mouse.polygon.length, $("plane").checked, $("wireframe").checked, $("field").value, ed.joints]);
   if (key !== ed.viewKey || ed.upload.positions || ed.upload.field || ed.upload.groups) {
     ed.viewKey = key;
     draw();
