@@ -103,7 +103,7 @@ impl FaceBvh {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::shapes::icosphere;
+    use crate::mesh::shapes::icosphere;
 
     /// The nearest hit by scanning every face.
     fn scan(mesh: &Mesh, o: DVec3, d: DVec3) -> Option<(u32, f64)> {
@@ -120,12 +120,8 @@ mod tests {
         for i in 0..400 {
             let a = i as f64 * 0.731;
             let o = DVec3::new(3.0 * a.cos(), 0.37 * (i % 7) as f64 - 1.2, 3.0 * a.sin());
-            // Aim near the centre, some rays past the sphere.
-            let target = DVec3::new(
-                (i % 5) as f64 * 0.3 - 0.6,
-                (i % 3) as f64 * 0.45 - 0.45,
-                0.1,
-            );
+            // Aim across the sphere, some rays past it.
+            let target = DVec3::new((i % 5) as f64 * 0.75 - 1.5, (i % 3) as f64 * 1.2 - 1.2, 0.1);
             let d = target - o;
             let got = bvh.ray_hit(&mesh, o, d);
             let want = scan(&mesh, o, d);
