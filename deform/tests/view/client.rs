@@ -84,10 +84,17 @@ impl Server {
 
     /// A WebSocket session with the token (and an `Origin`, if given).
     pub fn connect(&self, origin: Option<&str>) -> Result<Client, tungstenite::Error> {
+        let headers: Vec<(&str, &str)> = origin.map(|o| ("Origin", o)).into_iter().collect();
+        self.connect_with(&headers)
+    }
+
+    /// A WebSocket session with the token and these extra (or replaced) headers.
+    pub fn connect_with(&self, headers: &[(&str, &str)]) -> Result<Client, tungstenite::Error> {
         let url = format!("ws://127.0.0.1:{}/ws?token={}", self.port, self.token);
         let mut request = tungstenite::client::IntoClientRequest::into_client_request(url)?;
-        if let Some(o) = origin {
-            request.headers_mut().insert("Origin", o.parse().unwrap());
+        for (k, v) in headers {
+            let name = tungstenite::http::HeaderName::from_bytes(k.as_bytes()).unwrap();
+            request.headers_mut().insert(name, v.parse().unwrap());
         }
         let (ws, _) = tungstenite::connect(request)?;
         if let MaybeTlsStream::Plain(s) = ws.get_ref() {

@@ -33,6 +33,24 @@ fn the_page_and_the_socket_need_the_token_and_the_socket_refuses_other_origins()
 }
 
 #[test]
+fn only_an_explicit_host_accepts_a_page_served_under_another_name() {
+    for explicit in [false, true] {
+        let args: &[&str] = if explicit {
+            &["--host", "127.0.0.1"]
+        } else {
+            &[]
+        };
+        let server = Server::start(args);
+        let host = format!("devbox:{}", server.port);
+        let origin = format!("http://{host}");
+        let c = server.connect_with(&[("Host", &host), ("Origin", &origin)]);
+        assert_eq!(c.is_ok(), explicit, "--host given: {explicit}");
+        let foreign = server.connect_with(&[("Host", &host), ("Origin", "http://evil.example")]);
+        assert!(foreign.is_err());
+    }
+}
+
+#[test]
 fn malformed_oversized_and_binary_messages_close_their_connection_only() {
     let mut server = Server::start(&[]);
     let bad: Vec<Message> = vec![

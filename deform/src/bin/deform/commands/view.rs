@@ -144,6 +144,7 @@ pub fn run(a: &ViewArgs) -> Result<()> {
                 format!("http://127.0.0.1:{port}"),
                 format!("http://[::1]:{port}"),
             ],
+            host_origin: a.host.is_some(),
             scenes,
             page: page(),
             sessions: Default::default(),

@@ -27,8 +27,10 @@ const QUEUE: usize = 64;
 /// What every request handler shares.
 pub struct App {
     pub token: String,
-    /// `Origin` values a socket may come from (this server's own addresses).
+    /// `Origin` values a socket may come from (this server's own loopback addresses).
     pub origins: Vec<String>,
+    /// Also `http://` + the request's `Host` (a server given `--host`, reached by other names).
+    pub host_origin: bool,
     pub scenes: Vec<Scene>,
     pub page: String,
     pub sessions: AtomicUsize,
@@ -91,9 +93,14 @@ async fn socket(
     // A browser always sends Origin: only this server's own page may connect. (A client
     // without one is not a browser page, and it has the token.)
     if let Some(origin) = headers.get(header::ORIGIN) {
+        let host = headers
+            .get(header::HOST)
+            .and_then(|h| h.to_str().ok())
+            .filter(|_| app.host_origin)
+            .map(|h| format!("http://{h}"));
         let ok = origin
             .to_str()
-            .is_ok_and(|o| app.origins.iter().any(|a| a == o));
+            .is_ok_and(|o| app.origins.iter().any(|a| a == o) || host.as_deref() == Some(o));
         if !ok {
             return refuse(StatusCode::FORBIDDEN, "forbidden: foreign Origin\n");
         }
