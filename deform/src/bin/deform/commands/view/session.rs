@@ -1,11 +1,12 @@
 //! One editing session (one browser connection): the scene, the handle groups, the bound
 //! method and the latest pose. Requests in, replies out; no I/O here, so the server and the
 //! tests drive it the same way. `report` says what the page shows (state, fields), `keep` what
-//! it saves and loads.
+//! it saves and loads, `select` the painting and lasso, `surgery` the tear and the drill.
 
 mod keep;
 mod report;
 mod select;
+mod surgery;
 
 use super::controls::{self, Controls};
 use super::protocol::{Frame, Reply, Request};
@@ -17,7 +18,7 @@ use cga::ScaledMotor;
 use deform::arap::{Arap, ArapEnergy, ArapOptions, ArapScratch, LocalStep, Stop, Targets};
 use deform::control::ControlForm;
 use deform::input::MotorSpec;
-use deform::surgery::{Drill, FaceBvh, RayHit, Scalpel};
+use deform::surgery::{FaceBvh, RayHit};
 use deform::{
     BlendMethod, BoundBlend, Deformer, HandleOptions, Mesh, MotorHandles, PoseScratch,
     PreparedKeys, SplineDeformer, SplineOptions,
@@ -365,63 +366,6 @@ impl Session {
         let posed = Mesh::new(self.posed.clone(), self.mesh.triangles.clone());
         self.bvh.refit(&posed);
         self.bvh.ray_hit(&posed, origin, direction)
-    }
-
-    /// Tear along the surface under a stroke (rays from the eye), or drill where a ray meets it.
-    fn tool(&mut self, request: Request) -> Result<Vec<Out>> {
-        if self.rig.is_none() {
-            bail!("surgery needs a rig: open the arm or a .glb");
-        }
-        // The blade and the drill are sized by the mesh.
-        let size = self
-            .mesh
-            .bounding_box()
-            .map_or(1.0, |b| (b.max - b.min).length());
-        match request {
-            Request::Tear { rays, open } => {
-                let mut blades = Vec::new();
-                for [o, d] in rays {
-                    let d = v3(d).normalize_or_zero();
-                    if let Some(h) = self.hit(v3(o), d) {
-                        blades.push(Scalpel {
-                            a: h.point - 0.02 * size * d,
-                            b: h.point + 0.08 * size * d,
-                        });
-                    }
-                }
-                if blades.len() < 2 {
-                    bail!(
-                        "tear: the stroke met the surface {} time(s); draw across it",
-                        blades.len()
-                    );
-                }
-                let rig = self.rig.as_mut().expect("checked");
-                rig.tear(&blades, open, &self.posed)?;
-            }
-            Request::Drill {
-                origin,
-                direction,
-                radius,
-                depth,
-            } => {
-                if !(radius > 0.0 && radius.is_finite() && depth > 0.0 && depth.is_finite()) {
-                    bail!("drill: radius {radius} and depth {depth} must be positive fractions");
-                }
-                let d = v3(direction).normalize_or_zero();
-                let h = self
-                    .hit(v3(origin), d)
-                    .ok_or_else(|| anyhow!("drill: aim at the surface"))?;
-                let drill = Drill {
-                    tip: h.point - 0.25 * depth * size * d,
-                    end: h.point + depth * size * d,
-                    radius: radius * size,
-                };
-                let rig = self.rig.as_mut().expect("checked");
-                rig.drill(&drill, &self.posed)?;
-            }
-            _ => unreachable!("tool() takes a tear or a drill"),
-        }
-        self.load_rig_mesh()
     }
 
     /// Bind the method to the groups; with too few groups the rest pose (and a note).
