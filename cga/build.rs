@@ -22,6 +22,9 @@ fn main() {
         let opts = EmitOptions {
             scalar,
             library: true,
+            // `cga::wide` (and `cga::f32::wide`): the versor types over 4 / 8 lanes, for
+            // pose loops that move many points at once.
+            wide: true,
             ..EmitOptions::default()
         };
         let g = generate(&spec, &opts).unwrap_or_else(|e| panic!("{e}"));

@@ -148,6 +148,10 @@ pub mod f32 {
 // Every generated type (listed by the generator, so a type added to the spec is re-exported
 // too), then the hand-written ones.
 pub use crate::f64::types::*;
+/// Structure-of-arrays twins of the versor types (`wide::Motor<F64x4>`: four motors, one
+/// `F64x4` per coefficient) with their products and fused sandwiches, generated from the same
+/// spec: for loops that move many points at once. See [`f64::wide`].
+pub use crate::f64::wide;
 pub use crate::f64::{Circle, DualQuat, FlatPoint, Line, Plane, PointPair, Similarity, Sphere};
 
 /// Hand-written extensions (f64), compiled from the same files as [`ext32`].

@@ -21,6 +21,7 @@ pub mod lanes4;
 pub mod metric;
 pub mod multivector;
 pub mod rational;
+pub mod wide;
 
 pub use algebra::Algebra;
 pub use metric::{Metric, MetricError};

@@ -1,8 +1,8 @@
 //! `ga-codegen`: regenerate an algebra's Rust module from a spec file or a signature.
 //!
 //! ```text
-//! ga-codegen SPEC.toml [-o FILE] [--scalar f32|f64] [--summary] [--runtime PATH] [--library] [--exp-log]
-//! ga-codegen --signature P,Q,R [-o FILE] [--scalar f32|f64] [--summary] [--runtime PATH] [--library] [--exp-log]
+//! ga-codegen SPEC.toml [-o FILE] [--scalar f32|f64] [--summary] [--runtime PATH] [--library] [--exp-log] [--wide]
+//! ga-codegen --signature P,Q,R [-o FILE] [--scalar f32|f64] [--summary] [--runtime PATH] [--library] [--exp-log] [--wide]
 //! ga-codegen SPEC.toml|--signature P,Q,R --wgsl [-o FILE]
 //! ```
 //! `--wgsl` writes the algebra as WGSL instead (f32 structs, products, reverses, fused
@@ -14,7 +14,8 @@
 //! crate compiles it). Every bivector and even versor type gets closed-form `exp`, `log`, `sqrt`
 //! and `normalize` where the invariant decomposition is closed form (spans of at most five basis
 //! vectors, real squares); a type that cannot have them is named in a note on stderr, and
-//! `--exp-log` makes it an error instead. Errors name the file, the type and the blade, and exit with code 2.
+//! `--exp-log` makes it an error instead. `--wide` adds `pub mod wide`, structure-of-arrays twins of
+//! the versor types over a lane type (`F64x4`, `F32x8`), for loops over many operands. Errors name the file, the type and the blade, and exit with code 2.
 
 use ga_codegen::{generate, EmitOptions, ScalarType, Spec};
 use std::path::PathBuf;
@@ -22,8 +23,8 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 const USAGE: &str =
-    "usage: ga-codegen SPEC.toml [-o FILE] [--scalar f32|f64] [--summary] [--runtime PATH] [--library] [--exp-log]
-       ga-codegen --signature P,Q,R [-o FILE] [--scalar f32|f64] [--summary] [--runtime PATH] [--library] [--exp-log]
+    "usage: ga-codegen SPEC.toml [-o FILE] [--scalar f32|f64] [--summary] [--runtime PATH] [--library] [--exp-log] [--wide]
+       ga-codegen --signature P,Q,R [-o FILE] [--scalar f32|f64] [--summary] [--runtime PATH] [--library] [--exp-log] [--wide]
        ga-codegen SPEC.toml|--signature P,Q,R --wgsl [-o FILE]";
 
 struct Args {
@@ -35,6 +36,7 @@ struct Args {
     library: bool,
     runtime: Option<String>,
     exp_log: bool,
+    wide: bool,
     wgsl: bool,
     scalar_given: bool,
 }
@@ -49,6 +51,7 @@ fn parse_args() -> Result<Args, String> {
         library: false,
         runtime: None,
         exp_log: false,
+        wide: false,
         wgsl: false,
         scalar_given: false,
     };
@@ -68,6 +71,7 @@ fn parse_args() -> Result<Args, String> {
             "--summary" => a.summary = true,
             "--library" => a.library = true,
             "--exp-log" => a.exp_log = true,
+            "--wide" => a.wide = true,
             "--wgsl" => a.wgsl = true,
             "--runtime" => a.runtime = Some(it.next().ok_or("--runtime needs a path")?),
             "--signature" => {
@@ -86,9 +90,9 @@ fn parse_args() -> Result<Args, String> {
     if a.spec.is_some() == a.signature.is_some() {
         return Err("give either a spec file or --signature P,Q,R".into());
     }
-    if a.wgsl && (a.summary || a.library || a.runtime.is_some() || a.scalar_given) {
+    if a.wgsl && (a.summary || a.library || a.runtime.is_some() || a.scalar_given || a.wide) {
         return Err(
-            "--wgsl writes f32 WGSL and takes only -o (not --scalar, --summary, --library or --runtime)"
+            "--wgsl writes f32 WGSL and takes only -o (not --scalar, --summary, --library, --runtime or --wide)"
                 .into(),
         );
     }
@@ -161,6 +165,7 @@ fn main() -> ExitCode {
         scalar: args.scalar,
         library: args.library,
         require_exp_log: args.exp_log,
+        wide: args.wide,
         ..EmitOptions::default()
     };
     if let Some(r) = args.runtime {

@@ -15,6 +15,7 @@
 //! - `decompose.rs`, `exp_log.rs`, `logarithm.rs`, `log_double.rs`, `normalize.rs`: closed-form `exp`, `log`,
 //!   `sqrt` and `normalize` of even versors by the invariant decomposition of bivectors;
 //! - `wgsl.rs`: the same types, products and sandwiches as WGSL (`generate_wgsl`);
+//! - `wide.rs`: structure-of-arrays twins over a lane type, for batches of operands;
 //! - `lanes.rs`: paired-lane (`F64x2`) forms of dense geometric products;
 //! - `library.rs`: serde and bytemuck impls and the list of types, for a library's API;
 //! - `summary.rs`: the human-readable table of what was emitted.
@@ -39,6 +40,7 @@ mod summary;
 mod types;
 mod wgsl;
 mod wgsl_exp;
+mod wide;
 
 pub use decompose::Refusal;
 pub use exp_log::refusals;
@@ -97,6 +99,10 @@ pub struct EmitOptions {
     /// above the closed-form range, see [`refusals`]) an error ([`GenError::NoClosedForm`])
     /// instead of an omission. `ga-codegen --exp-log`, `algebra!(exp_log = required; ..)`.
     pub require_exp_log: bool,
+    /// Also emit `pub mod wide`: structure-of-arrays twins of the versor types and of the
+    /// types they act on, generic over a [`crate::wide::Lane`] (`F64x4`, `F32x8`, or the
+    /// scalar itself), with their sums, products and fused sandwiches. `ga-codegen --wide`.
+    pub wide: bool,
 }
 
 impl Default for EmitOptions {
@@ -106,6 +112,7 @@ impl Default for EmitOptions {
             runtime: "::ga_codegen".to_string(),
             library: false,
             require_exp_log: false,
+            wide: false,
         }
     }
 }
@@ -418,6 +425,9 @@ pub fn generate(spec: &Spec, opts: &EmitOptions) -> Result<Generated, GenError> 
         g.sandwich(d)?;
     }
     g.exp_log();
+    if opts.wide {
+        g.wide_module()?;
+    }
     if opts.library {
         g.library_items();
     }

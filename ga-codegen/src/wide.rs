@@ -1,0 +1,243 @@
+//! Lane types for the generated wide (structure-of-arrays) twins.
+//!
+//! A wide twin of a generated type (`wide::Motor<W>`, emitted with
+//! [`crate::EmitOptions::wide`]) stores each field as a [`Lane`] value `W`: lane `i` of every
+//! field belongs to operand `i`, so one call of a generated product or sandwich computes
+//! [`Lane::LANES`] of them. `W = f64` (one lane) is the scalar form the tests compare with;
+//! [`F64x4`] and [`F32x8`] are four and eight lanes.
+//!
+//! The lane types are plain arrays whose operations are lane-wise loops marked
+//! `#[inline(always)]`: compiled inside a function with
+//! `#[target_feature(enable = "avx2")]` they become 256-bit instructions, elsewhere SSE2
+//! (part of the x86-64 baseline) or whatever the target has. Callers choose at run time
+//! (`is_x86_feature_detected!`) which copy of their loop to call, so a binary stays portable.
+//! No lane operation fuses a multiply and an add, so every copy gives the same bits as the
+//! scalar expressions with the same grouping, on every CPU.
+
+use core::ops::{Add, AddAssign, Div, Mul, Neg, Sub};
+
+/// A value of several lanes of one scalar type, with lane-wise arithmetic.
+pub trait Lane:
+    Copy
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+    + AddAssign
+{
+    /// The scalar of one lane.
+    type Scalar: Copy;
+    /// Number of lanes.
+    const LANES: usize;
+    /// Every lane `x`.
+    fn splat(x: Self::Scalar) -> Self;
+    /// Every lane the constant `c` (rounded to the lane's scalar): how generated code writes
+    /// its coefficients.
+    fn constant(c: f64) -> Self;
+    /// Lane `i` is `f(i)`.
+    fn from_fn(f: impl FnMut(usize) -> Self::Scalar) -> Self;
+    /// Lane `i` (`i < LANES`; panics past the last lane).
+    fn lane(self, i: usize) -> Self::Scalar;
+    /// Lane-wise square root.
+    fn sqrt(self) -> Self;
+    /// Lane-wise `if self < 0 { -x } else { x }`: a sign flip without a branch.
+    fn flip_sign_if_negative(self, x: Self) -> Self;
+}
+
+impl Lane for f64 {
+    type Scalar = f64;
+    const LANES: usize = 1;
+    #[inline(always)]
+    fn splat(x: f64) -> f64 {
+        x
+    }
+    #[inline(always)]
+    fn constant(c: f64) -> f64 {
+        c
+    }
+    #[inline(always)]
+    fn from_fn(mut f: impl FnMut(usize) -> f64) -> f64 {
+        f(0)
+    }
+    #[inline(always)]
+    fn lane(self, i: usize) -> f64 {
+        assert!(i == 0, "lane {i} of one");
+        self
+    }
+    #[inline(always)]
+    fn sqrt(self) -> f64 {
+        f64::sqrt(self)
+    }
+    #[inline(always)]
+    fn flip_sign_if_negative(self, x: f64) -> f64 {
+        f64::from_bits(x.to_bits() ^ (self.to_bits() & (1 << 63)) * u64::from(self != 0.0))
+    }
+}
+
+impl Lane for f32 {
+    type Scalar = f32;
+    const LANES: usize = 1;
+    #[inline(always)]
+    fn splat(x: f32) -> f32 {
+        x
+    }
+    #[inline(always)]
+    fn constant(c: f64) -> f32 {
+        c as f32
+    }
+    #[inline(always)]
+    fn from_fn(mut f: impl FnMut(usize) -> f32) -> f32 {
+        f(0)
+    }
+    #[inline(always)]
+    fn lane(self, i: usize) -> f32 {
+        assert!(i == 0, "lane {i} of one");
+        self
+    }
+    #[inline(always)]
+    fn sqrt(self) -> f32 {
+        f32::sqrt(self)
+    }
+    #[inline(always)]
+    fn flip_sign_if_negative(self, x: f32) -> f32 {
+        f32::from_bits(x.to_bits() ^ (self.to_bits() & (1 << 31)) * u32::from(self != 0.0))
+    }
+}
+
+macro_rules! lanes {
+    ($(#[$doc:meta])* $name:ident, $s:ty, $bits:ty, $n:literal) => {
+        $(#[$doc])*
+        #[derive(Clone, Copy, Debug, PartialEq, Default)]
+        #[repr(C, align(32))]
+        pub struct $name(pub [$s; $n]);
+
+        impl $name {
+            /// Lane-wise `f(a, b)`.
+            #[inline(always)]
+            fn zip(self, o: $name, f: impl Fn($s, $s) -> $s) -> $name {
+                let mut r = [0.0; $n];
+                for i in 0..$n {
+                    r[i] = f(self.0[i], o.0[i]);
+                }
+                $name(r)
+            }
+        }
+
+        impl Lane for $name {
+            type Scalar = $s;
+            const LANES: usize = $n;
+            #[inline(always)]
+            fn splat(x: $s) -> $name {
+                $name([x; $n])
+            }
+            #[inline(always)]
+            fn constant(c: f64) -> $name {
+                $name([c as $s; $n])
+            }
+            #[inline(always)]
+            fn from_fn(f: impl FnMut(usize) -> $s) -> $name {
+                $name(core::array::from_fn(f))
+            }
+            #[inline(always)]
+            fn lane(self, i: usize) -> $s {
+                self.0[i]
+            }
+            #[inline(always)]
+            fn sqrt(self) -> $name {
+                $name(self.0.map(<$s>::sqrt))
+            }
+            #[inline(always)]
+            fn flip_sign_if_negative(self, x: $name) -> $name {
+                // The sign bit of `self` where `self` is not zero, xor-ed into `x` (a `-0.0`
+                // flips nothing, as `-0.0 < 0` is false).
+                let sign: $bits = 1 << (<$bits>::BITS - 1);
+                self.zip(x, |s, x| {
+                    let m = (s.to_bits() & sign) * <$bits>::from(s != 0.0);
+                    <$s>::from_bits(x.to_bits() ^ m)
+                })
+            }
+        }
+
+        impl Add for $name {
+            type Output = $name;
+            #[inline(always)]
+            fn add(self, o: $name) -> $name {
+                self.zip(o, |a, b| a + b)
+            }
+        }
+        impl AddAssign for $name {
+            #[inline(always)]
+            fn add_assign(&mut self, o: $name) {
+                *self = *self + o;
+            }
+        }
+        impl Sub for $name {
+            type Output = $name;
+            #[inline(always)]
+            fn sub(self, o: $name) -> $name {
+                self.zip(o, |a, b| a - b)
+            }
+        }
+        impl Mul for $name {
+            type Output = $name;
+            #[inline(always)]
+            fn mul(self, o: $name) -> $name {
+                self.zip(o, |a, b| a * b)
+            }
+        }
+        impl Div for $name {
+            type Output = $name;
+            #[inline(always)]
+            fn div(self, o: $name) -> $name {
+                self.zip(o, |a, b| a / b)
+            }
+        }
+        impl Neg for $name {
+            type Output = $name;
+            #[inline(always)]
+            fn neg(self) -> $name {
+                $name(self.0.map(|x| -x))
+            }
+        }
+    };
+}
+
+lanes!(
+    /// Four `f64` lanes (one AVX register, two SSE2 registers).
+    F64x4, f64, u64, 4
+);
+lanes!(
+    /// Eight `f32` lanes (one AVX register, two SSE registers).
+    F32x8, f32, u32, 8
+);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lanes_compute_lane_by_lane() {
+        let a = F64x4([1.0, -2.0, 3.5, 0.0]);
+        let b = F64x4::from_fn(|i| i as f64 + 0.5);
+        let r = (a * b - a) / b + -a;
+        for i in 0..4 {
+            let (x, y) = (a.lane(i), b.lane(i));
+            assert_eq!(r.lane(i), (x * y - x) / y + -x);
+        }
+        assert_eq!(F32x8::splat(2.0).sqrt().lane(7), 2f32.sqrt());
+    }
+
+    #[test]
+    fn sign_flip_follows_the_sign_of_the_selector() {
+        let s = F64x4([-1.0, 2.0, -0.0, 0.0]);
+        let x = F64x4::splat(3.0);
+        assert_eq!(s.flip_sign_if_negative(x).0, [-3.0, 3.0, 3.0, 3.0]);
+        assert_eq!((-1.0f64).flip_sign_if_negative(3.0), -3.0);
+        assert_eq!((-0.0f64).flip_sign_if_negative(3.0), 3.0);
+        assert_eq!((-0.5f32).flip_sign_if_negative(-2.0), 2.0);
+        let s8 = F32x8::from_fn(|i| i as f32 - 3.5);
+        let r = s8.flip_sign_if_negative(F32x8::splat(1.0));
+        assert_eq!(r.0, [-1.0, -1.0, -1.0, -1.0, 1.0, 1.0, 1.0, 1.0]);
+    }
+}
