@@ -2,7 +2,7 @@
 //! generic multivector: every lane of a wide product or sandwich is the scalar result, bit for
 //! bit (the same expressions), and the scalar result is the multivector's `V X ~V`.
 
-use cga::wide::{Lane, F64x4};
+use cga::wide::{F64x4, Lane};
 use cga::{Bivector, Motor, Point, Rotor, Sandwich, ScaledMotor, Translator, Vector};
 use glam::{DQuat, DVec3};
 use proptest::prelude::*;
@@ -13,7 +13,11 @@ fn v3() -> impl Strategy<Value = DVec3> {
 
 fn quat() -> impl Strategy<Value = DQuat> {
     (v3(), -3.2..3.2f64).prop_map(|(a, t)| {
-        let a = if a.length() < 1e-3 { DVec3::X } else { a.normalize() };
+        let a = if a.length() < 1e-3 {
+            DVec3::X
+        } else {
+            a.normalize()
+        };
         DQuat::from_axis_angle(a, t)
     })
 }

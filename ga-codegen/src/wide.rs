@@ -71,7 +71,11 @@ impl Lane for f64 {
     }
     #[inline(always)]
     fn flip_sign_if_negative(self, x: f64) -> f64 {
-        f64::from_bits(x.to_bits() ^ (self.to_bits() & (1 << 63)) * u64::from(self != 0.0))
+        if self < 0.0 {
+            -x
+        } else {
+            x
+        }
     }
 }
 
@@ -101,12 +105,16 @@ impl Lane for f32 {
     }
     #[inline(always)]
     fn flip_sign_if_negative(self, x: f32) -> f32 {
-        f32::from_bits(x.to_bits() ^ (self.to_bits() & (1 << 31)) * u32::from(self != 0.0))
+        if self < 0.0 {
+            -x
+        } else {
+            x
+        }
     }
 }
 
 macro_rules! lanes {
-    ($(#[$doc:meta])* $name:ident, $s:ty, $bits:ty, $n:literal) => {
+    ($(#[$doc:meta])* $name:ident, $s:ty, $n:literal) => {
         $(#[$doc])*
         #[derive(Clone, Copy, Debug, PartialEq, Default)]
         #[repr(C, align(32))]
@@ -136,8 +144,14 @@ macro_rules! lanes {
                 $name([c as $s; $n])
             }
             #[inline(always)]
-            fn from_fn(f: impl FnMut(usize) -> $s) -> $name {
-                $name(core::array::from_fn(f))
+            fn from_fn(mut f: impl FnMut(usize) -> $s) -> $name {
+                // A loop, not `core::array::from_fn`: that one is not always inlined, and a
+                // call out of an AVX2 loop into baseline code costs more than the work.
+                let mut r = [0.0; $n];
+                for (i, x) in r.iter_mut().enumerate() {
+                    *x = f(i);
+                }
+                $name(r)
             }
             #[inline(always)]
             fn lane(self, i: usize) -> $s {
@@ -145,17 +159,16 @@ macro_rules! lanes {
             }
             #[inline(always)]
             fn sqrt(self) -> $name {
-                $name(self.0.map(<$s>::sqrt))
+                let mut r = self.0;
+                for x in &mut r {
+                    *x = x.sqrt();
+                }
+                $name(r)
             }
             #[inline(always)]
             fn flip_sign_if_negative(self, x: $name) -> $name {
-                // The sign bit of `self` where `self` is not zero, xor-ed into `x` (a `-0.0`
-                // flips nothing, as `-0.0 < 0` is false).
-                let sign: $bits = 1 << (<$bits>::BITS - 1);
-                self.zip(x, |s, x| {
-                    let m = (s.to_bits() & sign) * <$bits>::from(s != 0.0);
-                    <$s>::from_bits(x.to_bits() ^ m)
-                })
+                // A select per lane (a compare and a blend, no branch, once vectorised).
+                self.zip(x, |s, x| if s < 0.0 { -x } else { x })
             }
         }
 
@@ -197,7 +210,11 @@ macro_rules! lanes {
             type Output = $name;
             #[inline(always)]
             fn neg(self) -> $name {
-                $name(self.0.map(|x| -x))
+                let mut r = self.0;
+                for x in &mut r {
+                    *x = -*x;
+                }
+                $name(r)
             }
         }
     };
@@ -205,11 +222,11 @@ macro_rules! lanes {
 
 lanes!(
     /// Four `f64` lanes (one AVX register, two SSE2 registers).
-    F64x4, f64, u64, 4
+    F64x4, f64, 4
 );
 lanes!(
     /// Eight `f32` lanes (one AVX register, two SSE registers).
-    F32x8, f32, u32, 8
+    F32x8, f32, 8
 );
 
 #[cfg(test)]

@@ -3,8 +3,13 @@
 use super::{BlendMethod, Row};
 use crate::blend::Result;
 use crate::blend::{KeyError, MAX_KEYS};
+use cga::wide::{F64x4, Lane};
 use cga::{Bivector, Motor, ScaledMotor};
 use glam::{Affine3A, DAffine3, DMat3, DQuat, DVec3, Vec3A};
+
+/// Key counts up to which the hemisphere-aligned rows are tabulated per pose (64 keys: a
+/// 256 KiB table, cheap next to any mesh such rigs skin).
+const ALIGNED_MAX_KEYS: usize = 64;
 
 /// The keys in the form one blend method needs. Reused from pose to pose (its buffers keep
 /// their capacity), so posing does not allocate.
@@ -12,16 +17,19 @@ use glam::{Affine3A, DAffine3, DMat3, DQuat, DVec3, Vec3A};
 pub struct PreparedKeys {
     method: BlendMethod,
     /// Whether any key scales (otherwise the cheaper rigid paths are taken).
-    scaled: bool,
-    logs: Vec<Bivector>,
-    motors: Vec<Motor>,
-    log_scales: Vec<f64>,
-    quats: Vec<(DQuat, DQuat)>,
-    affines: Vec<DAffine3>,
-    affines_f32: Vec<Affine3A>,
+    pub(super) scaled: bool,
+    pub(super) logs: Vec<Bivector>,
+    pub(super) motors: Vec<Motor>,
+    pub(super) log_scales: Vec<f64>,
+    pub(super) quats: Vec<(DQuat, DQuat)>,
+    pub(super) affines: Vec<DAffine3>,
+    pub(super) affines_f32: Vec<Affine3A>,
     /// Equation (17): per key the rows `e1, e2, e3` (columns `e1, e2, e3, 1`) of the point
     /// matrix of `M X ~M`, and its constant `eo` coefficient.
-    conformal: Vec<ConformalKey>,
+    pub(super) conformal: Vec<ConformalKey>,
+    /// The keys as four [`F64x4`] rows each, for the batch kernels (`kernels.rs`, which says
+    /// what each method keeps in them).
+    pub(super) rows: Vec<[F64x4; 4]>,
 }
 
 /// The part of a scaled motor's point matrix ([`ScaledMotor::point_matrix`]) that
@@ -124,6 +132,7 @@ impl PreparedKeys {
         self.affines.clear();
         self.affines_f32.clear();
         self.conformal.clear();
+        self.rows.clear();
         for (j, k) in keys.iter().enumerate() {
             let log = k
                 .try_log()
@@ -161,6 +170,7 @@ impl PreparedKeys {
                 ));
             }
         }
+        self.fill_rows();
         Ok(())
     }
 
@@ -231,6 +241,98 @@ impl PreparedKeys {
                 }
             }
         }
+    }
+
+    /// The rows of the batch kernels: motors as (rotor part, dual part), dual quaternions as
+    /// (`q.xyzw`, `d.xyzw`), affine maps and equation (17) keys as columns `x, y, z, 1` of the
+    /// 3x4 map (the `eo` coefficient in lane 3 of the last), logarithms as 10 coefficients in
+    /// 12 lanes.
+    fn fill_rows(&mut self) {
+        let z = F64x4::splat(0.0);
+        let v = |a: [f64; 4]| F64x4(a);
+        match self.method {
+            BlendMethod::MotorLinear => {
+                self.rows.extend(self.motors.iter().map(|m| {
+                    let c = m.to_array();
+                    [
+                        v([c[0], c[1], c[2], c[3]]),
+                        v([c[4], c[5], c[6], c[7]]),
+                        z,
+                        z,
+                    ]
+                }));
+                self.align_rows();
+            }
+            BlendMethod::DualQuaternion => {
+                self.rows.extend(
+                    self.quats
+                        .iter()
+                        .map(|(q, d)| [v(q.to_array()), v(d.to_array()), z, z]),
+                );
+                self.align_rows();
+            }
+            BlendMethod::Matrix => self.rows.extend(self.affines.iter().map(|a| {
+                let c = |x: DVec3| v([x.x, x.y, x.z, 0.0]);
+                let m = a.matrix3;
+                let t = a.translation;
+                [
+                    c(m.x_axis),
+                    c(m.y_axis),
+                    c(m.z_axis),
+                    v([t.x, t.y, t.z, 1.0]),
+                ]
+            })),
+            BlendMethod::Conformal | BlendMethod::ConformalProjected => {
+                self.rows.extend(self.conformal.iter().map(|k| {
+                    let r = k.rows;
+                    let c = |j: usize| v([r[0][j], r[1][j], r[2][j], 0.0]);
+                    [c(0), c(1), c(2), v([r[0][3], r[1][3], r[2][3], k.eo])]
+                }));
+            }
+            BlendMethod::MotorLog => self.rows.extend(self.logs.iter().map(|b| {
+                let c = b.to_array();
+                [
+                    v([c[0], c[1], c[2], c[3]]),
+                    v([c[4], c[5], c[6], c[7]]),
+                    v([c[8], c[9], 0.0, 0.0]),
+                    z,
+                ]
+            })),
+            BlendMethod::MatrixF32 => {}
+        }
+    }
+
+    /// For the hemisphere-aligned methods with at most [`ALIGNED_MAX_KEYS`] keys, append to
+    /// the `K` rows (rotor or real quaternion part in the first) the `K x K` table whose entry
+    /// `K + a K + b` is row `b` in the hemisphere of row `a` (negated when their first parts
+    /// have a negative dot product, as the per-vertex blend negates the weight), so that the
+    /// batch kernels add rows without testing signs.
+    fn align_rows(&mut self) {
+        let k = self.rows.len();
+        if k > ALIGNED_MAX_KEYS {
+            return;
+        }
+        for a in 0..k {
+            let r0 = self.rows[a][0].0;
+            for b in 0..k {
+                let row = self.rows[b];
+                let d = row[0].0[0] * r0[0]
+                    + row[0].0[1] * r0[1]
+                    + row[0].0[2] * r0[2]
+                    + row[0].0[3] * r0[3];
+                self.rows.push(if d < 0.0 { row.map(|x| -x) } else { row });
+            }
+        }
+    }
+
+    /// The key count `K` when the rows hold the aligned table of [`PreparedKeys::align_rows`].
+    pub(super) fn aligned(&self) -> Option<usize> {
+        let k = match self.method {
+            BlendMethod::MotorLinear => self.motors.len(),
+            BlendMethod::DualQuaternion => self.quats.len(),
+            _ => return None,
+        };
+        (k <= ALIGNED_MAX_KEYS && self.rows.len() == k + k * k).then_some(k)
     }
 
     /// Whether any key scales.

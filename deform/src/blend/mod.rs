@@ -28,11 +28,14 @@
 //! The keys are prepared once per pose into buffers the bound deformer keeps
 //! ([`PreparedKeys`]), so posing does not allocate.
 
+mod batch;
 pub mod control;
 mod error;
+mod kernels;
 mod keys;
 
 use crate::mesh::MeshError;
+pub use batch::simd_level;
 use cga::ScaledMotor;
 pub(crate) use error::{check_key_count, check_positions};
 pub use error::{BlendError, KeyError, Result, MAX_KEYS};
@@ -349,6 +352,8 @@ pub struct BoundBlend {
     weights: KeyWeights,
     /// `p'_i = M_i^-1 p_i`, with `M_i` the blend of the rest keys.
     local: Vec<DVec3>,
+    /// The rows and `local` laid out for the batch loop.
+    batches: batch::Batches,
     method: BlendMethod,
 }
 
@@ -381,6 +386,7 @@ impl BoundBlend {
             .into());
         }
         Ok(BoundBlend {
+            batches: batch::Batches::new(&weights, &local),
             weights,
             local,
             method,
@@ -446,9 +452,10 @@ impl BoundBlend {
         check_positions(self.vertex_count(), out.len())?;
         prepared.prepare(keys, self.method)?;
         let prepared = &*prepared;
-        for_each_vertex(out, |i| {
-            prepared.transform(self.weights.row(i), self.local[i])
-        });
+        let single = |i: usize| prepared.transform(self.weights.row(i), self.local[i]);
+        if self.batches.is_empty() || !kernels::run(prepared, &self.batches, &single, out) {
+            for_each_vertex(out, single);
+        }
         Ok(())
     }
 }

@@ -167,6 +167,13 @@ impl Gen<'_> {
                     let v = &v[..W::LANES];
                     #name { #(#fields: W::from_fn(|i| v[i].#fields),)* }
                 }
+                /// Lane `i` from `f(i)` (a gather: `f` is called once per field and lane, and
+                /// inlined, so only the fields are loaded).
+                #[inline(always)]
+                #[must_use]
+                pub fn from_fn(f: impl Fn(usize) -> super::#name) -> Self {
+                    #name { #(#fields: W::from_fn(|i| f(i).#fields),)* }
+                }
                 /// Lane `i` as a scalar value.
                 #[inline(always)]
                 #[must_use]
@@ -206,7 +213,11 @@ impl Gen<'_> {
         if !(ta.versor && tb.versor) {
             return TokenStream::new();
         }
-        let m = self.apply(Op::Geometric, &SymMv::of_type(ta, 0), &SymMv::of_type(tb, 1));
+        let m = self.apply(
+            Op::Geometric,
+            &SymMv::of_type(ta, 0),
+            &SymMv::of_type(tb, 1),
+        );
         let OutType::Type(oi) = self.infer(&m) else {
             return TokenStream::new();
         };

@@ -1,0 +1,195 @@
+//! The pose loop over batches of four vertices.
+//!
+//! At bind the weight rows are stored for streaming ([`Batches`]): per batch of four vertices
+//! and per slot of the row, the four key indices and an [`F64x4`] of weights, then the four
+//! rest points as three `F64x4`. Rows have the deformer's fixed width; the last batch is
+//! padded with copies of the last vertex. At pose a [`Kernel`] (one per blend method, see
+//! `kernels.rs`) gathers the keys of a slot into the generated wide twins (`cga::wide`),
+//! blends them lane by lane and applies the result to the four points at once.
+//!
+//! The loop is compiled twice: for CPUs with AVX2 (256-bit lanes, chosen at run time with
+//! `is_x86_feature_detected!`, so one binary runs everywhere) and for the x86-64 baseline
+//! (SSE2; `DEFORM_SIMD=baseline` forces it). Both copies run the same lane operations, which never fuse a multiply and an add,
+//! so they give the same bits.
+
+use super::PARALLEL_MIN;
+use crate::blend::KeyWeights;
+use cga::wide::{F64x4, Lane};
+use glam::DVec3;
+use rayon::prelude::*;
+
+/// Vertices per batch: the lanes of an [`F64x4`].
+pub(crate) const LANES: usize = 4;
+
+/// Vertices per parallel task (a multiple of [`LANES`]).
+const TASK: usize = 1024;
+
+/// Four points, coordinate by coordinate.
+pub(crate) type Points4 = [F64x4; 3];
+
+/// Weight rows and rest points laid out for the batch loop.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Batches {
+    width: usize,
+    /// `keys[b * width + j]`: the keys of slot `j` of the four vertices of batch `b`.
+    keys: Vec<[u32; LANES]>,
+    /// `weights[b * width + j]`: their weights.
+    weights: Vec<F64x4>,
+    /// The four rest points of batch `b`.
+    points: Vec<Points4>,
+}
+
+impl Batches {
+    /// The streaming layout of `weights` and `points` (one point per row); empty when the
+    /// rows have no slot.
+    pub(crate) fn new(weights: &KeyWeights, points: &[DVec3]) -> Batches {
+        let (n, width) = (points.len(), weights.width());
+        if width == 0 || n == 0 {
+            return Batches::default();
+        }
+        let count = n.div_ceil(LANES);
+        let mut b = Batches {
+            width,
+            keys: Vec::with_capacity(count * width),
+            weights: Vec::with_capacity(count * width),
+            points: Vec::with_capacity(count),
+        };
+        for first in (0..n).step_by(LANES) {
+            // Lanes past the last vertex repeat it (their results are dropped).
+            let v = |l: usize| (first + l).min(n - 1);
+            for j in 0..width {
+                b.keys
+                    .push(std::array::from_fn(|l| weights.row(v(l)).key(j) as u32));
+                b.weights
+                    .push(F64x4::from_fn(|l| weights.row(v(l)).weights[j]));
+            }
+            b.points.push([
+                F64x4::from_fn(|l| points[v(l)].x),
+                F64x4::from_fn(|l| points[v(l)].y),
+                F64x4::from_fn(|l| points[v(l)].z),
+            ]);
+        }
+        b
+    }
+
+    /// Whether there is nothing to run (no slot): callers pose vertex by vertex.
+    pub(crate) fn is_empty(&self) -> bool {
+        self.points.is_empty()
+    }
+
+    /// `out[i]` for every vertex: `kernel` on each batch, `single(i)` for the vertices of a
+    /// batch the kernel declines (a degenerate blend it leaves to the per-vertex path).
+    /// Parallel over tasks of [`TASK`] vertices when there are enough of them.
+    pub(crate) fn run<K: Kernel>(
+        &self,
+        kernel: &K,
+        single: &(impl Fn(usize) -> DVec3 + Sync),
+        out: &mut [DVec3],
+    ) {
+        debug_assert_eq!(out.len().div_ceil(LANES), self.points.len());
+        let task = |(t, o): (usize, &mut [DVec3])| self.dispatch(kernel, single, t * TASK, o);
+        if out.len() < PARALLEL_MIN {
+            task((0, out));
+        } else {
+            out.par_chunks_mut(TASK).enumerate().for_each(task);
+        }
+    }
+
+    /// The batches of `out` (vertices from `first`), with the widest lanes the CPU has.
+    fn dispatch<K: Kernel>(
+        &self,
+        kernel: &K,
+        single: &(impl Fn(usize) -> DVec3 + Sync),
+        first: usize,
+        out: &mut [DVec3],
+    ) {
+        #[cfg(target_arch = "x86_64")]
+        if avx2() {
+            // SAFETY: the CPU has AVX2 (checked at run time just above).
+            unsafe { self.range_avx2(kernel, single, first, out) };
+            return;
+        }
+        self.range(kernel, single, first, out);
+    }
+
+    /// [`Batches::range`] compiled for AVX2.
+    ///
+    /// # Safety
+    /// The CPU must have AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn range_avx2<K: Kernel>(
+        &self,
+        kernel: &K,
+        single: &(impl Fn(usize) -> DVec3 + Sync),
+        first: usize,
+        out: &mut [DVec3],
+    ) {
+        self.range(kernel, single, first, out);
+    }
+
+    /// The batch loop: `out` holds the vertices from `first` (a multiple of [`LANES`]).
+    #[inline(always)]
+    fn range<K: Kernel>(
+        &self,
+        kernel: &K,
+        single: &(impl Fn(usize) -> DVec3 + Sync),
+        first: usize,
+        out: &mut [DVec3],
+    ) {
+        let w = self.width;
+        let b0 = first / LANES;
+        let keys = &self.keys[b0 * w..];
+        let weights = &self.weights[b0 * w..];
+        for (i, (((o, p), k), wt)) in out
+            .chunks_mut(LANES)
+            .zip(&self.points[b0..])
+            .zip(keys.chunks_exact(w))
+            .zip(weights.chunks_exact(w))
+            .enumerate()
+        {
+            match kernel.batch(k, wt, p) {
+                Some(q) => {
+                    for (l, o) in o.iter_mut().enumerate() {
+                        *o = DVec3::new(q[0].lane(l), q[1].lane(l), q[2].lane(l));
+                    }
+                }
+                None => {
+                    let v0 = first + i * LANES;
+                    for (l, o) in o.iter_mut().enumerate() {
+                        *o = single(v0 + l);
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// Whether to run the AVX2 copy: the CPU has AVX2 and the environment variable
+/// `DEFORM_SIMD` is not `baseline` (which benchmarks and CI use to measure and test the
+/// baseline copy on the same machine). Decided once per process.
+#[cfg(target_arch = "x86_64")]
+#[inline]
+fn avx2() -> bool {
+    static AVX2: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
+    *AVX2.get_or_init(|| {
+        std::is_x86_feature_detected!("avx2")
+            && std::env::var("DEFORM_SIMD").map_or(true, |v| v != "baseline")
+    })
+}
+
+/// The lanes the batch loop runs on in this process: `"avx2"` or `"baseline"`.
+pub fn simd_level() -> &'static str {
+    #[cfg(target_arch = "x86_64")]
+    if avx2() {
+        return "avx2";
+    }
+    "baseline"
+}
+
+/// The blend of one method over a batch of four vertices.
+pub(crate) trait Kernel: Sync {
+    /// The four posed points from the slots' `keys` and `weights` and the rest `points`;
+    /// `None` declines the batch (the caller poses its vertices one by one).
+    fn batch(&self, keys: &[[u32; LANES]], weights: &[F64x4], points: &Points4) -> Option<Points4>;
+}

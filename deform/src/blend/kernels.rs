@@ -1,0 +1,360 @@
+//! One batch kernel per blend method: the keys of each slot gathered into the generated wide
+//! twins (`cga::wide`) or lane arrays, blended lane by lane, applied to four points.
+//!
+//! Each kernel is the per-vertex method of `keys.rs` written over four lanes with the same
+//! operations in the same order, so a lane gives what [`PreparedKeys::transform`] gives for
+//! its vertex (to the last bit for the motor methods and the matrix ones; the
+//! dual-quaternion rotation is written out as glam writes it). The hemisphere choice of the
+//! linear methods is a sign flip without a branch. A batch whose blend degenerates (a
+//! vanishing rotor sum) is declined and posed vertex by vertex, as before.
+
+use super::batch::{Batches, Kernel, Points4, LANES};
+use super::keys::PreparedKeys;
+use super::BlendMethod;
+use cga::wide::{F64x4, Lane, Motor as WMotor, Point as WPoint};
+use cga::{Bivector, Sandwich};
+use glam::DVec3;
+
+/// `&table[k]` without a bounds check.
+///
+/// Every key index of a [`Batches`] is below the deformer's key count (checked when its
+/// [`super::KeyWeights`] were built), and [`super::BoundBlend::pose_using`] prepares exactly
+/// that many keys before running a kernel, so the index is in range.
+#[inline(always)]
+fn at<T>(table: &[T], k: u32) -> &T {
+    debug_assert!((k as usize) < table.len());
+    // SAFETY: see above: `k < key_count == table.len()`.
+    unsafe { table.get_unchecked(k as usize) }
+}
+
+/// `[e(0), e(1), .., e(n - 1)]` with `i` bound in `e`: `std::array::from_fn` as a loop written
+/// in place. A closure would be a function of its own, compiled for the baseline and called
+/// out of the AVX2 loop, which costs more than the work.
+macro_rules! each {
+    ($n:expr, $i:ident => $e:expr) => {{
+        let mut r = [Default::default(); $n];
+        for $i in 0..$n {
+            r[$i] = $e;
+        }
+        r
+    }};
+}
+
+/// The key rows of a kernel (see `PreparedKeys::fill_rows`).
+type Rows<'a> = &'a [[F64x4; 4]];
+
+/// `sum_j w_j rows[k_j][..N]` for lane (vertex) `l` of a batch, each weight first passed
+/// through `weight(row, w)` (the hemisphere sign): the accumulation runs along a key's row,
+/// four coefficients per operation.
+///
+/// `index(k)` is the row of key `k` (`k` itself, or its entry in the aligned table).
+#[inline(always)]
+fn accumulate<const N: usize>(
+    rows: Rows,
+    keys: &[[u32; LANES]],
+    weights: &[F64x4],
+    l: usize,
+    index: impl Fn(u32) -> u32,
+    weight: impl Fn(&[F64x4; 4], f64) -> f64,
+) -> [F64x4; N] {
+    let mut acc = [F64x4::splat(0.0); N];
+    for (k, w) in keys.iter().zip(weights) {
+        let row = at(rows, index(k[l]));
+        let w = F64x4::splat(weight(row, w.0[l]));
+        for (a, r) in acc.iter_mut().zip(row) {
+            *a += *r * w;
+        }
+    }
+    acc
+}
+
+/// `a.0[0] b.0[0] + ... + a.0[3] b.0[3]`, summed left to right.
+#[inline(always)]
+fn dot(a: F64x4, b: F64x4) -> f64 {
+    let p = a * b;
+    p.0[0] + p.0[1] + p.0[2] + p.0[3]
+}
+
+/// `exp(sum w log s)` per lane: the geometric blend of the key scales, when any key scales.
+#[inline(always)]
+fn scales(log_scales: Option<&[f64]>, keys: &[[u32; LANES]], weights: &[F64x4]) -> Option<F64x4> {
+    let ls = log_scales?;
+    let mut acc = F64x4::splat(0.0);
+    for (k, &w) in keys.iter().zip(weights) {
+        acc += w * F64x4::from_fn(|l| *at(ls, k[l]));
+    }
+    Some(F64x4::from_fn(|l| acc.0[l].exp()))
+}
+
+/// The points times the blended scales, if any.
+#[inline(always)]
+fn scaled(
+    log_scales: Option<&[f64]>,
+    keys: &[[u32; LANES]],
+    weights: &[F64x4],
+    p: &Points4,
+) -> Points4 {
+    match scales(log_scales, keys, weights) {
+        Some(s) => [s * p[0], s * p[1], s * p[2]],
+        None => *p,
+    }
+}
+
+/// Lane `c` of each vertex's `v[l]`, as the lanes of one value (a transpose).
+#[inline(always)]
+fn column<const N: usize>(v: &[[F64x4; N]; LANES], i: usize, c: usize) -> F64x4 {
+    F64x4::from_fn(|l| v[l][i].0[c])
+}
+
+/// Motor blending: `normalise(sum w M)` in the hemisphere of the first key, times the blended
+/// scale; the four blended motors are turned into one generated `wide::Motor` and applied by
+/// its fused sandwich.
+struct MotorLinear<'a> {
+    rows: Rows<'a>,
+    /// The key count when `rows` holds the aligned table.
+    aligned: Option<u32>,
+    log_scales: Option<&'a [f64]>,
+}
+
+/// `sum w row` over the keys of vertex `l`, in the hemisphere of its first key: from the
+/// aligned table when there is one (no sign to find), else with a sign per term.
+#[inline(always)]
+fn hemisphere_sum(
+    rows: Rows,
+    aligned: Option<u32>,
+    keys: &[[u32; LANES]],
+    weights: &[F64x4],
+    l: usize,
+) -> [F64x4; 2] {
+    let k0 = keys[0][l];
+    match aligned {
+        Some(n) => accumulate(rows, keys, weights, l, |k| n + k0 * n + k, |_, w| w),
+        None => {
+            let r0 = at(rows, k0)[0];
+            accumulate(
+                rows,
+                keys,
+                weights,
+                l,
+                |k| k,
+                |row, w| dot(row[0], r0).flip_sign_if_negative(w),
+            )
+        }
+    }
+}
+
+impl Kernel for MotorLinear<'_> {
+    #[inline(always)]
+    fn batch(&self, keys: &[[u32; LANES]], weights: &[F64x4], p: &Points4) -> Option<Points4> {
+        let sums: [[F64x4; 2]; LANES] =
+            each!(LANES, l => hemisphere_sum(self.rows, self.aligned, keys, weights, l));
+        let acc = WMotor::<F64x4> {
+            s: column(&sums, 0, 0),
+            e12: column(&sums, 0, 1),
+            e13: column(&sums, 0, 2),
+            e23: column(&sums, 0, 3),
+            e1i: column(&sums, 1, 0),
+            e2i: column(&sums, 1, 1),
+            e3i: column(&sums, 1, 2),
+            e123i: column(&sums, 1, 3),
+        };
+        let n2 = acc.s * acc.s + acc.e12 * acc.e12 + acc.e13 * acc.e13 + acc.e23 * acc.e23;
+        if !n2.0.iter().all(|&x| x > f64::MIN_POSITIVE) {
+            return None;
+        }
+        let m = acc.scale(F64x4::splat(1.0) / n2.sqrt());
+        let p = scaled(self.log_scales, keys, weights, p);
+        let q = m.sandwich(up(&p));
+        Some([q.e1, q.e2, q.e3])
+    }
+}
+
+/// Four conformal points `up(p)` (the `ei` coefficient is read by no kernel that moves only
+/// `e1, e2, e3`, and is then compiled away).
+#[inline(always)]
+fn up(p: &Points4) -> WPoint<F64x4> {
+    let [x, y, z] = *p;
+    WPoint {
+        e1: x,
+        e2: y,
+        e3: z,
+        ei: F64x4::splat(0.5) * (x * x + y * y + z * z),
+    }
+}
+
+/// Kavan's dual-quaternion blending: the sums along the key rows, the normalisation and the
+/// rotation over four lanes.
+struct DualQuaternion<'a> {
+    rows: Rows<'a>,
+    aligned: Option<u32>,
+    log_scales: Option<&'a [f64]>,
+}
+
+impl Kernel for DualQuaternion<'_> {
+    #[inline(always)]
+    fn batch(&self, keys: &[[u32; LANES]], weights: &[F64x4], p: &Points4) -> Option<Points4> {
+        let sums: [[F64x4; 2]; LANES] =
+            each!(LANES, l => hemisphere_sum(self.rows, self.aligned, keys, weights, l));
+        let r: [F64x4; 4] = each!(4, c => column(&sums, 0, c));
+        let d: [F64x4; 4] = each!(4, c => column(&sums, 1, c));
+        let n2 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2] + r[3] * r[3];
+        if !n2.0.iter().all(|&x| x > 0.0) {
+            return None;
+        }
+        let inv = F64x4::splat(1.0) / n2.sqrt();
+        let r: [F64x4; 4] = each!(4, c => r[c] * inv);
+        let d: [F64x4; 4] = each!(4, c => d[c] * inv);
+        // t = 2 vec(d ~r).
+        let [ax, ay, az, aw] = d;
+        let [bx, by, bz, bw] = [-r[0], -r[1], -r[2], r[3]];
+        let two = F64x4::splat(2.0);
+        let tx = two * (aw * bx + ax * bw + ay * bz - az * by);
+        let ty = two * (aw * by - ax * bz + ay * bw + az * bx);
+        let tz = two * (aw * bz + ax * by - ay * bx + az * bw);
+        let [x, y, z] = scaled(self.log_scales, keys, weights, p);
+        // The rotation as glam's `DQuat * DVec3` writes it.
+        let [ux, uy, uz, w] = r;
+        let b2 = ux * ux + uy * uy + uz * uz;
+        let k0 = w * w - b2;
+        let k1 = (x * ux + y * uy + z * uz) * two;
+        let k2 = w * two;
+        let (cx, cy, cz) = (uy * z - uz * y, uz * x - ux * z, ux * y - uy * x);
+        Some([
+            x * k0 + ux * k1 + cx * k2 + tx,
+            y * k0 + uy * k1 + cy * k2 + ty,
+            z * k0 + uz * k1 + cz * k2 + tz,
+        ])
+    }
+}
+
+/// `c0 x + c1 y + c2 z + c3` for one vertex: the 3x4 map of a row set applied to its point.
+#[inline(always)]
+fn apply(c: &[F64x4; 4], p: &Points4, l: usize) -> F64x4 {
+    let s = |i: usize| F64x4::splat(p[i].0[l]);
+    c[0] * s(0) + c[1] * s(1) + c[2] * s(2) + c[3]
+}
+
+/// Linear blend skinning (`sum w A` applied to the point) and equation (17) adding the
+/// conformal points first (the same, then divided by the blended `eo`).
+struct Affine<'a> {
+    rows: Rows<'a>,
+    /// Divide by lane 3 (the blended `eo` of equation (17)).
+    project: bool,
+}
+
+impl Kernel for Affine<'_> {
+    #[inline(always)]
+    fn batch(&self, keys: &[[u32; LANES]], weights: &[F64x4], p: &Points4) -> Option<Points4> {
+        let q: [F64x4; LANES] = each!(LANES, l => {
+            let a: [F64x4; 4] = accumulate(self.rows, keys, weights, l, |k| k, |_, w| w);
+            apply(&a, p, l)
+        });
+        let c = |i: usize| F64x4::from_fn(|l| q[l].0[i]);
+        Some(if self.project {
+            let eo = c(3);
+            [c(0) / eo, c(1) / eo, c(2) / eo]
+        } else {
+            [c(0), c(1), c(2)]
+        })
+    }
+}
+
+/// Equation (17), down-projecting each term first.
+struct ConformalProjected<'a> {
+    rows: Rows<'a>,
+}
+
+impl Kernel for ConformalProjected<'_> {
+    #[inline(always)]
+    fn batch(&self, keys: &[[u32; LANES]], weights: &[F64x4], p: &Points4) -> Option<Points4> {
+        let q: [F64x4; LANES] = each!(LANES, l => {
+            let mut acc = F64x4::splat(0.0);
+            for (k, w) in keys.iter().zip(weights) {
+                let e = apply(at(self.rows, k[l]), p, l);
+                acc += F64x4::splat(w.0[l]) * (e / F64x4::splat(e.0[3]));
+            }
+            acc
+        });
+        Some(each!(3, i => F64x4::from_fn(|l| q[l].0[i])))
+    }
+}
+
+/// Log blending: `exp(sum w log M)`; the sums along the key rows, the closed-form exponential
+/// (trigonometric and hyperbolic functions) vertex by vertex.
+struct MotorLog<'a> {
+    rows: Rows<'a>,
+}
+
+impl Kernel for MotorLog<'_> {
+    #[inline(always)]
+    fn batch(&self, keys: &[[u32; LANES]], weights: &[F64x4], p: &Points4) -> Option<Points4> {
+        let q: [DVec3; LANES] = each!(LANES, l => {
+            let [a, b, c]: [F64x4; 3] = accumulate(self.rows, keys, weights, l, |k| k, |_, w| w);
+            let log = Bivector::from_array([
+                a.0[0], a.0[1], a.0[2], a.0[3], b.0[0], b.0[1], b.0[2], b.0[3], c.0[0], c.0[1],
+            ]);
+            log.exp_similarity()
+                .transform_point(DVec3::new(p[0].0[l], p[1].0[l], p[2].0[l]))
+        });
+        Some([
+            F64x4::from_fn(|l| q[l].x),
+            F64x4::from_fn(|l| q[l].y),
+            F64x4::from_fn(|l| q[l].z),
+        ])
+    }
+}
+
+/// Pose every vertex of `batches` with the kernel of the prepared keys' method (`single(i)`
+/// for the vertices of declined batches). `false` when the method has no batch kernel
+/// ([`BlendMethod::MatrixF32`], whose single-precision path is already vectorised by glam).
+pub(super) fn run(
+    prepared: &PreparedKeys,
+    batches: &Batches,
+    single: &(impl Fn(usize) -> DVec3 + Sync),
+    out: &mut [DVec3],
+) -> bool {
+    let log_scales = prepared.scaled().then_some(&prepared.log_scales[..]);
+    let rows = &prepared.rows[..];
+    // At most 64 keys when aligned: the table index fits a u32.
+    let aligned = prepared.aligned().map(|k| k as u32);
+    match prepared.method() {
+        BlendMethod::MotorLinear => batches.run(
+            &MotorLinear {
+                rows,
+                aligned,
+                log_scales,
+            },
+            single,
+            out,
+        ),
+        BlendMethod::DualQuaternion => batches.run(
+            &DualQuaternion {
+                rows,
+                aligned,
+                log_scales,
+            },
+            single,
+            out,
+        ),
+        BlendMethod::Matrix => batches.run(
+            &Affine {
+                rows,
+                project: false,
+            },
+            single,
+            out,
+        ),
+        BlendMethod::Conformal => batches.run(
+            &Affine {
+                rows,
+                project: true,
+            },
+            single,
+            out,
+        ),
+        BlendMethod::ConformalProjected => batches.run(&ConformalProjected { rows }, single, out),
+        BlendMethod::MotorLog => batches.run(&MotorLog { rows }, single, out),
+        BlendMethod::MatrixF32 => return false,
+    }
+    true
+}
