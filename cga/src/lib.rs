@@ -161,6 +161,8 @@ pub use crate::f64::{Circle, DualQuat, FlatPoint, Line, Plane, PointPair, Simila
     clippy::useless_conversion,
     clippy::neg_cmp_op_on_partial_ord
 )]
+mod exp_wide;
+pub use exp_wide::{rotate_lanes, ExpLanes};
 mod ext64;
 
 /// Hand-written extensions (f32), compiled from the same files as [`ext64`].

@@ -11,8 +11,8 @@
 use super::batch::{Batches, Kernel, Points4, LANES};
 use super::keys::PreparedKeys;
 use super::BlendMethod;
-use cga::wide::{F64x4, Lane, Motor as WMotor, Point as WPoint};
-use cga::{Bivector, Sandwich};
+use cga::wide::{Bivector as WBivector, Lane, Motor as WMotor, Point as WPoint, F64x4};
+use cga::{rotate_lanes, ExpLanes, Sandwich};
 use glam::DVec3;
 
 /// `&table[k]` without a bounds check.
@@ -211,19 +211,8 @@ impl Kernel for DualQuaternion<'_> {
         let tx = two * (aw * bx + ax * bw + ay * bz - az * by);
         let ty = two * (aw * by - ax * bz + ay * bw + az * bx);
         let tz = two * (aw * bz + ax * by - ay * bx + az * bw);
-        let [x, y, z] = scaled(self.log_scales, keys, weights, p);
-        // The rotation as glam's `DQuat * DVec3` writes it.
-        let [ux, uy, uz, w] = r;
-        let b2 = ux * ux + uy * uy + uz * uz;
-        let k0 = w * w - b2;
-        let k1 = (x * ux + y * uy + z * uz) * two;
-        let k2 = w * two;
-        let (cx, cy, cz) = (uy * z - uz * y, uz * x - ux * z, ux * y - uy * x);
-        Some([
-            x * k0 + ux * k1 + cx * k2 + tx,
-            y * k0 + uy * k1 + cy * k2 + ty,
-            z * k0 + uz * k1 + cz * k2 + tz,
-        ])
+        let q = rotate_lanes(r, scaled(self.log_scales, keys, weights, p));
+        Some([q[0] + tx, q[1] + ty, q[2] + tz])
     }
 }
 
@@ -280,7 +269,8 @@ impl Kernel for ConformalProjected<'_> {
 }
 
 /// Log blending: `exp(sum w log M)`; the sums along the key rows, the closed-form exponential
-/// (trigonometric and hyperbolic functions) vertex by vertex.
+/// over four lanes for rigid generators (`cga::ExpLanes`), vertex by vertex otherwise
+/// (dilations, or a half-angle past the lanes' range).
 struct MotorLog<'a> {
     rows: Rows<'a>,
 }
@@ -288,14 +278,27 @@ struct MotorLog<'a> {
 impl Kernel for MotorLog<'_> {
     #[inline(always)]
     fn batch(&self, keys: &[[u32; LANES]], weights: &[F64x4], p: &Points4) -> Option<Points4> {
-        let q: [DVec3; LANES] = each!(LANES, l => {
-            let [a, b, c]: [F64x4; 3] = accumulate(self.rows, keys, weights, l, |k| k, |_, w| w);
-            let log = Bivector::from_array([
-                a.0[0], a.0[1], a.0[2], a.0[3], b.0[0], b.0[1], b.0[2], b.0[3], c.0[0], c.0[1],
-            ]);
-            log.exp_similarity()
-                .transform_point(DVec3::new(p[0].0[l], p[1].0[l], p[2].0[l]))
-        });
+        let sums: [[F64x4; 3]; LANES] =
+            each!(LANES, l => accumulate(self.rows, keys, weights, l, |k| k, |_, w| w));
+        let log = WBivector::<F64x4> {
+            eo1: column(&sums, 0, 0),
+            eo2: column(&sums, 0, 1),
+            eo3: column(&sums, 0, 2),
+            eoi: column(&sums, 0, 3),
+            e12: column(&sums, 1, 0),
+            e13: column(&sums, 1, 1),
+            e23: column(&sums, 1, 2),
+            e1i: column(&sums, 1, 3),
+            e2i: column(&sums, 2, 0),
+            e3i: column(&sums, 2, 1),
+        };
+        if let Some(q) = log.exp_rigid_transform(*p) {
+            return Some(q);
+        }
+        let q: [DVec3; LANES] = each!(LANES, l => log
+            .lane(l)
+            .exp_similarity()
+            .transform_point(DVec3::new(p[0].0[l], p[1].0[l], p[2].0[l])));
         Some([
             F64x4::from_fn(|l| q[l].x),
             F64x4::from_fn(|l| q[l].y),

@@ -1,0 +1,188 @@
+//! The closed-form exponential of rigid generators over lanes: [`Bivector::exp_similarity`]
+//! applied to points, for `W::LANES` generators and points at once (log blending moves every
+//! vertex by the exponential of its own blended generator).
+//!
+//! The scalar form needs `sin_cos`, a division by the angle and a guarded quotient for the
+//! translation. Over lanes the three functions of the half-angle `phi` that it uses are
+//! power series in `phi^2` (Horner, no division, no special case at `phi = 0`):
+//!
+//! * `sinc(phi) = sin(phi) / phi`,
+//! * `cos(phi)`,
+//! * `k(phi) = (1 - sinc(phi) cos(phi)) / phi^2 = (1 - sinc(2 phi)) / phi^2`, the
+//!   coefficient of `(u . v) u` in the translation, which the scalar form computes with a
+//!   cancellation for small angles.
+//!
+//! Each series is summed to rounding for `phi <= 2` (principal logarithms and their convex
+//! blends have `phi <= pi / 2`); a lane with a larger half-angle (a blend with weights outside
+//! `[0, 1]` can make one) or a dilation part makes
+//! [`ExpLanes::exp_rigid_transform`] decline, and callers use the scalar form for those.
+
+use crate::f64::wide::{Bivector, Lane};
+
+/// The largest half-angle the series serve: principal logarithms have `phi <= pi / 2`, and
+/// so have their blends with weights in `[0, 1]`; past 2 the alternating sums would lose
+/// digits to their largest terms.
+const MAX_PHI: f64 = 2.0;
+
+/// Terms of each series (for `phi <= 2` the last is below `1e-20` of the first).
+const TERMS: usize = 18;
+
+/// `c[n]`, `n = 0..TERMS`, with `f(phi) = sum c[n] phi^(2n)`: `c[0] = first` and
+/// `c[n] = c[n-1] m / ((2n + a)(2n + b))`.
+const fn series(first: f64, m: f64, a: i64, b: i64) -> [f64; TERMS] {
+    let mut c = [0.0; TERMS];
+    c[0] = first;
+    let mut n = 1;
+    while n < TERMS {
+        let k = 2 * n as i64;
+        c[n] = c[n - 1] * m / ((k + a) as f64 * (k + b) as f64);
+        n += 1;
+    }
+    c
+}
+
+/// `sinc`: `(-1)^n / (2n+1)!`.
+const SINC: [f64; TERMS] = series(1.0, -1.0, 0, 1);
+/// `cos`: `(-1)^n / (2n)!`.
+const COS: [f64; TERMS] = series(1.0, -1.0, -1, 0);
+/// `k`: `(-1)^n 4^(n+1) / (2n+3)!`.
+const K: [f64; TERMS] = series(4.0 / 6.0, -4.0, 2, 3);
+
+/// `sum c[n] x^n` by Horner's rule.
+#[inline(always)]
+fn horner<W: Lane<Scalar = f64>>(c: &[f64; TERMS], x: W) -> W {
+    let mut acc = W::splat(c[TERMS - 1]);
+    let mut n = TERMS - 1;
+    while n > 0 {
+        n -= 1;
+        acc = acc * x + W::splat(c[n]);
+    }
+    acc
+}
+
+/// The exponential of rigid generators applied to points, over lanes.
+pub trait ExpLanes<W> {
+    /// Lane by lane `self.lane(i).exp_similarity().transform_point(p_i)` for generators
+    /// without a dilation part (`eoi = 0`) and with a half rotation angle of at most 2;
+    /// `None` when some lane is outside that range (the points are then not computed).
+    /// The result agrees with the scalar closed form to rounding.
+    fn exp_rigid_transform(self, p: [W; 3]) -> Option<[W; 3]>;
+}
+
+impl<W: Lane<Scalar = f64>> ExpLanes<W> for Bivector<W> {
+    #[inline(always)]
+    fn exp_rigid_transform(self, p: [W; 3]) -> Option<[W; 3]> {
+        // The half rotation vector u and the translation part v (see `quat_map`).
+        let (ux, uy, uz) = (-self.e23, self.e13, -self.e12);
+        let two = W::splat(2.0);
+        let (vx, vy, vz) = (-two * self.e1i, -two * self.e2i, -two * self.e3i);
+        let phi2 = ux * ux + uy * uy + uz * uz;
+        if !(0..W::LANES).all(|i| self.eoi.lane(i) == 0.0 && phi2.lane(i) <= MAX_PHI * MAX_PHI) {
+            return None;
+        }
+        let sc = horner(&SINC, phi2);
+        let c = horner(&COS, phi2);
+        let k = horner(&K, phi2);
+        // Without dilation the scalar form's z is (sinc cos, sinc^2).
+        let (zr, zi) = (sc * c, sc * sc);
+        let ud = ux * vx + uy * vy + uz * vz;
+        let (cx, cy, cz) = (uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx);
+        let kd = k * ud;
+        let t = [
+            zr * vx + kd * ux + zi * cx,
+            zr * vy + kd * uy + zi * cy,
+            zr * vz + kd * uz + zi * cz,
+        ];
+        // Rotate by the quaternion (sinc u, cos).
+        let r = rotate_lanes([sc * ux, sc * uy, sc * uz, c], p);
+        Some([r[0] + t[0], r[1] + t[1], r[2] + t[2]])
+    }
+}
+
+/// Rotate points by unit quaternions `(x, y, z, w)` lane by lane, as glam's `DQuat * DVec3`
+/// writes it (`p (w^2 - |q|^2) + q 2 (p . q) + (q x p) 2 w`), so that a lane gives glam's
+/// bits.
+#[inline(always)]
+pub fn rotate_lanes<W: Lane>(q: [W; 4], p: [W; 3]) -> [W; 3] {
+    let [qx, qy, qz, w] = q;
+    let [x, y, z] = p;
+    let two = W::constant(2.0);
+    let b2 = qx * qx + qy * qy + qz * qz;
+    let k0 = w * w - b2;
+    let k1 = (x * qx + y * qy + z * qz) * two;
+    let k2 = w * two;
+    let (rx, ry, rz) = (qy * z - qz * y, qz * x - qx * z, qx * y - qy * x);
+    [
+        x * k0 + qx * k1 + rx * k2,
+        y * k0 + qy * k1 + ry * k2,
+        z * k0 + qz * k1 + rz * k2,
+    ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::f64::Bivector as ScalarBivector;
+
+    /// The scalar form.
+    fn scalar(b: ScalarBivector, p: glam::DVec3) -> glam::DVec3 {
+        b.exp_similarity().transform_point(p)
+    }
+    use crate::wide::F64x4;
+    use glam::DVec3;
+
+    #[test]
+    fn series_match_the_functions() {
+        for i in 0..=200 {
+            let phi = MAX_PHI * i as f64 / 200.0;
+            let x = phi * phi;
+            let (s, c) = phi.sin_cos();
+            let sinc = if phi == 0.0 { 1.0 } else { s / phi };
+            assert!((horner(&SINC, x) - sinc).abs() < 4e-16, "sinc {phi}");
+            assert!((horner(&COS, x) - c).abs() < 4e-16, "cos {phi}");
+            if phi > 0.1 {
+                let k = (1.0 - sinc * c) / x;
+                assert!((horner(&K, x) - k).abs() < 1e-14 * k.max(1.0), "k {phi}");
+            }
+        }
+        assert!((horner(&K, 0.0f64) - 2.0 / 3.0).abs() < 1e-16);
+    }
+
+    #[test]
+    fn lanes_agree_with_the_scalar_exponential() {
+        let gens = [
+            ScalarBivector::from_array([0.0, 0.0, 0.0, 0.0, 0.3, -1.2, 0.7, 0.5, -2.0, 1.0]),
+            ScalarBivector::from_array([0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.5, 0.25, -3.0]),
+            ScalarBivector::from_array([0.0, 0.0, 0.0, 0.0, 1e-9, 0.0, -2e-9, 0.1, 0.2, 0.3]),
+            ScalarBivector::from_array([0.0, 0.0, 0.0, 0.0, -1.0, 1.0, 0.6, -0.4, 0.0, 0.9]),
+        ];
+        let pts = [
+            DVec3::new(1.0, 2.0, 3.0),
+            DVec3::new(-4.0, 0.5, 0.0),
+            DVec3::ZERO,
+            DVec3::new(10.0, -7.0, 2.5),
+        ];
+        let b = Bivector::<F64x4>::gather(&gens);
+        let p = [
+            F64x4::from_fn(|i| pts[i].x),
+            F64x4::from_fn(|i| pts[i].y),
+            F64x4::from_fn(|i| pts[i].z),
+        ];
+        let q = b.exp_rigid_transform(p).expect("in range");
+        for i in 0..4 {
+            let want = scalar(gens[i], pts[i]);
+            let got = DVec3::new(q[0].lane(i), q[1].lane(i), q[2].lane(i));
+            assert!(
+                (got - want).abs().max_element() < 1e-13 * want.length().max(1.0),
+                "lane {i}: {got} vs {want}"
+            );
+        }
+        // A dilation part, or a half-angle past pi, declines.
+        let mut d = gens;
+        d[2].eoi = 0.1;
+        assert!(Bivector::<F64x4>::gather(&d).exp_rigid_transform(p).is_none());
+        d[2].eoi = 0.0;
+        d[1].e12 = 2.5;
+        assert!(Bivector::<F64x4>::gather(&d).exp_rigid_transform(p).is_none());
+    }
+}
