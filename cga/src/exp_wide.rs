@@ -180,9 +180,13 @@ mod tests {
         // A dilation part, or a half-angle past pi, declines.
         let mut d = gens;
         d[2].eoi = 0.1;
-        assert!(Bivector::<F64x4>::gather(&d).exp_rigid_transform(p).is_none());
+        assert!(Bivector::<F64x4>::gather(&d)
+            .exp_rigid_transform(p)
+            .is_none());
         d[2].eoi = 0.0;
         d[1].e12 = 2.5;
-        assert!(Bivector::<F64x4>::gather(&d).exp_rigid_transform(p).is_none());
+        assert!(Bivector::<F64x4>::gather(&d)
+            .exp_rigid_transform(p)
+            .is_none());
     }
 }

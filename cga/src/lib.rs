@@ -155,14 +155,15 @@ pub use crate::f64::wide;
 pub use crate::f64::{Circle, DualQuat, FlatPoint, Line, Plane, PointPair, Similarity, Sphere};
 
 /// Hand-written extensions (f64), compiled from the same files as [`ext32`].
+mod exp_wide;
+pub use exp_wide::{rotate_lanes, ExpLanes};
+
 // `!(x > y)` is deliberate throughout: NaN must fail every validity check.
 #[allow(
     clippy::duplicate_mod,
     clippy::useless_conversion,
     clippy::neg_cmp_op_on_partial_ord
 )]
-mod exp_wide;
-pub use exp_wide::{rotate_lanes, ExpLanes};
 mod ext64;
 
 /// Hand-written extensions (f32), compiled from the same files as [`ext64`].

@@ -1,11 +1,16 @@
 //! Quick report of skinning speed: every backend on libigl's armadillo (5 weights), arm and
-//! CesiumMan, ms per frame (both cores) and ns per vertex, medians of repeated runs with their
-//! range; the targets of `deform/BENCH.md` graded (`met` / `MISSED`): motor blending <= 1 ms on
-//! the armadillo and no slower than our dual quaternions, equation (17) within 1.2x of matrix
-//! LBS; and the time to sample CesiumMan's animation and build its motors. The criterion bench
-//! `skinning` measures the same.
+//! CesiumMan, on 1 and 2 threads: ms per frame and ns per vertex of the batch loop and of the
+//! vertex-by-vertex loop it replaced (`BoundBlend::pose_vertex_by_vertex`), alternated in the
+//! same run; per backend an estimate of the compute limit (flops per vertex at 16 flops per cycle
+//! per core) and of the memory limit (bytes per vertex at the streaming rate measured here for
+//! the same working set) and the ratio to the larger. Graded (`met` / `MISSED`): motor blending
+//! <= 1 ms on the armadillo and no slower than dual quaternions, equation (17) within 1.1x of
+//! matrix LBS, log blending within 1.5x of motor blending, and on one thread the speed-ups of
+//! issue 23 (dual quaternions 2x, motor blending 3x, matrix 1.25x); and the time to sample
+//! CesiumMan's animation and build its motors. The criterion bench `skinning` measures the same.
 //!
-//! `cargo run --release -p deform --example skinning_report`
+//! `cargo run --release -p deform --example skinning_report [BACKEND..]`
+//! (`DEFORM_SIMD=baseline` measures the baseline copy of the batch loop.)
 
 #[path = "../benches/support/skin_scenes.rs"]
 mod skin_scenes;
@@ -14,65 +19,216 @@ use devkit::grade::{Spread, Tally, Target};
 use devkit::measure::{median_ms, spread_ms};
 
 use deform::skinning::{KeyframeBlend, RigPose, Skinning};
+use deform::BlendMethod::{self, *};
 use deform::Deformer;
 use glam::DVec3;
 
+/// Floating-point operations per vertex of the batch kernel of `m` with `w` influences (a
+/// count of the adds, multiplies, divisions and square roots written in `blend/kernels.rs`;
+/// the hemisphere table and the key preparation are per pose, not per vertex).
+fn flops(m: BlendMethod, w: usize) -> f64 {
+    let w = w as f64;
+    match m {
+        // Row sums (8 per key), norm 7, 1/n 1, the fused sandwich 36 + 28, the rescale 9.
+        BlendMethod::MotorLinear => 16.0 * w + 81.0,
+        // Row sums, norm 7, 1/n 1, translation 24, rotation 27, add and rescale 6.
+        BlendMethod::DualQuaternion => 16.0 * w + 65.0,
+        // Row sums over 12 of the 16 lanes written, the 3x4 map 18.
+        BlendMethod::Matrix => 24.0 * w + 18.0,
+        BlendMethod::Conformal => 26.0 * w + 21.0,
+        BlendMethod::ConformalProjected => (18.0 + 3.0 + 6.0) * w,
+        // Row sums over 10, three series of 18 terms (2 each), translation 30, rotation 30.
+        BlendMethod::MotorLog => 20.0 * w + 108.0 + 60.0,
+        // glam's f32 path: 12 multiply-adds per key and the map.
+        BlendMethod::MatrixF32 => 24.0 * w + 18.0,
+    }
+}
+
+/// Bytes per vertex streamed by a pose: the weight (8) and key index (4) of each influence,
+/// the rest point (24) and the posed point (24). The key tables stay in cache.
+fn bytes(w: usize) -> f64 {
+    12.0 * w as f64 + 48.0
+}
+
+/// Nanoseconds per byte to read a buffer of `len` bytes and write one a third its size (about
+/// the mix a pose streams), on `threads` threads: the memory limit at that working-set size.
+fn stream_ns_per_byte(len: usize, threads: usize) -> f64 {
+    let src = vec![1.0f64; len / 8];
+    let mut dst = vec![0.0f64; len / 24];
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .expect("pool");
+    let ms = pool.install(|| {
+        use rayon::prelude::*;
+        median_ms(41, || {
+            dst.par_chunks_mut(4096)
+                .zip(src.par_chunks(3 * 4096))
+                .for_each(|(d, s)| {
+                    for (o, c) in d.iter_mut().zip(s.chunks_exact(3)) {
+                        *o = c[0] + c[1] + c[2];
+                    }
+                });
+            std::hint::black_box(&dst);
+        })
+    });
+    ms * 1e6 / (len + len / 3) as f64
+}
+
+/// Clock of this machine in GHz (from /proc/cpuinfo; 2.5 if unknown).
+fn ghz() -> f64 {
+    std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("cpu MHz"))
+                .and_then(|l| l.split(':').nth(1))
+                .and_then(|v| v.trim().parse::<f64>().ok())
+        })
+        .map_or(2.5, |mhz| mhz / 1000.0)
+}
+
+/// One backend's pose times on one scene: the batch loop and the vertex-by-vertex loop, ms.
+struct Times {
+    batch: Spread,
+    vertex: Spread,
+}
+
+fn measure(s: &skin_scenes::SkinScene, method: BlendMethod) -> Times {
+    let n = s.positions.len();
+    let d = Skinning::bind_influences(&s.positions, &s.influences, s.joints, method).expect("bind");
+    let mut out = vec![DVec3::ZERO; n];
+    let mut prepared = d.blend().scratch();
+    let mut poser = d.poser();
+    for _ in 0..20 {
+        poser.pose(&s.keys, &mut out).expect("pose");
+    }
+    // Alternate the two loops so that both see the same machine.
+    let (mut b, mut v) = (Vec::new(), Vec::new());
+    for _ in 0..15 {
+        b.push(spread_ms(7, || poser.pose(&s.keys, &mut out).expect("pose")).value);
+        v.push(
+            spread_ms(7, || {
+                d.blend()
+                    .pose_vertex_by_vertex(&s.keys, &mut prepared, &mut out)
+                    .expect("pose")
+            })
+            .value,
+        );
+    }
+    Times {
+        batch: Spread::median_of(&mut b),
+        vertex: Spread::median_of(&mut v),
+    }
+}
+
 fn main() {
-    println!("skinning, {} threads", rayon::current_num_threads());
+    // `skinning_report [BACKEND..]`: only those backends (all by default).
+    let only: Vec<String> = std::env::args().skip(1).collect();
+    let clock = ghz();
+    println!(
+        "skinning: the batch loop ({} lanes) against the vertex-by-vertex loop in the same run; \
+         limits: {clock:.2} GHz x 16 flops/cycle/core (two 4-wide adds and two multiplies, no FMA), and streaming \
+         the bytes at the rate measured here for the same working set",
+        deform::simd_level()
+    );
     let mut tally = Tally::default();
     for s in skin_scenes::all() {
         let n = s.positions.len();
+        let w = s.influences.width;
         println!(
-            "{} ({n} vertices, {} joints, {} influences per vertex)",
-            s.name, s.joints, s.influences.width
+            "{} ({n} vertices, {} joints, {w} influences per vertex)",
+            s.name, s.joints
         );
-        let mut out = vec![DVec3::ZERO; n];
-        let mut times = Vec::new();
-        for method in skin_scenes::BACKENDS {
-            let d = Skinning::bind_influences(&s.positions, &s.influences, s.joints, method)
-                .expect("bind");
-            let mut poser = d.poser();
-            for _ in 0..20 {
-                poser.pose(&s.keys, &mut out).expect("pose");
+        for threads in [1, 2] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .expect("pool");
+            let ns_per_byte = stream_ns_per_byte(bytes(w) as usize * n, threads);
+            println!("  {threads} thread(s)");
+            let mut got: Vec<(BlendMethod, Times)> = Vec::new();
+            for method in skin_scenes::BACKENDS {
+                if !only.is_empty() && !only.iter().any(|o| o == method.name()) {
+                    continue;
+                }
+                let t = pool.install(|| measure(&s, method));
+                let per_vertex = |ms: Spread| ms.scale(1e6 / n as f64);
+                let compute = flops(method, w) / (16.0 * clock * threads as f64);
+                let memory = bytes(w) * ns_per_byte;
+                let limit = compute.max(memory);
+                let target = (s.name == "armadillo" && method == BlendMethod::MotorLinear)
+                    .then_some(Target::AtMost(1.0));
+                println!(
+                    "{}",
+                    tally.row(
+                        &format!("    {}", method.name()),
+                        t.batch,
+                        "ms/frame",
+                        target
+                    )
+                );
+                println!(
+                    "      {:.1} ns/vertex (vertex by vertex {:.1}, x{:.2}); limit {:.1} ns \
+                     (compute {:.1} for {:.0} flops, memory {:.1} for {:.0} bytes): {:.1}x the limit",
+                    per_vertex(t.batch).value,
+                    per_vertex(t.vertex).value,
+                    t.vertex.value / t.batch.value,
+                    limit,
+                    compute,
+                    flops(method, w),
+                    memory,
+                    bytes(w),
+                    per_vertex(t.batch).value / limit
+                );
+                got.push((method, t));
             }
-            let ms = spread_ms(101, || poser.pose(&s.keys, &mut out).expect("pose"));
-            times.push((method, ms));
-            let target = (s.name == "armadillo" && method == deform::BlendMethod::MotorLinear)
-                .then_some(Target::AtMost(1.0));
-            let label = format!("  {}", method.name());
-            println!("{}", tally.row(&label, ms, "ms/frame", target));
-            println!("  {:<42} {:.1} ns/vertex", "", ms.value * 1e6 / n as f64);
-        }
-        let get = |m| {
-            times
-                .iter()
-                .find(|(k, _)| *k == m)
-                .map(|t| t.1)
-                .unwrap_or(Spread::exact(f64::NAN))
-        };
-        use deform::BlendMethod::*;
-        let ratios = [
-            (
-                "motor-linear / dual-quaternion",
-                get(MotorLinear).ratio(get(DualQuaternion)),
-                Some(Target::AtMost(1.0)),
-            ),
-            (
-                "conformal / matrix",
-                get(Conformal).ratio(get(Matrix)),
-                Some(Target::AtMost(1.2)),
-            ),
-            (
-                "conformal-projected / conformal",
-                get(ConformalProjected).ratio(get(Conformal)),
-                None,
-            ),
-        ];
-        for (label, r, target) in ratios {
-            println!(
-                "{}",
-                tally.row(&format!("  {} {label}", s.name), r, "x", target)
-            );
+            let get = |m: BlendMethod| got.iter().find(|(k, _)| *k == m).map(|(_, t)| t);
+            let (Some(dq), Some(ml), Some(mx), Some(cf), Some(lg)) = (
+                get(DualQuaternion),
+                get(MotorLinear),
+                get(Matrix),
+                get(Conformal),
+                get(MotorLog),
+            ) else {
+                continue;
+            };
+            let mut rows = vec![
+                (
+                    "motor-linear / dual-quaternion",
+                    ml.batch.ratio(dq.batch),
+                    Some(Target::AtMost(1.0)),
+                ),
+                (
+                    "conformal / matrix",
+                    cf.batch.ratio(mx.batch),
+                    Some(Target::AtMost(1.1)),
+                ),
+                (
+                    "motor-log / motor-linear",
+                    lg.batch.ratio(ml.batch),
+                    Some(Target::AtMost(1.5)),
+                ),
+            ];
+            // Issue 23's speed-ups are measured on one thread, against the per-vertex loop.
+            let gain =
+                |t: &Times, x: f64| (t.batch.speedup_over(t.vertex), Some(Target::AtLeast(x)));
+            if threads == 1 && s.name == "armadillo" {
+                for (label, t, x) in [
+                    ("dual-quaternion speed-up", dq, 2.0),
+                    ("motor-linear speed-up", ml, 3.0),
+                    ("matrix speed-up", mx, 1.25),
+                ] {
+                    let (r, target) = gain(t, x);
+                    rows.push((label, r, target));
+                }
+            }
+            for (label, r, target) in rows {
+                println!(
+                    "{}",
+                    tally.row(&format!("    {} {label}", s.name), r, "x", target)
+                );
+            }
         }
     }
     if let Some(rig) = skin_scenes::cesium_rig() {

@@ -62,8 +62,8 @@ pub mod deformer {
     pub use crate::deformers::deformer::{Deformer, PoseScratch, Poser};
 }
 
+pub use blend::{simd_level, BlendMethod, BoundBlend, KeyWeights, PreparedKeys};
 pub use blend::{BlendError, KeyError, MAX_KEYS};
-pub use blend::{BlendMethod, BoundBlend, KeyWeights, PreparedKeys};
 pub use bspline::{
     bspline_basis, bspline_degree, bspline_motor, fit_bspline, BsplineFit, FitSolver,
 };

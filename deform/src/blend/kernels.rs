@@ -11,7 +11,7 @@
 use super::batch::{Batches, Kernel, Points4, LANES};
 use super::keys::PreparedKeys;
 use super::BlendMethod;
-use cga::wide::{Bivector as WBivector, Lane, Motor as WMotor, Point as WPoint, F64x4};
+use cga::wide::{Bivector as WBivector, F64x4, Lane, Motor as WMotor, Point as WPoint};
 use cga::{rotate_lanes, ExpLanes, Sandwich};
 use glam::DVec3;
 
@@ -100,10 +100,21 @@ fn scaled(
     }
 }
 
-/// Lane `c` of each vertex's `v[l]`, as the lanes of one value (a transpose).
+/// Row `i` of the four vertices' sums, transposed: lane `l` of result `c` is lane `c` of
+/// vertex `l`'s `v[l][i]`. Written as two rounds of two-source shuffles (interleave the low
+/// and high lanes of pairs, then swap halves), which compile to a few vector shuffles where a
+/// four-source gather per lane would be scalarised.
 #[inline(always)]
-fn column<const N: usize>(v: &[[F64x4; N]; LANES], i: usize, c: usize) -> F64x4 {
-    F64x4::from_fn(|l| v[l][i].0[c])
+fn transpose<const N: usize>(v: &[[F64x4; N]; LANES], i: usize) -> [F64x4; 4] {
+    let [a, b, c, d] = [v[0][i].0, v[1][i].0, v[2][i].0, v[3][i].0];
+    let (t0, t1) = ([a[0], b[0], a[2], b[2]], [a[1], b[1], a[3], b[3]]);
+    let (t2, t3) = ([c[0], d[0], c[2], d[2]], [c[1], d[1], c[3], d[3]]);
+    [
+        F64x4([t0[0], t0[1], t2[0], t2[1]]),
+        F64x4([t1[0], t1[1], t3[0], t3[1]]),
+        F64x4([t0[2], t0[3], t2[2], t2[3]]),
+        F64x4([t1[2], t1[3], t3[2], t3[3]]),
+    ]
 }
 
 /// Motor blending: `normalise(sum w M)` in the hemisphere of the first key, times the blended
@@ -148,24 +159,31 @@ impl Kernel for MotorLinear<'_> {
     fn batch(&self, keys: &[[u32; LANES]], weights: &[F64x4], p: &Points4) -> Option<Points4> {
         let sums: [[F64x4; 2]; LANES] =
             each!(LANES, l => hemisphere_sum(self.rows, self.aligned, keys, weights, l));
+        let (r, d) = (transpose(&sums, 0), transpose(&sums, 1));
         let acc = WMotor::<F64x4> {
-            s: column(&sums, 0, 0),
-            e12: column(&sums, 0, 1),
-            e13: column(&sums, 0, 2),
-            e23: column(&sums, 0, 3),
-            e1i: column(&sums, 1, 0),
-            e2i: column(&sums, 1, 1),
-            e3i: column(&sums, 1, 2),
-            e123i: column(&sums, 1, 3),
+            s: r[0],
+            e12: r[1],
+            e13: r[2],
+            e23: r[3],
+            e1i: d[0],
+            e2i: d[1],
+            e3i: d[2],
+            e123i: d[3],
         };
         let n2 = acc.s * acc.s + acc.e12 * acc.e12 + acc.e13 * acc.e13 + acc.e23 * acc.e23;
         if !n2.0.iter().all(|&x| x > f64::MIN_POSITIVE) {
             return None;
         }
-        let m = acc.scale(F64x4::splat(1.0) / n2.sqrt());
+        // The fused sandwich of a unit motor is `x + Q(M, x)` with `Q` quadratic in `M`: for
+        // the unnormalised sum, `x + Q(acc, x) / |acc|^2` (no square root).
+        let inv = F64x4::splat(1.0) / n2;
         let p = scaled(self.log_scales, keys, weights, p);
-        let q = m.sandwich(up(&p));
-        Some([q.e1, q.e2, q.e3])
+        let q = acc.sandwich(up(&p));
+        Some([
+            p[0] + (q.e1 - p[0]) * inv,
+            p[1] + (q.e2 - p[1]) * inv,
+            p[2] + (q.e3 - p[2]) * inv,
+        ])
     }
 }
 
@@ -195,16 +213,14 @@ impl Kernel for DualQuaternion<'_> {
     fn batch(&self, keys: &[[u32; LANES]], weights: &[F64x4], p: &Points4) -> Option<Points4> {
         let sums: [[F64x4; 2]; LANES] =
             each!(LANES, l => hemisphere_sum(self.rows, self.aligned, keys, weights, l));
-        let r: [F64x4; 4] = each!(4, c => column(&sums, 0, c));
-        let d: [F64x4; 4] = each!(4, c => column(&sums, 1, c));
+        let (r, d) = (transpose(&sums, 0), transpose(&sums, 1));
         let n2 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2] + r[3] * r[3];
         if !n2.0.iter().all(|&x| x > 0.0) {
             return None;
         }
-        let inv = F64x4::splat(1.0) / n2.sqrt();
-        let r: [F64x4; 4] = each!(4, c => r[c] * inv);
-        let d: [F64x4; 4] = each!(4, c => d[c] * inv);
-        // t = 2 vec(d ~r).
+        // Both the rotation and `t = 2 vec(d ~r)` are quadratic in (r, d): computed with the
+        // unnormalised sums and divided by |r|^2 once (no square root).
+        let inv = F64x4::splat(1.0) / n2;
         let [ax, ay, az, aw] = d;
         let [bx, by, bz, bw] = [-r[0], -r[1], -r[2], r[3]];
         let two = F64x4::splat(2.0);
@@ -212,7 +228,7 @@ impl Kernel for DualQuaternion<'_> {
         let ty = two * (aw * by - ax * bz + ay * bw + az * bx);
         let tz = two * (aw * bz + ax * by - ay * bx + az * bw);
         let q = rotate_lanes(r, scaled(self.log_scales, keys, weights, p));
-        Some([q[0] + tx, q[1] + ty, q[2] + tz])
+        Some([(q[0] + tx) * inv, (q[1] + ty) * inv, (q[2] + tz) * inv])
     }
 }
 
@@ -234,16 +250,15 @@ struct Affine<'a> {
 impl Kernel for Affine<'_> {
     #[inline(always)]
     fn batch(&self, keys: &[[u32; LANES]], weights: &[F64x4], p: &Points4) -> Option<Points4> {
-        let q: [F64x4; LANES] = each!(LANES, l => {
+        let q: [[F64x4; 1]; LANES] = each!(LANES, l => {
             let a: [F64x4; 4] = accumulate(self.rows, keys, weights, l, |k| k, |_, w| w);
-            apply(&a, p, l)
+            [apply(&a, p, l)]
         });
-        let c = |i: usize| F64x4::from_fn(|l| q[l].0[i]);
+        let [x, y, z, eo] = transpose(&q, 0);
         Some(if self.project {
-            let eo = c(3);
-            [c(0) / eo, c(1) / eo, c(2) / eo]
+            [x / eo, y / eo, z / eo]
         } else {
-            [c(0), c(1), c(2)]
+            [x, y, z]
         })
     }
 }
@@ -256,15 +271,16 @@ struct ConformalProjected<'a> {
 impl Kernel for ConformalProjected<'_> {
     #[inline(always)]
     fn batch(&self, keys: &[[u32; LANES]], weights: &[F64x4], p: &Points4) -> Option<Points4> {
-        let q: [F64x4; LANES] = each!(LANES, l => {
+        let q: [[F64x4; 1]; LANES] = each!(LANES, l => {
             let mut acc = F64x4::splat(0.0);
             for (k, w) in keys.iter().zip(weights) {
                 let e = apply(at(self.rows, k[l]), p, l);
                 acc += F64x4::splat(w.0[l]) * (e / F64x4::splat(e.0[3]));
             }
-            acc
+            [acc]
         });
-        Some(each!(3, i => F64x4::from_fn(|l| q[l].0[i])))
+        let [x, y, z, _] = transpose(&q, 0);
+        Some([x, y, z])
     }
 }
 
@@ -280,17 +296,22 @@ impl Kernel for MotorLog<'_> {
     fn batch(&self, keys: &[[u32; LANES]], weights: &[F64x4], p: &Points4) -> Option<Points4> {
         let sums: [[F64x4; 3]; LANES] =
             each!(LANES, l => accumulate(self.rows, keys, weights, l, |k| k, |_, w| w));
+        let (a, b, c) = (
+            transpose(&sums, 0),
+            transpose(&sums, 1),
+            transpose(&sums, 2),
+        );
         let log = WBivector::<F64x4> {
-            eo1: column(&sums, 0, 0),
-            eo2: column(&sums, 0, 1),
-            eo3: column(&sums, 0, 2),
-            eoi: column(&sums, 0, 3),
-            e12: column(&sums, 1, 0),
-            e13: column(&sums, 1, 1),
-            e23: column(&sums, 1, 2),
-            e1i: column(&sums, 1, 3),
-            e2i: column(&sums, 2, 0),
-            e3i: column(&sums, 2, 1),
+            eo1: a[0],
+            eo2: a[1],
+            eo3: a[2],
+            eoi: a[3],
+            e12: b[0],
+            e13: b[1],
+            e23: b[2],
+            e1i: b[3],
+            e2i: c[0],
+            e3i: c[1],
         };
         if let Some(q) = log.exp_rigid_transform(*p) {
             return Some(q);

@@ -458,4 +458,26 @@ impl BoundBlend {
         }
         Ok(())
     }
+
+    /// [`BoundBlend::pose_using`] one vertex at a time ([`PreparedKeys::transform`] per
+    /// vertex, in parallel), without the batch loop: the reference the batch kernels are
+    /// tested against, and the baseline the benchmarks measure them against in the same run.
+    ///
+    /// # Errors
+    /// As [`BoundBlend::pose_using`].
+    pub fn pose_vertex_by_vertex(
+        &self,
+        keys: &[ScaledMotor],
+        prepared: &mut PreparedKeys,
+        out: &mut [DVec3],
+    ) -> Result<()> {
+        check_key_count("this deformer", self.key_count(), keys.len())?;
+        check_positions(self.vertex_count(), out.len())?;
+        prepared.prepare(keys, self.method)?;
+        let prepared = &*prepared;
+        for_each_vertex(out, |i| {
+            prepared.transform(self.weights.row(i), self.local[i])
+        });
+        Ok(())
+    }
 }
