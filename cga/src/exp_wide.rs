@@ -24,16 +24,14 @@ use crate::f64::wide::{Bivector, Lane};
 /// digits to their largest terms.
 const MAX_PHI: f64 = 2.0;
 
-/// Terms of each series (for `phi <= 2` the last is below `1e-20` of the first).
-const TERMS: usize = 18;
-
-/// `c[n]`, `n = 0..TERMS`, with `f(phi) = sum c[n] phi^(2n)`: `c[0] = first` and
-/// `c[n] = c[n-1] m / ((2n + a)(2n + b))`.
-const fn series(first: f64, m: f64, a: i64, b: i64) -> [f64; TERMS] {
-    let mut c = [0.0; TERMS];
+/// `c[n]`, `n = 0..N`, with `f(phi) = sum c[n] phi^(2n)`: `c[0] = first` and
+/// `c[n] = c[n-1] m / ((2n + a)(2n + b))`. Each series below is cut where its next term is
+/// under `1e-18` at `phi = 2`.
+const fn series<const N: usize>(first: f64, m: f64, a: i64, b: i64) -> [f64; N] {
+    let mut c = [0.0; N];
     c[0] = first;
     let mut n = 1;
-    while n < TERMS {
+    while n < N {
         let k = 2 * n as i64;
         c[n] = c[n - 1] * m / ((k + a) as f64 * (k + b) as f64);
         n += 1;
@@ -42,17 +40,17 @@ const fn series(first: f64, m: f64, a: i64, b: i64) -> [f64; TERMS] {
 }
 
 /// `sinc`: `(-1)^n / (2n+1)!`.
-const SINC: [f64; TERMS] = series(1.0, -1.0, 0, 1);
+const SINC: [f64; 13] = series(1.0, -1.0, 0, 1);
 /// `cos`: `(-1)^n / (2n)!`.
-const COS: [f64; TERMS] = series(1.0, -1.0, -1, 0);
+const COS: [f64; 14] = series(1.0, -1.0, -1, 0);
 /// `k`: `(-1)^n 4^(n+1) / (2n+3)!`.
-const K: [f64; TERMS] = series(4.0 / 6.0, -4.0, 2, 3);
+const K: [f64; 16] = series(4.0 / 6.0, -4.0, 2, 3);
 
 /// `sum c[n] x^n` by Horner's rule.
 #[inline(always)]
-fn horner<W: Lane<Scalar = f64>>(c: &[f64; TERMS], x: W) -> W {
-    let mut acc = W::splat(c[TERMS - 1]);
-    let mut n = TERMS - 1;
+fn horner<W: Lane<Scalar = f64>, const N: usize>(c: &[f64; N], x: W) -> W {
+    let mut acc = W::splat(c[N - 1]);
+    let mut n = N - 1;
     while n > 0 {
         n -= 1;
         acc = acc * x + W::splat(c[n]);

@@ -256,7 +256,9 @@ impl Kernel for Affine<'_> {
         });
         let [x, y, z, eo] = transpose(&q, 0);
         Some(if self.project {
-            [x / eo, y / eo, z / eo]
+            // One division: `1 / eo` is exact for the rigid keys' `eo = 1`.
+            let inv = F64x4::splat(1.0) / eo;
+            [x * inv, y * inv, z * inv]
         } else {
             [x, y, z]
         })
