@@ -1,4 +1,4 @@
-//! The closed-form exponential of rigid generators over lanes: [`Bivector::exp_similarity`]
+//! The closed-form exponential of similarity generators over lanes: [`Bivector::exp_similarity`]
 //! applied to points, for `W::LANES` generators and points at once (log blending moves every
 //! vertex by the exponential of its own blended generator).
 //!
@@ -14,8 +14,9 @@
 //!
 //! Each series is summed to rounding for `phi <= 2` (principal logarithms and their convex
 //! blends have `phi <= pi / 2`); a lane with a larger half-angle (a blend with weights outside
-//! `[0, 1]` can make one) or a dilation part makes
-//! [`ExpLanes::exp_rigid_transform`] decline, and callers use the scalar form for those.
+//! `[0, 1]` can make one) makes [`ExpLanes::exp_transform`] decline, and callers use the
+//! scalar form for those. Generators with a dilation part add, per lane, the one `exp` of the
+//! scalar form and its guarded quotients.
 
 use crate::f64::wide::{Bivector, Lane};
 
@@ -58,43 +59,91 @@ fn horner<W: Lane<Scalar = f64>, const N: usize>(c: &[f64; N], x: W) -> W {
     acc
 }
 
-/// The exponential of rigid generators applied to points, over lanes.
+/// The exponential of similarity generators applied to points, over lanes.
 pub trait ExpLanes<W> {
-    /// Lane by lane `self.lane(i).exp_similarity().transform_point(p_i)` for generators
-    /// without a dilation part (`eoi = 0`) and with a half rotation angle of at most 2;
-    /// `None` when some lane is outside that range (the points are then not computed).
-    /// The result agrees with the scalar closed form to rounding.
-    fn exp_rigid_transform(self, p: [W; 3]) -> Option<[W; 3]>;
+    /// Lane by lane `self.lane(i).exp_similarity().transform_point(p_i)` for generators with
+    /// a half rotation angle of at most 2 (principal logarithms and their convex blends have
+    /// at most `pi / 2`); `None` when some lane is outside that range (nothing is computed).
+    /// Rigid generators (`eoi = 0` in every lane) take the series alone; a dilation part adds
+    /// one `exp` per lane and the scalar form's guarded quotients, lane by lane. The result
+    /// agrees with the scalar closed form to rounding.
+    fn exp_transform(self, p: [W; 3]) -> Option<[W; 3]>;
 }
 
 impl<W: Lane<Scalar = f64>> ExpLanes<W> for Bivector<W> {
     #[inline(always)]
-    fn exp_rigid_transform(self, p: [W; 3]) -> Option<[W; 3]> {
+    fn exp_transform(self, p: [W; 3]) -> Option<[W; 3]> {
         // The half rotation vector u and the translation part v (see `quat_map`).
         let (ux, uy, uz) = (-self.e23, self.e13, -self.e12);
         let two = W::splat(2.0);
         let (vx, vy, vz) = (-two * self.e1i, -two * self.e2i, -two * self.e3i);
         let phi2 = ux * ux + uy * uy + uz * uz;
-        if !(0..W::LANES).all(|i| self.eoi.lane(i) == 0.0 && phi2.lane(i) <= MAX_PHI * MAX_PHI) {
+        if !(0..W::LANES).all(|i| phi2.lane(i) <= MAX_PHI * MAX_PHI) {
             return None;
         }
+        let rigid = (0..W::LANES).all(|i| self.eoi.lane(i) == 0.0);
         let sc = horner(&SINC, phi2);
         let c = horner(&COS, phi2);
-        let k = horner(&K, phi2);
-        // Without dilation the scalar form's z is (sinc cos, sinc^2).
-        let (zr, zi) = (sc * c, sc * sc);
         let ud = ux * vx + uy * vy + uz * vz;
         let (cx, cy, cz) = (uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx);
+        // t = zr v + k (u . v) u + zi (u x v), the rotation (sinc u, cos), the scale.
+        let (zr, k, zi, scale) = if rigid {
+            // Without dilation z = (sinc cos, sinc^2) and k is its own series.
+            (sc * c, horner(&K, phi2), sc * sc, None)
+        } else {
+            let (zr, k, zi, eg) = dilation_terms(self.eoi, phi2, sc, c);
+            (zr, k, zi, Some(eg))
+        };
         let kd = k * ud;
         let t = [
             zr * vx + kd * ux + zi * cx,
             zr * vy + kd * uy + zi * cy,
             zr * vz + kd * uz + zi * cz,
         ];
-        // Rotate by the quaternion (sinc u, cos).
+        let p = match scale {
+            Some(s) => [s * p[0], s * p[1], s * p[2]],
+            None => p,
+        };
         let r = rotate_lanes([sc * ux, sc * uy, sc * uz, c], p);
         Some([r[0] + t[0], r[1] + t[1], r[2] + t[2]])
     }
+}
+
+/// The scalar form's translation coefficients `(zr, k, zi / phi)` and scale `e^(2 l)` for
+/// log-scales `l`, lane by lane with the same guards (`Bivector::exp_parts`).
+#[inline(always)]
+fn dilation_terms<W: Lane<Scalar = f64>>(l: W, phi2: W, sc: W, c: W) -> (W, W, W, W) {
+    let (one, two, zero) = (W::splat(1.0), W::splat(2.0), W::splat(0.0));
+    // e = exp(l) and em = exp(l) - 1, each to full relative precision from one call.
+    let e_em = |i: usize| {
+        let l = l.lane(i);
+        if l == 0.0 {
+            (1.0, 0.0)
+        } else if l.abs() < 0.5 {
+            let em = l.exp_m1();
+            (1.0 + em, em)
+        } else {
+            let e = l.exp();
+            (e, e - 1.0)
+        }
+    };
+    let e = W::from_fn(|i| e_em(i).0);
+    let em = W::from_fn(|i| e_em(i).1);
+    let sg = two * l;
+    let eg = e * e;
+    let egm1 = em * (one + e);
+    let ax = (sg * sg).gt_select(zero, egm1 / sg, one);
+    let phi = phi2.sqrt();
+    let sn = sc * phi;
+    let er = egm1 * (c * c - sn * sn) - two * sn * sn;
+    let theta = two * phi;
+    let w2 = sg * sg + theta * theta;
+    let ei_phi = two * eg * sc * c;
+    let tiny = W::splat(f64::MIN_POSITIVE);
+    let zr = w2.gt_select(tiny, (er * sg + eg * two * sn * c * theta) / w2, one);
+    let zi = w2.gt_select(tiny, (ei_phi * sg - two * er) / w2, one);
+    let k = phi2.gt_select(tiny, (ax - zr) / phi2, zero);
+    (zr, k, zi, eg)
 }
 
 /// Rotate points by unit quaternions `(x, y, z, w)` lane by lane, as glam's `DQuat * DVec3`
@@ -166,7 +215,7 @@ mod tests {
             F64x4::from_fn(|i| pts[i].y),
             F64x4::from_fn(|i| pts[i].z),
         ];
-        let q = b.exp_rigid_transform(p).expect("in range");
+        let q = b.exp_transform(p).expect("in range");
         for i in 0..4 {
             let want = scalar(gens[i], pts[i]);
             let got = DVec3::new(q[0].lane(i), q[1].lane(i), q[2].lane(i));
@@ -175,16 +224,28 @@ mod tests {
                 "lane {i}: {got} vs {want}"
             );
         }
-        // A dilation part, or a half-angle past pi, declines.
+        // Dilation parts, small, large and none, in one batch.
         let mut d = gens;
-        d[2].eoi = 0.1;
-        assert!(Bivector::<F64x4>::gather(&d)
-            .exp_rigid_transform(p)
-            .is_none());
-        d[2].eoi = 0.0;
-        d[1].e12 = 2.5;
-        assert!(Bivector::<F64x4>::gather(&d)
-            .exp_rigid_transform(p)
-            .is_none());
+        d[0].eoi = 0.3;
+        d[2].eoi = -0.8;
+        d[3].eoi = 1e-12;
+        let q = Bivector::<F64x4>::gather(&d).exp_transform(p).expect("in range");
+        for i in 0..4 {
+            let want = scalar(d[i], pts[i]);
+            let got = DVec3::new(q[0].lane(i), q[1].lane(i), q[2].lane(i));
+            assert!(
+                (got - want).abs().max_element() < 1e-13 * want.length().max(1.0),
+                "dilated lane {i}: {got} vs {want}"
+            );
+        }
+        // A pure dilation (no rotation), then a half-angle past the range.
+        let mut z = d;
+        z[1] = ScalarBivector::from_array([0.0, 0.0, 0.0, 0.4, 0.0, 0.0, 0.0, 0.2, 0.0, 0.0]);
+        let q = Bivector::<F64x4>::gather(&z).exp_transform(p).expect("in range");
+        let want = scalar(z[1], pts[1]);
+        let got = DVec3::new(q[0].lane(1), q[1].lane(1), q[2].lane(1));
+        assert!((got - want).length() < 1e-13 * want.length().max(1.0));
+        z[1].e12 = 2.5;
+        assert!(Bivector::<F64x4>::gather(&z).exp_transform(p).is_none());
     }
 }

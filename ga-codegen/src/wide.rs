@@ -43,6 +43,8 @@ pub trait Lane:
     fn sqrt(self) -> Self;
     /// Lane-wise `if self < 0 { -x } else { x }`: a sign flip without a branch.
     fn flip_sign_if_negative(self, x: Self) -> Self;
+    /// Lane-wise `if self > t { yes } else { no }` (a compare and a blend; NaN picks `no`).
+    fn gt_select(self, t: Self, yes: Self, no: Self) -> Self;
 }
 
 impl Lane for f64 {
@@ -77,6 +79,14 @@ impl Lane for f64 {
             x
         }
     }
+    #[inline(always)]
+    fn gt_select(self, t: f64, yes: f64, no: f64) -> f64 {
+        if self > t {
+            yes
+        } else {
+            no
+        }
+    }
 }
 
 impl Lane for f32 {
@@ -109,6 +119,14 @@ impl Lane for f32 {
             -x
         } else {
             x
+        }
+    }
+    #[inline(always)]
+    fn gt_select(self, t: f32, yes: f32, no: f32) -> f32 {
+        if self > t {
+            yes
+        } else {
+            no
         }
     }
 }
@@ -169,6 +187,16 @@ macro_rules! lanes {
             fn flip_sign_if_negative(self, x: $name) -> $name {
                 // A select per lane (a compare and a blend, no branch, once vectorised).
                 self.zip(x, |s, x| if s < 0.0 { -x } else { x })
+            }
+            #[inline(always)]
+            fn gt_select(self, t: $name, yes: $name, no: $name) -> $name {
+                let mut r = no.0;
+                for i in 0..$n {
+                    if self.0[i] > t.0[i] {
+                        r[i] = yes.0[i];
+                    }
+                }
+                $name(r)
             }
         }
 

@@ -287,8 +287,8 @@ impl Kernel for ConformalProjected<'_> {
 }
 
 /// Log blending: `exp(sum w log M)`; the sums along the key rows, the closed-form exponential
-/// over four lanes for rigid generators (`cga::ExpLanes`), vertex by vertex otherwise
-/// (dilations, or a half-angle past the lanes' range).
+/// over four lanes (`cga::ExpLanes`), vertex by vertex for a batch with a half-angle past the
+/// lanes' range.
 struct MotorLog<'a> {
     rows: Rows<'a>,
 }
@@ -315,7 +315,7 @@ impl Kernel for MotorLog<'_> {
             e2i: c[0],
             e3i: c[1],
         };
-        if let Some(q) = log.exp_rigid_transform(*p) {
+        if let Some(q) = log.exp_transform(*p) {
             return Some(q);
         }
         let q: [DVec3; LANES] = each!(LANES, l => log
