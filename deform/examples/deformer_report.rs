@@ -1,6 +1,7 @@
 //! Quick report of the deformers' speed on armadillo-50k and its 200k-vertex subdivision:
 //! bind time (harmonic fields and rest points), pose time per frame with both cores, and ns
-//! per vertex of the four blend methods on the same weights (4 cubic B-spline keys).
+//! per vertex of the four blend methods on the same weights (4 cubic B-spline keys), and the
+//! speed-up of the batch pose loop over the vertex-by-vertex loop (same run).
 //! Medians of repeated runs with their range `[fastest, slowest]`; rows with a target (the
 //! armadillo-50k rows of `deform/BENCH.md`) say `met` or `MISSED`. The criterion bench
 //! `deformers` measures the same.
@@ -42,6 +43,21 @@ fn report(name: &str, mesh: &Mesh, targets: &Targets, tally: &mut Tally) {
     }
     let pose_spline = spread_ms(31, || spline_poser.pose(&keys, &mut out).expect("pose"));
     let pose_handles = spread_ms(31, || handles_poser.pose(&keys, &mut out).expect("pose"));
+    // The vertex-by-vertex loop the batch loop replaced, in the same run (issue 23: at least
+    // 2x per vertex on both cores).
+    let mut prepared = spline.blend().scratch();
+    let spline_vertex = spread_ms(31, || {
+        spline
+            .blend()
+            .pose_vertex_by_vertex(&keys, &mut prepared, &mut out)
+            .expect("pose")
+    });
+    let handles_vertex = spread_ms(31, || {
+        handles
+            .blend()
+            .pose_vertex_by_vertex(&keys, &mut prepared, &mut out)
+            .expect("pose")
+    });
     println!(
         "{name} ({n} vertices, {} threads)",
         rayon::current_num_threads()
@@ -74,6 +90,21 @@ fn report(name: &str, mesh: &Mesh, targets: &Targets, tally: &mut Tally) {
     ];
     for (label, s, unit, target) in rows {
         println!("{}", tally.row(&format!("  {label}"), s, unit, target));
+    }
+    let gain = targets.pose_ms.map(|_| Target::AtLeast(2.0));
+    for (label, batch, vertex) in [
+        ("spline", pose_spline, spline_vertex),
+        ("handles", pose_handles, handles_vertex),
+    ] {
+        println!(
+            "{}",
+            tally.row(
+                &format!("  pose {label}: batch loop over vertex by vertex"),
+                batch.speedup_over(vertex),
+                "x",
+                gain
+            )
+        );
     }
     let rigid = scenes::rigid_keys(mesh, 4);
     let per_vertex = 1e6 / n as f64;
