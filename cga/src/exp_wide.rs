@@ -229,7 +229,9 @@ mod tests {
         d[0].eoi = 0.3;
         d[2].eoi = -0.8;
         d[3].eoi = 1e-12;
-        let q = Bivector::<F64x4>::gather(&d).exp_transform(p).expect("in range");
+        let q = Bivector::<F64x4>::gather(&d)
+            .exp_transform(p)
+            .expect("in range");
         for i in 0..4 {
             let want = scalar(d[i], pts[i]);
             let got = DVec3::new(q[0].lane(i), q[1].lane(i), q[2].lane(i));
@@ -241,7 +243,9 @@ mod tests {
         // A pure dilation (no rotation), then a half-angle past the range.
         let mut z = d;
         z[1] = ScalarBivector::from_array([0.0, 0.0, 0.0, 0.4, 0.0, 0.0, 0.0, 0.2, 0.0, 0.0]);
-        let q = Bivector::<F64x4>::gather(&z).exp_transform(p).expect("in range");
+        let q = Bivector::<F64x4>::gather(&z)
+            .exp_transform(p)
+            .expect("in range");
         let want = scalar(z[1], pts[1]);
         let got = DVec3::new(q[0].lane(1), q[1].lane(1), q[2].lane(1));
         assert!((got - want).length() < 1e-13 * want.length().max(1.0));
