@@ -7,10 +7,11 @@ use crate::blend::{BlendMethod, BoundBlend, KeyWeights};
 use crate::blend::{KeyError, MAX_KEYS};
 use crate::deformers::deformer::deformer_via_blend;
 use crate::deformers::Result;
-use crate::mesh::Mesh;
+use crate::mesh::{Mesh, MeshError};
 use crate::operators::harmonic::Harmonic;
 use crate::operators::harmonic::HarmonicOptions;
 use crate::operators::laplacian::LaplacianKind;
+use crate::operators::solve::SystemAnalysis;
 use cga::ScaledMotor;
 
 /// Options of [`MotorHandles::bind_with`].
@@ -71,6 +72,46 @@ impl MotorHandles {
         rest: &[ScaledMotor],
         options: HandleOptions,
     ) -> Result<Self> {
+        Self::check_sets(sets, rest)?;
+        let coordinates = Harmonic::new(mesh, sets, options.harmonic)?.coordinates()?;
+        let weights = KeyWeights::from_columns(&coordinates)?;
+        let blend = BoundBlend::bind(&mesh.positions, weights, rest, options.method)?;
+        Ok(MotorHandles { blend })
+    }
+
+    /// [`MotorHandles::bind_with`] on a mesh whose system matrix is already analysed
+    /// (`SystemAnalysis::new(&harmonic_system(mesh, &options.harmonic)?)`, kept across
+    /// selections): a new selection costs the numeric factorisation, the solves and the rest
+    /// points, not the matrix and its ordering. What `deform view` does when handles change.
+    ///
+    /// # Errors
+    /// As [`MotorHandles::bind_with`]; [`MeshError::DimensionMismatch`] when the analysis is
+    /// of a matrix of another size than the mesh.
+    pub fn bind_with_analysis(
+        mesh: &Mesh,
+        analysis: &SystemAnalysis,
+        sets: &[&[u32]],
+        rest: &[ScaledMotor],
+        options: HandleOptions,
+    ) -> Result<Self> {
+        if analysis.len() != mesh.vertex_count() {
+            return Err(MeshError::DimensionMismatch {
+                what: "rows of the analysed system matrix",
+                expected: mesh.vertex_count(),
+                got: analysis.len(),
+            }
+            .into());
+        }
+        Self::check_sets(sets, rest)?;
+        let coordinates =
+            Harmonic::with_analysis(analysis, sets, options.harmonic.solver)?.coordinates()?;
+        let weights = KeyWeights::from_columns(&coordinates)?;
+        let blend = BoundBlend::bind(&mesh.positions, weights, rest, options.method)?;
+        Ok(MotorHandles { blend })
+    }
+
+    /// The checks of the handle sets and rest motors shared by the binds.
+    fn check_sets(sets: &[&[u32]], rest: &[ScaledMotor]) -> Result<()> {
         if sets.is_empty() || rest.len() != sets.len() {
             return Err(KeyError::WrongCount {
                 what: "motor handles",
@@ -89,10 +130,7 @@ impl MotorHandles {
         if let Some(set) = sets.iter().position(|s| s.is_empty()) {
             return Err(KeyError::EmptyHandle { set }.into());
         }
-        let coordinates = Harmonic::new(mesh, sets, options.harmonic)?.coordinates()?;
-        let weights = KeyWeights::from_columns(&coordinates)?;
-        let blend = BoundBlend::bind(&mesh.positions, weights, rest, options.method)?;
-        Ok(MotorHandles { blend })
+        Ok(())
     }
 
     /// The harmonic coordinate of handle `j` at vertex `i`.

@@ -16,6 +16,7 @@ use crate::operators::mass::mass_diagonal;
 use crate::operators::mass::MassKind;
 use crate::operators::solve::DirichletSolver;
 use crate::operators::solve::SolverOptions;
+use crate::operators::solve::SystemAnalysis;
 use crate::operators::Result;
 use crate::operators::SolveError;
 use sprs::CsMat;
@@ -155,44 +156,37 @@ impl Harmonic {
     /// [`SolveError::Unconstrained`] (a component without constrained vertices, e.g. unreferenced
     /// vertices: run [`crate::mesh::validate::clean()`]), [`SolveError::NotPositiveDefinite`].
     pub fn new(mesh: &Mesh, sets: &[&[u32]], options: HarmonicOptions) -> Result<Self> {
-        let n = mesh.positions.len();
-        let bad: Vec<u32> = sets
-            .iter()
-            .flat_map(|s| s.iter().copied())
-            .filter(|&v| v as usize >= n)
-            .collect();
-        if !bad.is_empty() {
-            return Err(MeshError::ConstraintOutOfRange {
-                vertices: IndexList(bad),
-                vertex_count: n,
-            }
-            .into());
-        }
-        let constrained: Vec<u32> = sets.iter().flat_map(|s| s.iter().copied()).collect();
-        let mut seen = vec![false; n];
-        let mut overlap: Vec<u32> = constrained
-            .iter()
-            .copied()
-            .filter(|&v| std::mem::replace(&mut seen[v as usize], true))
-            .collect();
-        if !overlap.is_empty() {
-            overlap.sort_unstable();
-            overlap.dedup();
-            return Err(MeshError::OverlappingConstraints {
-                vertices: IndexList(overlap),
-            }
-            .into());
-        }
+        let constrained = constrained_of(mesh.positions.len(), sets)?;
         let q = harmonic_system(mesh, &options)?;
         let solver = DirichletSolver::new(&q, &constrained, options.solver)?;
+        Ok(Harmonic::of(solver, sets))
+    }
+
+    /// [`Harmonic::new`] with the system matrix already analysed ([`SystemAnalysis`] of
+    /// [`harmonic_system`]): only the numeric factorisation is computed, so a new selection on
+    /// the same mesh skips the matrix and its ordering (interactive rebinding).
+    ///
+    /// # Errors
+    /// As [`Harmonic::new`] for the sets (checked against the analysed matrix's size).
+    pub fn with_analysis(
+        analysis: &SystemAnalysis,
+        sets: &[&[u32]],
+        solver: SolverOptions,
+    ) -> Result<Self> {
+        let constrained = constrained_of(analysis.len(), sets)?;
+        let solver = DirichletSolver::with_analysis(analysis, &constrained, solver)?;
+        Ok(Harmonic::of(solver, sets))
+    }
+
+    /// The sets' start offsets in the solver's constrained list.
+    fn of(solver: DirichletSolver, sets: &[&[u32]]) -> Harmonic {
         let mut starts = vec![0];
         for s in sets {
             starts.push(starts.last().copied().unwrap_or(0) + s.len());
         }
-        Ok(Harmonic { solver, starts })
+        Harmonic { solver, starts }
     }
 
-    /// Number of constrained sets.
     pub fn set_count(&self) -> usize {
         self.starts.len() - 1
     }
@@ -271,4 +265,36 @@ pub fn harmonic_coordinates(
     options: HarmonicOptions,
 ) -> Result<Vec<Vec<f64>>> {
     Harmonic::new(mesh, sets, options)?.coordinates()
+}
+
+/// The sets' vertices in order, checked: in range of `n` and in one set at most.
+fn constrained_of(n: usize, sets: &[&[u32]]) -> Result<Vec<u32>> {
+    let bad: Vec<u32> = sets
+        .iter()
+        .flat_map(|s| s.iter().copied())
+        .filter(|&v| v as usize >= n)
+        .collect();
+    if !bad.is_empty() {
+        return Err(MeshError::ConstraintOutOfRange {
+            vertices: IndexList(bad),
+            vertex_count: n,
+        }
+        .into());
+    }
+    let constrained: Vec<u32> = sets.iter().flat_map(|s| s.iter().copied()).collect();
+    let mut seen = vec![false; n];
+    let mut overlap: Vec<u32> = constrained
+        .iter()
+        .copied()
+        .filter(|&v| std::mem::replace(&mut seen[v as usize], true))
+        .collect();
+    if !overlap.is_empty() {
+        overlap.sort_unstable();
+        overlap.dedup();
+        return Err(MeshError::OverlappingConstraints {
+            vertices: IndexList(overlap),
+        }
+        .into());
+    }
+    Ok(constrained)
 }

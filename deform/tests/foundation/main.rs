@@ -14,4 +14,5 @@ mod mesh;
 mod mutation;
 mod properties;
 mod reference;
+mod shared_analysis;
 mod solve_scratch;

@@ -9,8 +9,10 @@
 
 mod components;
 mod scratch;
+mod shared;
 
 pub use scratch::SolveScratch;
+pub use shared::SystemAnalysis;
 
 use crate::mesh::IndexList;
 use crate::mesh::MeshError;
@@ -104,8 +106,46 @@ pub struct DirichletSolver {
     fc_col: Vec<u32>,
     fc_src: Vec<usize>,
     fc_values: Vec<f64>,
-    symbolic: SymbolicCholesky<usize>,
+    /// Shared with the [`SystemAnalysis`] it came from, if any.
+    symbolic: std::sync::Arc<SymbolicCholesky<usize>>,
     l_values: Vec<f64>,
+    /// With a [`SystemAnalysis`]: every row is an unknown of the factor (the constrained ones
+    /// as identity rows), `0..n`. Otherwise the free rows.
+    unknowns: Option<Vec<u32>>,
+}
+
+/// Marks a row as free in the slots of [`classify`].
+const FREE: u32 = u32::MAX;
+
+/// Per row its position in `constrained`, or [`FREE`]; errors for indices out of range or
+/// listed twice.
+fn classify(n: usize, constrained: &[u32]) -> Result<Vec<u32>> {
+    let mut slot = vec![FREE; n];
+    let mut out_of_range = Vec::new();
+    let mut repeated = Vec::new();
+    for (k, &v) in constrained.iter().enumerate() {
+        match slot.get_mut(v as usize) {
+            None => out_of_range.push(v),
+            Some(s) if *s != FREE => repeated.push(v),
+            Some(s) => *s = k as u32,
+        }
+    }
+    if !out_of_range.is_empty() {
+        return Err(MeshError::ConstraintOutOfRange {
+            vertices: IndexList(out_of_range),
+            vertex_count: n,
+        }
+        .into());
+    }
+    if !repeated.is_empty() {
+        repeated.sort_unstable();
+        repeated.dedup();
+        return Err(MeshError::OverlappingConstraints {
+            vertices: IndexList(repeated),
+        }
+        .into());
+    }
+    Ok(slot)
 }
 
 impl DirichletSolver {
@@ -128,33 +168,7 @@ impl DirichletSolver {
         }
         let q = ensure_csr(q);
         ensure_finite(&q, "system matrix row")?;
-        // Classify rows: local index among the free rows or among the constrained ones.
-        const FREE: u32 = u32::MAX;
-        let mut slot = vec![FREE; n];
-        let mut out_of_range = Vec::new();
-        let mut repeated = Vec::new();
-        for (k, &v) in constrained.iter().enumerate() {
-            match slot.get_mut(v as usize) {
-                None => out_of_range.push(v),
-                Some(s) if *s != FREE => repeated.push(v),
-                Some(s) => *s = k as u32,
-            }
-        }
-        if !out_of_range.is_empty() {
-            return Err(MeshError::ConstraintOutOfRange {
-                vertices: IndexList(out_of_range),
-                vertex_count: n,
-            }
-            .into());
-        }
-        if !repeated.is_empty() {
-            repeated.sort_unstable();
-            repeated.dedup();
-            return Err(MeshError::OverlappingConstraints {
-                vertices: IndexList(repeated),
-            }
-            .into());
-        }
+        let slot = classify(n, constrained)?;
         let indptr = q.indptr().into_raw_storage().to_vec();
         let indices = q.indices().to_vec();
         if options.check_components {
@@ -219,15 +233,33 @@ impl DirichletSolver {
             fc_col,
             fc_src,
             l_values: Vec::new(),
-            symbolic,
+            symbolic: std::sync::Arc::new(symbolic),
+            unknowns: None,
         };
         s.factorize()?;
         Ok(s)
     }
 
+    /// The rows of the factor, in the order of its unknowns: the free rows, or every row when
+    /// the solver shares a [`SystemAnalysis`].
+    fn rows(&self) -> &[u32] {
+        self.unknowns.as_deref().unwrap_or(&self.free)
+    }
+
+    /// `ff_values` and `fc_values` from `Q`'s values (`data`), through `ff_src` and `fc_src`
+    /// (the sentinels of `shared.rs` stand for the identity rows of constrained vertices).
+    fn fill_values(&mut self, data: &[f64]) {
+        for (v, &k) in self.ff_values.iter_mut().zip(&self.ff_src) {
+            *v = shared::value(data, k);
+        }
+        for (v, &k) in self.fc_values.iter_mut().zip(&self.fc_src) {
+            *v = shared::value(data, k);
+        }
+    }
+
     /// Numeric factorisation of the current `Q_ff` values.
     fn factorize(&mut self) -> Result<()> {
-        let nf = self.free.len();
+        let nf = self.rows().len();
         if nf == 0 {
             return Ok(());
         }
@@ -271,7 +303,7 @@ impl DirichletSolver {
                     Some(p) => p.arrays().0.get(index).copied(),
                     None => Some(index),
                 };
-                let vertex = local.and_then(|i| self.free.get(i));
+                let vertex = local.and_then(|i| self.rows().get(i));
                 Err(SolveError::NotPositiveDefinite(match vertex {
                     Some(v) => format!("non-positive pivot at free vertex {v}"),
                     None => format!("non-positive pivot {index}"),
@@ -313,13 +345,7 @@ impl DirichletSolver {
             return Err(SolveError::PatternChanged);
         }
         ensure_finite(&q, "system matrix row")?;
-        let data = q.data();
-        for (v, &k) in self.ff_values.iter_mut().zip(&self.ff_src) {
-            *v = data[k];
-        }
-        for (v, &k) in self.fc_values.iter_mut().zip(&self.fc_src) {
-            *v = data[k];
-        }
+        self.fill_values(q.data());
         self.factorize()
     }
 
@@ -334,7 +360,7 @@ impl DirichletSolver {
     /// reuse it for every solve (faer style), so that solving allocates nothing. It stays
     /// valid until [`Self::set_constrained`]; [`Self::update_values`] keeps it valid.
     pub fn scratch(&self, ncols: usize) -> Result<SolveScratch> {
-        let nf = self.free.len();
+        let nf = self.rows().len();
         let len = nf.checked_mul(ncols).ok_or(MeshError::Overflow {
             what: "scratch size",
             index: ncols,
@@ -354,7 +380,7 @@ impl DirichletSolver {
 
     /// faer's workspace requirement of a triangular solve with `ncols` columns.
     fn solve_req(&self, ncols: usize) -> StackReq {
-        if self.free.is_empty() || ncols == 0 {
+        if self.rows().is_empty() || ncols == 0 {
             StackReq::EMPTY
         } else {
             let par = self.options.parallelism.to_faer();
@@ -389,7 +415,7 @@ impl DirichletSolver {
         out: &mut [f64],
         scratch: &mut SolveScratch,
     ) -> Result<()> {
-        let (n, nc, nf) = (self.n, self.constrained.len(), self.free.len());
+        let (n, nc, nf) = (self.n, self.constrained.len(), self.rows().len());
         let check = |what, expected, got| {
             if expected == got {
                 Ok(())
@@ -438,7 +464,7 @@ impl DirichletSolver {
             let yc = &mut y[c * nf..(c + 1) * nf];
             for (i, yi) in yc.iter_mut().enumerate() {
                 let mut s = match rhs {
-                    Some(b) => b[c * n + self.free[i] as usize],
+                    Some(b) => b[c * n + self.rows()[i] as usize],
                     None => 0.0,
                 };
                 for k in self.fc_ptr[i]..self.fc_ptr[i + 1] {
@@ -459,7 +485,7 @@ impl DirichletSolver {
         }
         for c in 0..ncols {
             let oc = &mut out[c * n..(c + 1) * n];
-            for (i, &v) in self.free.iter().enumerate() {
+            for (i, &v) in self.rows().iter().enumerate() {
                 oc[v as usize] = y[c * nf + i];
             }
             for (k, &v) in self.constrained.iter().enumerate() {

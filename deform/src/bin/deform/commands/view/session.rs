@@ -3,6 +3,7 @@
 //! tests drive it the same way. `report` says what the page shows (state, fields), `keep` what
 //! it saves and loads, `select` the painting and lasso, `surgery` the tear and the drill.
 
+mod analysis;
 mod keep;
 mod report;
 mod select;
@@ -91,6 +92,8 @@ pub struct Session {
     specs: Vec<MotorSpec>,
     rig: Option<RigEdit>,
     field: FieldChoice,
+    /// The mesh's harmonic system, analysed once for every handle selection.
+    analysed: analysis::Analysed,
 }
 
 fn v3(a: [f64; 3]) -> DVec3 {
@@ -127,6 +130,7 @@ impl Session {
                 name: "displacement".into(),
                 group: 0,
             },
+            analysed: analysis::Analysed::default(),
         };
         let out = s.open(0)?;
         Ok((s, out))
@@ -408,7 +412,7 @@ impl Session {
         Ok(out)
     }
 
-    fn bind_method(&self) -> Result<Bound> {
+    fn bind_method(&mut self) -> Result<Bound> {
         let sets: Vec<&[u32]> = self.groups.iter().map(Vec::as_slice).collect();
         Ok(match self.method {
             Method::Handles => {
@@ -417,7 +421,9 @@ impl Session {
                     method: self.blend,
                     ..HandleOptions::default()
                 };
-                let handles = MotorHandles::bind_with(&self.mesh, &sets, &rest, options)?;
+                let analysis = self.analysed.of(&self.mesh, &options.harmonic)?;
+                let handles =
+                    MotorHandles::bind_with_analysis(&self.mesh, analysis, &sets, &rest, options)?;
                 let blend = Box::new(handles.blend().clone());
                 let scratch = blend.scratch();
                 Bound::Handles {
