@@ -2,8 +2,10 @@
 //! (`support/skin_scenes.rs`: libigl's armadillo with 5 weights, arm, CesiumMan), both cores; per
 //! vertex = time / vertices. Targets: on armadillo, CGA motor blending (`motor-linear`) at most
 //! 1.0 ms and no slower than dual-quaternion skinning; equation (17) (`conformal`) within
-//! 1.2x of matrix LBS (`matrix`). Also: sampling CesiumMan's animation and building its global
-//! and skin motors, per frame.
+//! 1.2x of matrix LBS (`matrix`); each backend also `/vertex_by_vertex`, the per-vertex loop
+//! the batch loop replaced (issue 23: speed-ups measured in the same run; one thread with
+//! `RAYON_NUM_THREADS=1`). Also: sampling CesiumMan's animation and building its global and
+//! skin motors, per frame.
 //!
 //! `cargo bench -p deform --bench skinning`; quick: `cargo run --release -p deform --example
 //! skinning_report`.
@@ -32,6 +34,15 @@ fn benches(c: &mut Criterion) {
             let mut poser = d.poser();
             g.bench_function(method.name(), |b| {
                 b.iter(|| poser.pose(black_box(&s.keys), &mut out).expect("pose"))
+            });
+            // The vertex-by-vertex loop the batch loop replaced (issue 23's baseline).
+            let mut prepared = d.blend().scratch();
+            g.bench_function(format!("{}/vertex_by_vertex", method.name()), |b| {
+                b.iter(|| {
+                    d.blend()
+                        .pose_vertex_by_vertex(black_box(&s.keys), &mut prepared, &mut out)
+                        .expect("pose")
+                })
             });
         }
         g.finish();
