@@ -8,6 +8,8 @@
 //!
 //! `cargo run --release -p deform --example deformer_report`
 
+#[path = "../benches/support/limits.rs"]
+mod limits;
 #[path = "../benches/support/scenes.rs"]
 mod scenes;
 
@@ -108,7 +110,20 @@ fn report(name: &str, mesh: &Mesh, targets: &Targets, tally: &mut Tally) {
     }
     let rigid = scenes::rigid_keys(mesh, 4);
     let per_vertex = 1e6 / n as f64;
+    // The limits of the blend rows (4 keys per vertex, both cores).
+    let threads = rayon::current_num_threads();
+    let ns_per_byte = limits::stream_ns_per_byte(limits::bytes(4) as usize * n, threads);
+    let clock = limits::ghz();
     for method in BlendMethod::ALL {
+        let compute = limits::flops(method, 4) / (16.0 * clock * threads as f64);
+        let memory = limits::bytes(4) * ns_per_byte;
+        println!(
+            "  {} limit: {:.1} ns/vertex (compute {compute:.1} for {:.0} flops, memory {memory:.1} for {:.0} bytes)",
+            method.name(),
+            compute.max(memory),
+            limits::flops(method, 4),
+            limits::bytes(4)
+        );
         let d = scenes::rebind_spline(mesh, &spline, method);
         let mut poser = d.poser();
         let rigid_ns =
