@@ -27,6 +27,21 @@ fn sinc(x: S) -> S {
     }
 }
 
+/// `(exp(l), exp(l) - 1)`, each to full relative precision from one call: the dilation part
+/// of the closed-form exponentials (scalar and over lanes).
+#[inline]
+pub(crate) fn exp_pair(l: S) -> (S, S) {
+    if l == 0.0 {
+        (1.0, 0.0)
+    } else if l.abs() < 0.5 {
+        let em = l.exp_m1();
+        (1.0 + em, em)
+    } else {
+        let e = l.exp();
+        (e, e - 1.0)
+    }
+}
+
 /// `cosh` and `sinh` of half the log-scale, and the scale, of a dilator.
 #[derive(Clone, Copy)]
 struct DilationParts {
@@ -175,16 +190,7 @@ impl Bivector {
         let (sn, c) = phi.sin_cos();
         let sc = sinc(phi);
         let qr = Quat::from_xyzw(sc * u.x, sc * u.y, sc * u.z, c);
-        // e = exp(l) and em = exp(l) - 1, each to full relative precision from one call.
-        let (e, em) = if l == 0.0 {
-            (1.0, 0.0)
-        } else if l.abs() < 0.5 {
-            let em = l.exp_m1();
-            (1.0 + em, em)
-        } else {
-            let e = l.exp();
-            (e, e - 1.0)
-        };
+        let (e, em) = exp_pair(l);
         let eg = e * e; // exp(sg)
         let egm1 = em * (1.0 + e); // expm1(sg)
         let ax = if sg == 0.0 { 1.0 } else { egm1 / sg };

@@ -18,6 +18,7 @@
 //! scalar form for those. Generators with a dilation part add, per lane, the one `exp` of the
 //! scalar form and its guarded quotients.
 
+use crate::ext64::exp_log::exp_pair;
 use crate::f64::wide::{Bivector, Lane};
 
 /// The largest half-angle the series serve: principal logarithms have `phi <= pi / 2`, and
@@ -114,19 +115,8 @@ impl<W: Lane<Scalar = f64>> ExpLanes<W> for Bivector<W> {
 #[inline(always)]
 fn dilation_terms<W: Lane<Scalar = f64>>(l: W, phi2: W, sc: W, c: W) -> (W, W, W, W) {
     let (one, two, zero) = (W::splat(1.0), W::splat(2.0), W::splat(0.0));
-    // e = exp(l) and em = exp(l) - 1, each to full relative precision from one call.
-    let e_em = |i: usize| {
-        let l = l.lane(i);
-        if l == 0.0 {
-            (1.0, 0.0)
-        } else if l.abs() < 0.5 {
-            let em = l.exp_m1();
-            (1.0 + em, em)
-        } else {
-            let e = l.exp();
-            (e, e - 1.0)
-        }
-    };
+    // e = exp(l) and em = exp(l) - 1, lane by lane (the scalar form's helper).
+    let e_em = |i: usize| exp_pair(l.lane(i));
     let e = W::from_fn(|i| e_em(i).0);
     let em = W::from_fn(|i| e_em(i).1);
     let sg = two * l;

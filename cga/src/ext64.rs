@@ -24,7 +24,7 @@ pub(crate) const TOL_VERSOR: S = 1e-6;
 #[path = "dual_quat.rs"]
 pub(crate) mod dual_quat;
 #[path = "exp_log.rs"]
-mod exp_log;
+pub(crate) mod exp_log;
 #[path = "glam_interop.rs"]
 mod glam_interop;
 #[path = "interpolate.rs"]

@@ -117,6 +117,38 @@ pub struct DirichletSolver {
 /// Marks a row as free in the slots of [`classify`].
 const FREE: u32 = u32::MAX;
 
+/// The rows of a CSR matrix split by a constrained set (see [`split`]).
+struct Split {
+    /// Per row its position in `constrained`, or [`FREE`].
+    slot: Vec<u32>,
+    /// The matrix's pattern.
+    indptr: Vec<usize>,
+    indices: Vec<usize>,
+    /// The free rows, increasing.
+    free: Vec<u32>,
+}
+
+/// Classify the rows of the CSR matrix `q` by `constrained` and check, if asked, that every
+/// connected component has a constrained row.
+fn split(q: &CsMat<f64>, constrained: &[u32], options: SolverOptions) -> Result<Split> {
+    let n = q.rows();
+    let slot = classify(n, constrained)?;
+    let indptr = q.indptr().into_raw_storage().to_vec();
+    let indices = q.indices().to_vec();
+    if options.check_components {
+        check_components(n, &indptr, &indices, q.data(), &slot)?;
+    }
+    let free: Vec<u32> = (0..n as u32)
+        .filter(|&v| slot[v as usize] == FREE)
+        .collect();
+    Ok(Split {
+        slot,
+        indptr,
+        indices,
+        free,
+    })
+}
+
 /// Per row its position in `constrained`, or [`FREE`]; errors for indices out of range or
 /// listed twice.
 fn classify(n: usize, constrained: &[u32]) -> Result<Vec<u32>> {
@@ -168,15 +200,12 @@ impl DirichletSolver {
         }
         let q = ensure_csr(q);
         ensure_finite(&q, "system matrix row")?;
-        let slot = classify(n, constrained)?;
-        let indptr = q.indptr().into_raw_storage().to_vec();
-        let indices = q.indices().to_vec();
-        if options.check_components {
-            check_components(n, &indptr, &indices, q.data(), &slot)?;
-        }
-        let free: Vec<u32> = (0..n as u32)
-            .filter(|&v| slot[v as usize] == FREE)
-            .collect();
+        let Split {
+            slot,
+            indptr,
+            indices,
+            free,
+        } = split(&q, constrained, options)?;
         let mut local = vec![0usize; n];
         for (i, &v) in free.iter().enumerate() {
             local[v as usize] = i;

@@ -9,8 +9,8 @@
 //! pattern): `Q_ff x_f = -Q_fc x_c` and `x_c = x_c`, the same solution as the reduced system,
 //! with only the numeric factorisation and the solves left per selection.
 
-use super::components::{check_components, ensure_csr};
-use super::{classify, DirichletSolver, SolverOptions, FREE};
+use super::components::ensure_csr;
+use super::{split, DirichletSolver, SolverOptions, Split, FREE};
 use crate::mesh::MeshError;
 use crate::operators::laplacian::ensure_finite;
 use crate::operators::{Result, SolveError};
@@ -133,15 +133,12 @@ impl DirichletSolver {
     ) -> Result<DirichletSolver> {
         let q = &analysis.q;
         let n = q.rows();
-        let slot = classify(n, constrained)?;
-        let indptr = q.indptr().into_raw_storage().to_vec();
-        let indices = q.indices().to_vec();
-        if options.check_components {
-            check_components(n, &indptr, &indices, q.data(), &slot)?;
-        }
-        let free: Vec<u32> = (0..n as u32)
-            .filter(|&v| slot[v as usize] == FREE)
-            .collect();
+        let Split {
+            slot,
+            indptr,
+            indices,
+            free,
+        } = split(q, constrained, options)?;
         // The full pattern, constrained rows and columns masked to the identity.
         let mut ff_src = analysis.src.clone();
         for (v, span) in analysis.col_ptr.windows(2).enumerate() {
