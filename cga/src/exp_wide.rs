@@ -116,9 +116,13 @@ impl<W: Lane<Scalar = f64>> ExpLanes<W> for Bivector<W> {
 fn dilation_terms<W: Lane<Scalar = f64>>(l: W, phi2: W, sc: W, c: W) -> (W, W, W, W) {
     let (one, two, zero) = (W::splat(1.0), W::splat(2.0), W::splat(0.0));
     // e = exp(l) and em = exp(l) - 1, lane by lane (the scalar form's helper).
-    let e_em = |i: usize| exp_pair(l.lane(i));
-    let e = W::from_fn(|i| e_em(i).0);
-    let em = W::from_fn(|i| e_em(i).1);
+    // One call per lane (at most 8 lanes), then the two values as lanes.
+    let mut pairs = [(1.0, 0.0); 8];
+    for (i, p) in pairs.iter_mut().enumerate().take(W::LANES) {
+        *p = exp_pair(l.lane(i));
+    }
+    let e = W::from_fn(|i| pairs[i].0);
+    let em = W::from_fn(|i| pairs[i].1);
     let sg = two * l;
     let eg = e * e;
     let egm1 = em * (one + e);
