@@ -20,8 +20,9 @@ pub fn flops(m: BlendMethod, w: usize) -> f64 {
         BlendMethod::Matrix => 24.0 * w + 18.0,
         BlendMethod::Conformal => 26.0 * w + 21.0,
         BlendMethod::ConformalProjected => (18.0 + 3.0 + 6.0) * w,
-        // Row sums over 10, three series of 18 terms (2 each), translation 30, rotation 30.
-        BlendMethod::MotorLog => 20.0 * w + 108.0 + 60.0,
+        // Row sums over 7 (8 lanes), three series of 13, 14 and 16 terms (2 each),
+        // translation 30, rotation 30.
+        BlendMethod::MotorLog => 16.0 * w + 86.0 + 60.0,
         // glam's f32 path: 12 multiply-adds per key and the map.
         BlendMethod::MatrixF32 => 24.0 * w + 18.0,
     }

@@ -296,24 +296,21 @@ struct MotorLog<'a> {
 impl Kernel for MotorLog<'_> {
     #[inline(always)]
     fn batch(&self, keys: &[[u32; LANES]], weights: &[F64x4], p: &Points4) -> Option<Points4> {
-        let sums: [[F64x4; 3]; LANES] =
+        let sums: [[F64x4; 2]; LANES] =
             each!(LANES, l => accumulate(self.rows, keys, weights, l, |k| k, |_, w| w));
-        let (a, b, c) = (
-            transpose(&sums, 0),
-            transpose(&sums, 1),
-            transpose(&sums, 2),
-        );
+        let (a, b) = (transpose(&sums, 0), transpose(&sums, 1));
+        let zero = F64x4::splat(0.0);
         let log = WBivector::<F64x4> {
-            eo1: a[0],
-            eo2: a[1],
-            eo3: a[2],
-            eoi: a[3],
-            e12: b[0],
-            e13: b[1],
-            e23: b[2],
-            e1i: b[3],
-            e2i: c[0],
-            e3i: c[1],
+            eo1: zero,
+            eo2: zero,
+            eo3: zero,
+            eoi: b[2],
+            e12: a[0],
+            e13: a[1],
+            e23: a[2],
+            e1i: a[3],
+            e2i: b[0],
+            e3i: b[1],
         };
         if let Some(q) = log.exp_transform(*p) {
             return Some(q);

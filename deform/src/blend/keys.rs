@@ -245,8 +245,8 @@ impl PreparedKeys {
 
     /// The rows of the batch kernels: motors as (rotor part, dual part), dual quaternions as
     /// (`q.xyzw`, `d.xyzw`), affine maps and equation (17) keys as columns `x, y, z, 1` of the
-    /// 3x4 map (the `eo` coefficient in lane 3 of the last), logarithms as 10 coefficients in
-    /// 12 lanes.
+    /// 3x4 map (the `eo` coefficient in lane 3 of the last), logarithms as their 7
+    /// similarity coefficients in 8 lanes.
     fn fill_rows(&mut self) {
         let z = F64x4::splat(0.0);
         let v = |a: [f64; 4]| F64x4(a);
@@ -289,12 +289,13 @@ impl PreparedKeys {
                     [c(0), c(1), c(2), v([r[0][3], r[1][3], r[2][3], k.eo])]
                 }));
             }
+            // The generator's `e12, e13, e23, e1i` and `e2i, e3i, eoi`; a similarity's
+            // logarithm has no `eo1, eo2, eo3` part (and `exp` ignores it).
             BlendMethod::MotorLog => self.rows.extend(self.logs.iter().map(|b| {
-                let c = b.to_array();
                 [
-                    v([c[0], c[1], c[2], c[3]]),
-                    v([c[4], c[5], c[6], c[7]]),
-                    v([c[8], c[9], 0.0, 0.0]),
+                    v([b.e12, b.e13, b.e23, b.e1i]),
+                    v([b.e2i, b.e3i, b.eoi, 0.0]),
+                    z,
                     z,
                 ]
             })),
