@@ -8,7 +8,7 @@ use cga::{Bivector, Motor, ScaledMotor};
 use glam::{Affine3A, DAffine3, DMat3, DQuat, DVec3, Vec3A};
 
 /// Key counts up to which the hemisphere-aligned rows are tabulated per pose (64 keys: a
-/// 256 KiB table, cheap next to any mesh such rigs skin).
+/// 512 KiB table, cheap next to any mesh such rigs skin).
 const ALIGNED_MAX_KEYS: usize = 64;
 
 /// The keys in the form one blend method needs. Reused from pose to pose (its buffers keep
