@@ -121,7 +121,7 @@ impl SystemAnalysis {
 
 impl DirichletSolver {
     /// [`DirichletSolver::new`] for the analysed matrix, reusing its symbolic analysis: only
-    /// the numeric factorisation is computed (see the [module docs](self)). Solves and
+    /// the numeric factorisation is computed (see [`SystemAnalysis`]). Solves and
     /// accessors behave as for a solver from [`DirichletSolver::new`].
     ///
     /// # Errors
