@@ -108,7 +108,7 @@ impl Gen<'_> {
         }
         let mdoc = doc(
             "Wide (structure-of-arrays) twins of the versor types and of the types they act on: \
-             each field is a [`Lane`] value `W` whose lane `i` belongs to operand `i`, so one \
+             each field is a [`Lane`](wide::Lane) value `W` whose lane `i` belongs to operand `i`, so one \
              product or sandwich computes `W::LANES` of them. The expressions are those of the \
              scalar types, constants splatted; `W = f64` is the scalar type itself.",
         );
