@@ -9,8 +9,8 @@
 //!
 //! The loop is compiled twice: for CPUs with AVX2 (256-bit lanes, chosen at run time with
 //! `is_x86_feature_detected!`, so one binary runs everywhere) and for the x86-64 baseline
-//! (SSE2; `DEFORM_SIMD=baseline` forces it). Both copies run the same lane operations, which never fuse a multiply and an add,
-//! so they give the same bits.
+//! (SSE2; `DEFORM_SIMD=baseline` forces it). Both copies run the same lane operations, which
+//! never fuse a multiply and an add, so they give the same bits.
 
 use super::PARALLEL_MIN;
 use crate::blend::KeyWeights;

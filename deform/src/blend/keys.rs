@@ -7,6 +7,14 @@ use cga::wide::{F64x4, Lane};
 use cga::{Bivector, Motor, ScaledMotor};
 use glam::{Affine3A, DAffine3, DMat3, DQuat, DVec3, Vec3A};
 
+/// `a.0[0] b.0[0] + ... + a.0[3] b.0[3]`, summed left to right: the hemisphere test of two
+/// rotor (or quaternion) rows, here and in the batch kernels.
+#[inline(always)]
+pub(super) fn dot(a: F64x4, b: F64x4) -> f64 {
+    let p = a * b;
+    p.0[0] + p.0[1] + p.0[2] + p.0[3]
+}
+
 /// Key counts up to which the hemisphere-aligned rows are tabulated per pose (64 keys: a
 /// 512 KiB table, cheap next to any mesh such rigs skin).
 const ALIGNED_MAX_KEYS: usize = 64;
@@ -314,13 +322,10 @@ impl PreparedKeys {
             return;
         }
         for a in 0..k {
-            let r0 = self.rows[a][0].0;
+            let r0 = self.rows[a][0];
             for b in 0..k {
                 let row = self.rows[b];
-                let d = row[0].0[0] * r0[0]
-                    + row[0].0[1] * r0[1]
-                    + row[0].0[2] * r0[2]
-                    + row[0].0[3] * r0[3];
+                let d = dot(row[0], r0);
                 self.rows.push(if d < 0.0 { row.map(|x| -x) } else { row });
             }
         }

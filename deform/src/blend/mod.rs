@@ -448,15 +448,25 @@ impl BoundBlend {
         prepared: &mut PreparedKeys,
         out: &mut [DVec3],
     ) -> Result<()> {
-        check_key_count("this deformer", self.key_count(), keys.len())?;
-        check_positions(self.vertex_count(), out.len())?;
-        prepared.prepare(keys, self.method)?;
-        let prepared = &*prepared;
+        let prepared = self.checked_prepare(keys, prepared, out)?;
         let single = |i: usize| prepared.transform(self.weights.row(i), self.local[i]);
         if self.batches.is_empty() || !kernels::run(prepared, &self.batches, &single, out) {
             for_each_vertex(out, single);
         }
         Ok(())
+    }
+
+    /// The checks of a pose (key count, output length) and the keys prepared in `prepared`.
+    fn checked_prepare<'p>(
+        &self,
+        keys: &[ScaledMotor],
+        prepared: &'p mut PreparedKeys,
+        out: &[DVec3],
+    ) -> Result<&'p PreparedKeys> {
+        check_key_count("this deformer", self.key_count(), keys.len())?;
+        check_positions(self.vertex_count(), out.len())?;
+        prepared.prepare(keys, self.method)?;
+        Ok(prepared)
     }
 
     /// [`BoundBlend::pose_using`] one vertex at a time ([`PreparedKeys::transform`] per
@@ -471,10 +481,7 @@ impl BoundBlend {
         prepared: &mut PreparedKeys,
         out: &mut [DVec3],
     ) -> Result<()> {
-        check_key_count("this deformer", self.key_count(), keys.len())?;
-        check_positions(self.vertex_count(), out.len())?;
-        prepared.prepare(keys, self.method)?;
-        let prepared = &*prepared;
+        let prepared = self.checked_prepare(keys, prepared, out)?;
         for_each_vertex(out, |i| {
             prepared.transform(self.weights.row(i), self.local[i])
         });
