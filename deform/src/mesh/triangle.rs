@@ -37,6 +37,20 @@ pub(crate) fn ldexp(mut x: f64, mut k: i32) -> f64 {
     x * 2f64.powi(k)
 }
 
+/// `floor(log2(m))` of a finite `m > 0`: the exponent of its leading bit (subnormals
+/// included).
+fn binary_exponent(m: f64) -> i32 {
+    let bits = m.to_bits();
+    let biased = ((bits >> 52) & 0x7ff) as i32;
+    if biased == 0 {
+        // Subnormal: the leading bit lies in the 52-bit fraction.
+        let fraction = bits & ((1u64 << 52) - 1);
+        -1074 + 63 - fraction.leading_zeros() as i32
+    } else {
+        biased - 1023
+    }
+}
+
 impl Frame {
     /// The frame of the triangle `p`, or `None` when it is degenerate: an edge is not finite
     /// (NaN, infinite, or a difference that overflows), or twice its area is at most
@@ -53,8 +67,14 @@ impl Frame {
         if m == 0.0 {
             return None;
         }
-        let exp = m.log2().floor() as i32;
-        let e = raw.map(|v| DVec3::new(ldexp(v.x, -exp), ldexp(v.y, -exp), ldexp(v.z, -exp)));
+        let exp = binary_exponent(m);
+        let e = if (-1000..=1000).contains(&exp) {
+            // One exact multiplication by 2^-exp per component (the common case).
+            let s = f64::from_bits(((1023 - exp) as u64) << 52);
+            raw.map(|v| v * s)
+        } else {
+            raw.map(|v| DVec3::new(ldexp(v.x, -exp), ldexp(v.y, -exp), ldexp(v.z, -exp)))
+        };
         let l2max = e.iter().map(|v| v.length_squared()).fold(0.0, f64::max);
         let dbl_area = e[2].cross(-e[1]).length();
         // Not strictly greater (NaN included) counts as degenerate.
@@ -159,6 +179,22 @@ mod tests {
             let f = Frame::new(scaled(s)).expect("scaled");
             assert_eq!(f.half_cotangents(), unit.half_cotangents(), "scale 2^{k}");
             assert_eq!(f.tan_half_angles(), unit.tan_half_angles(), "scale 2^{k}");
+        }
+    }
+
+    #[test]
+    fn binary_exponent_brackets_the_value() {
+        let mut values = vec![f64::MIN_POSITIVE, 5e-324, 1e-310, f64::MAX, 1.0, 0.75, 3.0];
+        for k in [-1074, -1030, -1022, -1, 0, 1, 52, 1023] {
+            let p = ldexp(1.0, k);
+            values.extend([p, p * (1.0 + f64::EPSILON), p * (1.0 - f64::EPSILON / 2.0)]);
+        }
+        for m in values.into_iter().filter(|m| *m > 0.0 && m.is_finite()) {
+            let e = binary_exponent(m);
+            assert!(
+                ldexp(1.0, e) <= m && (e == 1023 || m < ldexp(1.0, e + 1)),
+                "{m:e}: {e}"
+            );
         }
     }
 

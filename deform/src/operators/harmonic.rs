@@ -10,10 +10,12 @@ use crate::mesh::IndexList;
 use crate::mesh::Mesh;
 use crate::mesh::MeshError;
 use crate::operators::laplacian::ensure_finite;
-use crate::operators::laplacian::laplacian;
+use crate::operators::laplacian::laplacian_on;
+use crate::operators::laplacian::pattern_of;
 use crate::operators::laplacian::LaplacianKind;
 use crate::operators::mass::mass_diagonal;
 use crate::operators::mass::MassKind;
+use crate::operators::pattern::LaplacianPattern;
 use crate::operators::solve::DirichletSolver;
 use crate::operators::solve::SolverOptions;
 use crate::operators::solve::SystemAnalysis;
@@ -65,7 +67,17 @@ pub const BIHARMONIC_FILL_FLOOR: usize = 1 << 20;
 /// [`MeshError::Overflow`] (a non-finite entry).
 pub fn harmonic_system(mesh: &Mesh, options: &HarmonicOptions) -> Result<CsMat<f64>> {
     check_solvable(mesh)?;
-    let mut l = laplacian(mesh, options.laplacian)?;
+    checked_system(mesh, options, &pattern_of(mesh))
+}
+
+/// [`harmonic_system`] of a mesh that passed the checks, its Laplacian assembled into
+/// `pattern` (the mesh's).
+fn checked_system(
+    mesh: &Mesh,
+    options: &HarmonicOptions,
+    pattern: &LaplacianPattern,
+) -> Result<CsMat<f64>> {
+    let mut l = laplacian_on(mesh, options.laplacian, pattern)?;
     match options.order {
         1 => {
             l.data_mut().iter_mut().for_each(|x| *x = -*x);
@@ -156,9 +168,26 @@ impl Harmonic {
     /// [`SolveError::Unconstrained`] (a component without constrained vertices, e.g. unreferenced
     /// vertices: run [`crate::mesh::validate::clean()`]), [`SolveError::NotPositiveDefinite`].
     pub fn new(mesh: &Mesh, sets: &[&[u32]], options: HarmonicOptions) -> Result<Self> {
-        let constrained = constrained_of(mesh.positions.len(), sets)?;
-        let q = harmonic_system(mesh, &options)?;
-        let solver = DirichletSolver::new(&q, &constrained, options.solver)?;
+        let n = mesh.positions.len();
+        let constrained = constrained_of(n, sets)?;
+        let in_range = mesh.triangles.iter().flatten().all(|&v| (v as usize) < n);
+        if options.order != 1 || !in_range {
+            let q = harmonic_system(mesh, &options)?;
+            let solver = DirichletSolver::new(&q, &constrained, options.solver)?;
+            return Ok(Harmonic::of(solver, sets));
+        }
+        // -L has the Laplacian's pattern: order it while the checks and weights run.
+        let pattern = pattern_of(mesh);
+        let solver = DirichletSolver::overlapped(
+            &pattern.indptr,
+            &pattern.indices,
+            &constrained,
+            options.solver,
+            || {
+                check_solvable(mesh)?;
+                checked_system(mesh, &options, &pattern)
+            },
+        )?;
         Ok(Harmonic::of(solver, sets))
     }
 

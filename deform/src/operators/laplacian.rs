@@ -17,6 +17,7 @@ use crate::mesh::triangle::Frame;
 use crate::mesh::IndexList;
 use crate::mesh::Mesh;
 use crate::mesh::MeshError;
+use crate::operators::pattern::LaplacianPattern;
 use crate::operators::Result;
 use rayon::prelude::*;
 use sprs::CsMat;
@@ -62,11 +63,25 @@ pub enum LaplacianKind {
 
 /// Builds the Laplacian of the given kind.
 pub fn laplacian(mesh: &Mesh, kind: LaplacianKind) -> Result<CsMat<f64>> {
+    laplacian_on(mesh, kind, &pattern_of(mesh))
+}
+
+/// The pattern of every Laplacian of `mesh`.
+pub(crate) fn pattern_of(mesh: &Mesh) -> LaplacianPattern {
+    LaplacianPattern::new(mesh.positions.len(), &mesh.triangles)
+}
+
+/// [`laplacian`] assembled into the mesh's pattern, already built.
+pub(crate) fn laplacian_on(
+    mesh: &Mesh,
+    kind: LaplacianKind,
+    pattern: &LaplacianPattern,
+) -> Result<CsMat<f64>> {
     match kind {
-        LaplacianKind::Cotangent(o) => cotangent_laplacian(mesh, o),
-        LaplacianKind::Default => cotangent_laplacian(mesh, CotangentOptions::default()),
-        LaplacianKind::MeanValue => mean_value_laplacian(mesh),
-        LaplacianKind::Uniform => Ok(uniform_laplacian(mesh)),
+        LaplacianKind::Cotangent(o) => cotangent(mesh, o, pattern),
+        LaplacianKind::Default => cotangent(mesh, CotangentOptions::default(), pattern),
+        LaplacianKind::MeanValue => mean_value(mesh, true, pattern),
+        LaplacianKind::Uniform => Ok(uniform(mesh, pattern)),
     }
 }
 
@@ -87,6 +102,14 @@ pub fn laplacian(mesh: &Mesh, kind: LaplacianKind) -> Result<CsMat<f64>> {
 /// assert!((l.get(0, 0).unwrap() + 1.0).abs() < 1e-15);
 /// ```
 pub fn cotangent_laplacian(mesh: &Mesh, options: CotangentOptions) -> Result<CsMat<f64>> {
+    cotangent(mesh, options, &pattern_of(mesh))
+}
+
+fn cotangent(
+    mesh: &Mesh,
+    options: CotangentOptions,
+    pattern: &LaplacianPattern,
+) -> Result<CsMat<f64>> {
     // Per-triangle weights in parallel (`None`: degenerate).
     let per_face: Vec<Option<[f64; 3]>> = mesh
         .triangles
@@ -106,7 +129,7 @@ pub fn cotangent_laplacian(mesh: &Mesh, options: CotangentOptions) -> Result<CsM
         }
         .into());
     }
-    let mut l = assemble(mesh.positions.len(), &mesh.triangles, &weights);
+    let mut l = pattern.assemble(&mesh.triangles, &weights);
     if options.clamp_negative {
         for_each_off_diagonal(&mut l, |w| *w = w.max(0.0));
         rebuild_diagonal(&mut l);
@@ -138,7 +161,7 @@ pub fn cotangent_laplacian(mesh: &Mesh, options: CotangentOptions) -> Result<CsM
 /// assert!((l.get(0, 1).unwrap() - expect).abs() < 1e-15);
 /// ```
 pub fn mean_value_laplacian(mesh: &Mesh) -> Result<CsMat<f64>> {
-    mean_value(mesh, true)
+    mean_value(mesh, true, &pattern_of(mesh))
 }
 
 /// Floater's original, non-symmetric mean-value matrix: row `i` holds the directed weights
@@ -146,10 +169,10 @@ pub fn mean_value_laplacian(mesh: &Mesh) -> Result<CsMat<f64>> {
 /// by `sum_j w_ij` gives the mean-value coordinates, which reproduce linear functions on a
 /// planar mesh (the symmetrised matrix does not).
 pub fn mean_value_weights(mesh: &Mesh) -> Result<CsMat<f64>> {
-    mean_value(mesh, false)
+    mean_value(mesh, false, &pattern_of(mesh))
 }
 
-fn mean_value(mesh: &Mesh, symmetric: bool) -> Result<CsMat<f64>> {
+fn mean_value(mesh: &Mesh, symmetric: bool, pattern: &LaplacianPattern) -> Result<CsMat<f64>> {
     let weights: Vec<[[f64; 2]; 3]> = mesh
         .triangles
         .iter()
@@ -171,7 +194,7 @@ fn mean_value(mesh: &Mesh, symmetric: bool) -> Result<CsMat<f64>> {
             })
         })
         .collect();
-    let l = assemble(mesh.positions.len(), &mesh.triangles, &weights);
+    let l = pattern.assemble(&mesh.triangles, &weights);
     ensure_finite(&l, "mean-value Laplacian row")?;
     Ok(l)
 }
@@ -198,8 +221,12 @@ pub(crate) fn ensure_finite(m: &CsMat<f64>, what: &'static str) -> Result<()> {
 /// assert_eq!(l.get(1, 2), Some(&1.0));
 /// ```
 pub fn uniform_laplacian(mesh: &Mesh) -> CsMat<f64> {
+    uniform(mesh, &pattern_of(mesh))
+}
+
+fn uniform(mesh: &Mesh, pattern: &LaplacianPattern) -> CsMat<f64> {
     let weights = vec![[[1.0; 2]; 3]; mesh.triangles.len()];
-    let mut l = assemble(mesh.positions.len(), &mesh.triangles, &weights);
+    let mut l = pattern.assemble(&mesh.triangles, &weights);
     for_each_off_diagonal(&mut l, |w| *w = 1.0);
     rebuild_diagonal(&mut l);
     l
@@ -242,60 +269,8 @@ pub(crate) fn rebuild_diagonal(m: &mut CsMat<f64>) {
     }
 }
 
-/// Assembles `L` from per-triangle edge weights: `weights[f][k] = [w_ab, w_ba]` belongs to the
-/// edge `(a, b)` opposite corner `k` of triangle `f` (`a, b` the next corners in order);
-/// `w_ab` is added to `L_ab` and subtracted from `L_aa`, `w_ba` likewise in row `b`. The
+/// Assembles `L` from per-triangle edge weights (see [`LaplacianPattern::assemble`]). The
 /// pattern is the diagonal plus all edges, rows sorted, duplicates summed.
 pub(crate) fn assemble(n: usize, triangles: &[[u32; 3]], weights: &[[[f64; 2]; 3]]) -> CsMat<f64> {
-    // Row capacities: the diagonal plus two slots per incident triangle.
-    let mut offsets = vec![0usize; n + 1];
-    for t in triangles {
-        for &v in t {
-            offsets[v as usize + 1] += 2;
-        }
-    }
-    for i in 0..n {
-        offsets[i + 1] += offsets[i] + 1;
-    }
-    let total = offsets[n];
-    let mut entries: Vec<(u32, f64)> = vec![(0, 0.0); total];
-    let mut fill: Vec<usize> = offsets[..n].to_vec();
-    let mut diag = vec![0.0f64; n];
-    for i in 0..n {
-        entries[fill[i]] = (i as u32, 0.0);
-        fill[i] += 1;
-    }
-    for (t, w) in triangles.iter().zip(weights) {
-        for k in 0..3 {
-            let (a, b) = (t[(k + 1) % 3] as usize, t[(k + 2) % 3] as usize);
-            let [wab, wba] = w[k];
-            entries[fill[a]] = (b as u32, wab);
-            fill[a] += 1;
-            entries[fill[b]] = (a as u32, wba);
-            fill[b] += 1;
-            diag[a] -= wab;
-            diag[b] -= wba;
-        }
-    }
-    // Sort each row, merge duplicates, compact in place.
-    let mut indptr = Vec::with_capacity(n + 1);
-    let mut indices = Vec::with_capacity(total);
-    let mut data = Vec::with_capacity(total);
-    indptr.push(0);
-    for i in 0..n {
-        let row = &mut entries[offsets[i]..offsets[i + 1]];
-        row.sort_unstable_by_key(|e| e.0);
-        let mut last = u32::MAX;
-        for &(c, w) in row.iter() {
-            if c == last {
-                *data.last_mut().expect("a previous entry exists") += w;
-            } else {
-                indices.push(c as usize);
-                data.push(if c as usize == i { diag[i] } else { w });
-                last = c;
-            }
-        }
-        indptr.push(indices.len());
-    }
-    CsMat::new((n, n), indptr, indices, data)
+    LaplacianPattern::new(n, triangles).assemble(triangles, weights)
 }

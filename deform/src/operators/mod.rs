@@ -15,6 +15,7 @@ mod error;
 pub mod harmonic;
 pub mod laplacian;
 pub mod mass;
+mod pattern;
 pub mod solve;
 
 pub use error::{Result, SolveError};

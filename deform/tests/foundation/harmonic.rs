@@ -332,3 +332,44 @@ fn bad_input_gives_typed_errors_naming_vertices() {
     let e = harmonic_field(&two_triangles_apart(), &[0], &[1], o).unwrap_err();
     assert!(e.to_string().contains("[3, 4, 5]"), "{e}");
 }
+
+/// `Harmonic::new` orders the Laplacian's pattern while the weights are computed (two
+/// threads when the pool has them); it must give the bits of the sequential path (the
+/// system matrix, then a fresh `DirichletSolver`), on any pool, for every Laplacian.
+#[test]
+fn overlapped_bind_gives_the_sequential_bits() {
+    let Some((m, groups)) = selection("decimated-knight.off", "decimated-knight-selection.dmat")
+    else {
+        return;
+    };
+    let sets: Vec<&[u32]> = groups.iter().map(Vec::as_slice).collect();
+    let constrained: Vec<u32> = groups.iter().flatten().copied().collect();
+    for laplacian in [
+        LaplacianKind::Default,
+        LaplacianKind::MeanValue,
+        LaplacianKind::Uniform,
+    ] {
+        let options = HarmonicOptions {
+            laplacian,
+            ..Default::default()
+        };
+        let q = deform::harmonic_system(&m, &options).expect("system");
+        let s = DirichletSolver::new(&q, &constrained, SolverOptions::default()).expect("solver");
+        let mut boundary = vec![0.0; constrained.len() * 3];
+        let mut at = 0;
+        for (j, g) in groups.iter().enumerate() {
+            boundary[j * constrained.len() + at..j * constrained.len() + at + g.len()].fill(1.0);
+            at += g.len();
+        }
+        let expect = s.solve(&boundary, 3).expect("solve");
+        for threads in [1, 2] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .expect("pool");
+            let h = pool.install(|| Harmonic::new(&m, &sets, options).expect("harmonic"));
+            let got: Vec<f64> = h.coordinates().expect("coordinates").concat();
+            assert_eq!(got, expect, "{laplacian:?}, {threads} threads");
+        }
+    }
+}

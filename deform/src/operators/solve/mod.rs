@@ -10,6 +10,7 @@
 mod components;
 mod scratch;
 mod shared;
+mod structure;
 
 pub use scratch::SolveScratch;
 pub use shared::SystemAnalysis;
@@ -19,16 +20,15 @@ use crate::mesh::MeshError;
 use crate::operators::laplacian::ensure_finite;
 use crate::operators::Result;
 use crate::operators::SolveError;
-use components::{check_components, ensure_csr};
+use components::ensure_csr;
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::cholesky::llt::factor::LltError;
 use faer::linalg::cholesky::llt::factor::LltRegularization;
-use faer::sparse::linalg::cholesky::{
-    factorize_symbolic_cholesky, LltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
-};
+use faer::sparse::linalg::cholesky::{LltRef, SymbolicCholesky, SymbolicCholeskyRaw};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Conj, MatMut, Par, Side};
 use sprs::CsMat;
+use structure::{split, Reduced, Split};
 
 /// Threads used by the factorisation and the triangular solves.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -114,72 +114,6 @@ pub struct DirichletSolver {
     unknowns: Option<Vec<u32>>,
 }
 
-/// Marks a row as free in the slots of [`classify`].
-const FREE: u32 = u32::MAX;
-
-/// The rows of a CSR matrix split by a constrained set (see [`split`]).
-struct Split {
-    /// Per row its position in `constrained`, or [`FREE`].
-    slot: Vec<u32>,
-    /// The matrix's pattern.
-    indptr: Vec<usize>,
-    indices: Vec<usize>,
-    /// The free rows, increasing.
-    free: Vec<u32>,
-}
-
-/// Classify the rows of the CSR matrix `q` by `constrained` and check, if asked, that every
-/// connected component has a constrained row.
-fn split(q: &CsMat<f64>, constrained: &[u32], options: SolverOptions) -> Result<Split> {
-    let n = q.rows();
-    let slot = classify(n, constrained)?;
-    let indptr = q.indptr().into_raw_storage().to_vec();
-    let indices = q.indices().to_vec();
-    if options.check_components {
-        check_components(n, &indptr, &indices, q.data(), &slot)?;
-    }
-    let free: Vec<u32> = (0..n as u32)
-        .filter(|&v| slot[v as usize] == FREE)
-        .collect();
-    Ok(Split {
-        slot,
-        indptr,
-        indices,
-        free,
-    })
-}
-
-/// Per row its position in `constrained`, or [`FREE`]; errors for indices out of range or
-/// listed twice.
-fn classify(n: usize, constrained: &[u32]) -> Result<Vec<u32>> {
-    let mut slot = vec![FREE; n];
-    let mut out_of_range = Vec::new();
-    let mut repeated = Vec::new();
-    for (k, &v) in constrained.iter().enumerate() {
-        match slot.get_mut(v as usize) {
-            None => out_of_range.push(v),
-            Some(s) if *s != FREE => repeated.push(v),
-            Some(s) => *s = k as u32,
-        }
-    }
-    if !out_of_range.is_empty() {
-        return Err(MeshError::ConstraintOutOfRange {
-            vertices: IndexList(out_of_range),
-            vertex_count: n,
-        }
-        .into());
-    }
-    if !repeated.is_empty() {
-        repeated.sort_unstable();
-        repeated.dedup();
-        return Err(MeshError::OverlappingConstraints {
-            vertices: IndexList(repeated),
-        }
-        .into());
-    }
-    Ok(slot)
-}
-
 impl DirichletSolver {
     /// Analyses and factorises `Q_ff` for the given constrained rows (their order is the order
     /// of the boundary values passed to [`Self::solve`]). `q` must be square and symmetric.
@@ -206,65 +140,40 @@ impl DirichletSolver {
             indices,
             free,
         } = split(&q, constrained, options)?;
-        let mut local = vec![0usize; n];
-        for (i, &v) in free.iter().enumerate() {
-            local[v as usize] = i;
-        }
-        // Split Q into the upper triangle of Q_ff (CSC == CSR rows by symmetry) and Q_fc.
-        let mut ff_col_ptr = Vec::with_capacity(free.len() + 1);
-        let mut ff_row_idx = Vec::new();
-        let mut ff_src = Vec::new();
-        let mut fc_ptr = Vec::with_capacity(free.len() + 1);
-        let mut fc_col = Vec::new();
-        let mut fc_src = Vec::new();
-        ff_col_ptr.push(0);
-        fc_ptr.push(0);
-        for (j, &v) in free.iter().enumerate() {
-            let row = indptr[v as usize]..indptr[v as usize + 1];
-            for (k, &u) in row.clone().zip(&indices[row]) {
-                if slot[u] == FREE {
-                    if local[u] <= j {
-                        ff_row_idx.push(local[u]);
-                        ff_src.push(k);
-                    }
-                } else {
-                    fc_col.push(slot[u]);
-                    fc_src.push(k);
-                }
-            }
-            ff_col_ptr.push(ff_row_idx.len());
-            fc_ptr.push(fc_col.len());
-        }
-        let nf = free.len();
-        // Columns of a CSR row are sorted and `local` is increasing, so rows are sorted.
-        let sym = SymbolicSparseColMatRef::new_checked(nf, nf, &ff_col_ptr, None, &ff_row_idx);
-        let symbolic = factorize_symbolic_cholesky(
-            sym,
-            Side::Upper,
-            SymmetricOrdering::Amd,
-            Default::default(),
-        )
-        .map_err(|e| SolveError::Solver(format!("{e:?}")))?;
-        let data = q.data();
+        let reduced = Reduced::new(&indptr, &indices, &slot, free)?;
+        DirichletSolver::from_reduced(options, constrained, indptr, indices, reduced, q.data())
+    }
+
+    /// The solver of a reduced structure and `Q`'s values (`data`, in the pattern
+    /// `indptr`, `indices` the structure was made from), factorised.
+    fn from_reduced(
+        options: SolverOptions,
+        constrained: &[u32],
+        q_indptr: Vec<usize>,
+        q_indices: Vec<usize>,
+        reduced: Reduced,
+        data: &[f64],
+    ) -> Result<Self> {
         let mut s = DirichletSolver {
-            n,
+            n: q_indptr.len() - 1,
             options,
             constrained: constrained.to_vec(),
-            ff_values: ff_src.iter().map(|&k| data[k]).collect(),
-            fc_values: fc_src.iter().map(|&k| data[k]).collect(),
-            free,
-            q_indptr: indptr,
-            q_indices: indices,
-            ff_col_ptr,
-            ff_row_idx,
-            ff_src,
-            fc_ptr,
-            fc_col,
-            fc_src,
+            ff_values: vec![0.0; reduced.ff_src.len()],
+            fc_values: vec![0.0; reduced.fc_src.len()],
+            free: reduced.free,
+            q_indptr,
+            q_indices,
+            ff_col_ptr: reduced.ff_col_ptr,
+            ff_row_idx: reduced.ff_row_idx,
+            ff_src: reduced.ff_src,
+            fc_ptr: reduced.fc_ptr,
+            fc_col: reduced.fc_col,
+            fc_src: reduced.fc_src,
             l_values: Vec::new(),
-            symbolic: std::sync::Arc::new(symbolic),
+            symbolic: std::sync::Arc::new(reduced.symbolic),
             unknowns: None,
         };
+        s.fill_values(data);
         s.factorize()?;
         Ok(s)
     }

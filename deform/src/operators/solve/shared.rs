@@ -10,15 +10,13 @@
 //! with only the numeric factorisation and the solves left per selection.
 
 use super::components::ensure_csr;
-use super::{split, DirichletSolver, SolverOptions, Split, FREE};
+use super::structure::{analyse, split, Split, FREE};
+use super::{DirichletSolver, SolverOptions};
 use crate::mesh::MeshError;
 use crate::operators::laplacian::ensure_finite;
-use crate::operators::{Result, SolveError};
-use faer::sparse::linalg::cholesky::{
-    factorize_symbolic_cholesky, SymbolicCholesky, SymmetricOrdering,
-};
+use crate::operators::Result;
+use faer::sparse::linalg::cholesky::SymbolicCholesky;
 use faer::sparse::SymbolicSparseColMatRef;
-use faer::Side;
 use sprs::CsMat;
 use std::sync::Arc;
 
@@ -59,7 +57,7 @@ impl SystemAnalysis {
     ///
     /// # Errors
     /// [`MeshError::DimensionMismatch`] (not square), [`MeshError::Overflow`] (a non-finite
-    /// entry), [`SolveError::Solver`] when the analysis fails.
+    /// entry), [`SolveError::Solver`](crate::operators::SolveError::Solver) when the analysis fails.
     pub fn new(q: &CsMat<f64>) -> Result<SystemAnalysis> {
         let n = q.rows();
         if q.cols() != n {
@@ -87,13 +85,7 @@ impl SystemAnalysis {
             col_ptr.push(row_idx.len());
         }
         let sym = SymbolicSparseColMatRef::new_checked(n, n, &col_ptr, None, &row_idx);
-        let symbolic = factorize_symbolic_cholesky(
-            sym,
-            Side::Upper,
-            SymmetricOrdering::Amd,
-            Default::default(),
-        )
-        .map_err(|e| SolveError::Solver(format!("{e:?}")))?;
+        let symbolic = analyse(sym)?;
         Ok(SystemAnalysis {
             q,
             col_ptr,
