@@ -36,6 +36,16 @@ fn diagonal(p: &[DVec3]) -> f64 {
     (hi - lo).length()
 }
 
+/// The largest distance between corresponding points of `got` and `want`, over `diag`.
+fn worst_error(got: &[DVec3], want: &[DVec3], diag: f64) -> f64 {
+    assert_eq!(got.len(), want.len());
+    got.iter()
+        .zip(want)
+        .map(|(a, b)| (*a - *b).length())
+        .fold(0.0, f64::max)
+        / diag
+}
+
 /// Every GPU method against the CPU on one scene; returns the largest relative error.
 fn compare(ctx: &GpuContext, s: &SkinScene) -> f64 {
     let diag = diagonal(&s.positions);
@@ -50,12 +60,7 @@ fn compare(ctx: &GpuContext, s: &SkinScene) -> f64 {
             GpuBlend::bind(ctx, blend).unwrap_or_else(|e| panic!("{}: {e}", method.name()));
         let mut got = vec![DVec3::splat(f64::NAN); s.positions.len()];
         gpu.pose(ctx, &s.keys, &mut got).expect("gpu pose");
-        let err = got
-            .iter()
-            .zip(&want)
-            .map(|(a, b)| (*a - *b).length())
-            .fold(0.0, f64::max)
-            / diag;
+        let err = worst_error(&got, &want, diag);
         assert!(
             err <= 1e-5,
             "{} {}: GPU differs from the CPU by {err:e} of the diagonal",
@@ -67,12 +72,7 @@ fn compare(ctx: &GpuContext, s: &SkinScene) -> f64 {
         // A second pose reuses the buffers: the keys of the identity give the rest mesh.
         let rest = vec![ScaledMotor::IDENTITY; s.keys.len()];
         gpu.pose(ctx, &rest, &mut got).expect("gpu pose");
-        let back = got
-            .iter()
-            .zip(&s.positions)
-            .map(|(a, b)| (*a - *b).length())
-            .fold(0.0, f64::max)
-            / diag;
+        let back = worst_error(&got, &s.positions, diag);
         assert!(
             back <= 1e-5,
             "{} {}: rest pose {back:e}",
@@ -299,12 +299,7 @@ fn spline_blend_on_the_gpu() {
         let mut gpu = GpuBlend::bind(&ctx, d.blend()).expect("gpu bind");
         let mut got = vec![DVec3::ZERO; positions.len()];
         gpu.pose(&ctx, &pose, &mut got).expect("gpu pose");
-        let err = got
-            .iter()
-            .zip(&want)
-            .map(|(a, b)| (*a - *b).length())
-            .fold(0.0, f64::max)
-            / diag;
+        let err = worst_error(&got, &want, diag);
         assert!(err <= 1e-5, "spline {}: {err:e}", method.name());
     }
 }
@@ -498,12 +493,7 @@ fn ffd_motor_form_on_the_gpu() {
         let mut gpu = GpuBlend::bind(&ctx, blend).expect("gpu bind");
         let mut got = vec![DVec3::ZERO; mesh.positions.len()];
         gpu.pose(&ctx, &keys, &mut got).expect("gpu pose");
-        let err = got
-            .iter()
-            .zip(&want)
-            .map(|(a, b)| (*a - *b).length())
-            .fold(0.0, f64::max)
-            / diag;
+        let err = worst_error(&got, &want, diag);
         assert!(err <= 1e-5, "ffd {}: {err:e}", method.name());
     }
 }
