@@ -18,7 +18,10 @@ use deform::{harmonic_field, HarmonicOptions};
 fn main() -> Result<(), deform::Error> {
     let mut tally = Tally::default();
     println!("harmonic field, k = 1 (ms)");
-    for rel in ["meshes/libigl/armadillo.obj", "meshes/large/armadillo-50k.obj"] {
+    for rel in [
+        "meshes/libigl/armadillo.obj",
+        "meshes/large/armadillo-50k.obj",
+    ] {
         let Some(path) = data_file(rel) else {
             continue;
         };

@@ -8,7 +8,7 @@
 use sprs::CsMat;
 
 /// Compressed rows of a Laplacian's pattern: row `i` holds `i` and every vertex sharing a
-/// triangle edge with it, increasing.
+/// triangle edge with it, increasing; with the place of each triangle's edge entries in it.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub(crate) struct LaplacianPattern {
     /// Row `i` is `indices[indptr[i]..indptr[i + 1]]`.
@@ -16,11 +16,21 @@ pub(crate) struct LaplacianPattern {
     pub(crate) indices: Vec<usize>,
     /// The position of each row's diagonal entry in `indices`.
     diagonal: Vec<usize>,
+    /// `places[2 (3 f + k) + s]`: where the entry of the edge opposite corner `k` of triangle
+    /// `f` lies in row `a` (`s = 0`, column `b`) and in row `b` (`s = 1`, column `a`); `a, b`
+    /// are the next corners in order. [`NOWHERE`] for an edge from a vertex to itself.
+    places: Vec<u32>,
 }
 
+/// In the rows being sorted: the diagonal entry (no triangle corner).
+const DIAGONAL: u32 = u32::MAX;
+/// In `places`: an edge from a vertex to itself (a triangle with a repeated index).
+const NOWHERE: u32 = u32::MAX;
+
 impl LaplacianPattern {
-    /// The pattern of `n` vertices and these triangles (indices must be in range). Edges of a
-    /// triangle with a repeated index that join a vertex to itself add nothing.
+    /// The pattern of `n` vertices and these triangles (indices must be in range; fewer
+    /// than 2^32 entries and 2^31 / 3 triangles). Edges of a triangle with a repeated index
+    /// that join a vertex to itself add nothing.
     pub(crate) fn new(n: usize, triangles: &[[u32; 3]]) -> LaplacianPattern {
         // Row capacities: the diagonal plus two slots per incident triangle.
         let mut offsets = vec![0usize; n + 1];
@@ -32,18 +42,26 @@ impl LaplacianPattern {
         for i in 0..n {
             offsets[i + 1] += offsets[i] + 1;
         }
-        let mut slots = vec![0u32; offsets[n]];
+        // Each slot: the column in the high half, the triangle corner and side it came from
+        // in the low half, so that sorting a row sorts by column.
+        let key = |column: usize, code: u32| (column as u64) << 32 | code as u64;
+        let mut slots = vec![0u64; offsets[n]];
         let mut fill: Vec<usize> = offsets[..n].to_vec();
         for (i, f) in fill.iter_mut().enumerate() {
-            slots[*f] = i as u32;
+            slots[*f] = key(i, DIAGONAL);
             *f += 1;
         }
-        for t in triangles {
+        let mut places = vec![NOWHERE; 6 * triangles.len()];
+        for (f, t) in triangles.iter().enumerate() {
             for k in 0..3 {
                 let (a, b) = (t[(k + 1) % 3] as usize, t[(k + 2) % 3] as usize);
-                slots[fill[a]] = b as u32;
+                if a == b {
+                    continue;
+                }
+                let code = 2 * (3 * f + k) as u32;
+                slots[fill[a]] = key(b, code);
                 fill[a] += 1;
-                slots[fill[b]] = a as u32;
+                slots[fill[b]] = key(a, code + 1);
                 fill[b] += 1;
             }
         }
@@ -52,16 +70,20 @@ impl LaplacianPattern {
         let mut diagonal = Vec::with_capacity(n);
         indptr.push(0);
         for i in 0..n {
-            let row = &mut slots[offsets[i]..offsets[i + 1]];
+            let row = &mut slots[offsets[i]..fill[i]];
             row.sort_unstable();
-            let mut last = u32::MAX;
-            for &c in row.iter() {
-                if c != last {
-                    if c as usize == i {
+            let mut last = usize::MAX;
+            for &slot in row.iter() {
+                let (column, code) = ((slot >> 32) as usize, slot as u32);
+                if column != last {
+                    if column == i {
                         diagonal.push(indices.len());
                     }
-                    indices.push(c as usize);
-                    last = c;
+                    indices.push(column);
+                    last = column;
+                }
+                if code != DIAGONAL {
+                    places[code as usize] = (indices.len() - 1) as u32;
                 }
             }
             indptr.push(indices.len());
@@ -70,22 +92,13 @@ impl LaplacianPattern {
             indptr,
             indices,
             diagonal,
+            places,
         }
     }
 
     /// Rows (and columns).
     pub(crate) fn len(&self) -> usize {
         self.diagonal.len()
-    }
-
-    /// The position of column `c` in row `r` (both in the pattern).
-    #[inline]
-    fn position(&self, r: usize, c: usize) -> usize {
-        let (lo, hi) = (self.indptr[r], self.indptr[r + 1]);
-        lo + self.indices[lo..hi]
-            .iter()
-            .position(|&x| x == c)
-            .expect("the pattern holds every edge of its triangles")
     }
 
     /// Assembles `L` from per-triangle edge weights (`triangles` must be the pattern's):
@@ -96,15 +109,16 @@ impl LaplacianPattern {
         let n = self.len();
         let mut data = vec![0.0; self.indices.len()];
         let mut diag = vec![0.0f64; n];
-        for (t, w) in triangles.iter().zip(weights) {
+        for (f, (t, w)) in triangles.iter().zip(weights).enumerate() {
             for k in 0..3 {
-                let (a, b) = (t[(k + 1) % 3] as usize, t[(k + 2) % 3] as usize);
-                if a == b {
+                let at = &self.places[6 * f + 2 * k..6 * f + 2 * k + 2];
+                if at[0] == NOWHERE {
                     continue;
                 }
+                let (a, b) = (t[(k + 1) % 3] as usize, t[(k + 2) % 3] as usize);
                 let [wab, wba] = w[k];
-                data[self.position(a, b)] += wab;
-                data[self.position(b, a)] += wba;
+                data[at[0] as usize] += wab;
+                data[at[1] as usize] += wba;
                 diag[a] -= wab;
                 diag[b] -= wba;
             }
