@@ -86,6 +86,8 @@ pub use mass::{mass_diagonal, mass_matrix, MassKind};
 pub use mesh::{Aabb, Mesh};
 pub use mesh::{IndexList, MeshError};
 pub use operators::SolveError;
-pub use solve::{DirichletSolver, Parallelism, SolveScratch, SolverOptions, SystemAnalysis};
+pub use solve::{
+    DirichletSolver, Factorization, Parallelism, SolveScratch, SolverOptions, SystemAnalysis,
+};
 pub use spline::{SplineDeformer, SplineOptions, WeightScheme};
 pub use validate::{check_solvable, clean, Cleaned, ValidationReport};

@@ -17,6 +17,7 @@ use crate::operators::mass::mass_diagonal;
 use crate::operators::mass::MassKind;
 use crate::operators::pattern::LaplacianPattern;
 use crate::operators::solve::DirichletSolver;
+use crate::operators::solve::Factorization;
 use crate::operators::solve::SolverOptions;
 use crate::operators::solve::SystemAnalysis;
 use crate::operators::Result;
@@ -32,7 +33,8 @@ pub struct HarmonicOptions {
     pub order: u32,
     /// Mass matrix used for `order = 2`.
     pub mass: MassKind,
-    /// Factorisation settings.
+    /// Factorisation settings (default: [`SolverOptions`]'s, with the supernodal layout,
+    /// the fastest to compute for a system solved once).
     pub solver: SolverOptions,
 }
 
@@ -42,7 +44,10 @@ impl Default for HarmonicOptions {
             laplacian: LaplacianKind::Default,
             order: 1,
             mass: MassKind::Voronoi,
-            solver: SolverOptions::default(),
+            solver: SolverOptions {
+                factorization: Factorization::Supernodal,
+                ..SolverOptions::default()
+            },
         }
     }
 }

@@ -354,7 +354,7 @@ fn overlapped_bind_gives_the_sequential_bits() {
             ..Default::default()
         };
         let q = deform::harmonic_system(&m, &options).expect("system");
-        let s = DirichletSolver::new(&q, &constrained, SolverOptions::default()).expect("solver");
+        let s = DirichletSolver::new(&q, &constrained, options.solver).expect("solver");
         let mut boundary = vec![0.0; constrained.len() * 3];
         let mut at = 0;
         for (j, g) in groups.iter().enumerate() {
@@ -371,5 +371,38 @@ fn overlapped_bind_gives_the_sequential_bits() {
             let got: Vec<f64> = h.coordinates().expect("coordinates").concat();
             assert_eq!(got, expect, "{laplacian:?}, {threads} threads");
         }
+    }
+}
+
+/// The three factor layouts solve the same system: the knight's coordinates agree to 1e-12.
+#[test]
+fn factor_layouts_agree() {
+    use deform::Factorization;
+    let Some((m, groups)) = selection("decimated-knight.off", "decimated-knight-selection.dmat")
+    else {
+        return;
+    };
+    let sets: Vec<&[u32]> = groups.iter().map(Vec::as_slice).collect();
+    let solve = |factorization| {
+        let options = HarmonicOptions {
+            solver: SolverOptions {
+                factorization,
+                ..SolverOptions::default()
+            },
+            ..Default::default()
+        };
+        harmonic_coordinates(&m, &sets, options)
+            .expect("coordinates")
+            .concat()
+    };
+    let auto = solve(Factorization::Auto);
+    for f in [Factorization::Supernodal, Factorization::Simplicial] {
+        let other = solve(f);
+        let worst = auto
+            .iter()
+            .zip(&other)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        assert!(worst < 1e-12, "{f:?}: {worst:e}");
     }
 }

@@ -11,7 +11,7 @@
 
 use super::components::ensure_csr;
 use super::structure::{analyse, split, Split, FREE};
-use super::{DirichletSolver, SolverOptions};
+use super::{DirichletSolver, Factorization, SolverOptions};
 use crate::mesh::MeshError;
 use crate::operators::laplacian::ensure_finite;
 use crate::operators::Result;
@@ -85,7 +85,8 @@ impl SystemAnalysis {
             col_ptr.push(row_idx.len());
         }
         let sym = SymbolicSparseColMatRef::new_checked(n, n, &col_ptr, None, &row_idx);
-        let symbolic = analyse(sym)?;
+        // Each selection factorises and solves once: the supernodal layout.
+        let symbolic = analyse(sym, Factorization::Supernodal)?;
         Ok(SystemAnalysis {
             q,
             col_ptr,

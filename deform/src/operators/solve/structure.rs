@@ -5,7 +5,7 @@
 //! being computed ([`DirichletSolver::overlapped`](super::DirichletSolver::overlapped)).
 
 use super::components::check_components;
-use super::{DirichletSolver, SolverOptions};
+use super::{DirichletSolver, Factorization, SolverOptions};
 use crate::mesh::IndexList;
 use crate::mesh::MeshError;
 use crate::operators::laplacian::ensure_finite;
@@ -19,20 +19,17 @@ use faer::sparse::SymbolicSparseColMatRef;
 use faer::Side;
 use sprs::CsMat;
 
-/// From this many unknowns on, the factorisation is always supernodal. faer's own choice
-/// (by the flop count per factor entry) keeps some meshes of 40k vertices simplicial, which
-/// measured 1.6-2x slower there (`harmonic_report`).
-pub(super) const SUPERNODAL_FROM: usize = 10_000;
-
-/// The symbolic Cholesky factor of the upper triangle `upper` (AMD ordering).
+/// The symbolic Cholesky factor of the upper triangle `upper` (AMD ordering), laid out as
+/// asked.
 pub(super) fn analyse(
     upper: SymbolicSparseColMatRef<'_, usize>,
+    factorization: Factorization,
 ) -> Result<SymbolicCholesky<usize>> {
     let params = CholeskySymbolicParams {
-        supernodal_flop_ratio_threshold: if upper.ncols() >= SUPERNODAL_FROM {
-            SupernodalThreshold::FORCE_SUPERNODAL
-        } else {
-            SupernodalThreshold::AUTO
+        supernodal_flop_ratio_threshold: match factorization {
+            Factorization::Auto => SupernodalThreshold::AUTO,
+            Factorization::Supernodal => SupernodalThreshold::FORCE_SUPERNODAL,
+            Factorization::Simplicial => SupernodalThreshold::FORCE_SIMPLICIAL,
         },
         ..Default::default()
     };
@@ -122,12 +119,14 @@ pub(super) struct Reduced {
 
 impl Reduced {
     /// The structure of `Q` (CSR pattern `indptr`, `indices`, columns sorted in each row)
-    /// split by `slot` (from [`classify`]) into the `free` rows (increasing) and the rest.
+    /// split by `slot` (from [`classify`]) into the `free` rows (increasing) and the rest,
+    /// with the factor laid out as `factorization` says.
     pub(super) fn new(
         indptr: &[usize],
         indices: &[usize],
         slot: &[u32],
         free: Vec<u32>,
+        factorization: Factorization,
     ) -> Result<Reduced> {
         let n = slot.len();
         let mut local = vec![0usize; n];
@@ -161,7 +160,7 @@ impl Reduced {
         let nf = free.len();
         // Columns of a CSR row are sorted and `local` is increasing, so rows are sorted.
         let upper = SymbolicSparseColMatRef::new_checked(nf, nf, &ff_col_ptr, None, &ff_row_idx);
-        let symbolic = analyse(upper)?;
+        let symbolic = analyse(upper, factorization)?;
         Ok(Reduced {
             free,
             ff_col_ptr,
@@ -194,7 +193,10 @@ impl DirichletSolver {
         let free: Vec<u32> = (0..n as u32)
             .filter(|&v| slot[v as usize] == FREE)
             .collect();
-        let (reduced, q) = rayon::join(|| Reduced::new(indptr, indices, &slot, free), values);
+        let (reduced, q) = rayon::join(
+            || Reduced::new(indptr, indices, &slot, free, options.factorization),
+            values,
+        );
         let q = q?;
         let same = q.is_csr()
             && q.rows() == n
