@@ -3,8 +3,8 @@
 //!
 //! Each kernel is the per-vertex method of `keys.rs` written over four lanes, so a lane gives
 //! what [`PreparedKeys::transform`] gives for its vertex to rounding (tested to 1e-13): matrix
-//! LBS with the same operations in the same order; motor and dual-quaternion blending without
-//! the square root (the sandwich and the rotation are quadratic, divided by the squared norm
+//! LBS (in f64, and in f32 with glam's `Affine3A`) with the same operations in the same
+//! order; motor and dual-quaternion blending without the square root (the sandwich and the rotation are quadratic, divided by the squared norm
 //! once); equation (17) with one division by the blended `eo`; log blending by the series of
 //! `cga::ExpLanes`. The hemisphere choice of the linear methods comes from a per-pose aligned
 //! table, or a branch-free sign flip per term above 64 keys. A batch whose blend degenerates
@@ -15,7 +15,7 @@ use super::keys::{dot, PreparedKeys};
 use super::BlendMethod;
 use cga::wide::{Bivector as WBivector, F64x4, Lane, Motor as WMotor, Point as WPoint};
 use cga::{rotate_lanes, ExpLanes, Sandwich};
-use glam::DVec3;
+use glam::{Affine3A, DVec3, Vec3A};
 
 /// `&table[k]` without a bounds check.
 ///
@@ -260,6 +260,37 @@ impl Kernel for Affine<'_> {
     }
 }
 
+/// Linear blend skinning in single precision: the operations of
+/// `PreparedKeys::transform_f32` (glam's `Affine3A`) lane by lane, so each vertex gets the
+/// bits of the per-vertex path, with the rows streamed from the batch layout.
+struct AffineF32<'a> {
+    affines: &'a [Affine3A],
+}
+
+impl Kernel for AffineF32<'_> {
+    #[inline(always)]
+    fn batch(&self, keys: &[[u32; LANES]], weights: &[F64x4], p: &Points4) -> Option<Points4> {
+        let q: [Vec3A; LANES] = each!(LANES, l => {
+            let mut m = Affine3A::ZERO;
+            for (k, w) in keys.iter().zip(weights) {
+                let a = at(self.affines, k[l]);
+                let w = w.0[l] as f32;
+                m = Affine3A {
+                    matrix3: m.matrix3 + a.matrix3 * w,
+                    translation: m.translation + a.translation * w,
+                };
+            }
+            let x = DVec3::new(p[0].0[l], p[1].0[l], p[2].0[l]);
+            m.transform_point3a(x.as_vec3a())
+        });
+        Some([
+            F64x4([q[0].x, q[1].x, q[2].x, q[3].x].map(f64::from)),
+            F64x4([q[0].y, q[1].y, q[2].y, q[3].y].map(f64::from)),
+            F64x4([q[0].z, q[1].z, q[2].z, q[3].z].map(f64::from)),
+        ])
+    }
+}
+
 /// Equation (17), down-projecting each term first.
 struct ConformalProjected<'a> {
     rows: Rows<'a>,
@@ -323,14 +354,13 @@ impl Kernel for MotorLog<'_> {
 }
 
 /// Pose every vertex of `batches` with the kernel of the prepared keys' method (`single(i)`
-/// for the vertices of declined batches). `false` when the method has no batch kernel
-/// ([`BlendMethod::MatrixF32`], whose single-precision path is already vectorised by glam).
+/// for the vertices of declined batches).
 pub(super) fn run(
     prepared: &PreparedKeys,
     batches: &Batches,
     single: &(impl Fn(usize) -> DVec3 + Sync),
     out: &mut [DVec3],
-) -> bool {
+) {
     let log_scales = prepared.scaled().then_some(&prepared.log_scales[..]);
     let rows = &prepared.rows[..];
     // At most 64 keys when aligned: the table index fits a u32.
@@ -372,7 +402,12 @@ pub(super) fn run(
         ),
         BlendMethod::ConformalProjected => batches.run(&ConformalProjected { rows }, single, out),
         BlendMethod::MotorLog => batches.run(&MotorLog { rows }, single, out),
-        BlendMethod::MatrixF32 => return false,
+        BlendMethod::MatrixF32 => batches.run(
+            &AffineF32 {
+                affines: &prepared.affines_f32,
+            },
+            single,
+            out,
+        ),
     }
-    true
 }

@@ -450,8 +450,10 @@ impl BoundBlend {
     ) -> Result<()> {
         let prepared = self.checked_prepare(keys, prepared, out)?;
         let single = |i: usize| prepared.transform(self.weights.row(i), self.local[i]);
-        if self.batches.is_empty() || !kernels::run(prepared, &self.batches, &single, out) {
+        if self.batches.is_empty() {
             for_each_vertex(out, single);
+        } else {
+            kernels::run(prepared, &self.batches, &single, out);
         }
         Ok(())
     }
