@@ -103,6 +103,31 @@ fn painted_handles_pose_as_the_library_poses_them_and_the_blend_switches_live() 
     assert!(sel.groups[3]
         .iter()
         .all(|&v| (field[v as usize] - 1.0).abs() < 1e-6));
+    // The posed surface as .glb: the library's bytes for the positions the server sent
+    // (validated by .ci/run with the other glTF files the tests write).
+    c.send(json!({"op": "method", "method": "handles", "blend": "motor-log"}));
+    let posed = c.positions(0);
+    c.send(json!({"op": "export", "what": "glb"}));
+    let (name, base64) = c.until(false, |f| match f {
+        Frame::Text(v) if v["type"] == "file" => {
+            assert_eq!(v["base64"], true);
+            Some((
+                v["name"].as_str().unwrap().to_string(),
+                v["text"].as_str().unwrap().to_string(),
+            ))
+        }
+        _ => None,
+    });
+    use base64::Engine;
+    let glb = base64::engine::general_purpose::STANDARD
+        .decode(base64)
+        .unwrap();
+    let want = deform::io::glb_bytes(&deform::Mesh::new(posed, mesh.triangles.clone())).unwrap();
+    assert_eq!(name, "sphere-posed.glb");
+    assert!(glb == want, "the exported .glb is not the library's");
+    let out = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../target/gltf-out");
+    std::fs::create_dir_all(&out).unwrap();
+    std::fs::write(out.join(format!("view-{name}")), &glb).unwrap();
     // The exported motors replay the same pose.
     let motors: Value = serde_json::from_str(&exported(&mut c, "motors")).unwrap();
     let replay = deform::input::parse_group_motors(&motors.to_string(), "m", 4).unwrap();

@@ -46,13 +46,16 @@ impl Session {
             }
             "glb" => {
                 use base64::Engine;
-                let rig = self
-                    .rig
-                    .as_ref()
-                    .ok_or_else(|| anyhow!("glb: this scene has no rig (export obj)"))?;
-                let bytes = rig.glb()?;
+                // A rig keeps its skin, edits and animations; a mesh scene its posed surface.
+                let (name, bytes) = match &self.rig {
+                    Some(rig) => (format!("{scene}-edited.glb"), rig.glb()?),
+                    None => {
+                        let posed = Mesh::new(self.posed.clone(), self.mesh.triangles.clone());
+                        (format!("{scene}-posed.glb"), deform::io::glb_bytes(&posed)?)
+                    }
+                };
                 (
-                    format!("{scene}-edited.glb"),
+                    name,
                     base64::engine::general_purpose::STANDARD.encode(bytes),
                 )
             }
