@@ -57,6 +57,13 @@ try {
   await until(page, () => editor.state.groups.length === 5 && !editor.state.stale, null, 'the lassoed group bound');
   const lassoed = await page.evaluate(() => editor.groupsOf.filter((g) => g === 5).length);
   check(lassoed > 5, `the lasso made group 4 (${lassoed} vertices)`);
+  // Undo the lasso (the page's button), then redo it: the groups come back, bound.
+  await page.click('#undo-select');
+  await until(page, () => editor.state.groups.length === 4 && !editor.state.stale, null, 'the lasso undone');
+  check(await page.evaluate(() => editor.groupsOf.filter((g) => g === 5).length) === 0, 'Undo selection took the lassoed group away');
+  await page.click('#redo-select');
+  await until(page, () => editor.state.groups.length === 5 && !editor.state.stale, null, 'the lasso redone');
+  check(await page.evaluate(() => editor.groupsOf.filter((g) => g === 5).length) === lassoed, 'Redo selection brought it back');
   await page.selectOption('#group', '3');
 
   // Drag the gizmo's x arrow of group 3.

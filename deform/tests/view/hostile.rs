@@ -135,7 +135,7 @@ fn refused_requests_are_errors_and_the_session_goes_on() {
             json!({"op": "cut", "point": [0, 0, 0], "normal": [1, 0, 0]}),
             "no rig",
         ),
-        (json!({"op": "undo"}), "no rig"),
+        (json!({"op": "undo"}), "nothing to undo"),
         (json!({"op": "export", "what": "exe"}), "cannot export"),
         (
             json!({"op": "load", "what": "selection", "text": "{\"0\": [99999999]}"}),

@@ -10,3 +10,4 @@ mod client;
 mod hostile;
 mod models;
 mod poses;
+mod selection_undo;

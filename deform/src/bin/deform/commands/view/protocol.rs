@@ -47,6 +47,9 @@ pub enum Request {
         group: usize,
         #[serde(default)]
         erase: bool,
+        /// The first dab of a stroke: the selection before it is what an undo returns to.
+        #[serde(default)]
+        begin: bool,
     },
     /// Lasso: the vertices seen from `eye` whose projection by `view_proj` (column-major 4x4)
     /// falls inside `polygon` (normalised device coordinates) join `group` (or leave it).
@@ -118,7 +121,8 @@ pub enum Request {
         radius: f64,
         depth: f64,
     },
-    /// Undo or redo the last surgery.
+    /// Undo or redo the last surgery (a rig) or selection change (a mesh scene: a paint
+    /// stroke, a lasso, clearing or loading the groups).
     Undo,
     Redo,
     /// A file of the current state: `obj`, `motors`, `selection`, `edits`.
@@ -210,6 +214,9 @@ pub struct StateInfo {
     pub triangles: usize,
     /// Whether the groups changed since the last bind.
     pub stale: bool,
+    /// Selection changes that can be undone and redone (mesh scenes).
+    pub selection_undo: usize,
+    pub selection_redo: usize,
 }
 
 /// What the server says in text frames.

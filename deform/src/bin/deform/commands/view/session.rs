@@ -94,6 +94,8 @@ pub struct Session {
     field: FieldChoice,
     /// The mesh's harmonic system, analysed once for every handle selection.
     analysed: analysis::Analysed,
+    /// Undo and redo of selection changes.
+    history: select::SelectionHistory,
 }
 
 fn v3(a: [f64; 3]) -> DVec3 {
@@ -131,6 +133,7 @@ impl Session {
                 group: 0,
             },
             analysed: analysis::Analysed::default(),
+            history: Default::default(),
         };
         let out = s.open(0)?;
         Ok((s, out))
@@ -154,7 +157,13 @@ impl Session {
                 radius,
                 group,
                 erase,
-            } => self.paint(v3(origin), v3(direction), radius, group, erase),
+                begin,
+            } => {
+                if begin {
+                    self.begin_change();
+                }
+                self.paint(v3(origin), v3(direction), radius, group, erase)
+            }
             Request::Lasso {
                 eye,
                 view_proj,
@@ -164,6 +173,10 @@ impl Session {
             } => self.lasso(v3(eye), view_proj, &polygon, group, erase),
             Request::ClearGroups => {
                 self.mesh_only("clear groups")?;
+                self.begin_change();
+                if !self.groups.is_empty() {
+                    self.changed();
+                }
                 self.set_groups(Vec::new());
                 Ok(vec![Out::Binary(Frame::groups(&self.owner)), self.state()])
             }
@@ -234,18 +247,7 @@ impl Session {
                 self.load_rig_mesh()
             }
             Request::Tear { .. } | Request::Drill { .. } => self.tool(request),
-            Request::Undo | Request::Redo => {
-                let rig = self
-                    .rig
-                    .as_mut()
-                    .ok_or_else(|| anyhow!("nothing to undo: this scene has no rig"))?;
-                if matches!(request, Request::Undo) {
-                    rig.undo()?;
-                } else {
-                    rig.redo()?;
-                }
-                self.load_rig_mesh()
-            }
+            Request::Undo | Request::Redo => self.undo_redo(matches!(request, Request::Undo)),
             Request::Export { what } => self.export(&what),
             Request::Load { what, text } => self.load(&what, &text),
         }
@@ -301,6 +303,7 @@ impl Session {
     fn open(&mut self, i: usize) -> Result<Vec<Out>> {
         let scene = self.scenes[i].clone();
         self.scene = i;
+        self.history = Default::default();
         self.field = FieldChoice {
             name: "displacement".into(),
             group: 0,
@@ -337,7 +340,7 @@ impl Session {
     }
 
     /// After a rig changed (opened, cut, undone): its mesh, rest pose and state.
-    fn load_rig_mesh(&mut self) -> Result<Vec<Out>> {
+    pub(super) fn load_rig_mesh(&mut self) -> Result<Vec<Out>> {
         let rig = self.rig.as_ref().expect("a rig scene");
         self.mesh = rig.rig().mesh.clone();
         self.bind_ms = rig.bind_ms;
@@ -373,7 +376,7 @@ impl Session {
     }
 
     /// Bind the method to the groups; with too few groups the rest pose (and a note).
-    fn bind(&mut self) -> Result<Vec<Out>> {
+    pub(super) fn bind(&mut self) -> Result<Vec<Out>> {
         self.stale = false;
         self.bound = Bound::None;
         self.posed = self.mesh.positions.clone();

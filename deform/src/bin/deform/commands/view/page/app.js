@@ -131,6 +131,7 @@ function onState(s) {
       o.textContent = s.controls ? `control point ${i}` : i < s.groups.length ? `group ${i} (${s.groups[i].vertices} vertices)` : "new group";
     });
     document.querySelectorAll(".paint-only").forEach((e) => e.classList.toggle("hidden", !!s.controls));
+    $("undo-select").disabled = s.selection_undo === 0; $("redo-select").disabled = s.selection_redo === 0;
     if (s.controls) $("tool").querySelector("[value=move]").checked = true;
     const blendFlag = s.blend === "positional" ? " --positional" : " --blend " + s.blend;
     $("replay").textContent = "Replay: deform " + {
@@ -346,6 +347,8 @@ $("cut").onclick = () => {
   if (!$("plane").checked || !ed.plane) return say("turn on the cut plane and place it first");
   send({ op: "cut", point: V.add(ed.plane.c, ed.plane.t), normal: Q.rotate(ed.plane.q, [1, 0, 0]), cap: true });
 };
+$("undo-select").onclick = () => send({ op: "undo" });
+$("redo-select").onclick = () => send({ op: "redo" });
 $("undo").onclick = () => send({ op: "undo" });
 $("redo").onclick = () => send({ op: "redo" });
 $("frame").onclick = () => ed.bbox && camera.frame(ed.bbox.min, ed.bbox.max);
@@ -362,9 +365,9 @@ addEventListener("keydown", (e) => { if (e.key === "f" && e.target === document.
 // --- mouse --------------------------------------------------------------------------------------
 let mouse = null;
 const tool = () => document.querySelector("input[name=tool]:checked").value;
-function paintAt(x, y) {
+function paintAt(x, y, begin) {
   const r = camera.ray(x, y), size = V.len(V.sub(ed.bbox.max, ed.bbox.min));
-  send({ op: "paint", origin: r.origin, direction: r.direction, radius: +$("brush").value * size, group: +$("group").value, erase: tool() === "erase" });
+  send({ op: "paint", origin: r.origin, direction: r.direction, radius: +$("brush").value * size, group: +$("group").value, erase: tool() === "erase", begin });
 }
 canvas.addEventListener("contextmenu", (e) => e.preventDefault());
 canvas.addEventListener("pointerdown", (e) => {
@@ -389,13 +392,13 @@ canvas.addEventListener("pointerdown", (e) => {
   const painting = e.button === 0 && !e.shiftKey && ed.state && ed.state.kind === "mesh" && tool() !== "move";
   const lasso = painting && tool() === "lasso";
   mouse = { mode: lasso ? "lasso" : painting ? "paint" : e.button === 2 || e.shiftKey ? "pan" : "orbit", x, y, polygon: [[x, y]] };
-  if (painting && !lasso) paintAt(x, y);
+  if (painting && !lasso) paintAt(x, y, true);
 });
 canvas.addEventListener("pointermove", (e) => {
   const x = e.offsetX, y = e.offsetY;
   if (!mouse) { gizmo.move(x, y); return; }
   if (mouse.mode === "gizmo") gizmo.move(x, y);
-  else if (mouse.mode === "paint") paintAt(x, y);
+  else if (mouse.mode === "paint") paintAt(x, y, false);
   else if (mouse.mode === "lasso") { if (Math.hypot(x - mouse.x, y - mouse.y) < 4) return; mouse.polygon.push([x, y]); }
   else if (mouse.mode === "none") return;
   else if (mouse.mode === "scalpel") {

@@ -78,6 +78,8 @@ impl Session {
         match what {
             "selection" => {
                 let sel = parse_selection_json(text, self.mesh.vertex_count(), "selection")?;
+                self.begin_change();
+                self.changed();
                 self.set_groups(sel.groups);
                 let mut out = vec![Out::Binary(Frame::groups(&self.owner))];
                 out.extend(self.bind()?);

@@ -103,6 +103,8 @@ impl Session {
             vertices: self.mesh.vertex_count(),
             triangles: self.mesh.triangle_count(),
             stale: self.stale,
+            selection_undo: self.history.undo_count(),
+            selection_redo: self.history.redo_count(),
         })))
     }
 }

@@ -24,7 +24,86 @@ fn contains(polygon: &[[f64; 2]], p: [f64; 2]) -> bool {
     inside
 }
 
+/// The most selection changes kept for undo.
+const HISTORY: usize = 100;
+
+/// The vertex groups of a selection.
+type Selection = Vec<Vec<u32>>;
+
+/// Undo and redo of selection changes (paint strokes, lassos, clearing, loading), as the
+/// groups before each. The motors stay with the group numbers, as the page's gizmos do.
+#[derive(Debug, Default)]
+pub(in crate::commands::view) struct SelectionHistory {
+    undo: Vec<Selection>,
+    redo: Vec<Selection>,
+    /// Kept when a change begins, pushed once it changes something.
+    pending: Option<Selection>,
+}
+
+impl SelectionHistory {
+    pub(in crate::commands::view) fn undo_count(&self) -> usize {
+        self.undo.len()
+    }
+
+    pub(in crate::commands::view) fn redo_count(&self) -> usize {
+        self.redo.len()
+    }
+}
+
 impl Session {
+    /// A selection change begins: the current selection is what an undo returns to, once
+    /// the change changes something ([`Session::changed`]).
+    pub(super) fn begin_change(&mut self) {
+        self.history.pending = Some(self.groups.clone());
+    }
+
+    /// The change begun last changed the selection: it becomes an undo step (once per
+    /// stroke), and what was undone can no longer be redone.
+    pub(super) fn changed(&mut self) {
+        if let Some(s) = self.history.pending.take() {
+            if self.history.undo.len() == HISTORY {
+                self.history.undo.remove(0);
+            }
+            self.history.undo.push(s);
+            self.history.redo.clear();
+        }
+    }
+
+    /// Undo (or redo) the last surgery of a rig, or the last selection change of a mesh
+    /// scene (then rebinds, each group keeping its motor).
+    pub(super) fn undo_redo(&mut self, undo: bool) -> Result<Vec<Out>> {
+        if let Some(rig) = self.rig.as_mut() {
+            if undo {
+                rig.undo()?;
+            } else {
+                rig.redo()?;
+            }
+            return self.load_rig_mesh();
+        }
+        let h = &mut self.history;
+        let (from, word) = if undo {
+            (&mut h.undo, "undo")
+        } else {
+            (&mut h.redo, "redo")
+        };
+        let Some(back) = from.pop() else {
+            bail!("nothing to {word}");
+        };
+        h.pending = None;
+        let now = self.groups.clone();
+        if undo {
+            self.history.redo.push(now);
+        } else {
+            self.history.undo.push(now);
+        }
+        // Group `g` keeps its motor (a new one starts at the identity), as in the page.
+        let mut specs = std::mem::take(&mut self.specs);
+        specs.resize(back.len(), MotorSpec::default());
+        self.set_groups(back);
+        self.specs = specs;
+        self.bind()
+    }
+
     /// Paint or erase around where the ray meets the posed surface.
     pub(super) fn paint(
         &mut self,
@@ -67,6 +146,7 @@ impl Session {
         if !m.is_finite() || !eye.is_finite() || polygon.iter().flatten().any(|x| !x.is_finite()) {
             bail!("the lasso's camera or points are not finite");
         }
+        self.begin_change();
         let inside: Vec<usize> = (0..self.posed.len())
             .filter(|&v| {
                 let c = m * self.posed[v].extend(1.0);
@@ -120,6 +200,7 @@ impl Session {
         if !changed {
             return Ok(Vec::new());
         }
+        self.changed();
         // Groups from owners, renumbered without gaps (an emptied group disappears).
         let mut groups: Vec<Vec<u32>> = vec![Vec::new(); self.groups.len() + 1];
         for (v, &g) in self.owner.iter().enumerate() {
