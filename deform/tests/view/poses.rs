@@ -21,6 +21,26 @@ fn exported(c: &mut crate::client::Client, what: &str) -> String {
     })
 }
 
+/// The name and bytes of the `.glb` the server exports (sent as base64).
+fn exported_glb(c: &mut crate::client::Client) -> (String, Vec<u8>) {
+    use base64::Engine;
+    c.send(json!({"op": "export", "what": "glb"}));
+    let (name, text) = c.until(false, |f| match f {
+        Frame::Text(v) if v["type"] == "file" => {
+            assert_eq!(v["base64"], true);
+            Some((
+                v["name"].as_str().unwrap().to_string(),
+                v["text"].as_str().unwrap().to_string(),
+            ))
+        }
+        _ => None,
+    });
+    let bytes = base64::engine::general_purpose::STANDARD
+        .decode(text)
+        .unwrap();
+    (name, bytes)
+}
+
 #[test]
 fn painted_handles_pose_as_the_library_poses_them_and_the_blend_switches_live() {
     let server = Server::start(&[]);
@@ -107,21 +127,7 @@ fn painted_handles_pose_as_the_library_poses_them_and_the_blend_switches_live() 
     // (validated by .ci/run with the other glTF files the tests write).
     c.send(json!({"op": "method", "method": "handles", "blend": "motor-log"}));
     let posed = c.positions(0);
-    c.send(json!({"op": "export", "what": "glb"}));
-    let (name, base64) = c.until(false, |f| match f {
-        Frame::Text(v) if v["type"] == "file" => {
-            assert_eq!(v["base64"], true);
-            Some((
-                v["name"].as_str().unwrap().to_string(),
-                v["text"].as_str().unwrap().to_string(),
-            ))
-        }
-        _ => None,
-    });
-    use base64::Engine;
-    let glb = base64::engine::general_purpose::STANDARD
-        .decode(base64)
-        .unwrap();
+    let (name, glb) = exported_glb(&mut c);
     let want = deform::io::glb_bytes(&deform::Mesh::new(posed, mesh.triangles.clone())).unwrap();
     assert_eq!(name, "sphere-posed.glb");
     assert!(glb == want, "the exported .glb is not the library's");
@@ -255,21 +261,7 @@ fn the_rig_poses_as_the_library_poses_it_and_a_cut_undoes_and_redoes() {
         "edits": [{"joint": 1, "motor": {"scale": 1.3}}]}),
     );
     c.positions(6);
-    c.send(json!({"op": "export", "what": "glb"}));
-    let (name, text) = c.until(false, |f| match f {
-        Frame::Text(v) if v["type"] == "file" => {
-            assert_eq!(v["base64"], true);
-            Some((
-                v["name"].as_str().unwrap().to_string(),
-                v["text"].as_str().unwrap().to_string(),
-            ))
-        }
-        _ => None,
-    });
-    use base64::Engine;
-    let bytes = base64::engine::general_purpose::STANDARD
-        .decode(text)
-        .unwrap();
+    let (name, bytes) = exported_glb(&mut c);
     let back =
         deform::skinning::parse_gltf(&bytes, &name, None).expect("the exported .glb reads back");
     assert_eq!(back.mesh.vertex_count(), cut_mesh);
