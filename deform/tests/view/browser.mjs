@@ -177,6 +177,14 @@ try {
   await settled(page);
   check(await page.evaluate(() => editor.positions.length / 3) === made, `the drilled arm (${made} vertices) animates`);
   await shot('drilled');
+
+  // Open a model from "disk": an octahedron as OBJ through the page's file input.
+  const octahedron = 'v 1 0 0\nv -1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nv 0 0 -1\n' +
+    'f 1 3 5\nf 3 2 5\nf 2 4 5\nf 4 1 5\nf 3 1 6\nf 2 3 6\nf 4 2 6\nf 1 4 6\n';
+  await page.setInputFiles('#upload', { name: 'octahedron.obj', mimeType: 'text/plain', buffer: Buffer.from(octahedron) });
+  await until(page, () => editor.state.scene === 'octahedron.obj' && editor.state.kind === 'mesh' && editor.state.vertices === 6, null, 'the uploaded model');
+  check(true, 'the uploaded octahedron opened as a scene');
+  await shot('uploaded');
   check(problems.length === 0, `no console errors${problems.length ? ': ' + problems.join('; ') : ''}`);
 } catch (e) {
   console.error(`FAILED: ${e.message}`);

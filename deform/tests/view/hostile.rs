@@ -62,7 +62,7 @@ fn malformed_oversized_and_binary_messages_close_their_connection_only() {
         Message::Text(
             format!(
                 r#"{{"op": "load", "what": "selection", "text": "{}"}}"#,
-                "x".repeat(5 << 20)
+                "x".repeat(30 << 20)
             )
             .into(),
         ),

@@ -11,3 +11,4 @@ mod hostile;
 mod models;
 mod poses;
 mod selection_undo;
+mod upload;

@@ -31,17 +31,45 @@ use std::path::Path;
 /// Polygons are fan-triangulated; for MEDIT files the `Triangles` section is returned.
 pub fn read_mesh(path: impl AsRef<Path>) -> Result<Mesh> {
     let path = path.as_ref();
-    let ext = path
+    let name = path.display().to_string();
+    match extension(&name).as_str() {
+        "obj" | "off" | "mesh" => parse_mesh(&read_bytes(path)?, &name),
+        ext => Err(MeshError::UnsupportedFormat(ext.into())),
+    }
+}
+
+/// Parses the bytes of a mesh file named `name` (an upload, say), choosing the format by the
+/// name's extension as [`read_mesh`] does; the bytes must be UTF-8 text.
+///
+/// ```
+/// let m = deform::io::parse_mesh(b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "tri.OBJ").unwrap();
+/// assert_eq!(m.triangles, vec![[0, 1, 2]]);
+/// assert!(deform::io::parse_mesh(b"", "tri.stl").is_err());
+/// ```
+pub fn parse_mesh(bytes: &[u8], name: &str) -> Result<Mesh> {
+    let ext = extension(name);
+    if !matches!(ext.as_str(), "obj" | "off" | "mesh") {
+        return Err(MeshError::UnsupportedFormat(ext));
+    }
+    let text = std::str::from_utf8(bytes).map_err(|e| MeshError::Parse {
+        path: name.to_string(),
+        line: 0,
+        message: format!("not UTF-8: {e}"),
+    })?;
+    match ext.as_str() {
+        "obj" => parse_obj(text, name),
+        "off" => parse_off(text, name),
+        _ => Ok(parse_medit(text, name)?.surface()),
+    }
+}
+
+/// The lowercase extension of a file name (empty without one).
+fn extension(name: &str) -> String {
+    Path::new(name)
         .extension()
         .and_then(|e| e.to_str())
         .unwrap_or("")
-        .to_ascii_lowercase();
-    match ext.as_str() {
-        "obj" => read_obj(path),
-        "off" => read_off(path),
-        "mesh" => Ok(read_medit(path)?.surface()),
-        _ => Err(MeshError::UnsupportedFormat(ext)),
-    }
+        .to_ascii_lowercase()
 }
 
 pub(crate) fn read_bytes(path: &Path) -> Result<Vec<u8>> {

@@ -134,13 +134,20 @@ pub enum Request {
         what: String,
         text: String,
     },
+    /// Open a model the page read from a file (OBJ, OFF, MEDIT, `.glb`, `.gltf` with its
+    /// buffers embedded), as the CLI reads one: `name` chooses the format, `base64` holds
+    /// its bytes.
+    Upload {
+        name: String,
+        base64: String,
+    },
 }
 
 impl Request {
     /// What a request that may take a while (a bind, a cut) is doing, for the page to show.
     pub fn slow(&self) -> Option<&'static str> {
         match self {
-            Request::Scene { .. } => Some("opening the scene"),
+            Request::Scene { .. } | Request::Upload { .. } => Some("opening the scene"),
             Request::Bind | Request::Method { .. } | Request::Load { .. } => Some("binding"),
             Request::Cut { .. } => Some("cutting"),
             Request::Tear { .. } => Some("tearing"),

@@ -5,6 +5,7 @@
 use super::mailbox::Mailbox;
 use super::protocol::{Reply, Request};
 use super::scenes::Scene;
+use super::session::MAX_UPLOAD;
 use super::session::{Out, Session};
 use axum::extract::ws::{Message, WebSocket, WebSocketUpgrade};
 use axum::extract::{Query, State};
@@ -17,8 +18,9 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Arc;
 use tokio::sync::mpsc;
 
-/// The largest message the page may send (a selection or motors file it loads).
-pub const MAX_MESSAGE: usize = 4 << 20;
+/// The largest message the page may send: an uploaded model of up to [`MAX_UPLOAD`] bytes
+/// in base64 with room for its JSON, or a selection or motors file it loads.
+pub const MAX_MESSAGE: usize = MAX_UPLOAD.div_ceil(3) * 4 + (1 << 20);
 /// Sockets open at once (each holds its own bound mesh).
 pub const MAX_SESSIONS: usize = 8;
 /// Frames queued for a page that does not read before the session waits.

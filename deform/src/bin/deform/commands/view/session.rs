@@ -5,6 +5,7 @@
 
 mod analysis;
 mod keep;
+pub use keep::MAX_UPLOAD;
 mod report;
 mod select;
 mod surgery;
@@ -250,6 +251,7 @@ impl Session {
             Request::Undo | Request::Redo => self.undo_redo(matches!(request, Request::Undo)),
             Request::Export { what } => self.export(&what),
             Request::Load { what, text } => self.load(&what, &text),
+            Request::Upload { name, base64 } => self.upload(&name, &base64),
         }
     }
 
@@ -300,7 +302,7 @@ impl Session {
     }
 
     /// Open scene `i`: its mesh, groups and method, bound.
-    fn open(&mut self, i: usize) -> Result<Vec<Out>> {
+    pub(super) fn open(&mut self, i: usize) -> Result<Vec<Out>> {
         let scene = self.scenes[i].clone();
         self.scene = i;
         self.history = Default::default();

@@ -353,6 +353,15 @@ $("undo").onclick = () => send({ op: "undo" });
 $("redo").onclick = () => send({ op: "redo" });
 $("frame").onclick = () => ed.bbox && camera.frame(ed.bbox.min, ed.bbox.max);
 document.querySelectorAll("[data-export]").forEach((b) => { b.onclick = () => send({ op: "export", what: b.dataset.export }); });
+// A model from the user's disk: read here, parsed and checked by the server as the CLI does.
+$("upload").onchange = async (e) => {
+  const f = e.target.files[0]; if (!f) return;
+  if (f.size > 16 << 20) { e.target.value = ""; return say(`${f.name}: larger than 16 MiB`); }
+  const bytes = new Uint8Array(await f.arrayBuffer());
+  let binary = "";
+  for (let i = 0; i < bytes.length; i += 0x8000) binary += String.fromCharCode(...bytes.subarray(i, i + 0x8000));
+  send({ op: "upload", name: f.name, base64: btoa(binary) }); e.target.value = "";
+};
 for (const what of ["selection", "motors"]) {
   $("load-" + what).onchange = async (e) => {
     const f = e.target.files[0]; if (!f) return;

@@ -1,9 +1,10 @@
 //! Files of a session: export the pose, selection, motors, edits or the rig; load a selection
-//! or motors through the CLI's parsers.
+//! or motors through the CLI's parsers; open an uploaded model as the CLI opens one.
 
 use super::{Bound, Out, Session};
 use crate::commands::view::protocol::{Frame, Reply};
-use anyhow::{anyhow, bail, Result};
+use crate::commands::view::scenes::{Content, Method, Scene};
+use anyhow::{anyhow, bail, Context, Result};
 use deform::input::{parse_group_motors, parse_selection_json};
 use deform::Mesh;
 
@@ -105,5 +106,58 @@ impl Session {
             }
             _ => bail!("cannot load {what:?} (selection, motors)"),
         }
+    }
+}
+
+/// The most bytes an uploaded model may have (the page checks first; the socket's message
+/// limit bounds what reaches the server).
+pub const MAX_UPLOAD: usize = 16 << 20;
+
+impl Session {
+    /// Open a model the page uploaded: its bytes go through the CLI's readers and checks
+    /// (a mesh must be solvable; a glTF may not name files outside itself). It joins this
+    /// session's scenes, replacing an earlier upload of the same name.
+    pub(super) fn upload(&mut self, name: &str, base64: &str) -> Result<Vec<Out>> {
+        use base64::Engine;
+        // Only the file's own name: it names the scene and the format, never a path here.
+        let name = std::path::Path::new(name)
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .filter(|n| !n.is_empty())
+            .ok_or_else(|| anyhow!("an upload needs a file name"))?;
+        if base64.len() > MAX_UPLOAD.div_ceil(3) * 4 {
+            bail!("{name}: larger than {} MiB", MAX_UPLOAD >> 20);
+        }
+        let bytes = base64::engine::general_purpose::STANDARD
+            .decode(base64)
+            .map_err(|e| anyhow!("{name}: not base64 ({e})"))?;
+        let lower = name.to_ascii_lowercase();
+        let content = if lower.ends_with(".glb") || lower.ends_with(".gltf") {
+            Content::Rig(Box::new(deform::skinning::parse_gltf(&bytes, &name, None)?))
+        } else {
+            let mesh = deform::io::parse_mesh(&bytes, &name)?;
+            deform::check_solvable(&mesh).with_context(|| format!("{name}: not a usable mesh"))?;
+            Content::Mesh {
+                mesh,
+                groups: Vec::new(),
+                method: Method::Handles,
+                cage: None,
+            }
+        };
+        let scene = Scene {
+            name,
+            content: std::sync::Arc::new(content),
+        };
+        let i = match self.scenes.iter().position(|s| s.name == scene.name) {
+            Some(i) => {
+                self.scenes[i] = scene;
+                i
+            }
+            None => {
+                self.scenes.push(scene);
+                self.scenes.len() - 1
+            }
+        };
+        self.open(i)
     }
 }
