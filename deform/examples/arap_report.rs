@@ -10,23 +10,20 @@
 
 use cga::ScaledMotor;
 use deform::arap::{Arap, ArapOptions, Stop, Targets};
+#[path = "../benches/support/scenes.rs"]
+mod scenes;
+
 use devkit::grade::{Tally, Target};
 use devkit::measure::spread_ms;
-use devkit::shared::data_file;
 use glam::{DQuat, DVec3};
 
 fn main() -> Result<(), deform::Error> {
     let mut tally = Tally::default();
-    for rel in [
-        "meshes/libigl/armadillo.obj",
-        "meshes/large/armadillo-50k.obj",
-    ] {
-        let Some(path) = data_file(rel) else {
+    for rel in ["libigl/armadillo.obj", "large/armadillo-50k.obj"] {
+        let Some(mesh) = scenes::mesh(rel) else {
             continue;
         };
-        let mesh = deform::io::read_mesh(&path)?;
-        let fixed = mesh.vertices_in_slab(1, 0.0, 0.05);
-        let handle = mesh.vertices_in_slab(1, 0.95, 1.0);
+        let (fixed, handle) = scenes::spline_ends(&mesh);
         let b = mesh.bounding_box().expect("box");
         let c = DVec3::new(b.center().x, b.max.y, b.center().z);
         let q = DQuat::from_axis_angle(DVec3::new(1.0, 0.2, 0.4).normalize(), 0.6);

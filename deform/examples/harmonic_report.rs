@@ -9,25 +9,22 @@
 //!
 //! `cargo run --release -p deform --example harmonic_report`
 
+#[path = "../benches/support/scenes.rs"]
+mod scenes;
+
 use devkit::grade::{Tally, Target};
 use devkit::measure::spread_ms;
-use devkit::shared::data_file;
 
 use deform::{harmonic_field, HarmonicOptions};
 
 fn main() -> Result<(), deform::Error> {
     let mut tally = Tally::default();
     println!("harmonic field, k = 1 (ms)");
-    for rel in [
-        "meshes/libigl/armadillo.obj",
-        "meshes/large/armadillo-50k.obj",
-    ] {
-        let Some(path) = data_file(rel) else {
+    for rel in ["libigl/armadillo.obj", "large/armadillo-50k.obj"] {
+        let Some(mesh) = scenes::mesh(rel) else {
             continue;
         };
-        let mesh = deform::io::read_mesh(&path)?;
-        let fixed = mesh.vertices_in_slab(1, 0.0, 0.05);
-        let moved = mesh.vertices_in_slab(1, 0.95, 1.0);
+        let (fixed, moved) = scenes::spline_ends(&mesh);
         let opts = HarmonicOptions::default();
         for threads in [1, 2] {
             let pool = rayon::ThreadPoolBuilder::new()
