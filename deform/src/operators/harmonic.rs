@@ -302,7 +302,7 @@ pub fn harmonic_coordinates(
 }
 
 /// The sets' vertices in order, checked: in range of `n` and in one set at most.
-fn constrained_of(n: usize, sets: &[&[u32]]) -> Result<Vec<u32>> {
+pub(crate) fn constrained_of(n: usize, sets: &[&[u32]]) -> Result<Vec<u32>> {
     let bad: Vec<u32> = sets
         .iter()
         .flat_map(|s| s.iter().copied())

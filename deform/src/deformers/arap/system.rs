@@ -12,6 +12,7 @@ use crate::mesh::validate::check_solvable;
 use crate::mesh::IndexList;
 use crate::mesh::Mesh;
 use crate::mesh::MeshError;
+use crate::operators::harmonic::constrained_of;
 use crate::operators::laplacian::assemble;
 use crate::operators::laplacian::cotangent_laplacian;
 use crate::operators::laplacian::DegeneratePolicy;
@@ -38,48 +39,26 @@ pub(crate) struct System {
     pub solver: DirichletSolver,
 }
 
-/// Checks the constraint sets: ranges, empty groups, overlaps, at least one constraint.
+/// Checks the constraint sets: empty handle groups and at least one constraint here; ranges and
+/// overlaps as harmonic fields check them ([`constrained_of`]).
 fn constraints(n: usize, fixed: &[u32], handles: &[&[u32]]) -> Result<(Vec<u32>, Vec<usize>)> {
     if let Some(set) = handles.iter().position(|h| h.is_empty()) {
         return Err(KeyError::EmptyHandle { set }.into());
     }
-    let mut constrained = fixed.to_vec();
-    let mut starts = Vec::with_capacity(handles.len() + 1);
-    for h in handles {
-        starts.push(constrained.len());
-        constrained.extend_from_slice(h);
-    }
-    starts.push(constrained.len());
-    if constrained.is_empty() {
+    let mut sets = vec![fixed];
+    sets.extend_from_slice(handles);
+    if sets.iter().all(|s| s.is_empty()) {
         return Err(ArapError::NoConstraints.into());
     }
-    let out: Vec<u32> = constrained
-        .iter()
-        .copied()
-        .filter(|&v| v as usize >= n)
-        .collect();
-    if !out.is_empty() {
-        return Err(MeshError::ConstraintOutOfRange {
-            vertices: IndexList(out),
-            vertex_count: n,
-        }
-        .into());
+    let constrained = constrained_of(n, &sets)?;
+    // Where each handle's vertices start in `constrained` (after the fixed ones).
+    let mut starts = Vec::with_capacity(handles.len() + 1);
+    let mut at = fixed.len();
+    for h in handles {
+        starts.push(at);
+        at += h.len();
     }
-    let mut seen = vec![false; n];
-    let mut repeated = Vec::new();
-    for &v in &constrained {
-        if std::mem::replace(&mut seen[v as usize], true) {
-            repeated.push(v);
-        }
-    }
-    if !repeated.is_empty() {
-        repeated.sort_unstable();
-        repeated.dedup();
-        return Err(MeshError::OverlappingConstraints {
-            vertices: IndexList(repeated),
-        }
-        .into());
-    }
+    starts.push(at);
     Ok((constrained, starts))
 }
 
