@@ -16,6 +16,7 @@ use crate::operators::laplacian::LaplacianKind;
 use crate::operators::mass::mass_diagonal;
 use crate::operators::mass::MassKind;
 use crate::operators::pattern::LaplacianPattern;
+use crate::operators::solve::check_constrained;
 use crate::operators::solve::DirichletSolver;
 use crate::operators::solve::Factorization;
 use crate::operators::solve::SolverOptions;
@@ -301,34 +302,10 @@ pub fn harmonic_coordinates(
     Harmonic::new(mesh, sets, options)?.coordinates()
 }
 
-/// The sets' vertices in order, checked: in range of `n` and in one set at most.
+/// The sets' vertices in order, checked: in range of `n` and in one set at most (the checks
+/// of every constrained list, [`crate::operators::solve::check_constrained`]).
 pub(crate) fn constrained_of(n: usize, sets: &[&[u32]]) -> Result<Vec<u32>> {
-    let bad: Vec<u32> = sets
-        .iter()
-        .flat_map(|s| s.iter().copied())
-        .filter(|&v| v as usize >= n)
-        .collect();
-    if !bad.is_empty() {
-        return Err(MeshError::ConstraintOutOfRange {
-            vertices: IndexList(bad),
-            vertex_count: n,
-        }
-        .into());
-    }
     let constrained: Vec<u32> = sets.iter().flat_map(|s| s.iter().copied()).collect();
-    let mut seen = vec![false; n];
-    let mut overlap: Vec<u32> = constrained
-        .iter()
-        .copied()
-        .filter(|&v| std::mem::replace(&mut seen[v as usize], true))
-        .collect();
-    if !overlap.is_empty() {
-        overlap.sort_unstable();
-        overlap.dedup();
-        return Err(MeshError::OverlappingConstraints {
-            vertices: IndexList(overlap),
-        }
-        .into());
-    }
+    check_constrained(n, &constrained)?;
     Ok(constrained)
 }

@@ -30,6 +30,12 @@ use faer::{Conj, MatMut, Par, Side};
 use sprs::CsMat;
 use structure::{split, Reduced, Split};
 
+/// Fails unless every index of `constrained` is below `n` and listed once
+/// ([`MeshError::ConstraintOutOfRange`], [`MeshError::OverlappingConstraints`]).
+pub(crate) fn check_constrained(n: usize, constrained: &[u32]) -> Result<()> {
+    structure::classify(n, constrained).map(|_| ())
+}
+
 /// Threads used by the factorisation and the triangular solves.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Parallelism {
