@@ -6,8 +6,12 @@
 //! * motor-valued (first paper, equations (7)-(8) and section VI):
 //!   `M_i = exp(sum_j w_ij log R_j)` applied to the vertex, through [`BoundBlend`].
 //!
-//! Both are allocation-free and parallel over the vertices.
+//! Both are allocation-free and parallel over the vertices, and run the batch loop of
+//! `blend/batch.rs` (the positional form's kernel sums the control points over four lanes in
+//! the per-vertex order, so it gives the same bits).
 
+use crate::blend::batch::Batches;
+use crate::blend::kernels;
 use crate::blend::Result;
 use crate::blend::{check_key_count, check_positions, KeyError};
 use crate::blend::{BlendMethod, BoundBlend, KeyWeights, PreparedKeys};
@@ -42,7 +46,11 @@ impl ControlForm {
 
 #[derive(Debug, Clone)]
 enum Inner {
-    Positional { weights: KeyWeights },
+    /// The weights, and their rows laid out for the batch loop.
+    Positional {
+        weights: KeyWeights,
+        batches: Batches,
+    },
     Motor(BoundBlend),
 }
 
@@ -71,7 +79,10 @@ impl ControlBinding {
         check_positions(weights.vertex_count(), positions.len())?;
         check_key_count("the control points", weights.key_count(), rest.len())?;
         let inner = match form {
-            ControlForm::Positional => Inner::Positional { weights },
+            ControlForm::Positional => Inner::Positional {
+                batches: Batches::new(&weights, positions),
+                weights,
+            },
             ControlForm::Motor(method) => {
                 let identity = vec![ScaledMotor::IDENTITY; rest.len()];
                 Inner::Motor(BoundBlend::bind(positions, weights, &identity, method)?)
@@ -127,11 +138,17 @@ impl ControlBinding {
             );
         }
         let weights = self.weights();
-        crate::blend::for_each_vertex(out, |i| {
+        let single = |i: usize| {
             weights
                 .row(i)
                 .fold(DVec3::ZERO, |a, k, w| a + w * control[k])
-        });
+        };
+        match &self.inner {
+            Inner::Positional { batches, .. } if !batches.is_empty() => {
+                kernels::run_positional(batches, control, &single, out)
+            }
+            _ => crate::blend::for_each_vertex(out, single),
+        }
         Ok(())
     }
 }

@@ -21,7 +21,8 @@ use glam::{Affine3A, DVec3, Vec3A};
 ///
 /// Every key index of a [`Batches`] is below the deformer's key count (checked when its
 /// [`super::KeyWeights`] were built), and [`super::BoundBlend::pose_using`] prepares exactly
-/// that many keys before running a kernel, so the index is in range.
+/// that many keys before running a kernel (as `ControlBinding::pose_points` checks that many
+/// control points), so the index is in range.
 #[inline(always)]
 fn at<T>(table: &[T], k: u32) -> &T {
     debug_assert!((k as usize) < table.len());
@@ -289,6 +290,43 @@ impl Kernel for AffineF32<'_> {
             F64x4([q[0].z, q[1].z, q[2].z, q[3].z].map(f64::from)),
         ])
     }
+}
+
+/// The positional form of lattices and cages: `sum w P` of the control points, lane by lane in
+/// the per-vertex path's order (so its bits).
+struct Positional<'a> {
+    control: &'a [DVec3],
+}
+
+impl Kernel for Positional<'_> {
+    #[inline(always)]
+    fn batch(&self, keys: &[[u32; LANES]], weights: &[F64x4], _: &Points4) -> Option<Points4> {
+        let zero = F64x4::splat(0.0);
+        let (mut x, mut y, mut z) = (zero, zero, zero);
+        for (k, w) in keys.iter().zip(weights) {
+            let (c0, c1, c2, c3) = (
+                at(self.control, k[0]),
+                at(self.control, k[1]),
+                at(self.control, k[2]),
+                at(self.control, k[3]),
+            );
+            x += *w * F64x4([c0.x, c1.x, c2.x, c3.x]);
+            y += *w * F64x4([c0.y, c1.y, c2.y, c3.y]);
+            z += *w * F64x4([c0.z, c1.z, c2.z, c3.z]);
+        }
+        Some([x, y, z])
+    }
+}
+
+/// `out[i] = sum_j w_ij control[k_ij]` for every vertex of `batches`, whose key indices must
+/// be below `control.len()`.
+pub(super) fn run_positional(
+    batches: &Batches,
+    control: &[DVec3],
+    single: &(impl Fn(usize) -> DVec3 + Sync),
+    out: &mut [DVec3],
+) {
+    batches.run(&Positional { control }, single, out);
 }
 
 /// Equation (17), down-projecting each term first.

@@ -161,3 +161,46 @@ fn the_batch_loop_poses_as_the_per_vertex_blend() {
         }
     }
 }
+
+/// The positional form of lattices and cages runs the batch loop too: `sum w P` gives the
+/// bits of the per-vertex sum, with a partial last batch and more keys than lanes.
+#[test]
+fn the_positional_batch_loop_sums_as_the_per_vertex_loop() {
+    use deform::control::{ControlBinding, ControlForm};
+    for (key_count, width, n) in [(64, 8, 4103), (3, 2, 7)] {
+        let positions: Vec<DVec3> = (0..n)
+            .map(|i| DVec3::new(i as f64 * 0.01, (i % 13) as f64, 0.5))
+            .collect();
+        let mut keys = Vec::new();
+        let mut weights = Vec::new();
+        for i in 0..n {
+            let raw: Vec<f64> = (0..width)
+                .map(|j| 0.3 + ((i * 11 + j * 5) % 7) as f64)
+                .collect();
+            let sum: f64 = raw.iter().sum();
+            weights.extend(raw.iter().map(|w| w / sum));
+            keys.extend((0..width).map(|j| ((i * 17 + j * 31) % key_count) as u32));
+        }
+        let rows = KeyWeights::gathered(key_count, width, keys, weights).unwrap();
+        let rest: Vec<DVec3> = (0..key_count)
+            .map(|j| DVec3::new(j as f64, (j * j % 7) as f64, -(j as f64) * 0.5))
+            .collect();
+        let bound = ControlBinding::bind(
+            &positions,
+            rest.clone(),
+            rows.clone(),
+            ControlForm::Positional,
+        )
+        .unwrap();
+        let control: Vec<DVec3> = rest
+            .iter()
+            .map(|p| *p * 1.3 + DVec3::new(0.1, -0.2, 0.7))
+            .collect();
+        let mut out = vec![DVec3::ZERO; n];
+        bound.pose_points(&control, &mut out).unwrap();
+        for (i, o) in out.iter().enumerate() {
+            let want = rows.row(i).fold(DVec3::ZERO, |a, k, w| a + w * control[k]);
+            assert_eq!(*o, want, "vertex {i} of {n}");
+        }
+    }
+}
