@@ -1,7 +1,8 @@
 //! Quick report of the deformers' speed on armadillo-50k and its 200k-vertex subdivision:
 //! bind time (harmonic fields and rest points), pose time per frame with both cores, and ns
 //! per vertex of the four blend methods on the same weights (4 cubic B-spline keys), and the
-//! speed-up of the batch pose loop over the vertex-by-vertex loop (same run).
+//! speed-up of the batch pose loop over the vertex-by-vertex loop (same run), for the
+//! spline, the handles and a positional lattice.
 //! Medians of repeated runs with their range `[fastest, slowest]`; rows with a target (the
 //! armadillo-50k rows of `deform/BENCH.md`) say `met` or `MISSED`. The criterion bench
 //! `deformers` measures the same.
@@ -108,6 +109,53 @@ fn report(name: &str, mesh: &Mesh, targets: &Targets, tally: &mut Tally) {
             )
         );
     }
+    // The positional form of a lattice (4 x 3 x 3 points, cubic: 64 weights per vertex):
+    // the batch loop against the per-vertex sum it replaced, both on both cores.
+    let ffd = deform::ffd::Ffd::bind(
+        mesh,
+        [4, 3, 3],
+        None,
+        deform::ffd::FfdOptions {
+            form: deform::control::ControlForm::Positional,
+            ..Default::default()
+        },
+    )
+    .expect("lattice");
+    let binding = ffd.binding();
+    let control: Vec<DVec3> = binding
+        .rest_points()
+        .iter()
+        .map(|p| *p * 1.1 + DVec3::Y)
+        .collect();
+    let ffd_batch = spread_ms(31, || {
+        binding.pose_points(&control, &mut out).expect("pose")
+    });
+    let ffd_vertex = spread_ms(31, || {
+        use rayon::prelude::*;
+        let w = binding.weights();
+        out.par_iter_mut()
+            .enumerate()
+            .with_min_len(1024)
+            .for_each(|(i, o)| *o = w.row(i).fold(DVec3::ZERO, |a, k, x| a + x * control[k]));
+    });
+    println!(
+        "{}",
+        tally.row(
+            "  pose lattice 4x3x3, positional",
+            ffd_batch,
+            "ms/frame",
+            None
+        )
+    );
+    println!(
+        "{}",
+        tally.row(
+            "  pose lattice: batch loop over vertex by vertex",
+            ffd_batch.speedup_over(ffd_vertex),
+            "x",
+            None
+        )
+    );
     let rigid = scenes::rigid_keys(mesh, 4);
     let per_vertex = 1e6 / n as f64;
     // The limits of the blend rows (4 keys per vertex, both cores).
