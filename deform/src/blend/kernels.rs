@@ -236,7 +236,10 @@ fn apply(c: &[F64x4; 4], p: &Points4, l: usize) -> F64x4 {
 }
 
 /// Linear blend skinning (`sum w A` applied to the point) and equation (17) adding the
-/// conformal points first (the same, then divided by the blended `eo`).
+/// conformal points first (the same, then divided by the blended `eo`). The division is done
+/// per vertex, before the lanes are transposed: gathering the four `eo` into one vector first
+/// made the compiler reload them across two stores (a store-forwarding stall that cost equation
+/// (17) 35-45% over matrix LBS).
 struct Affine<'a> {
     rows: Rows<'a>,
     /// Divide by lane 3 (the blended `eo` of equation (17)).
@@ -248,16 +251,12 @@ impl Kernel for Affine<'_> {
     fn batch(&self, keys: &[[u32; LANES]], weights: &[F64x4], p: &Points4) -> Option<Points4> {
         let q: [[F64x4; 1]; LANES] = each!(LANES, l => {
             let a: [F64x4; 4] = accumulate(self.rows, keys, weights, l, |k| k, |_, w| w);
-            [apply(&a, p, l)]
+            let e = apply(&a, p, l);
+            // `1 / eo` is exact for the rigid keys' `eo = 1`.
+            [if self.project { e * F64x4::splat(1.0 / e.0[3]) } else { e }]
         });
-        let [x, y, z, eo] = transpose(&q, 0);
-        Some(if self.project {
-            // One division: `1 / eo` is exact for the rigid keys' `eo = 1`.
-            let inv = F64x4::splat(1.0) / eo;
-            [x * inv, y * inv, z * inv]
-        } else {
-            [x, y, z]
-        })
+        let [x, y, z, _] = transpose(&q, 0);
+        Some([x, y, z])
     }
 }
 
