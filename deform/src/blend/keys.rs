@@ -24,6 +24,8 @@ const ALIGNED_MAX_KEYS: usize = 64;
 #[derive(Clone, Debug, Default)]
 pub struct PreparedKeys {
     method: BlendMethod,
+    /// The number of keys prepared.
+    count: usize,
     /// Whether any key scales (otherwise the cheaper rigid paths are taken).
     pub(super) scaled: bool,
     pub(super) logs: Vec<Bivector>,
@@ -132,6 +134,7 @@ impl PreparedKeys {
             .into());
         }
         self.method = method;
+        self.count = 0;
         self.scaled = false;
         self.logs.clear();
         self.log_scales.clear();
@@ -179,6 +182,7 @@ impl PreparedKeys {
             }
         }
         self.fill_rows();
+        self.count = keys.len();
         Ok(())
     }
 
@@ -349,6 +353,11 @@ impl PreparedKeys {
     /// The blend method.
     pub fn method(&self) -> BlendMethod {
         self.method
+    }
+
+    /// How many keys were prepared (0 after a failed [`PreparedKeys::prepare`]).
+    pub fn key_count(&self) -> usize {
+        self.count
     }
 
     /// Apply the blend of the row's keys to the point `p`.

@@ -140,7 +140,17 @@ pub struct Row<'a> {
     pub weights: &'a [f64],
 }
 
-impl Row<'_> {
+impl<'a> Row<'a> {
+    /// A row of explicit keys and their weights (equal lengths).
+    pub(crate) fn gathered(keys: &'a [u32], weights: &'a [f64]) -> Row<'a> {
+        debug_assert_eq!(keys.len(), weights.len());
+        Row {
+            first: 0,
+            keys: Some(keys),
+            weights,
+        }
+    }
+
     /// The key of the row's `j`-th weight.
     #[inline]
     pub fn key(&self, j: usize) -> usize {

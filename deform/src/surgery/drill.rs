@@ -240,7 +240,7 @@ impl Surgery {
                         influences: src.influences.clone(),
                         sources: src.sources.clone(),
                         triangles: src.mesh.triangles.clone(),
-                        skin: skin.map(|s| s.to_vec()),
+                        skin,
                     });
                     refined_faces += w.refine(&red)?;
                     continue;
@@ -324,13 +324,7 @@ impl Surgery {
                     "the drill removes the whole mesh".into(),
                 ));
             }
-            let posed_frame = match frame {
-                Frame::Rest => Frame::Rest,
-                Frame::Posed { skin, .. } => Frame::Posed {
-                    positions: fpos,
-                    skin,
-                },
-            };
+            let posed_frame = frame.with_positions(fpos);
             // Over the welded surface when coincident vertices exist and the input's topology
             // applies (no refinement), as the cut counts: glTF's seam copies are one vertex,
             // and the new vertices on the copies of a seam edge coincide exactly.

@@ -59,6 +59,7 @@ pub use split::VertexOrigin;
 pub use tear::{Scalpel, TearOptions, TearResult, MAX_OPEN_PER_DIAGONAL};
 pub use weights::{identity_sources, push_interpolated, NEW_VERTEX_INFLUENCES};
 
+use crate::blend::{PreparedKeys, Row};
 use crate::mesh::Mesh;
 use crate::skinning::Influences;
 use glam::{DAffine3, DVec3};
@@ -165,6 +166,46 @@ pub enum Frame<'a> {
         /// Skin matrix per joint.
         skin: &'a [DAffine3],
     },
+    /// A frame posed by any blend method: the posed position of every vertex, and the joints'
+    /// skin motors prepared for the method that posed them (the [`PreparedKeys`] of
+    /// [`crate::BoundBlend::pose_using`], or `PreparedKeys::new(pose.skin_motors()?, method)`).
+    /// A new vertex is mapped back by the inverse of its own blend of those keys, so the
+    /// same method poses it where the tool made it.
+    Blended {
+        /// Posed positions, one per vertex.
+        positions: &'a [DVec3],
+        /// The joints' keys as the posing method prepared them.
+        keys: &'a PreparedKeys,
+    },
+}
+
+impl<'a> Frame<'a> {
+    /// How the frame was posed, if it was.
+    pub(crate) fn posing(&self) -> Option<Posing<'a>> {
+        match *self {
+            Frame::Rest => None,
+            Frame::Posed { skin, .. } => Some(Posing::Lbs(skin)),
+            Frame::Blended { keys, .. } => Some(Posing::Keys(keys)),
+        }
+    }
+
+    /// The same posing with other posed positions.
+    pub(crate) fn with_positions(&self, positions: &'a [DVec3]) -> Frame<'a> {
+        match *self {
+            Frame::Rest => Frame::Rest,
+            Frame::Posed { skin, .. } => Frame::Posed { positions, skin },
+            Frame::Blended { keys, .. } => Frame::Blended { positions, keys },
+        }
+    }
+}
+
+/// How a posed frame was posed: what maps a posed point back to the rest pose.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum Posing<'a> {
+    /// Linear blend skinning by these skin matrices, one per joint.
+    Lbs(&'a [DAffine3]),
+    /// The blend of these keys, one per joint, by their method.
+    Keys(&'a PreparedKeys),
 }
 
 /// A skinned mesh bound for cutting: checked once, with its face index.
@@ -240,20 +281,30 @@ impl Surgery {
     }
 }
 
-/// The rest position of a point posed at `p` by the blend of `skin` with `influences` row
-/// `parts` (interpolated): the inverse of its blended LBS transform applied to `p`.
-pub(crate) fn unskin(
-    p: DVec3,
-    joints: &[u32],
-    weights: &[f64],
-    skin: &[DAffine3],
-) -> Option<DVec3> {
-    let mut m = DAffine3::ZERO;
-    for (&j, &w) in joints.iter().zip(weights) {
-        let a = skin.get(j as usize)?;
-        m.matrix3 += a.matrix3 * w;
-        m.translation += a.translation * w;
-    }
+/// The rest position of a point posed at `p` by the influences `joints`, `weights`
+/// (interpolated for a new vertex): the inverse of its blended transform (the LBS blend of
+/// the skin matrices, or the blend of the prepared keys by their method) applied to `p`.
+/// `None` for a joint out of range or a singular blend.
+pub(crate) fn unskin(p: DVec3, joints: &[u32], weights: &[f64], posing: Posing) -> Option<DVec3> {
+    let m = match posing {
+        Posing::Lbs(skin) => {
+            let mut m = DAffine3::ZERO;
+            for (&j, &w) in joints.iter().zip(weights) {
+                let a = skin.get(j as usize)?;
+                m.matrix3 += a.matrix3 * w;
+                m.translation += a.translation * w;
+            }
+            m
+        }
+        Posing::Keys(keys) => {
+            if joints.len() != weights.len()
+                || joints.iter().any(|&j| j as usize >= keys.key_count())
+            {
+                return None;
+            }
+            keys.affine(Row::gathered(joints, weights))
+        }
+    };
     let r = m.inverse().transform_point3(p);
     r.is_finite().then_some(r)
 }
@@ -263,7 +314,7 @@ pub(crate) fn unskin(
 /// posed frame).
 pub(crate) struct Resolved<'a> {
     pub positions: &'a [DVec3],
-    pub skin: Option<&'a [DAffine3]>,
+    pub skin: Option<Posing<'a>>,
     pub bvh: std::borrow::Cow<'a, FaceBvh>,
 }
 
@@ -278,18 +329,36 @@ impl Surgery {
                 skin: None,
                 bvh: std::borrow::Cow::Borrowed(&self.bvh),
             },
-            Frame::Posed { positions, skin } => {
+            Frame::Posed { positions, .. } | Frame::Blended { positions, .. } => {
                 if positions.len() != n || positions.iter().any(|p| !p.is_finite()) {
                     return Err(SurgeryError::BadTool(format!(
                         "{} posed positions for {n} vertices (or not finite)",
                         positions.len()
                     )));
                 }
+                // Every joint the influences name needs its transform.
+                let transforms = match frame.posing() {
+                    Some(Posing::Lbs(skin)) => skin.len(),
+                    Some(Posing::Keys(keys)) => keys.key_count(),
+                    None => 0,
+                };
+                let used = self
+                    .mesh
+                    .influences
+                    .joints
+                    .iter()
+                    .max()
+                    .map_or(0, |&j| j as usize + 1);
+                if transforms < used {
+                    return Err(SurgeryError::BadTool(format!(
+                        "the posed frame has {transforms} joint transforms; the influences name {used}"
+                    )));
+                }
                 let mut bvh = self.bvh.clone();
                 bvh.refit(&Mesh::new(positions.to_vec(), src.triangles.clone()));
                 Resolved {
                     positions,
-                    skin: Some(skin),
+                    skin: frame.posing(),
                     bvh: std::borrow::Cow::Owned(bvh),
                 }
             }

@@ -3,25 +3,25 @@
 //! the frame, like every new vertex.
 
 use super::weights::push_interpolated;
-use super::{unskin, SurgeryError};
+use super::{unskin, Posing, SurgeryError};
 use crate::skinning::Influences;
-use glam::{DAffine3, DVec3};
+use glam::DVec3;
 use std::collections::{HashMap, HashSet};
 
 /// A mesh being refined: rest and frame positions, influences, triangles.
 #[derive(Clone, Debug)]
-pub(crate) struct Work {
+pub(crate) struct Work<'a> {
     pub rest: Vec<DVec3>,
     pub frame: Vec<DVec3>,
     pub influences: Influences,
     /// Sources of every vertex ([`super::SkinnedMesh::sources`]).
     pub sources: Influences,
     pub triangles: Vec<[u32; 3]>,
-    /// Skin matrices when the frame is posed.
-    pub skin: Option<Vec<DAffine3>>,
+    /// How the frame was posed, when it was.
+    pub skin: Option<Posing<'a>>,
 }
 
-impl Work {
+impl Work<'_> {
     /// Refine the faces `red` 1-to-4, closing with 1-to-4 (two or more split edges) and 1-to-2
     /// (one split edge) neighbours. Returns how many faces were replaced.
     pub fn refine(&mut self, red: &[u32]) -> Result<usize, SurgeryError> {
@@ -82,7 +82,7 @@ impl Work {
             self.sources.joints.extend_from_slice(&from.joints);
             self.sources.weights.extend_from_slice(&from.weights);
             let p = 0.5 * (self.frame[a as usize] + self.frame[b as usize]);
-            let rest = match &self.skin {
+            let rest = match self.skin {
                 None => 0.5 * (self.rest[a as usize] + self.rest[b as usize]),
                 Some(skin) => {
                     let w = self.influences.width;

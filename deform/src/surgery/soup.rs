@@ -3,9 +3,9 @@
 //! fan walked without a global adjacency rebuild. Used by the tear.
 
 use super::weights::{push_copy, push_interpolated};
-use super::{unskin, SurgeryError, VertexOrigin};
+use super::{unskin, Posing, SurgeryError, VertexOrigin};
 use crate::skinning::Influences;
-use glam::{DAffine3, DVec3};
+use glam::DVec3;
 
 /// A mesh being edited, with per-vertex data in both frames.
 pub(crate) struct Soup<'a> {
@@ -27,8 +27,8 @@ pub(crate) struct Soup<'a> {
     /// Sources of every vertex ([`super::SkinnedMesh::sources`]).
     pub sources: Influences,
     pub origin: Vec<VertexOrigin>,
-    /// The skin matrices of a posed frame.
-    pub skin: Option<&'a [DAffine3]>,
+    /// How a posed frame was posed.
+    pub skin: Option<Posing<'a>>,
 }
 
 impl<'a> Soup<'a> {
@@ -41,7 +41,7 @@ impl<'a> Soup<'a> {
         frame: &[DVec3],
         src_influences: &Influences,
         src_sources: &Influences,
-        skin: Option<&'a [DAffine3]>,
+        skin: Option<Posing<'a>>,
     ) -> Soup<'a> {
         let influences = src_influences;
         // Room for the edits of a typical tear without regrowing.

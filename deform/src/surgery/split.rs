@@ -149,9 +149,9 @@ pub(crate) fn new_vertex_data(
         push_interpolated(&src.influences, &parts, &mut inf);
         push_interpolated(&src.sources, &parts, &mut sources);
         let (pa, pb) = (a as usize, b as usize);
-        rest.push(match frame {
-            Frame::Rest => src.mesh.positions[pa].lerp(src.mesh.positions[pb], t),
-            Frame::Posed { skin, .. } => {
+        rest.push(match frame.posing() {
+            None => src.mesh.positions[pa].lerp(src.mesh.positions[pb], t),
+            Some(skin) => {
                 let r = k * inf.width..(k + 1) * inf.width;
                 let p = frame_positions[pa].lerp(frame_positions[pb], t);
                 unskin(p, &inf.joints[r.clone()], &inf.weights[r], skin).ok_or_else(|| {

@@ -6,6 +6,7 @@
 #[path = "../common/mod.rs"]
 mod common;
 
+mod blended;
 #[cfg(feature = "cli")]
 mod cli;
 mod drill;
@@ -22,7 +23,7 @@ use deform::surgery::{
 use deform::{BlendMethod, Deformer, Mesh};
 use glam::{DQuat, DVec3};
 
-fn assert_manifold(m: &Mesh) {
+pub(crate) fn assert_manifold(m: &Mesh) {
     common::assert_oriented_manifold(&m.triangles, m.vertex_count());
 }
 

@@ -216,7 +216,7 @@ fn the_rig_poses_as_the_library_poses_it_and_a_cut_undoes_and_redoes() {
     assert!(worst(&got, &want) <= 1e-12, "{}", worst(&got, &want));
 
     // Cut in the posed frame; both pieces stay on the skeleton.
-    let (point, normal) = (DVec3::new(2.6, 0.0, 0.0), DVec3::new(1.0, 0.3, 0.0));
+    let (point, normal) = (DVec3::new(3.7, 0.0, 0.0), DVec3::new(1.0, 0.3, 0.0));
     c.send(json!({"op": "cut", "point": point.to_array(), "normal": normal.to_array()}));
     let (cut_mesh, triangles) = c.until(false, |f| match f {
         Frame::Mesh { rest, triangles } => Some((rest.len(), triangles.len())),
@@ -226,9 +226,12 @@ fn the_rig_poses_as_the_library_poses_it_and_a_cut_undoes_and_redoes() {
     assert_eq!(s["rig"]["undo"], 1);
     let n = normal.normalize();
     let plane = cga::Plane::from_normal_distance(n, n.dot(point));
-    let frame = SurgeryFrame::Posed {
+    // The page drew the frame by motor log blending: its keys map the new vertices back.
+    let prepared =
+        deform::PreparedKeys::new(pose.skin_motors().unwrap(), BlendMethod::MotorLog).unwrap();
+    let frame = SurgeryFrame::Blended {
         positions: &want,
-        skin: &pose.skin_matrices,
+        keys: &prepared,
     };
     let cut = Surgery::new(&rig.mesh, &rig.influences)
         .unwrap()
@@ -260,7 +263,23 @@ fn the_rig_poses_as_the_library_poses_it_and_a_cut_undoes_and_redoes() {
         json!({"op": "rig", "seq": 6, "animation": 0, "time": 1.0, "backend": "motor-log",
         "edits": [{"joint": 1, "motor": {"scale": 1.3}}]}),
     );
-    c.positions(6);
+    // Posed again as it was cut (motor log blending), the new vertices lie on the plane.
+    let again = c.positions(6);
+    let diag = rig.mesh.bounding_box().unwrap().diagonal();
+    let mut first = 0;
+    for piece in &cut.pieces {
+        for (v, o) in piece.origin.iter().enumerate() {
+            if let deform::surgery::VertexOrigin::Edge { .. } = o {
+                let d = plane.signed_distance(again[first + v]).abs();
+                assert!(
+                    d < 1e-9 * diag,
+                    "new vertex {} is {d} off the plane",
+                    first + v
+                );
+            }
+        }
+        first += piece.mesh.mesh.vertex_count();
+    }
     let (name, bytes) = exported_glb(&mut c);
     let back =
         deform::skinning::parse_gltf(&bytes, &name, None).expect("the exported .glb reads back");

@@ -187,12 +187,16 @@ impl RigEdit {
         }
     }
 
-    /// The posed frame of the last pose (the rest frame before any).
+    /// The posed frame of the last pose, with the keys its backend blended (so a tool's new
+    /// vertices go back to the rest pose through the inverse of the blend that drew them);
+    /// the rest frame before any pose.
     fn frame<'a>(&'a self, posed: &'a [DVec3]) -> Frame<'a> {
-        if posed.len() == self.rig().mesh.vertex_count() && !self.pose.skin_matrices.is_empty() {
-            Frame::Posed {
+        if posed.len() == self.rig().mesh.vertex_count()
+            && self.prepared.key_count() == self.rig().joints.len()
+        {
+            Frame::Blended {
                 positions: posed,
-                skin: &self.pose.skin_matrices,
+                keys: &self.prepared,
             }
         } else {
             Frame::Rest
