@@ -132,6 +132,14 @@ try {
   });
   check(bent > 0.05, `dragging the control point moved the bar (${bent.toFixed(3)})`);
   await shot('lattice');
+  // A finer B-spline lattice from the panel: the server rebinds to 6 x 3 x 3 points.
+  await page.fill('#lattice-x', '6');
+  await page.dispatchEvent('#lattice-x', 'change');
+  await page.selectOption('#basis', 'bspline-2');
+  await until(page, () => editor.state && editor.state.control.basis === 'bspline-2' && editor.state.controls.points.length === 54, null, 'the 6x3x3 B-spline lattice');
+  await settled(page);
+  check(await page.evaluate(() => editor.groups.length) === 54, 'the page keeps a gizmo per point of the new lattice');
+  await shot('lattice-6x3x3');
 
   // The rig: play its animation.
   await page.selectOption('#scene', 'arm');

@@ -1,17 +1,129 @@
 //! Lattices and cages in the editor: the mesh bound to control points (an FFD lattice over its
 //! box, or the scene's cage), one motor per control point, and the lines the page draws
-//! between the points.
+//! between the points. [`ControlChoice`] is what the page chooses: the lattice's size and
+//! basis, the cage's coordinates.
 
-use anyhow::Result;
-use deform::cage::{CageDeformer, CageOptions};
+use super::protocol::ControlRequest;
+use anyhow::{bail, Result};
+use deform::cage::{CageCoordinates, CageDeformer, CageOptions, HarmonicGrid};
 use deform::control::ControlForm;
-use deform::ffd::{Ffd, FfdOptions};
+use deform::ffd::{Ffd, FfdOptions, LatticeBasis};
 use deform::{Deformer, Mesh};
 use glam::DVec3;
+use serde::Serialize;
 use std::collections::BTreeSet;
 
-/// The lattice of a mesh without a cage: 4 x 3 x 3 control points over its box.
+/// The lattice of a mesh without a cage, until the page asks for another: 4 x 3 x 3 control
+/// points over its box.
 pub const LATTICE: [usize; 3] = [4, 3, 3];
+
+/// Control points per axis the page may ask for.
+pub const LATTICE_AXIS: std::ops::RangeInclusive<usize> = 2..=8;
+
+/// At most this many control points with Bernstein polynomials, where every point moves every
+/// vertex (a pose blends them all; B-splines blend at most `(degree + 1)^3` per vertex).
+pub const MAX_BERNSTEIN_POINTS: usize = 64;
+
+/// Harmonic cage grids the page may ask for (nodes along the cage's longest side).
+pub const GRID: std::ops::RangeInclusive<usize> = 16..=64;
+
+/// The lattice and cage options of a session.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct ControlChoice {
+    /// Control points per axis.
+    pub lattice: [usize; 3],
+    /// `bernstein` or `bspline-1` .. `bspline-3`.
+    pub basis: &'static str,
+    /// `mean-value` or `harmonic`.
+    pub coordinates: &'static str,
+    /// Harmonic coordinates' grid nodes along the cage's longest side.
+    pub grid: usize,
+}
+
+impl Default for ControlChoice {
+    fn default() -> Self {
+        ControlChoice {
+            lattice: LATTICE,
+            basis: "bernstein",
+            coordinates: "mean-value",
+            grid: 32,
+        }
+    }
+}
+
+impl ControlChoice {
+    /// This choice with what `r` asks for changed, checked.
+    pub fn with(self, r: &ControlRequest) -> Result<ControlChoice> {
+        let mut c = self;
+        if let Some(l) = r.lattice {
+            if let Some(bad) = l.iter().find(|n| !LATTICE_AXIS.contains(n)) {
+                bail!(
+                    "lattice: {bad} control points on an axis (each axis takes {} to {})",
+                    LATTICE_AXIS.start(),
+                    LATTICE_AXIS.end()
+                );
+            }
+            c.lattice = l;
+        }
+        if let Some(b) = &r.basis {
+            c.basis = match b.as_str() {
+                "bernstein" => "bernstein",
+                "bspline-1" => "bspline-1",
+                "bspline-2" => "bspline-2",
+                "bspline-3" => "bspline-3",
+                _ => bail!("no lattice basis {b:?} (bernstein, bspline-1, bspline-2, bspline-3)"),
+            };
+        }
+        if let Some(k) = &r.coordinates {
+            c.coordinates = match k.as_str() {
+                "mean-value" => "mean-value",
+                "harmonic" => "harmonic",
+                _ => bail!("no cage coordinates {k:?} (mean-value, harmonic)"),
+            };
+        }
+        if let Some(g) = r.grid {
+            if !GRID.contains(&g) {
+                bail!(
+                    "harmonic grid: {g} nodes per side is not in {}..={}",
+                    GRID.start(),
+                    GRID.end()
+                );
+            }
+            c.grid = g;
+        }
+        let points: usize = c.lattice.iter().product();
+        if c.basis == "bernstein" && points > MAX_BERNSTEIN_POINTS {
+            bail!(
+                "a {}x{}x{} Bernstein lattice has {points} control points, each moving every \
+                 vertex (at most {MAX_BERNSTEIN_POINTS} here; a B-spline basis takes more)",
+                c.lattice[0],
+                c.lattice[1],
+                c.lattice[2]
+            );
+        }
+        Ok(c)
+    }
+
+    /// The lattice basis.
+    fn lattice_basis(&self) -> LatticeBasis {
+        match self.basis {
+            "bspline-1" => LatticeBasis::BSpline(1),
+            "bspline-2" => LatticeBasis::BSpline(2),
+            "bspline-3" => LatticeBasis::BSpline(3),
+            _ => LatticeBasis::Bernstein,
+        }
+    }
+
+    /// The cage coordinates.
+    fn cage_coordinates(&self) -> CageCoordinates {
+        match self.coordinates {
+            "harmonic" => CageCoordinates::Harmonic(HarmonicGrid {
+                resolution: self.grid,
+            }),
+            _ => CageCoordinates::MeanValue,
+        }
+    }
+}
 
 /// A mesh bound to control points.
 pub struct Controls {
@@ -22,13 +134,13 @@ pub struct Controls {
     pub edges: Vec<[u32; 2]>,
 }
 
-/// Bind `mesh` to an FFD lattice over its box.
-pub fn lattice(mesh: &Mesh, form: ControlForm) -> Result<Controls> {
+/// Bind `mesh` to the chosen FFD lattice over its box.
+pub fn lattice(mesh: &Mesh, form: ControlForm, choice: &ControlChoice) -> Result<Controls> {
     let options = FfdOptions {
         form,
-        ..FfdOptions::default()
+        basis: choice.lattice_basis(),
     };
-    let ffd = Ffd::bind(mesh, LATTICE, None, options)?;
+    let ffd = Ffd::bind(mesh, choice.lattice, None, options)?;
     let l = ffd.lattice();
     let [a, b, c] = l.dims();
     let mut edges = Vec::new();
@@ -51,10 +163,16 @@ pub fn lattice(mesh: &Mesh, form: ControlForm) -> Result<Controls> {
     })
 }
 
-/// Bind `mesh` to its `cage` (mean value coordinates).
-pub fn cage(mesh: &Mesh, cage: &Mesh, form: ControlForm) -> Result<Controls> {
+/// Bind `mesh` to its `cage` by the chosen coordinates.
+pub fn cage(
+    mesh: &Mesh,
+    cage: &Mesh,
+    form: ControlForm,
+    choice: &ControlChoice,
+) -> Result<Controls> {
     let options = CageOptions {
         form,
+        coordinates: choice.cage_coordinates(),
         ..CageOptions::default()
     };
     let deformer = CageDeformer::bind(mesh, cage, options)?;

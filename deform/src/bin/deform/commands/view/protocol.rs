@@ -78,6 +78,9 @@ pub enum Request {
         /// ARAP's local step: `rotor` (the paper's) or `svd`.
         #[serde(default)]
         local_step: Option<String>,
+        /// The lattice's size and basis, the cage's coordinates (what is given changes).
+        #[serde(default)]
+        controls: Option<ControlRequest>,
     },
     /// Pose the handle groups: one motor per group (the CLI's motor JSON).
     Motors {
@@ -170,6 +173,25 @@ pub struct GroupInfo {
     pub center: [f64; 3],
 }
 
+/// The lattice and cage options of a [`Request::Method`]; each one given replaces the
+/// session's.
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ControlRequest {
+    /// Control points per axis (each 2 to 8).
+    #[serde(default)]
+    pub lattice: Option<[usize; 3]>,
+    /// `bernstein` or `bspline-1`, `bspline-2`, `bspline-3`.
+    #[serde(default)]
+    pub basis: Option<String>,
+    /// The cage's `mean-value` or `harmonic` coordinates.
+    #[serde(default)]
+    pub coordinates: Option<String>,
+    /// Harmonic coordinates' grid nodes along the cage's longest side (16 to 64).
+    #[serde(default)]
+    pub grid: Option<usize>,
+}
+
 /// A lattice's or cage's control points at rest and the lines between them.
 #[derive(Clone, Debug, Serialize)]
 pub struct ControlsInfo {
@@ -215,6 +237,8 @@ pub struct StateInfo {
     pub fields: Vec<&'static str>,
     /// The control points when the method is a lattice or a cage (then the motors are theirs).
     pub controls: Option<ControlsInfo>,
+    /// The lattice and cage options.
+    pub control: super::controls::ControlChoice,
     pub rig: Option<RigInfo>,
     pub bind_ms: f64,
     pub vertices: usize,

@@ -5,6 +5,7 @@
 
 mod analysis;
 mod keep;
+mod method;
 pub use keep::MAX_UPLOAD;
 mod report;
 mod select;
@@ -17,7 +18,7 @@ use super::scenes::{Content, Method, Scene};
 use crate::timing::ms;
 use anyhow::{anyhow, bail, Context, Result};
 use cga::ScaledMotor;
-use deform::arap::{Arap, ArapEnergy, ArapOptions, ArapScratch, LocalStep, Stop, Targets};
+use deform::arap::{Arap, ArapOptions, ArapScratch, Stop, Targets};
 use deform::control::ControlForm;
 use deform::input::MotorSpec;
 use deform::surgery::{FaceBvh, RayHit};
@@ -89,6 +90,8 @@ pub struct Session {
     cage: Option<Mesh>,
     /// Lattices and cages: the positional form (else the motor form with `blend`).
     positional: bool,
+    /// The lattice's size and basis, the cage's coordinates.
+    control: controls::ControlChoice,
     bind_ms: f64,
     specs: Vec<MotorSpec>,
     rig: Option<RigEdit>,
@@ -126,6 +129,7 @@ impl Session {
             bound: Bound::None,
             cage: None,
             positional: false,
+            control: controls::ControlChoice::default(),
             bind_ms: 0.0,
             specs: Vec::new(),
             rig: None,
@@ -191,26 +195,12 @@ impl Session {
                 iterations,
                 energy,
                 local_step,
+                controls,
             } => {
                 self.mesh_only("a method")?;
-                let mut arap = self.arap;
-                if let Some(e) = energy {
-                    arap.energy = match e.as_str() {
-                        "spokes" => ArapEnergy::Spokes,
-                        "spokes-and-rims" => ArapEnergy::SpokesAndRims,
-                        _ => bail!("no ARAP energy {e:?} (spokes, spokes-and-rims)"),
-                    };
-                }
-                if let Some(l) = local_step {
-                    arap.local_step = match l.as_str() {
-                        "rotor" => LocalStep::Rotor,
-                        "svd" => LocalStep::Svd,
-                        _ => bail!("no ARAP local step {l:?} (rotor, svd)"),
-                    };
-                }
-                let changed = arap != self.arap;
-                self.arap = arap;
-                self.set_method(&method, &blend, iterations, changed)
+                let (energy, local_step) = (energy.as_deref(), local_step.as_deref());
+                let options = (energy, local_step, controls.as_ref());
+                self.set_method(&method, &blend, iterations, options)
             }
             Request::Motors { seq, motors } => self.pose_motors(seq, motors),
             Request::Rig {
@@ -253,45 +243,6 @@ impl Session {
             Request::Load { what, text } => self.load(&what, &text),
             Request::Upload { name, base64 } => self.upload(&name, &base64),
         }
-    }
-
-    /// A new method, blend (or `positional` for lattices and cages) and ARAP iterations per
-    /// frame: rebinds, or only re-blends when the weights stay.
-    fn set_method(
-        &mut self,
-        method: &str,
-        blend: &str,
-        iterations: Option<usize>,
-        arap_changed: bool,
-    ) -> Result<Vec<Out>> {
-        let m = Method::parse(method).ok_or_else(|| anyhow!("no method {method:?}"))?;
-        if m == Method::Cage && self.cage.is_none() {
-            bail!("this scene has no cage (the demo's \"cage\" scene has one)");
-        }
-        let positional = blend == "positional";
-        if positional && !m.controls() {
-            bail!("positional blending is for lattices and cages");
-        }
-        let b: BlendMethod = if positional {
-            self.blend
-        } else {
-            blend.parse()?
-        };
-        let k = iterations.unwrap_or(self.iterations);
-        if !(1..=50).contains(&k) {
-            bail!("iterations per frame: {k} is not in 1..=50");
-        }
-        let rebind = m != self.method
-            || positional != self.positional
-            || (k != self.iterations || arap_changed) && m == Method::Arap;
-        self.iterations = k;
-        if !rebind && b != self.blend {
-            return self.reblend(b);
-        }
-        self.method = m;
-        self.blend = b;
-        self.positional = positional;
-        self.bind()
     }
 
     pub(super) fn mesh_only(&self, what: &str) -> Result<()> {
@@ -469,9 +420,9 @@ impl Session {
                 };
                 let controls = match &self.cage {
                     Some(cage) if self.method == Method::Cage => {
-                        controls::cage(&self.mesh, cage, form)?
+                        controls::cage(&self.mesh, cage, form, &self.control)?
                     }
-                    _ => controls::lattice(&self.mesh, form)?,
+                    _ => controls::lattice(&self.mesh, form, &self.control)?,
                 };
                 let scratch = controls.deformer.scratch();
                 Bound::Control {

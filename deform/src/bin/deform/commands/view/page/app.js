@@ -116,6 +116,10 @@ function onState(s) {
     $("iterations").value = s.iterations;
     $("energy").value = s.energy; $("local-step").value = s.local_step;
     $("arap-options").classList.toggle("hidden", s.method !== "arap");
+    $("lattice-options").classList.toggle("hidden", s.method !== "ffd");
+    $("cage-options").classList.toggle("hidden", s.method !== "cage");
+    ["x", "y", "z"].forEach((a, i) => { $(`lattice-${a}`).value = s.control.lattice[i]; });
+    $("basis").value = s.control.basis; $("coordinates").value = s.control.coordinates; $("grid").value = s.control.grid;
     // The keys: a lattice's or cage's control points, else the painted groups. Keep each
     // key's gizmo; new keys start at the identity about their rest centre.
     const keys = s.controls ? s.controls.points : s.groups.map((g) => g.center);
@@ -138,8 +142,8 @@ function onState(s) {
       handles: "handles MODEL --select selection.json --motors motors.json" + blendFlag,
       arap: "arap MODEL --select selection.json --motors motors.json",
       spline: "spline MODEL --select selection.json (keys: the groups' motors after their centres)",
-      ffd: "ffd MODEL --lattice 4x3x3 --motors motors.json" + blendFlag,
-      cage: "cage MODEL --cage CAGE --motors motors.json" + blendFlag,
+      ffd: `ffd MODEL --lattice ${s.control.lattice.join("x")}` + (s.control.basis === "bernstein" ? "" : ` --degree ${s.control.basis.slice(-1)}`) + " --motors motors.json" + blendFlag,
+      cage: "cage MODEL --cage CAGE" + (s.control.coordinates === "harmonic" ? ` --coords harmonic --grid ${s.control.grid}` : "") + " --motors motors.json" + blendFlag,
     }[s.method];
   } else {
     if (first) { ed.edits = {}; ed.clock = s.rig.animations.length ? s.rig.animations[0].start : 0; }
@@ -328,8 +332,12 @@ addEventListener("keydown", (e) => {
 
 // --- panels -------------------------------------------------------------------------------------
 $("scene").onchange = () => { ed.state = null; send({ op: "scene", name: $("scene").value }); };
-const sendMethod = () => send({ op: "method", method: $("method").value, blend: $("blend").value, iterations: +$("iterations").value, energy: $("energy").value, local_step: $("local-step").value });
-for (const id of ["method", "blend", "iterations", "energy", "local-step"]) $(id).onchange = sendMethod;
+// The lattice's size and basis go with a lattice, the coordinates with a cage.
+const controlsFor = (method) => method === "ffd"
+  ? { lattice: ["x", "y", "z"].map((a) => +$(`lattice-${a}`).value), basis: $("basis").value }
+  : method === "cage" ? { coordinates: $("coordinates").value, grid: +$("grid").value } : undefined;
+const sendMethod = () => send({ op: "method", method: $("method").value, blend: $("blend").value, iterations: +$("iterations").value, energy: $("energy").value, local_step: $("local-step").value, controls: controlsFor($("method").value) });
+for (const id of ["method", "blend", "iterations", "energy", "local-step", "lattice-x", "lattice-y", "lattice-z", "basis", "coordinates", "grid"]) $(id).onchange = sendMethod;
 $("group").onchange = () => { retarget(); sendField(); };
 $("field").onchange = () => { sendField(); ed.dirty = true; };
 $("clear").onclick = () => send({ op: "clear-groups" });

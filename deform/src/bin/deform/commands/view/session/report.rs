@@ -82,6 +82,7 @@ impl Session {
                 }),
                 _ => None,
             },
+            control: self.control,
             iterations: self.iterations,
             energy: self.arap.energy.name(),
             local_step: match self.arap.local_step {
