@@ -43,7 +43,7 @@ pub const MAX_SPAN: u32 = 5;
 /// Why a span gets no closed-form exp and log.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Refusal {
-    /// The bivector spans more than [`MAX_SPAN`] basis vectors: three or more commuting parts.
+    /// The bivector spans more than five basis vectors (`MAX_SPAN`): three or more commuting parts.
     TooManyDimensions(u32),
     /// Two or more time-like and two or more space-like directions: the squares of the parts
     /// may be complex.
