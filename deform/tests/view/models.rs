@@ -121,6 +121,55 @@ fn a_gltf_rig_from_the_shared_data_animates_as_the_library_skins_it() {
     assert!(worst(&got, &want) <= 1e-12, "{}", worst(&got, &want));
 }
 
+/// A libigl rig (mesh, TGF skeleton, DMAT weights) is a rig in the editor: a joint edit poses
+/// as the library skins it, and a cut in that frame re-rigs it.
+#[test]
+fn a_libigl_rig_from_the_shared_data_poses_as_the_library_skins_it() {
+    let Some(data) = common::data_dir() else {
+        return;
+    };
+    let lib = data.join("meshes/libigl");
+    let arg = |f: &str| lib.join(f).display().to_string();
+    let (mesh, tgf, dmat) = (arg("arm.obj"), arg("arm.tgf"), arg("arm-weights.dmat"));
+    let server = Server::start(&[&mesh, "--skeleton", &tgf, "--weights", &dmat]);
+    let mut c = server.connect(None).expect("connects");
+    let s = c.state();
+    assert_eq!(
+        (s["scene"].as_str(), s["kind"].as_str()),
+        (Some("arm.obj"), Some("rig"))
+    );
+    let rig = common::libigl_rig("arm").unwrap();
+    assert_eq!(
+        s["rig"]["joints"].as_array().unwrap().len(),
+        rig.joints.len()
+    );
+    let edit = json!({"rotate": {"axis": [0, 0, 1], "degrees": 30}, "scale": 1.1});
+    c.send(
+        json!({"op": "rig", "seq": 7, "animation": null, "time": 0.0,
+        "backend": "motor-log", "edits": [{"joint": 1, "motor": edit}]}),
+    );
+    let got = c.positions(7);
+    let motor = deform::input::parse_motor(&edit.to_string(), "edit").unwrap();
+    let pose = rig
+        .pose(
+            None,
+            0.0,
+            &[deform::skinning::JointEdit { joint: 1, motor }],
+        )
+        .unwrap();
+    let skin = Skinning::bind(&rig, BlendMethod::MotorLog).unwrap();
+    let mut want = rig.mesh.positions.clone();
+    skin.pose(pose.skin_motors().unwrap(), &mut want).unwrap();
+    assert!(worst(&got, &want) <= 1e-12, "{}", worst(&got, &want));
+    assert!(worst(&got, &rig.mesh.positions) > 1e-3, "the edit moved it");
+    // Cut across the arm's middle in the posed frame: more vertices, one undo step.
+    let b = rig.mesh.bounding_box().unwrap();
+    c.send(json!({"op": "cut", "point": b.center().to_array(), "normal": [1, 0.1, 0]}));
+    let s = c.state();
+    assert!(s["vertices"].as_u64().unwrap() > rig.mesh.vertex_count() as u64);
+    assert_eq!(s["rig"]["undo"], 1);
+}
+
 #[test]
 fn models_it_cannot_serve_are_refused_before_it_listens() {
     let dir = folder("refused");
@@ -152,6 +201,24 @@ fn models_it_cannot_serve_are_refused_before_it_listens() {
                 sel.display().to_string(),
             ],
             "--select is for a mesh",
+        ),
+        (
+            vec![
+                dir.join("x.glb").display().to_string(),
+                "--skeleton".into(),
+                sel.display().to_string(),
+                "--weights".into(),
+                sel.display().to_string(),
+            ],
+            "a glTF model has its own",
+        ),
+        (
+            vec![
+                obj.display().to_string(),
+                "--skeleton".into(),
+                sel.display().to_string(),
+            ],
+            "--weights",
         ),
     ];
     for (args, says) in cases {

@@ -29,8 +29,15 @@ use std::sync::Arc;
 #[derive(Args, Debug)]
 pub struct ViewArgs {
     /// A mesh (OBJ, OFF, MEDIT) to deform with handles, ARAP or a spline, or a rig (.gltf,
-    /// .glb) to animate, edit and cut. Without it: the demo's procedural scenes.
+    /// .glb, or a mesh with --skeleton and --weights) to animate, edit and cut. Without it:
+    /// the demo's procedural scenes.
     pub model: Option<PathBuf>,
+    /// libigl skeleton (TGF) that makes the mesh a rig (with --weights).
+    #[arg(long, requires = "weights", requires = "model")]
+    pub skeleton: Option<PathBuf>,
+    /// libigl weights (DMAT, vertices x bones) of the mesh's rig (with --skeleton).
+    #[arg(long, requires = "skeleton")]
+    pub weights: Option<PathBuf>,
     /// Handle groups of a mesh to start with: libigl DMAT or JSON {"k": [vertices]}.
     #[arg(long)]
     pub select: Option<PathBuf>,
@@ -61,14 +68,18 @@ fn model_scene(a: &ViewArgs, path: &Path) -> Result<Scene> {
         .and_then(|e| e.to_str())
         .unwrap_or("")
         .to_ascii_lowercase();
-    let content = if ext == "gltf" || ext == "glb" {
+    let gltf = ext == "gltf" || ext == "glb";
+    if gltf && a.skeleton.is_some() {
+        bail!("--skeleton and --weights make a mesh a rig; a glTF model has its own");
+    }
+    let content = if gltf || a.skeleton.is_some() {
         if a.select.is_some() {
             bail!("--select is for a mesh; a rig's joints are its handles");
         }
         let rig = read_rig(&RigInput {
             model: path.to_path_buf(),
-            skeleton: None,
-            weights: None,
+            skeleton: a.skeleton.clone(),
+            weights: a.weights.clone(),
             allow_external: false,
         })?;
         Content::Rig(Box::new(rig))
