@@ -497,3 +497,109 @@ fn ffd_motor_form_on_the_gpu() {
         assert!(err <= 1e-5, "ffd {}: {err:e}", method.name());
     }
 }
+
+/// Positional lattices and cages on the GPU (`GpuBlend::bind_control`): control points moved
+/// by their motors, and control points given directly, as `ControlBinding` poses them on the
+/// CPU; bad inputs are the same typed errors.
+#[test]
+fn positional_lattices_and_cages_on_the_gpu() {
+    use deform::cage::{CageDeformer, CageOptions};
+    use deform::control::{ControlBinding, ControlForm};
+    use deform::ffd::{Ffd, FfdOptions, LatticeBasis};
+    let Some(ctx) = context() else { return };
+    let mesh = deform::shapes::tube(1.0, 10.0, 16, 21);
+    let diag = diagonal(&mesh.positions);
+    let mut cage = deform::shapes::tube(1.6, 12.0, 4, 6);
+    cage.positions.iter_mut().for_each(|p| p.x -= 1.0);
+    let bernstein = FfdOptions {
+        form: ControlForm::Positional,
+        ..FfdOptions::default()
+    };
+    let bspline = FfdOptions {
+        basis: LatticeBasis::BSpline(3),
+        ..bernstein
+    };
+    let positional_cage = CageOptions {
+        form: ControlForm::Positional,
+        ..CageOptions::default()
+    };
+    let bindings: Vec<(&str, ControlBinding)> = vec![
+        (
+            "bernstein 4x3x3",
+            Ffd::bind(&mesh, [4, 3, 3], None, bernstein)
+                .unwrap()
+                .binding()
+                .clone(),
+        ),
+        (
+            "b-spline 7x3x3",
+            Ffd::bind(&mesh, [7, 3, 3], None, bspline)
+                .unwrap()
+                .binding()
+                .clone(),
+        ),
+        (
+            "mean value cage",
+            CageDeformer::bind(&mesh, &cage, positional_cage)
+                .unwrap()
+                .binding()
+                .clone(),
+        ),
+    ];
+    for (what, binding) in &bindings {
+        let n = binding.rest_points().len();
+        let keys: Vec<ScaledMotor> = (0..n)
+            .map(|j| {
+                let f = j as f64 / n as f64;
+                let q = DQuat::from_axis_angle(DVec3::new(1.0, f, 0.3).normalize(), 0.8 * f);
+                ScaledMotor::from_scale_rotation_translation(1.0 + 0.2 * f, q, DVec3::splat(f))
+            })
+            .collect();
+        let mut want = vec![DVec3::ZERO; mesh.positions.len()];
+        let mut scratch = binding.scratch();
+        binding.pose_using(&keys, &mut scratch, &mut want).unwrap();
+        let mut gpu = GpuBlend::bind_control(&ctx, binding).expect("gpu bind");
+        assert_eq!(gpu.form(), ControlForm::Positional);
+        let mut got = vec![DVec3::ZERO; mesh.positions.len()];
+        gpu.pose(&ctx, &keys, &mut got).expect("gpu pose");
+        let err = worst_error(&got, &want, diag);
+        assert!(err <= 1e-5, "{what}, motors: {err:e}");
+        assert!(
+            worst_error(&got, &mesh.positions, diag) > 1e-2,
+            "{what}: it moved"
+        );
+        // Control points given directly.
+        let points: Vec<DVec3> = binding
+            .rest_points()
+            .iter()
+            .enumerate()
+            .map(|(j, p)| *p * 1.2 + DVec3::new(0.0, (j % 3) as f64 * 0.1, 0.3))
+            .collect();
+        binding.pose_points(&points, &mut want).unwrap();
+        gpu.pose_points(&ctx, &points, &mut got)
+            .expect("gpu pose points");
+        let err = worst_error(&got, &want, diag);
+        assert!(err <= 1e-5, "{what}, points: {err:e}");
+        // Bad input: a key too few, a point that is not finite; `out` untouched.
+        let before = got.clone();
+        assert!(matches!(
+            gpu.pose(&ctx, &keys[1..], &mut got),
+            Err(GpuError::Blend(_))
+        ));
+        let mut nan = points.clone();
+        nan[0].y = f64::NAN;
+        assert!(matches!(
+            gpu.pose_points(&ctx, &nan, &mut got),
+            Err(GpuError::Blend(_))
+        ));
+        assert_eq!(got, before);
+    }
+    // Control points to a motor form: refused.
+    let motor = Ffd::bind(&mesh, [2, 2, 2], None, FfdOptions::default()).unwrap();
+    let mut gpu = GpuBlend::bind_control(&ctx, motor.binding()).unwrap();
+    let mut out = vec![DVec3::ZERO; mesh.positions.len()];
+    assert!(matches!(
+        gpu.pose_points(&ctx, &motor.lattice().rest_points(), &mut out),
+        Err(GpuError::Blend(_))
+    ));
+}

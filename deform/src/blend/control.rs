@@ -130,13 +130,8 @@ impl ControlBinding {
     /// [`MeshError::DimensionMismatch`] for slices of the wrong length,
     /// [`MeshError::InvalidArgument`] for a control point that is not finite.
     pub fn pose_points(&self, control: &[DVec3], out: &mut [DVec3]) -> Result<()> {
-        check_key_count("the control points", self.rest.len(), control.len())?;
+        check_points(self.rest.len(), control)?;
         check_positions(self.vertices, out.len())?;
-        if let Some(j) = control.iter().position(|p| !p.is_finite()) {
-            return Err(
-                MeshError::InvalidArgument(format!("control point {j} is not finite")).into(),
-            );
-        }
         let weights = self.weights();
         let single = |i: usize| {
             weights
@@ -190,21 +185,42 @@ impl ControlBinding {
         match &self.inner {
             Inner::Motor(b) => b.pose_using(keys, &mut scratch.keys, positions),
             Inner::Positional { .. } => {
-                check_key_count("this deformer", self.rest.len(), keys.len())?;
                 check_positions(self.vertices, positions.len())?;
-                for (index, k) in keys.iter().enumerate() {
-                    k.try_log()
-                        .map_err(|source| KeyError::Invalid { index, source })?;
-                }
-                let moved = &mut scratch.moved;
-                moved.clear();
-                moved.extend(
-                    keys.iter()
-                        .zip(&self.rest)
-                        .map(|(k, &p)| k.transform_point(p)),
-                );
-                self.pose_points(moved, positions)
+                move_points(&self.rest, keys, &mut scratch.moved)?;
+                self.pose_points(&scratch.moved, positions)
             }
         }
     }
+}
+
+/// `moved[j] = keys[j](rest[j])`: the control points moved by their motors (the positional
+/// form's pose, on the CPU and the GPU).
+///
+/// # Errors
+/// [`KeyError`] for a key list of the wrong length or a key that is not a finite scaled motor.
+pub(crate) fn move_points(
+    rest: &[DVec3],
+    keys: &[ScaledMotor],
+    moved: &mut Vec<DVec3>,
+) -> Result<()> {
+    check_key_count("this deformer", rest.len(), keys.len())?;
+    for (index, k) in keys.iter().enumerate() {
+        k.try_log()
+            .map_err(|source| KeyError::Invalid { index, source })?;
+    }
+    moved.clear();
+    moved.extend(keys.iter().zip(rest).map(|(k, &p)| k.transform_point(p)));
+    Ok(())
+}
+
+/// Check control points given directly: one per rest point, each finite.
+///
+/// # Errors
+/// As [`ControlBinding::pose_points`].
+pub(crate) fn check_points(rest: usize, control: &[DVec3]) -> Result<()> {
+    check_key_count("the control points", rest, control.len())?;
+    if let Some(j) = control.iter().position(|p| !p.is_finite()) {
+        return Err(MeshError::InvalidArgument(format!("control point {j} is not finite")).into());
+    }
+    Ok(())
 }

@@ -1,8 +1,10 @@
-//! A [`BoundBlend`] on the GPU: its rest points and weights uploaded once, each pose uploads
-//! only the keys and reads the positions back.
+//! A [`BoundBlend`] (or a lattice's or cage's [`ControlBinding`]) on the GPU: its rest points
+//! and weights uploaded once, each pose uploads only the keys (or the control points) and reads
+//! the positions back.
 
 use super::{GpuContext, GpuError};
-use crate::blend::{BlendMethod, BoundBlend, PreparedKeys};
+use crate::blend::control::{check_points, move_points, ControlBinding, ControlForm};
+use crate::blend::{BlendMethod, BoundBlend, KeyWeights, PreparedKeys};
 use cga::ScaledMotor;
 use glam::DVec3;
 use wgpu::util::DeviceExt as _;
@@ -12,8 +14,11 @@ const GROUP: u32 = 64;
 /// Workgroups per dispatch row (the guaranteed limit of one dimension).
 const ROW_GROUPS: u32 = 65_535;
 
-/// The shader entry point of a method.
-fn entry_point(method: BlendMethod) -> &'static str {
+/// The shader entry point of a form.
+fn entry_point(form: ControlForm) -> &'static str {
+    let ControlForm::Motor(method) = form else {
+        return "control_positional";
+    };
     match method {
         BlendMethod::MotorLog => "skin_log",
         BlendMethod::MotorLinear => "skin_motor",
@@ -25,10 +30,16 @@ fn entry_point(method: BlendMethod) -> &'static str {
 }
 
 /// A bound blend on the GPU ([`GpuBlend::bind`] once, [`GpuBlend::pose`] per frame). Same
-/// results as [`BoundBlend::pose`] in `f32`.
+/// results as [`BoundBlend::pose`] in `f32`; bound with [`GpuBlend::bind_control`], a
+/// positional lattice or cage gives what [`ControlBinding::pose_using`] and
+/// [`ControlBinding::pose_points`] give.
 #[derive(Debug)]
 pub struct GpuBlend {
-    method: BlendMethod,
+    form: ControlForm,
+    /// The rest control points of the positional form (empty otherwise).
+    rest_points: Vec<DVec3>,
+    /// The control points moved by the keys, reused from pose to pose.
+    moved: Vec<DVec3>,
     vertices: usize,
     width: usize,
     key_count: usize,
@@ -59,10 +70,42 @@ impl GpuBlend {
     /// # Errors
     /// [`GpuError::TooLarge`] when a buffer exceeds the device's limits.
     pub fn bind(ctx: &GpuContext, blend: &BoundBlend) -> Result<GpuBlend, GpuError> {
-        let method = blend.method();
-        let entry = entry_point(method);
-        let weights = blend.weights();
-        let (n, width) = (blend.vertex_count(), weights.width());
+        let form = ControlForm::Motor(blend.method());
+        Self::upload(ctx, form, blend.weights(), blend.local(), blend.key_count())
+    }
+
+    /// Upload a lattice's or cage's binding: its motor form as [`GpuBlend::bind`] does, its
+    /// positional form as weights summing the control points.
+    ///
+    /// # Errors
+    /// As [`GpuBlend::bind`].
+    pub fn bind_control(ctx: &GpuContext, binding: &ControlBinding) -> Result<GpuBlend, GpuError> {
+        if let Some(blend) = binding.motor_blend() {
+            return Self::bind(ctx, blend);
+        }
+        let rest = binding.rest_points();
+        let mut gpu = Self::upload(
+            ctx,
+            ControlForm::Positional,
+            binding.weights(),
+            &[],
+            rest.len(),
+        )?;
+        gpu.rest_points = rest.to_vec();
+        Ok(gpu)
+    }
+
+    /// The buffers and pipeline of `form` for `weights` (`key_count` keys) and the rest points
+    /// `local` (none for the positional form).
+    fn upload(
+        ctx: &GpuContext,
+        form: ControlForm,
+        weights: &KeyWeights,
+        local: &[DVec3],
+        key_count: usize,
+    ) -> Result<GpuBlend, GpuError> {
+        let entry = entry_point(form);
+        let (n, width) = (weights.vertex_count(), weights.width());
         let mut joints = Vec::with_capacity(n * width);
         let mut w = Vec::with_capacity(n * width);
         for i in 0..n {
@@ -72,13 +115,12 @@ impl GpuBlend {
                 w.push(x as f32);
             }
         }
-        let rest: Vec<f32> = blend
-            .local()
+        let rest: Vec<f32> = local
             .iter()
             .flat_map(|p| [p.x as f32, p.y as f32, p.z as f32])
             .collect();
         let limits = ctx.device.limits();
-        let largest = (n * width * 4).max(n * 12).max(blend.key_count() * 64) as u64;
+        let largest = (n * width * 4).max(n * 12).max(key_count * 64) as u64;
         if largest > limits.max_storage_buffer_binding_size {
             return Err(GpuError::TooLarge(format!(
                 "a buffer of {largest} bytes, the device binds at most {}",
@@ -122,7 +164,7 @@ impl GpuBlend {
         let w = storage("weights", &bytes_f32(&w), wgpu::BufferUsages::empty());
         let keys = storage(
             "keys",
-            &vec![0u8; (blend.key_count() * 64).max(16)],
+            &vec![0u8; (key_count * 64).max(16)],
             wgpu::BufferUsages::COPY_DST,
         );
         let out_size = (n * 12).max(16) as u64;
@@ -145,9 +187,11 @@ impl GpuBlend {
             mapped_at_creation: false,
         });
         let layout = pipeline.get_bind_group_layout(0);
+        // The positional entry point reads no rest point, so its layout has no binding 1.
         let entries: Vec<wgpu::BindGroupEntry> = [&params, &rest, &joints, &w, &keys, &out]
             .into_iter()
             .enumerate()
+            .filter(|&(i, _)| i != 1 || form != ControlForm::Positional)
             .map(|(i, b)| wgpu::BindGroupEntry {
                 binding: i as u32,
                 resource: b.as_entire_binding(),
@@ -159,10 +203,12 @@ impl GpuBlend {
             entries: &entries,
         });
         Ok(GpuBlend {
-            method,
+            form,
+            rest_points: Vec::new(),
+            moved: Vec::new(),
             vertices: n,
             width,
-            key_count: blend.key_count(),
+            key_count,
             pipeline,
             bind_group,
             params,
@@ -176,9 +222,10 @@ impl GpuBlend {
         })
     }
 
-    /// The blend method.
-    pub fn method(&self) -> BlendMethod {
-        self.method
+    /// The form: the blend method of a [`BoundBlend`] or a lattice's or cage's motor form, or
+    /// the positional form.
+    pub fn form(&self) -> ControlForm {
+        self.form
     }
 
     /// `out[i]` = vertex `i` posed by `keys`, computed on the GPU and read back
@@ -206,8 +253,62 @@ impl GpuBlend {
     /// As [`GpuBlend::pose`].
     pub fn run(&mut self, ctx: &GpuContext, keys: &[ScaledMotor]) -> Result<(), GpuError> {
         crate::blend::check_key_count("this deformer", self.key_count, keys.len())?;
-        self.prepared.prepare(keys, self.method)?;
+        let ControlForm::Motor(method) = self.form else {
+            let mut moved = std::mem::take(&mut self.moved);
+            move_points(&self.rest_points, keys, &mut moved)?;
+            let r = self.run_points(ctx, &moved);
+            self.moved = moved;
+            return r;
+        };
+        self.prepared.prepare(keys, method)?;
         self.prepared.pack_f32(&mut self.packed);
+        self.dispatch(ctx, self.prepared.scaled())
+    }
+
+    /// The positional form with the control points given: `p_i = sum_j w_ij P_j` on the GPU
+    /// (then [`GpuBlend::positions`] or [`GpuBlend::read_back`]).
+    ///
+    /// # Errors
+    /// [`GpuError::Blend`] for a form other than positional, or control points of the wrong
+    /// count or not finite.
+    pub fn run_points(&mut self, ctx: &GpuContext, control: &[DVec3]) -> Result<(), GpuError> {
+        if self.form != ControlForm::Positional {
+            return Err(
+                crate::blend::BlendError::Mesh(crate::mesh::MeshError::InvalidArgument(format!(
+                    "control points given to the {} form",
+                    self.form.name()
+                )))
+                .into(),
+            );
+        }
+        check_points(self.key_count, control)?;
+        // Each point in the 16 floats of a key (the shader reads the first three).
+        self.packed.clear();
+        for p in control {
+            let mut a = [0.0f32; 16];
+            a[..3].copy_from_slice(&[p.x as f32, p.y as f32, p.z as f32]);
+            self.packed.extend_from_slice(&a);
+        }
+        self.dispatch(ctx, false)
+    }
+
+    /// [`GpuBlend::run_points`] then [`GpuBlend::read_back`].
+    ///
+    /// # Errors
+    /// As both.
+    pub fn pose_points(
+        &mut self,
+        ctx: &GpuContext,
+        control: &[DVec3],
+        out: &mut [DVec3],
+    ) -> Result<(), GpuError> {
+        crate::blend::check_positions(self.vertices, out.len())?;
+        self.run_points(ctx, control)?;
+        self.read_back(ctx, out)
+    }
+
+    /// Upload the packed keys and the parameters, run the pass and wait for it.
+    fn dispatch(&mut self, ctx: &GpuContext, scaled: bool) -> Result<(), GpuError> {
         let (queue, device) = (&ctx.queue, &ctx.device);
         if !self.packed.is_empty() {
             self.packed_bytes.clear();
@@ -219,7 +320,7 @@ impl GpuBlend {
             self.vertices as u32,
             self.width as u32,
             self.groups.0 * GROUP,
-            u32::from(self.prepared.scaled()),
+            u32::from(scaled),
         ];
         queue.write_buffer(&self.params, 0, &bytes_u32(&params));
         let mut encoder = device.create_command_encoder(&Default::default());

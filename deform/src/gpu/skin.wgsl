@@ -222,3 +222,20 @@ fn skin_conformal_projected(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     store(i, acc);
 }
+
+// Positional lattices and cages: the control points (floats 0..2 of each key) summed with the
+// vertex's weights, `p = sum w P` (the classic FFD and cage deformers).
+@compute @workgroup_size(64)
+fn control_positional(@builtin(global_invocation_id) id: vec3<u32>) {
+    let i = vertex_index(id);
+    if i >= params.n {
+        return;
+    }
+    let base = i * params.width;
+    var p = vec3<f32>(0.0, 0.0, 0.0);
+    for (var j = 0u; j < params.width; j++) {
+        let k = joints[base + j];
+        p += weights[base + j] * vec3<f32>(key(k, 0u), key(k, 1u), key(k, 2u));
+    }
+    store(i, p);
+}

@@ -163,3 +163,76 @@ fn the_partial_bar_cage_exits_2() {
     assert!(!dir.join("out.obj").exists());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `ffd --gpu` and `cage --gpu` pose on the GPU what the CPU poses (f32: to 1e-5 of the
+/// bounding-box diagonal), in both forms; a program without the `gpu` feature or a machine
+/// without an adapter says so with exit code 2 and writes nothing.
+#[test]
+fn ffd_and_cage_on_the_gpu_pose_as_the_cpu() {
+    let dir = scratch("gpu");
+    let bar = tube(1.0, 10.0, 8, 21);
+    deform::io::write_obj(&bar, dir.join("bar.obj")).unwrap();
+    let mut cage = tube(1.6, 12.0, 4, 6);
+    cage.positions.iter_mut().for_each(|p| p.x -= 1.0);
+    deform::io::write_obj(&cage, dir.join("cage.obj")).unwrap();
+    std::fs::write(
+        dir.join("m.json"),
+        r#"{"1": {"rotate": {"axis": [1, 0, 0], "degrees": 60}, "translate": [0, 0.5, 0]},
+            "5": {"scale": 1.2}, "*": {"translate": [0, 0, 0.1]}}"#,
+    )
+    .unwrap();
+    let diag = bar.bounding_box().unwrap().diagonal();
+    let (bar_obj, cage_obj, m) = (
+        dir.join("bar.obj"),
+        dir.join("cage.obj"),
+        dir.join("m.json"),
+    );
+    let ffd = ["ffd", s(&bar_obj), "--lattice", "4x3x3"];
+    let cage_args = ["cage", s(&bar_obj), "--cage", s(&cage_obj)];
+    for (what, head) in [("ffd", &ffd[..]), ("cage", &cage_args[..])] {
+        for form in [
+            &[][..],
+            &["--positional"][..],
+            &["--blend", "dual-quaternion"][..],
+        ] {
+            let pose = |gpu: bool, out: &str| {
+                let mut args: Vec<&str> = head.to_vec();
+                args.extend_from_slice(&["--motors", s(&m), "-o", out, "--quiet"]);
+                args.extend_from_slice(form);
+                if gpu {
+                    args.push("--gpu");
+                }
+                run(&args)
+            };
+            let (cpu_obj, gpu_obj) = (dir.join("cpu.obj"), dir.join("gpu.obj"));
+            let o = pose(false, s(&cpu_obj));
+            assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+            let _ = std::fs::remove_file(&gpu_obj);
+            let o = pose(true, s(&gpu_obj));
+            if o.status.code() == Some(2) {
+                let err = String::from_utf8_lossy(&o.stderr);
+                assert!(err.contains("--gpu"), "{what} {form:?}: {err}");
+                assert!(!gpu_obj.exists());
+                continue;
+            }
+            assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+            let a = deform::io::read_mesh(&cpu_obj).unwrap();
+            let b = deform::io::read_mesh(&gpu_obj).unwrap();
+            let worst = a
+                .positions
+                .iter()
+                .zip(&b.positions)
+                .map(|(p, q)| p.distance(*q))
+                .fold(0.0, f64::max);
+            assert!(worst <= 1e-5 * diag, "{what} {form:?}: {worst:e}");
+            let moved = a
+                .positions
+                .iter()
+                .zip(&bar.positions)
+                .map(|(p, q)| p.distance(*q))
+                .fold(0.0, f64::max);
+            assert!(moved > 0.1, "{what} {form:?}: it moved");
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -10,15 +10,28 @@ pub struct GpuPoser {
     blend: deform::gpu::GpuBlend,
 }
 
+/// The first adapter's device, or why there is none (no adapter: exit code 2).
+#[cfg(feature = "gpu")]
+fn context() -> Result<deform::gpu::GpuContext> {
+    deform::gpu::GpuContext::new()
+        .map_err(|e| anyhow::anyhow!("--gpu: {e} (install a GPU driver, or Mesa's lavapipe)"))
+}
+
 #[cfg(feature = "gpu")]
 impl GpuPoser {
     /// Upload `blend` to the first adapter, or say why not (no adapter: exit code 2).
     pub fn open(blend: &deform::blend::BoundBlend) -> Result<GpuPoser> {
-        let ctx = deform::gpu::GpuContext::new().map_err(|e| {
-            anyhow::anyhow!("--gpu: {e} (install a GPU driver, or Mesa's lavapipe)")
-        })?;
+        let ctx = context()?;
         let blend =
             deform::gpu::GpuBlend::bind(&ctx, blend).map_err(|e| anyhow::anyhow!("--gpu: {e}"))?;
+        Ok(GpuPoser { ctx, blend })
+    }
+
+    /// Upload a lattice's or cage's binding (either form), as [`GpuPoser::open`].
+    pub fn open_control(binding: &deform::control::ControlBinding) -> Result<GpuPoser> {
+        let ctx = context()?;
+        let blend = deform::gpu::GpuBlend::bind_control(&ctx, binding)
+            .map_err(|e| anyhow::anyhow!("--gpu: {e}"))?;
         Ok(GpuPoser { ctx, blend })
     }
 
@@ -35,6 +48,15 @@ impl GpuPoser {
     }
 }
 
+/// Why `--gpu` is refused without the `gpu` feature, and how to build with it.
+#[cfg(not(feature = "gpu"))]
+fn no_gpu_feature() -> anyhow::Error {
+    anyhow::anyhow!(
+        "--gpu: this deform was built without the `gpu` feature (cargo run --release -p deform \
+         --features gpu -- skin|ffd|cage ... --gpu)"
+    )
+}
+
 /// Without the `gpu` feature `--gpu` is refused.
 #[cfg(not(feature = "gpu"))]
 pub struct GpuPoser(std::convert::Infallible);
@@ -43,10 +65,12 @@ pub struct GpuPoser(std::convert::Infallible);
 impl GpuPoser {
     /// Always the error that says how to build with the GPU.
     pub fn open(_: &deform::blend::BoundBlend) -> Result<GpuPoser> {
-        anyhow::bail!(
-            "--gpu: this deform was built without the `gpu` feature (cargo run --release -p \
-             deform --features gpu -- skin ... --gpu)"
-        )
+        Err(no_gpu_feature())
+    }
+
+    /// Always the error that says how to build with the GPU.
+    pub fn open_control(_: &deform::control::ControlBinding) -> Result<GpuPoser> {
+        Err(no_gpu_feature())
     }
 
     /// Never called: no value exists.

@@ -118,6 +118,10 @@ pub struct FormArgs {
     /// How the motors are blended in the motor form.
     #[arg(long, value_parser = blend_method(), default_value = "motor-log")]
     pub blend: BlendMethod,
+    /// Pose on the GPU (wgpu), in f32: needs a program built with `--features gpu`, and a GPU
+    /// or Mesa's lavapipe (otherwise exit code 2).
+    #[arg(long)]
+    pub gpu: bool,
 }
 
 impl FormArgs {

@@ -2,7 +2,7 @@
 //! one motor per control point, in motor or positional form: read, bind, pose (timed),
 //! write, report.
 
-use crate::finish::pose_and_finish;
+use crate::finish::pose_control_and_finish;
 use crate::input_files::{read_mesh_checked, read_text};
 use crate::overlays::{lattice, moved};
 use crate::preview::{Look, POSED_INK, REST_INK};
@@ -102,5 +102,6 @@ pub fn run(a: &FfdArgs) -> Result<()> {
         a.lattice,
         POSED_INK,
     );
-    pose_and_finish(&d, &mesh, &motors, look, &a.out, report)
+    let (binding, gpu) = (d.binding(), a.form.gpu);
+    pose_control_and_finish(&d, binding, gpu, (&mesh, &motors), look, &a.out, report)
 }

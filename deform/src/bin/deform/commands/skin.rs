@@ -117,7 +117,7 @@ pub struct SkinArgs {
     /// The skinning backend.
     #[arg(long, value_parser = backend(), default_value = "cga")]
     pub backend: Backend,
-    /// Pose on the GPU (wgpu; every backend but motor-log), in f32: needs a program built
+    /// Pose on the GPU (wgpu; every backend), in f32: needs a program built
     /// with `--features gpu`, and a GPU or Mesa's lavapipe (otherwise exit code 2).
     #[arg(long)]
     pub gpu: bool,
