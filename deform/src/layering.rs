@@ -12,7 +12,7 @@ const LAYERS: &[(&str, &[&str])] = &[
     ("blend", &["mesh"]),
     ("deformers", &["mesh", "operators", "blend"]),
     ("skinning", &["mesh", "operators", "blend", "deformers"]),
-    ("surgery", &["mesh", "skinning"]),
+    ("surgery", &["mesh", "blend", "skinning"]),
     ("render", &["mesh"]),
     ("input", &["mesh"]),
     ("gpu", &["mesh", "blend"]),

@@ -3,14 +3,13 @@
 //! between the points. [`ControlChoice`] is what the page chooses: the lattice's size and
 //! basis, the cage's coordinates.
 
-use super::protocol::ControlRequest;
 use anyhow::{bail, Result};
 use deform::cage::{CageCoordinates, CageDeformer, CageOptions, HarmonicGrid};
 use deform::control::ControlForm;
 use deform::ffd::{Ffd, FfdOptions, LatticeBasis};
 use deform::{Deformer, Mesh};
 use glam::DVec3;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::collections::BTreeSet;
 
 /// The lattice of a mesh without a cage, until the page asks for another: 4 x 3 x 3 control
@@ -26,6 +25,25 @@ pub const MAX_BERNSTEIN_POINTS: usize = 64;
 
 /// Harmonic cage grids the page may ask for (nodes along the cage's longest side).
 pub const GRID: std::ops::RangeInclusive<usize> = 16..=64;
+
+/// The lattice and cage options of a `Request::Method` (the protocol's); each one given replaces the
+/// session's.
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ControlRequest {
+    /// Control points per axis (each 2 to 8).
+    #[serde(default)]
+    pub lattice: Option<[usize; 3]>,
+    /// `bernstein` or `bspline-1`, `bspline-2`, `bspline-3`.
+    #[serde(default)]
+    pub basis: Option<String>,
+    /// The cage's `mean-value` or `harmonic` coordinates.
+    #[serde(default)]
+    pub coordinates: Option<String>,
+    /// Harmonic coordinates' grid nodes along the cage's longest side (16 to 64).
+    #[serde(default)]
+    pub grid: Option<usize>,
+}
 
 /// The lattice and cage options of a session.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]

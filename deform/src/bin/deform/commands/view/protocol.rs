@@ -80,7 +80,7 @@ pub enum Request {
         local_step: Option<String>,
         /// The lattice's size and basis, the cage's coordinates (what is given changes).
         #[serde(default)]
-        controls: Option<ControlRequest>,
+        controls: Option<super::controls::ControlRequest>,
     },
     /// Pose the handle groups: one motor per group (the CLI's motor JSON).
     Motors {
@@ -171,25 +171,6 @@ pub struct GroupInfo {
     pub vertices: usize,
     /// Its centroid at rest.
     pub center: [f64; 3],
-}
-
-/// The lattice and cage options of a [`Request::Method`]; each one given replaces the
-/// session's.
-#[derive(Clone, Debug, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ControlRequest {
-    /// Control points per axis (each 2 to 8).
-    #[serde(default)]
-    pub lattice: Option<[usize; 3]>,
-    /// `bernstein` or `bspline-1`, `bspline-2`, `bspline-3`.
-    #[serde(default)]
-    pub basis: Option<String>,
-    /// The cage's `mean-value` or `harmonic` coordinates.
-    #[serde(default)]
-    pub coordinates: Option<String>,
-    /// Harmonic coordinates' grid nodes along the cage's longest side (16 to 64).
-    #[serde(default)]
-    pub grid: Option<usize>,
 }
 
 /// A lattice's or cage's control points at rest and the lines between them.

@@ -3,7 +3,7 @@
 //! the weights stay.
 
 use super::{Out, Session};
-use crate::commands::view::protocol::ControlRequest;
+use crate::commands::view::controls::ControlRequest;
 use crate::commands::view::scenes::Method;
 use anyhow::{anyhow, bail, Result};
 use deform::arap::{ArapEnergy, LocalStep};
