@@ -603,3 +603,49 @@ fn positional_lattices_and_cages_on_the_gpu() {
         Err(GpuError::Blend(_))
     ));
 }
+
+/// A timed pass poses as the untimed one, and where the device writes timestamps its time is
+/// positive and below the wall-clock time of the whole pose.
+#[test]
+fn a_timed_pass_poses_the_same_and_reports_its_device_time() {
+    use deform::control::ControlForm;
+    use deform::ffd::{Ffd, FfdOptions};
+    let Some(ctx) = context() else { return };
+    let mesh = deform::shapes::tube(1.0, 10.0, 32, 201);
+    for form in [
+        ControlForm::Motor(BlendMethod::DualQuaternion),
+        ControlForm::Positional,
+    ] {
+        let options = FfdOptions {
+            form,
+            ..FfdOptions::default()
+        };
+        let ffd = Ffd::bind(&mesh, [3, 2, 2], None, options).expect("bind");
+        let keys: Vec<ScaledMotor> = (0..12)
+            .map(|j| {
+                let q = DQuat::from_axis_angle(DVec3::X, 0.1 * j as f64);
+                ScaledMotor::from_scale_rotation_translation(1.0, q, DVec3::splat(0.05 * j as f64))
+            })
+            .collect();
+        let mut gpu = GpuBlend::bind_control(&ctx, ffd.binding()).expect("gpu bind");
+        let (mut a, mut b) = (
+            vec![DVec3::ZERO; mesh.vertex_count()],
+            vec![DVec3::ZERO; mesh.vertex_count()],
+        );
+        gpu.run(&ctx, &keys).expect("run");
+        gpu.read_back(&ctx, &mut a).expect("read");
+        let t = std::time::Instant::now();
+        let ms = gpu.run_timed(&ctx, &keys).expect("timed run");
+        let wall = t.elapsed().as_secs_f64() * 1e3;
+        gpu.read_back(&ctx, &mut b).expect("read");
+        assert_eq!(a, b, "{}", form.name());
+        assert_eq!(ms.is_some(), ctx.has_timestamps());
+        if let Some(ms) = ms {
+            assert!(
+                ms > 0.0 && ms <= wall,
+                "{}: pass {ms} ms, pose {wall} ms",
+                form.name()
+            );
+        }
+    }
+}

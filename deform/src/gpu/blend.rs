@@ -54,6 +54,74 @@ pub struct GpuBlend {
     packed: Vec<f32>,
     /// `packed` as bytes, reused from pose to pose.
     packed_bytes: Vec<u8>,
+    /// Two timestamps around the pass, where the device has them.
+    timer: Option<Timer>,
+}
+
+/// A query set of two timestamps (start and end of the compute pass), the buffer they
+/// resolve into and the buffer they are read back from.
+#[derive(Debug)]
+struct Timer {
+    queries: wgpu::QuerySet,
+    resolved: wgpu::Buffer,
+    read: wgpu::Buffer,
+}
+
+impl Timer {
+    fn new(device: &wgpu::Device) -> Timer {
+        let buffer = |label, usage| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: 16,
+                usage,
+                mapped_at_creation: false,
+            })
+        };
+        Timer {
+            queries: device.create_query_set(&wgpu::QuerySetDescriptor {
+                label: Some("pass timestamps"),
+                ty: wgpu::QueryType::Timestamp,
+                count: 2,
+            }),
+            resolved: buffer(
+                "timestamps",
+                wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
+            ),
+            read: buffer(
+                "timestamps read back",
+                wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            ),
+        }
+    }
+}
+
+/// Map the first `size` bytes of `buffer` (a `MAP_READ` buffer whose copy was submitted),
+/// hand them to `read`, unmap.
+fn read_mapped(
+    device: &wgpu::Device,
+    buffer: &wgpu::Buffer,
+    size: u64,
+    read: impl FnOnce(&[u8]),
+) -> Result<(), GpuError> {
+    let slice = buffer.slice(..size);
+    let (tx, rx) = std::sync::mpsc::channel();
+    slice.map_async(wgpu::MapMode::Read, move |r| {
+        let _ = tx.send(r);
+    });
+    device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .map_err(|e| GpuError::Readback(e.to_string()))?;
+    rx.recv()
+        .map_err(|e| GpuError::Readback(e.to_string()))?
+        .map_err(|e| GpuError::Readback(e.to_string()))?;
+    {
+        let data = slice
+            .get_mapped_range()
+            .map_err(|e| GpuError::Readback(e.to_string()))?;
+        read(&data);
+    }
+    buffer.unmap();
+    Ok(())
 }
 
 fn bytes_f32(v: &[f32]) -> Vec<u8> {
@@ -219,6 +287,7 @@ impl GpuBlend {
             prepared: PreparedKeys::default(),
             packed: Vec::new(),
             packed_bytes: Vec::new(),
+            timer: ctx.timestamps.then(|| Timer::new(device)),
         })
     }
 
@@ -252,17 +321,41 @@ impl GpuBlend {
     /// # Errors
     /// As [`GpuBlend::pose`].
     pub fn run(&mut self, ctx: &GpuContext, keys: &[ScaledMotor]) -> Result<(), GpuError> {
+        self.pose_pass(ctx, keys, false).map(|_| ())
+    }
+
+    /// [`GpuBlend::run`], and the milliseconds the compute pass took on the device (between
+    /// timestamps written at its start and end: no upload, submit or wait), or `None` where
+    /// the device has no timestamps ([`GpuContext::has_timestamps`]).
+    ///
+    /// # Errors
+    /// As [`GpuBlend::run`].
+    pub fn run_timed(
+        &mut self,
+        ctx: &GpuContext,
+        keys: &[ScaledMotor],
+    ) -> Result<Option<f64>, GpuError> {
+        self.pose_pass(ctx, keys, true)
+    }
+
+    /// Upload `keys` (or the control points they move), run the pass, timed if asked.
+    fn pose_pass(
+        &mut self,
+        ctx: &GpuContext,
+        keys: &[ScaledMotor],
+        timed: bool,
+    ) -> Result<Option<f64>, GpuError> {
         crate::blend::check_key_count("this deformer", self.key_count, keys.len())?;
         let ControlForm::Motor(method) = self.form else {
             let mut moved = std::mem::take(&mut self.moved);
             move_points(&self.rest_points, keys, &mut moved)?;
-            let r = self.run_points(ctx, &moved);
+            let r = self.points_pass(ctx, &moved, timed);
             self.moved = moved;
             return r;
         };
         self.prepared.prepare(keys, method)?;
         self.prepared.pack_f32(&mut self.packed);
-        self.dispatch(ctx, self.prepared.scaled())
+        self.dispatch(ctx, self.prepared.scaled(), timed)
     }
 
     /// The positional form with the control points given: `p_i = sum_j w_ij P_j` on the GPU
@@ -272,6 +365,16 @@ impl GpuBlend {
     /// [`GpuError::Blend`] for a form other than positional, or control points of the wrong
     /// count or not finite.
     pub fn run_points(&mut self, ctx: &GpuContext, control: &[DVec3]) -> Result<(), GpuError> {
+        self.points_pass(ctx, control, false).map(|_| ())
+    }
+
+    /// [`GpuBlend::run_points`], timed if asked (as [`GpuBlend::run_timed`]).
+    fn points_pass(
+        &mut self,
+        ctx: &GpuContext,
+        control: &[DVec3],
+        timed: bool,
+    ) -> Result<Option<f64>, GpuError> {
         if self.form != ControlForm::Positional {
             return Err(
                 crate::blend::BlendError::Mesh(crate::mesh::MeshError::InvalidArgument(format!(
@@ -289,7 +392,7 @@ impl GpuBlend {
             a[..3].copy_from_slice(&[p.x as f32, p.y as f32, p.z as f32]);
             self.packed.extend_from_slice(&a);
         }
-        self.dispatch(ctx, false)
+        self.dispatch(ctx, false, timed)
     }
 
     /// [`GpuBlend::run_points`] then [`GpuBlend::read_back`].
@@ -307,8 +410,14 @@ impl GpuBlend {
         self.read_back(ctx, out)
     }
 
-    /// Upload the packed keys and the parameters, run the pass and wait for it.
-    fn dispatch(&mut self, ctx: &GpuContext, scaled: bool) -> Result<(), GpuError> {
+    /// Upload the packed keys and the parameters, run the pass and wait for it; its device
+    /// time when `timed` and the device has timestamps.
+    fn dispatch(
+        &mut self,
+        ctx: &GpuContext,
+        scaled: bool,
+        timed: bool,
+    ) -> Result<Option<f64>, GpuError> {
         let (queue, device) = (&ctx.queue, &ctx.device);
         if !self.packed.is_empty() {
             self.packed_bytes.clear();
@@ -323,18 +432,40 @@ impl GpuBlend {
             u32::from(scaled),
         ];
         queue.write_buffer(&self.params, 0, &bytes_u32(&params));
+        let timer = self.timer.as_ref().filter(|_| timed);
         let mut encoder = device.create_command_encoder(&Default::default());
         {
-            let mut pass = encoder.begin_compute_pass(&Default::default());
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("pose"),
+                timestamp_writes: timer.map(|t| wgpu::ComputePassTimestampWrites {
+                    query_set: &t.queries,
+                    beginning_of_pass_write_index: Some(0),
+                    end_of_pass_write_index: Some(1),
+                }),
+            });
             pass.set_pipeline(&self.pipeline);
             pass.set_bind_group(0, &self.bind_group, &[]);
             pass.dispatch_workgroups(self.groups.0, self.groups.1, 1);
+        }
+        if let Some(t) = timer {
+            encoder.resolve_query_set(&t.queries, 0..2, &t.resolved, 0);
+            encoder.copy_buffer_to_buffer(&t.resolved, 0, &t.read, 0, 16);
         }
         queue.submit([encoder.finish()]);
         device
             .poll(wgpu::PollType::wait_indefinitely())
             .map_err(|e| GpuError::Readback(e.to_string()))?;
-        Ok(())
+        let Some(t) = timer else {
+            return Ok(None);
+        };
+        let mut ticks = [0u64; 2];
+        read_mapped(device, &t.read, 16, |data| {
+            for (x, c) in ticks.iter_mut().zip(data.chunks_exact(8)) {
+                *x = u64::from_le_bytes(c.try_into().expect("8 bytes"));
+            }
+        })?;
+        let ns = ticks[1].saturating_sub(ticks[0]) as f64 * f64::from(queue.get_timestamp_period());
+        Ok(Some(ns * 1e-6))
     }
 
     /// The posed positions on the GPU (`x, y, z` as `f32` per vertex) after
@@ -358,29 +489,13 @@ impl GpuBlend {
         let mut encoder = device.create_command_encoder(&Default::default());
         encoder.copy_buffer_to_buffer(&self.out, 0, &self.staging, 0, size);
         ctx.queue.submit([encoder.finish()]);
-        let slice = self.staging.slice(..size);
-        let (tx, rx) = std::sync::mpsc::channel();
-        slice.map_async(wgpu::MapMode::Read, move |r| {
-            let _ = tx.send(r);
-        });
-        device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .map_err(|e| GpuError::Readback(e.to_string()))?;
-        rx.recv()
-            .map_err(|e| GpuError::Readback(e.to_string()))?
-            .map_err(|e| GpuError::Readback(e.to_string()))?;
-        {
-            let data = slice
-                .get_mapped_range()
-                .map_err(|e| GpuError::Readback(e.to_string()))?;
+        read_mapped(device, &self.staging, size, |data| {
             for (o, c) in out.iter_mut().zip(data.chunks_exact(12)) {
                 let f =
                     |k: usize| f64::from(f32::from_le_bytes([c[k], c[k + 1], c[k + 2], c[k + 3]]));
                 *o = DVec3::new(f(0), f(4), f(8));
             }
-        }
-        self.staging.unmap();
-        Ok(())
+        })
     }
 
     /// Bytes one pose reads and writes in device memory, not counting the keys (which stay in

@@ -7,6 +7,8 @@ pub struct GpuContext {
     pub(super) device: wgpu::Device,
     pub(super) queue: wgpu::Queue,
     info: wgpu::AdapterInfo,
+    /// Whether the device writes timestamps around compute passes.
+    pub(super) timestamps: bool,
 }
 
 impl std::fmt::Debug for GpuContext {
@@ -42,9 +44,17 @@ impl GpuContext {
                 info.name, limits.max_storage_buffers_per_shader_stage
             )));
         }
+        // Timestamps around compute passes where the adapter has them (for
+        // `GpuBlend::run_timed`: the pass alone, without the submit and wait).
+        let timestamps = adapter.features().contains(wgpu::Features::TIMESTAMP_QUERY);
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("deform"),
             required_limits: limits,
+            required_features: if timestamps {
+                wgpu::Features::TIMESTAMP_QUERY
+            } else {
+                wgpu::Features::empty()
+            },
             ..Default::default()
         }))
         .map_err(|e| GpuError::Device(e.to_string()))?;
@@ -52,6 +62,7 @@ impl GpuContext {
             device,
             queue,
             info,
+            timestamps,
         })
     }
 
@@ -68,6 +79,11 @@ impl GpuContext {
     /// The device's queue.
     pub fn queue(&self) -> &wgpu::Queue {
         &self.queue
+    }
+
+    /// Whether the device times compute passes (`GpuBlend::run_timed`).
+    pub fn has_timestamps(&self) -> bool {
+        self.timestamps
     }
 
     /// Whether the adapter is a software rasteriser (lavapipe, WARP) rather than a GPU.
