@@ -13,59 +13,15 @@
 #[path = "../benches/support/skin_scenes.rs"]
 mod skin_scenes;
 
-use cga::ScaledMotor;
 use deform::gpu::{GpuBlend, GpuContext};
-use deform::skinning::{Influences, Skinning};
+use deform::skinning::Skinning;
 use deform::BlendMethod;
-use glam::{DQuat, DVec3};
+use glam::DVec3;
 use std::time::Instant;
 
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
     v[v.len() / 2]
-}
-
-/// `n` points in a box, 4 influences among `bones` each (normalised weights), and one rigid
-/// key per bone.
-fn procedural(n: usize, bones: usize) -> skin_scenes::SkinScene {
-    let mut state = 0x2545_f491_4f6c_dd1du64;
-    let mut next = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
-    let positions: Vec<DVec3> = (0..n)
-        .map(|_| DVec3::new(next(), next(), next()) * 2.0 - 1.0)
-        .collect();
-    let mut joints = Vec::with_capacity(4 * n);
-    let mut weights = Vec::with_capacity(4 * n);
-    for _ in 0..n {
-        let w: [f64; 4] = std::array::from_fn(|_| 0.05 + next());
-        let sum: f64 = w.iter().sum();
-        for x in w {
-            joints.push((next() * bones as f64) as u32 % bones as u32);
-            weights.push(x / sum);
-        }
-    }
-    let keys = (0..bones)
-        .map(|j| {
-            let f = j as f64 / bones as f64;
-            let q = DQuat::from_axis_angle(DVec3::new(f, 1.0, 0.5 - f).normalize(), 0.2 + f);
-            ScaledMotor::from_scale_rotation_translation(1.0, q, DVec3::new(f, -f, 0.3))
-        })
-        .collect();
-    skin_scenes::SkinScene {
-        name: "procedural 1M / 64 bones",
-        positions,
-        influences: Influences {
-            width: 4,
-            joints,
-            weights,
-        },
-        joints: bones,
-        keys,
-    }
 }
 
 fn main() {
@@ -88,7 +44,7 @@ fn main() {
         ctx.adapter(),
         if ctx.is_software() { " (software)" } else { "" }
     );
-    let mut scenes = vec![procedural(1_000_000, 64)];
+    let mut scenes = vec![skin_scenes::procedural(1_000_000, 64)];
     scenes.extend(skin_scenes::armadillo());
     for s in &scenes {
         let n = s.positions.len();

@@ -107,3 +107,47 @@ pub fn all() -> Vec<SkinScene> {
 
 /// The skinning backends compared (every blend method).
 pub const BACKENDS: [deform::BlendMethod; 7] = deform::BlendMethod::ALL;
+
+/// `n` points in a box, 4 influences among `bones` each (normalised weights), and one rigid
+/// key per bone (the GPU report's and bench's 1M vertices and 64 bones: no file needed).
+pub fn procedural(n: usize, bones: usize) -> SkinScene {
+    let mut state = 0x2545_f491_4f6c_dd1du64;
+    let mut next = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let positions: Vec<DVec3> = (0..n)
+        .map(|_| DVec3::new(next(), next(), next()) * 2.0 - 1.0)
+        .collect();
+    let mut joints = Vec::with_capacity(4 * n);
+    let mut weights = Vec::with_capacity(4 * n);
+    for _ in 0..n {
+        let w: [f64; 4] = std::array::from_fn(|_| 0.05 + next());
+        let sum: f64 = w.iter().sum();
+        for x in w {
+            joints.push((next() * bones as f64) as u32 % bones as u32);
+            weights.push(x / sum);
+        }
+    }
+    let keys = (0..bones)
+        .map(|j| {
+            let f = j as f64 / bones as f64;
+            let q = DQuat::from_axis_angle(DVec3::new(f, 1.0, 0.5 - f).normalize(), 0.2 + f);
+            ScaledMotor::from_scale_rotation_translation(1.0, q, DVec3::new(f, -f, 0.3))
+        })
+        .collect();
+    SkinScene {
+        // Leaked once per scene made (a report or bench makes one or two).
+        name: Box::leak(format!("procedural {n} vertices / {bones} bones").into_boxed_str()),
+        positions,
+        influences: Influences {
+            width: 4,
+            joints,
+            weights,
+        },
+        joints: bones,
+        keys,
+    }
+}
