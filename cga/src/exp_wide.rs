@@ -294,61 +294,41 @@ mod tests {
             DVec3::ZERO,
             DVec3::new(10.0, -7.0, 2.5),
         ];
-        let b = Bivector::<F64x4>::gather(&gens);
         let p = [
             F64x4::from_fn(|i| pts[i].x),
             F64x4::from_fn(|i| pts[i].y),
             F64x4::from_fn(|i| pts[i].z),
         ];
-        let q = b.exp_transform(p).expect("in range");
-        for i in 0..4 {
-            let want = scalar(gens[i], pts[i]);
-            let got = DVec3::new(q[0].lane(i), q[1].lane(i), q[2].lane(i));
-            assert!(
-                (got - want).abs().max_element() < 1e-13 * want.length().max(1.0),
-                "lane {i}: {got} vs {want}"
-            );
-        }
-        // The same generators scaled down into each shorter series' tier.
-        for f in [0.6, 0.3, 0.15, 0.05] {
-            let small = gens.map(|g| ScalarBivector::from_array(g.to_array().map(|c| c * f)));
-            let q = Bivector::<F64x4>::gather(&small)
+        // Every lane of `g`'s batch against the scalar form.
+        let check = |g: &[ScalarBivector; 4], what: &str| {
+            let q = Bivector::<F64x4>::gather(g)
                 .exp_transform(p)
                 .expect("in range");
             for i in 0..4 {
-                let want = scalar(small[i], pts[i]);
+                let want = scalar(g[i], pts[i]);
                 let got = DVec3::new(q[0].lane(i), q[1].lane(i), q[2].lane(i));
                 assert!(
                     (got - want).abs().max_element() < 1e-13 * want.length().max(1.0),
-                    "scaled by {f}, lane {i}: {got} vs {want}"
+                    "{what}, lane {i}: {got} vs {want}"
                 );
             }
+        };
+        check(&gens, "as given");
+        // The same generators scaled down into each shorter series' tier.
+        for f in [0.6, 0.3, 0.15, 0.05] {
+            let small = gens.map(|g| ScalarBivector::from_array(g.to_array().map(|c| c * f)));
+            check(&small, &format!("scaled by {f}"));
         }
         // Dilation parts, small, large and none, in one batch.
         let mut d = gens;
         d[0].eoi = 0.3;
         d[2].eoi = -0.8;
         d[3].eoi = 1e-12;
-        let q = Bivector::<F64x4>::gather(&d)
-            .exp_transform(p)
-            .expect("in range");
-        for i in 0..4 {
-            let want = scalar(d[i], pts[i]);
-            let got = DVec3::new(q[0].lane(i), q[1].lane(i), q[2].lane(i));
-            assert!(
-                (got - want).abs().max_element() < 1e-13 * want.length().max(1.0),
-                "dilated lane {i}: {got} vs {want}"
-            );
-        }
+        check(&d, "dilated");
         // A pure dilation (no rotation), then a half-angle past the range.
         let mut z = d;
         z[1] = ScalarBivector::from_array([0.0, 0.0, 0.0, 0.4, 0.0, 0.0, 0.0, 0.2, 0.0, 0.0]);
-        let q = Bivector::<F64x4>::gather(&z)
-            .exp_transform(p)
-            .expect("in range");
-        let want = scalar(z[1], pts[1]);
-        let got = DVec3::new(q[0].lane(1), q[1].lane(1), q[2].lane(1));
-        assert!((got - want).length() < 1e-13 * want.length().max(1.0));
+        check(&z, "a pure dilation in lane 1");
         z[1].e12 = 2.5;
         assert!(Bivector::<F64x4>::gather(&z).exp_transform(p).is_none());
     }

@@ -3,7 +3,7 @@
 //! frame poses it where the tool made it. Mapping back by linear blend skinning instead (what
 //! `Frame::Posed` does) leaves it off the tool by the difference of the two blends.
 
-use super::assert_manifold;
+use super::{assert_manifold, assert_on_drill, assert_on_incision};
 use cga::{Plane, ScaledMotor};
 use deform::skinning::{procedural_arm, Influences, Rig, Skinning};
 use deform::surgery::{CutOptions, Drill, DrillOptions, Frame, Scalpel, Surgery, TearOptions};
@@ -127,18 +127,7 @@ fn drills_and_tears_in_a_blended_frame_pose_back_onto_the_tool() {
         let r = s.drill(&d, frame, &DrillOptions::default()).unwrap();
         assert_manifold(&r.mesh.mesh);
         let out = repose(&r.mesh.mesh.positions, &r.mesh.influences, &keys, method);
-        let axis = (d.end - d.tip).normalize();
-        for (v, o) in r.origin.iter().enumerate() {
-            if let VertexOrigin::Edge { .. } = o {
-                let x = out[v] - d.tip;
-                let radial = (x - x.dot(axis) * axis).length();
-                assert!(
-                    (radial - d.radius).abs() < 1e-9 || x.dot(axis).abs() < 1e-9,
-                    "{}: {radial}",
-                    method.name()
-                );
-            }
-        }
+        assert_on_drill(&out, &r.origin, &d, method.name());
         // A tear along the forearm's +x side: the incision lies on the step planes.
         let blade = |y: f64| Scalpel {
             a: DVec3::new(5.5, y, 0.02),
@@ -149,16 +138,7 @@ fn drills_and_tears_in_a_blended_frame_pose_back_onto_the_tool() {
             .unwrap();
         assert_manifold(&t.mesh.mesh);
         let out = repose(&t.mesh.mesh.positions, &t.mesh.influences, &keys, method);
-        for (v, o) in t.origin.iter().enumerate() {
-            if matches!(o, VertexOrigin::Incision) {
-                let d = t
-                    .planes
-                    .iter()
-                    .map(|(n, p)| n.dot(out[v] - *p).abs())
-                    .fold(f64::INFINITY, f64::min);
-                assert!(d < 1e-9, "{}: incision {v} {d} off", method.name());
-            }
-        }
+        assert_on_incision(&out, &t, method.name());
     }
 }
 

@@ -182,17 +182,7 @@ fn drill_a_posed_frame_and_real_arm() {
     .unwrap();
     let mut out = vec![DVec3::ZERO; r.mesh.mesh.vertex_count()];
     b.pose(keys, &mut out).unwrap();
-    let axis = (d.end - d.tip).normalize();
-    for (v, o) in r.origin.iter().enumerate() {
-        if let VertexOrigin::Edge { .. } = o {
-            let x = out[v] - d.tip;
-            let radial = (x - x.dot(axis) * axis).length();
-            assert!(
-                (radial - d.radius).abs() < 1e-9 || x.dot(axis).abs() < 1e-9,
-                "{radial}"
-            );
-        }
-    }
+    super::assert_on_drill(&out, &r.origin, &d, "posed by LBS");
     let Some(arm) = common::libigl_rig("arm") else {
         return;
     };

@@ -27,6 +27,42 @@ pub(crate) fn assert_manifold(m: &Mesh) {
     common::assert_oriented_manifold(&m.triangles, m.vertex_count());
 }
 
+/// Every vertex a drill made, at its posed position `out`, lies on the drill's cylinder (or
+/// on a cap plane through its tip).
+pub(crate) fn assert_on_drill(
+    out: &[DVec3],
+    origin: &[VertexOrigin],
+    d: &deform::surgery::Drill,
+    what: &str,
+) {
+    let axis = (d.end - d.tip).normalize();
+    for (v, o) in origin.iter().enumerate() {
+        if let VertexOrigin::Edge { .. } = o {
+            let x = out[v] - d.tip;
+            let radial = (x - x.dot(axis) * axis).length();
+            assert!(
+                (radial - d.radius).abs() < 1e-9 || x.dot(axis).abs() < 1e-9,
+                "{what}: vertex {v} at {radial} from the axis"
+            );
+        }
+    }
+}
+
+/// Every incision vertex of a tear, at its posed position `out`, lies on one of the steps'
+/// planes.
+pub(crate) fn assert_on_incision(out: &[DVec3], t: &deform::surgery::TearResult, what: &str) {
+    for (v, o) in t.origin.iter().enumerate() {
+        if matches!(o, VertexOrigin::Incision) {
+            let d = t
+                .planes
+                .iter()
+                .map(|(n, p)| n.dot(out[v] - *p).abs())
+                .fold(f64::INFINITY, f64::min);
+            assert!(d < 1e-9, "{what}: incision vertex {v} is {d} off");
+        }
+    }
+}
+
 /// Every check that holds for any cut of `rig` by `plane` on the rest pose.
 fn check_cut(rig: &Rig, cut: &CutResult, plane: &Plane, options: &CutOptions) {
     let area: f64 = cut.pieces.iter().map(|p| p.mesh.mesh.area()).sum();

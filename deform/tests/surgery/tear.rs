@@ -187,16 +187,7 @@ fn tear_real_and_posed() {
     .unwrap();
     let mut out = vec![DVec3::ZERO; r.mesh.mesh.vertex_count()];
     b.pose(keys, &mut out).unwrap();
-    for (v, o) in r.origin.iter().enumerate() {
-        if matches!(o, VertexOrigin::Incision) {
-            let d = r
-                .planes
-                .iter()
-                .map(|(n, p)| n.dot(out[v] - *p).abs())
-                .fold(f64::INFINITY, f64::min);
-            assert!(d < 1e-9, "{d}");
-        }
-    }
+    super::assert_on_incision(&out, &r, "posed by LBS");
     let Some(arm) = common::libigl_rig("arm") else {
         return;
     };
