@@ -640,3 +640,37 @@ fn lattice_size_basis_and_cage_coordinates_are_chosen_from_the_page() {
     assert_eq!(s["control"]["coordinates"], "harmonic");
     assert_eq!(s["control"]["grid"], 24);
 }
+
+/// A slow request is announced (`binding`, what it is), answered, then closed by `idle`, also
+/// when it is refused; a quick one (a pose) has neither.
+#[test]
+fn slow_requests_are_announced_and_closed() {
+    let server = Server::start(&[]);
+    let mut c = server.connect(None).expect("connects");
+    let groups = c.state()["groups"].as_array().unwrap().len();
+    // The text replies until `idle`, in order, without the `posed` replies of poses sent
+    // before (the opening pose's may still be on its way).
+    let texts = |c: &mut crate::client::Client| {
+        let mut seen = Vec::new();
+        c.until(true, |f| {
+            if let Frame::Text(v) = f {
+                let t = v["type"].as_str().unwrap().to_string();
+                let done = t == "idle";
+                seen.push(t);
+                return done.then_some(());
+            }
+            None
+        });
+        seen.retain(|t| t != "posed");
+        seen
+    };
+    c.send(json!({"op": "method", "method": "arap", "blend": "motor-log"}));
+    assert_eq!(texts(&mut c), ["binding", "state", "idle"]);
+    c.send(json!({"op": "method", "method": "nonsense", "blend": "motor-log"}));
+    assert_eq!(texts(&mut c), ["binding", "error", "idle"]);
+    // A pose is not slow: its reply and positions, no `binding`.
+    c.send(json!({"op": "motors", "seq": 9, "motors": vec![json!({}); groups]}));
+    c.positions(9);
+    c.send(json!({"op": "bind"}));
+    assert_eq!(texts(&mut c), ["binding", "state", "idle"]);
+}

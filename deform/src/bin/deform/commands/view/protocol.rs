@@ -237,8 +237,11 @@ pub struct StateInfo {
 pub enum Reply {
     /// The whole editing state (after a scene, a bind, a method change or a surgery).
     State(Box<StateInfo>),
-    /// A bind started (it may take a while); the page shows it.
+    /// A bind started (it may take a while); the page shows it, with the time it has taken,
+    /// until [`Reply::Idle`].
     Binding { what: String },
+    /// The slow request announced by [`Reply::Binding`] is done (its results were sent).
+    Idle,
     /// A pose was not made, or a request was refused, and why.
     Error { message: String },
     /// Something the page should say that is not an error (what to do next).

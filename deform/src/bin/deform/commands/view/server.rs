@@ -211,7 +211,8 @@ fn run_session(scenes: Vec<Scene>, mailbox: &Mailbox, tx: &mpsc::Sender<Out>) {
         }
     };
     while let Some(request) = mailbox.pop() {
-        if let Some(what) = request.slow() {
+        let slow = request.slow();
+        if let Some(what) = slow {
             if !send(Out::Text(Reply::Binding { what: what.into() })) {
                 return;
             }
@@ -219,8 +220,10 @@ fn run_session(scenes: Vec<Scene>, mailbox: &Mailbox, tx: &mpsc::Sender<Out>) {
         let result =
             std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| session.handle(request)));
         let ok = match result {
-            Ok(Ok(out)) => out.into_iter().all(send),
-            Ok(Err(e)) => report(e),
+            Ok(Ok(out)) => {
+                out.into_iter().all(send) && (slow.is_none() || send(Out::Text(Reply::Idle)))
+            }
+            Ok(Err(e)) => report(e) && (slow.is_none() || send(Out::Text(Reply::Idle))),
             Err(_) => {
                 report(anyhow::anyhow!(
                     "internal error: this session ends (reload the page)"

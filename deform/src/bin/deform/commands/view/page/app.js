@@ -75,11 +75,23 @@ function onBinary(buf) {
   }
 }
 
+// A slow request in the server (a bind, a cut): its name and the seconds it has taken so far,
+// counted until the state (or an error) comes back.
+function busy(what) {
+  clearInterval(ed.busyTimer);
+  ed.busySince = performance.now();
+  const show = () => { $("busy").textContent = `${what} ... ${((performance.now() - ed.busySince) / 1000).toFixed(1)} s`; };
+  show();
+  ed.busyTimer = setInterval(show, 100);
+}
+function idle() { clearInterval(ed.busyTimer); $("busy").textContent = ""; }
+
 function onText(m) {
   if (m.type === "state") return onState(m);
   if (m.type === "error") { ed.received = ed.seq; return say(m.message); }
   if (m.type === "note") return say(m.message, false);
-  if (m.type === "binding") { $("busy").textContent = m.what + " ..."; ed.busySince = performance.now(); return; }
+  if (m.type === "binding") { busy(m.what); return; }
+  if (m.type === "idle") { idle(); return; }
   if (m.type === "posed") {
     if (m.joints) ed.joints = m.joints;
     ed.energy = m.energy;
@@ -101,7 +113,7 @@ function onState(s) {
   const first = !ed.state || ed.state.scene !== s.scene;
   if (first) { ed.history = []; ed.future = []; }
   ed.state = s;
-  $("busy").textContent = "";
+  idle();
   ed.bindShown = performance.now() - (ed.busySince || performance.now());
   fill($("scene"), s.scenes, s.scene);
   const rig = s.kind === "rig";
