@@ -166,7 +166,8 @@ pub enum Frame<'a> {
         /// Skin matrix per joint.
         skin: &'a [DAffine3],
     },
-    /// A frame posed by any blend method: the posed position of every vertex, and the joints'
+    /// A frame posed by a blend method (any but `conformal-projected`, which blends points,
+    /// not transforms): the posed position of every vertex, and the joints'
     /// skin motors prepared for the method that posed them (the [`PreparedKeys`] of
     /// [`crate::BoundBlend::pose_using`], or `PreparedKeys::new(pose.skin_motors()?, method)`).
     /// A new vertex is mapped back by the inverse of its own blend of those keys, so the
@@ -335,6 +336,18 @@ impl Surgery {
                         "{} posed positions for {n} vertices (or not finite)",
                         positions.len()
                     )));
+                }
+                // Equation (17) projecting each term first blends points, not transforms: no
+                // per-vertex transform to invert.
+                if let Some(Posing::Keys(keys)) = frame.posing() {
+                    if keys.method() == crate::blend::BlendMethod::ConformalProjected {
+                        return Err(SurgeryError::BadTool(
+                            "a frame posed by conformal-projected blending has no per-vertex \
+                             transform to map new vertices back by (pose the frame by another \
+                             method)"
+                                .into(),
+                        ));
+                    }
                 }
                 // Every joint the influences name needs its transform.
                 let transforms = match frame.posing() {

@@ -142,9 +142,10 @@ fn drills_and_tears_in_a_blended_frame_pose_back_onto_the_tool() {
     }
 }
 
-/// Keys for fewer joints than the influences name: a typed error, not a panic.
+/// Keys for fewer joints than the influences name, or conformal-projected keys (no transform
+/// per vertex to invert): typed errors, not a panic or an approximate mapping.
 #[test]
-fn a_blended_frame_with_too_few_keys_is_refused() {
+fn blended_frames_without_an_inverse_are_refused() {
     let rig = procedural_arm(8, 10);
     let s = Surgery::new(&rig.mesh, &rig.influences).unwrap();
     let (_, positions, _) = posed(&rig, BlendMethod::MotorLog);
@@ -155,4 +156,15 @@ fn a_blended_frame_with_too_few_keys_is_refused() {
     };
     let r = s.cut(&plane(), frame, &CutOptions::default());
     assert!(matches!(r, Err(SurgeryError::BadTool(_))), "{r:?}");
+    // Conformal-projected blending has no per-vertex transform to invert: refused.
+    let (_, positions, projected) = posed(&rig, BlendMethod::ConformalProjected);
+    let frame = Frame::Blended {
+        positions: &positions,
+        keys: &projected,
+    };
+    let r = s.cut(&plane(), frame, &CutOptions::default());
+    assert!(
+        matches!(r, Err(SurgeryError::BadTool(ref m)) if m.contains("conformal-projected")),
+        "{r:?}"
+    );
 }
