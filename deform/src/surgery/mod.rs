@@ -338,9 +338,13 @@ impl Surgery {
                     )));
                 }
                 // Equation (17) projecting each term first blends points, not transforms: no
-                // per-vertex transform to invert.
-                if let Some(Posing::Keys(keys)) = frame.posing() {
-                    if keys.method() == crate::blend::BlendMethod::ConformalProjected {
+                // per-vertex transform to invert. Every joint the influences name needs its
+                // transform.
+                let posing = frame.posing();
+                let transforms = match posing {
+                    Some(Posing::Keys(keys))
+                        if keys.method() == crate::blend::BlendMethod::ConformalProjected =>
+                    {
                         return Err(SurgeryError::BadTool(
                             "a frame posed by conformal-projected blending has no per-vertex \
                              transform to map new vertices back by (pose the frame by another \
@@ -348,9 +352,6 @@ impl Surgery {
                                 .into(),
                         ));
                     }
-                }
-                // Every joint the influences name needs its transform.
-                let transforms = match frame.posing() {
                     Some(Posing::Lbs(skin)) => skin.len(),
                     Some(Posing::Keys(keys)) => keys.key_count(),
                     None => 0,
@@ -371,7 +372,7 @@ impl Surgery {
                 bvh.refit(&Mesh::new(positions.to_vec(), src.triangles.clone()));
                 Resolved {
                     positions,
-                    skin: frame.posing(),
+                    skin: posing,
                     bvh: std::borrow::Cow::Owned(bvh),
                 }
             }

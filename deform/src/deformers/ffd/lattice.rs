@@ -26,6 +26,27 @@ pub enum LatticeBasis {
     BSpline(usize),
 }
 
+impl LatticeBasis {
+    /// `bernstein` or `bspline-D` (`D` the degree), as the program and the editor name it.
+    pub fn name(self) -> String {
+        match self {
+            LatticeBasis::Bernstein => "bernstein".into(),
+            LatticeBasis::BSpline(d) => format!("bspline-{d}"),
+        }
+    }
+
+    /// The basis [`LatticeBasis::name`] names (B-spline degrees 1 to 3), `None` otherwise.
+    pub fn parse(name: &str) -> Option<LatticeBasis> {
+        match name {
+            "bernstein" => Some(LatticeBasis::Bernstein),
+            "bspline-1" => Some(LatticeBasis::BSpline(1)),
+            "bspline-2" => Some(LatticeBasis::BSpline(2)),
+            "bspline-3" => Some(LatticeBasis::BSpline(3)),
+            _ => None,
+        }
+    }
+}
+
 /// A lattice of `dims[0] x dims[1] x dims[2]` control points over the box `min .. max`.
 /// Control point `(u, v, w)` has index `u + L * (v + M * w)`.
 #[derive(Clone, Debug, PartialEq)]

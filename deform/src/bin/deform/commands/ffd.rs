@@ -73,10 +73,7 @@ pub fn run(a: &FfdArgs) -> Result<()> {
     let t = Instant::now();
     let d = Ffd::bind(&mesh, a.lattice, bounds, options)
         .with_context(|| format!("{}: cannot bind to the lattice", a.mesh.display()))?;
-    let basis = match options.basis {
-        LatticeBasis::Bernstein => "bernstein".to_string(),
-        LatticeBasis::BSpline(p) => format!("bspline-{p}"),
-    };
+    let basis = options.basis.name();
     let mut report = Report::new("ffd", &mesh);
     report.add("bind_ms", ms(t));
     report.add(

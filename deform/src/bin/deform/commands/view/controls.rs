@@ -3,7 +3,7 @@
 //! between the points. [`ControlChoice`] is what the page chooses: the lattice's size and
 //! basis, the cage's coordinates.
 
-use anyhow::{bail, Result};
+use anyhow::{anyhow, bail, Result};
 use deform::cage::{CageCoordinates, CageDeformer, CageOptions, HarmonicGrid};
 use deform::control::ControlForm;
 use deform::ffd::{Ffd, FfdOptions, LatticeBasis};
@@ -45,25 +45,38 @@ pub struct ControlRequest {
     pub grid: Option<usize>,
 }
 
+/// A cage's coordinates, as the page names them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Coordinates {
+    MeanValue,
+    Harmonic,
+}
+
 /// The lattice and cage options of a session.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct ControlChoice {
     /// Control points per axis.
     pub lattice: [usize; 3],
-    /// `bernstein` or `bspline-1` .. `bspline-3`.
-    pub basis: &'static str,
-    /// `mean-value` or `harmonic`.
-    pub coordinates: &'static str,
+    /// The lattice's basis (sent by its name: `bernstein`, `bspline-1` .. `bspline-3`).
+    #[serde(serialize_with = "basis_name")]
+    pub basis: LatticeBasis,
+    /// The cage's coordinates.
+    pub coordinates: Coordinates,
     /// Harmonic coordinates' grid nodes along the cage's longest side.
     pub grid: usize,
+}
+
+fn basis_name<S: serde::Serializer>(b: &LatticeBasis, s: S) -> Result<S::Ok, S::Error> {
+    s.serialize_str(&b.name())
 }
 
 impl Default for ControlChoice {
     fn default() -> Self {
         ControlChoice {
             lattice: LATTICE,
-            basis: "bernstein",
-            coordinates: "mean-value",
+            basis: LatticeBasis::Bernstein,
+            coordinates: Coordinates::MeanValue,
             grid: 32,
         }
     }
@@ -84,18 +97,14 @@ impl ControlChoice {
             c.lattice = l;
         }
         if let Some(b) = &r.basis {
-            c.basis = match b.as_str() {
-                "bernstein" => "bernstein",
-                "bspline-1" => "bspline-1",
-                "bspline-2" => "bspline-2",
-                "bspline-3" => "bspline-3",
-                _ => bail!("no lattice basis {b:?} (bernstein, bspline-1, bspline-2, bspline-3)"),
-            };
+            c.basis = LatticeBasis::parse(b).ok_or_else(|| {
+                anyhow!("no lattice basis {b:?} (bernstein, bspline-1, bspline-2, bspline-3)")
+            })?;
         }
         if let Some(k) = &r.coordinates {
             c.coordinates = match k.as_str() {
-                "mean-value" => "mean-value",
-                "harmonic" => "harmonic",
+                "mean-value" => Coordinates::MeanValue,
+                "harmonic" => Coordinates::Harmonic,
                 _ => bail!("no cage coordinates {k:?} (mean-value, harmonic)"),
             };
         }
@@ -110,7 +119,7 @@ impl ControlChoice {
             c.grid = g;
         }
         let points: usize = c.lattice.iter().product();
-        if c.basis == "bernstein" && points > MAX_BERNSTEIN_POINTS {
+        if c.basis == LatticeBasis::Bernstein && points > MAX_BERNSTEIN_POINTS {
             bail!(
                 "a {}x{}x{} Bernstein lattice has {points} control points, each moving every \
                  vertex (at most {MAX_BERNSTEIN_POINTS} here; a B-spline basis takes more)",
@@ -122,23 +131,13 @@ impl ControlChoice {
         Ok(c)
     }
 
-    /// The lattice basis.
-    fn lattice_basis(&self) -> LatticeBasis {
-        match self.basis {
-            "bspline-1" => LatticeBasis::BSpline(1),
-            "bspline-2" => LatticeBasis::BSpline(2),
-            "bspline-3" => LatticeBasis::BSpline(3),
-            _ => LatticeBasis::Bernstein,
-        }
-    }
-
     /// The cage coordinates.
     fn cage_coordinates(&self) -> CageCoordinates {
         match self.coordinates {
-            "harmonic" => CageCoordinates::Harmonic(HarmonicGrid {
+            Coordinates::Harmonic => CageCoordinates::Harmonic(HarmonicGrid {
                 resolution: self.grid,
             }),
-            _ => CageCoordinates::MeanValue,
+            Coordinates::MeanValue => CageCoordinates::MeanValue,
         }
     }
 }
@@ -156,7 +155,7 @@ pub struct Controls {
 pub fn lattice(mesh: &Mesh, form: ControlForm, choice: &ControlChoice) -> Result<Controls> {
     let options = FfdOptions {
         form,
-        basis: choice.lattice_basis(),
+        basis: choice.basis,
     };
     let ffd = Ffd::bind(mesh, choice.lattice, None, options)?;
     let l = ffd.lattice();

@@ -76,7 +76,7 @@ function onBinary(buf) {
 }
 
 // A slow request in the server (a bind, a cut): its name and the seconds it has taken so far,
-// counted until the state (or an error) comes back.
+// counted until the server's `idle` (or a state) says it is done.
 function busy(what) {
   clearInterval(ed.busyTimer);
   ed.busySince = performance.now();
