@@ -100,28 +100,30 @@ impl<W: Lane<Scalar = f64>> ExpLanes<W> for Bivector<W> {
             2 => series_cut::<W, { CUTS[2][0] }, { CUTS[2][1] }, { CUTS[2][2] }>(phi2),
             _ => (horner(&SINC, phi2), horner(&COS, phi2), horner(&K, phi2)),
         };
-        let ud = ux * vx + uy * vy + uz * vz;
-        let (cx, cy, cz) = (uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx);
-        // t = zr v + k (u . v) u + zi (u x v), the rotation (sinc u, cos), the scale.
-        let (zr, k, zi, scale) = if rigid {
-            // Without dilation z = (sinc cos, sinc^2) and k is its own series.
-            (sc * c, k_series, sc * sc, None)
+        // The translation is t = zr v + k (u . v) u + zi (u x v) with `(zr, k, zi)` below, and
+        // the rotation by the rotor (sinc u, cos) moves p to
+        // (cos^2 - |sinc u|^2) p + 2 sinc^2 (p . u) u + 2 sinc cos (u x p).
+        // Summed, the two terms along u and the two cross products each share one product:
+        // p' = k0 p + zr v + (2 a (p . u) + k (u . v)) u + u x (2 b p + zi v),
+        // with a = sinc^2 and b = sinc cos (the rigid case's zi and zr).
+        let a = sc * sc;
+        let b = sc * c;
+        let (zr, k, zi, p) = if rigid {
+            (b, k_series, a, p)
         } else {
-            let (zr, k, zi, eg) = dilation_terms(self.eoi, phi2, sc, c);
-            (zr, k, zi, Some(eg))
+            let (zr, k, zi, s) = dilation_terms(self.eoi, phi2, sc, c);
+            (zr, k, zi, [s * p[0], s * p[1], s * p[2]])
         };
-        let kd = k * ud;
-        let t = [
-            zr * vx + kd * ux + zi * cx,
-            zr * vy + kd * uy + zi * cy,
-            zr * vz + kd * uz + zi * cz,
-        ];
-        let p = match scale {
-            Some(s) => [s * p[0], s * p[1], s * p[2]],
-            None => p,
-        };
-        let r = rotate_lanes([sc * ux, sc * uy, sc * uz, c], p);
-        Some([r[0] + t[0], r[1] + t[1], r[2] + t[2]])
+        let [px, py, pz] = p;
+        let along = two * a * (px * ux + py * uy + pz * uz) + k * (ux * vx + uy * vy + uz * vz);
+        let b2 = two * b;
+        let (wx, wy, wz) = (b2 * px + zi * vx, b2 * py + zi * vy, b2 * pz + zi * vz);
+        let k0 = c * c - a * phi2;
+        Some([
+            k0 * px + zr * vx + along * ux + (uy * wz - uz * wy),
+            k0 * py + zr * vy + along * uy + (uz * wx - ux * wz),
+            k0 * pz + zr * vz + along * uz + (ux * wy - uy * wx),
+        ])
     }
 }
 
