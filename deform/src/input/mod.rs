@@ -7,7 +7,7 @@
 pub mod motors;
 pub mod selection;
 
-pub use motors::{parse_group_motors, parse_key_list, parse_motor, MotorSpec};
+pub use motors::{parse_group_motors, parse_key_list, parse_motor, MotorSpec, RotateSpec};
 pub use selection::{parse_selection_json, selection_from_dmat, Selection};
 
 /// Bad content in a motor or selection file, naming the item.

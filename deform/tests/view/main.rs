@@ -10,5 +10,6 @@ mod client;
 mod hostile;
 mod models;
 mod poses;
+mod replay;
 mod selection_undo;
 mod upload;

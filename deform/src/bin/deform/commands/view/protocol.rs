@@ -229,6 +229,8 @@ pub struct StateInfo {
     /// Selection changes that can be undone and redone (mesh scenes).
     pub selection_undo: usize,
     pub selection_redo: usize,
+    /// The `deform ...` command that replays the pose from the exported files.
+    pub replay: String,
 }
 
 /// What the server says in text frames.

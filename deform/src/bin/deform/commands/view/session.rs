@@ -1,12 +1,13 @@
 //! One editing session (one browser connection): the scene, the handle groups, the bound
 //! method and the latest pose. Requests in, replies out; no I/O here, so the server and the
 //! tests drive it the same way. `report` says what the page shows (state, fields), `keep` what
-//! it saves and loads, `select` the painting and lasso, `surgery` the tear and the drill.
+//! it saves and loads, `replay` the CLI command that poses those files again, `select` the painting and lasso, `surgery` the tear and the drill.
 
 mod analysis;
 mod keep;
 mod method;
 pub use keep::MAX_UPLOAD;
+mod replay;
 mod report;
 mod select;
 mod surgery;

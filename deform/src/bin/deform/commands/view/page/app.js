@@ -121,6 +121,8 @@ function onState(s) {
   $("rig-tools").classList.toggle("hidden", !rig);
   document.querySelectorAll(".rig-only").forEach((e) => e.classList.toggle("hidden", !rig));
   document.querySelectorAll(".mesh-only").forEach((e) => e.classList.toggle("hidden", rig));
+  document.querySelectorAll(".spline-only").forEach((e) => e.classList.toggle("hidden", rig || s.method !== "spline"));
+  document.querySelectorAll(".cage-only").forEach((e) => e.classList.toggle("hidden", rig || s.method !== "cage"));
   const field = $("field").value;
   fill($("field"), s.fields, s.fields.includes(field) && !first ? field : "displacement");
   if (!rig) {
@@ -149,14 +151,7 @@ function onState(s) {
     document.querySelectorAll(".paint-only").forEach((e) => e.classList.toggle("hidden", !!s.controls));
     $("undo-select").disabled = s.selection_undo === 0; $("redo-select").disabled = s.selection_redo === 0;
     if (s.controls) $("tool").querySelector("[value=move]").checked = true;
-    const blendFlag = s.blend === "positional" ? " --positional" : " --blend " + s.blend;
-    $("replay").textContent = "Replay: deform " + {
-      handles: "handles MODEL --select selection.json --motors motors.json" + blendFlag,
-      arap: "arap MODEL --select selection.json --motors motors.json",
-      spline: "spline MODEL --select selection.json (keys: the groups' motors after their centres)",
-      ffd: `ffd MODEL --lattice ${s.control.lattice.join("x")}` + (s.control.basis === "bernstein" ? "" : ` --degree ${s.control.basis.slice(-1)}`) + " --motors motors.json" + blendFlag,
-      cage: "cage MODEL --cage CAGE" + (s.control.coordinates === "harmonic" ? ` --coords harmonic --grid ${s.control.grid}` : "") + " --motors motors.json" + blendFlag,
-    }[s.method];
+    $("replay").textContent = "Replay (after saving the files it names): " + s.replay;
   } else {
     if (first) { ed.edits = {}; ed.clock = s.rig.animations.length ? s.rig.animations[0].start : 0; }
     fill($("animation"), ["(rest)", ...s.rig.animations.map((a, i) => `${i}: ${a.name}`)], first ? (s.rig.animations.length ? "0: " + s.rig.animations[0].name : "(rest)") : $("animation").value);
@@ -164,7 +159,7 @@ function onState(s) {
     const joint = $("joint").value;
     fill($("joint"), ["(none)", ...s.rig.joints.map((j, i) => `${i}: ${j}`)], first ? "(none)" : joint);
     $("undo").disabled = s.rig.undo === 0; $("redo").disabled = s.rig.redo === 0;
-    $("replay").textContent = ".glb keeps the cuts and the joint edits baked in: deform skin MODEL.glb replays it";
+    $("replay").textContent = s.replay;
   }
   ed.dirty = true;
   sendField();

@@ -1,24 +1,34 @@
 //! Files of a session: export the pose, selection, motors, edits or the rig; load a selection
 //! or motors through the CLI's parsers; open an uploaded model as the CLI opens one.
 
+use super::replay::file_name;
 use super::{Bound, Out, Session};
 use crate::commands::view::protocol::{Frame, Reply};
 use crate::commands::view::scenes::{Content, Method, Scene};
 use anyhow::{anyhow, bail, Context, Result};
-use deform::input::{parse_group_motors, parse_selection_json};
+use deform::input::{parse_group_motors, parse_selection_json, MotorSpec};
 use deform::Mesh;
 
 impl Session {
     /// A file of the current state.
     pub(super) fn export(&self, what: &str) -> Result<Vec<Out>> {
-        let scene = &self.scenes[self.scene].name;
+        let name = file_name(&self.scenes[self.scene].name, what)?;
+        let obj = |mesh: &Mesh| -> Result<String> {
+            let mut bytes = Vec::new();
+            deform::io::write_obj_to(mesh, &mut bytes)?;
+            Ok(String::from_utf8(bytes)?)
+        };
+        let json_list = |specs: &[MotorSpec]| serde_json::to_string_pretty(specs);
         let (name, text) = match what {
-            "obj" => {
-                let posed = Mesh::new(self.posed.clone(), self.mesh.triangles.clone());
-                let mut bytes = Vec::new();
-                deform::io::write_obj_to(&posed, &mut bytes)?;
-                (format!("{scene}-posed.obj"), String::from_utf8(bytes)?)
-            }
+            "obj" => (
+                name,
+                obj(&Mesh::new(self.posed.clone(), self.mesh.triangles.clone()))?,
+            ),
+            "rest" => (name, obj(&self.mesh)?),
+            "cage" => match (&self.cage, self.method) {
+                (Some(cage), Method::Cage) => (name, obj(cage)?),
+                _ => bail!("cage: the method is not a cage"),
+            },
             "motors" => {
                 self.mesh_only("motors")?;
                 let map: serde_json::Map<String, serde_json::Value> = self
@@ -27,11 +37,10 @@ impl Session {
                     .enumerate()
                     .map(|(g, s)| Ok((g.to_string(), serde_json::to_value(s)?)))
                     .collect::<Result<_>>()?;
-                (
-                    format!("{scene}-motors.json"),
-                    serde_json::to_string_pretty(&map)?,
-                )
+                (name, serde_json::to_string_pretty(&map)?)
             }
+            "keys" => (name, json_list(&self.spline_keys()?.0)?),
+            "rest-keys" => (name, json_list(&self.spline_keys()?.1)?),
             "selection" => {
                 self.mesh_only("selection")?;
                 let map: serde_json::Map<String, serde_json::Value> = self
@@ -40,19 +49,17 @@ impl Session {
                     .enumerate()
                     .map(|(g, vs)| (g.to_string(), serde_json::json!(vs)))
                     .collect();
-                (
-                    format!("{scene}-selection.json"),
-                    serde_json::to_string(&map)?,
-                )
+                (name, serde_json::to_string(&map)?)
             }
             "glb" => {
                 use base64::Engine;
+                let scene = &self.scenes[self.scene].name;
                 // A rig keeps its skin, edits and animations; a mesh scene its posed surface.
                 let (name, bytes) = match &self.rig {
                     Some(rig) => (format!("{scene}-edited.glb"), rig.glb()?),
                     None => {
                         let posed = Mesh::new(self.posed.clone(), self.mesh.triangles.clone());
-                        (format!("{scene}-posed.glb"), deform::io::glb_bytes(&posed)?)
+                        (name, deform::io::glb_bytes(&posed)?)
                     }
                 };
                 (
@@ -65,9 +72,9 @@ impl Session {
                     .rig
                     .as_ref()
                     .ok_or_else(|| anyhow!("edits: this scene has no rig"))?;
-                (format!("{scene}-edits.json"), rig.edits_json()?)
+                (name, rig.edits_json()?)
             }
-            _ => bail!("cannot export {what:?} (obj, glb, motors, selection, edits)"),
+            _ => unreachable!("file_name refused {what:?}"),
         };
         let base64 = what == "glb";
         Ok(vec![Out::Text(Reply::File { name, text, base64 })])

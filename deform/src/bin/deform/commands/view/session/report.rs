@@ -106,6 +106,7 @@ impl Session {
             stale: self.stale,
             selection_undo: self.history.undo_count(),
             selection_redo: self.history.redo_count(),
+            replay: self.replay(),
         })))
     }
 }

@@ -1,0 +1,137 @@
+//! The command that replays a mesh scene's pose with the CLI, from the files the page exports
+//! (rest mesh, selection, motors, spline keys, cage), and those files' names.
+
+use super::{Bound, Session};
+use crate::commands::view::controls::Coordinates;
+use crate::commands::view::scenes::Method;
+use anyhow::{bail, Result};
+use deform::ffd::LatticeBasis;
+use deform::input::{MotorSpec, RotateSpec};
+use glam::DVec3;
+
+/// The file each export writes for scene `scene`.
+pub(super) fn file_name(scene: &str, what: &str) -> Result<String> {
+    Ok(match what {
+        "obj" => format!("{scene}-posed.obj"),
+        "rest" => format!("{scene}-rest.obj"),
+        "cage" => format!("{scene}-cage.obj"),
+        "motors" | "selection" | "keys" | "rest-keys" | "edits" => {
+            format!("{scene}-{what}.json")
+        }
+        "glb" => format!("{scene}-posed.glb"),
+        _ => bail!("cannot export {what:?} (obj, rest, glb, motors, selection, keys, rest-keys, cage, edits)"),
+    })
+}
+
+impl Session {
+    /// The `deform ...` command that poses the exported rest mesh as the page shows it, written
+    /// to `{scene}-replayed.obj`. ARAP runs 1000 iterations from the rest pose: the page
+    /// iterates a few times per frame from the last frame and comes to rest there once the
+    /// drag stops (an energy tolerance stops far earlier: ARAP's energy flattens long before
+    /// its positions settle).
+    pub(super) fn replay(&self) -> String {
+        let scene = &self.scenes[self.scene].name;
+        if self.rig.is_some() {
+            return format!(
+                "the .glb export keeps the cuts and joint edits baked in: deform skin {} ...",
+                file_name(scene, "glb").unwrap_or_default()
+            );
+        }
+        let f = |what: &str| file_name(scene, what).unwrap_or_default();
+        let blend = if self.positional {
+            " --positional".to_string()
+        } else {
+            format!(" --blend {}", self.blend.name())
+        };
+        let select = format!("--select {}", f("selection"));
+        let args = match self.method {
+            Method::Handles => format!("handles {select} --motors {}{blend}", f("motors")),
+            Method::Arap => format!(
+                "arap {select} --motors {} --energy {} --local-step {} --iterations 1000",
+                f("motors"),
+                self.arap.energy.name(),
+                match self.arap.local_step {
+                    deform::arap::LocalStep::Rotor => "rotor",
+                    deform::arap::LocalStep::Svd => "svd",
+                }
+            ),
+            Method::Spline => format!(
+                "spline {select} --keys {} --rest-keys {}{blend}",
+                f("keys"),
+                f("rest-keys")
+            ),
+            Method::Ffd => {
+                let [l, m, n] = self.control.lattice;
+                let degree = match self.control.basis {
+                    LatticeBasis::Bernstein => String::new(),
+                    LatticeBasis::BSpline(d) => format!(" --degree {d}"),
+                };
+                format!(
+                    "ffd --lattice {l}x{m}x{n}{degree} --motors {}{blend}",
+                    f("motors")
+                )
+            }
+            Method::Cage => {
+                let coords = match self.control.coordinates {
+                    Coordinates::MeanValue => String::new(),
+                    Coordinates::Harmonic => {
+                        format!(" --coords harmonic --grid {}", self.control.grid)
+                    }
+                };
+                format!(
+                    "cage --cage {}{coords} --motors {}{blend}",
+                    f("cage"),
+                    f("motors")
+                )
+            }
+        };
+        let (verb, rest) = args.split_once(' ').unwrap_or((&args, ""));
+        format!("deform {verb} {} {rest} -o {scene}-replayed.obj", f("rest"))
+    }
+
+    /// The spline's keys as the CLI's `--keys` takes them: each group's motor after the
+    /// translation to its centre (the rest key), as one motor.
+    pub(super) fn spline_keys(&self) -> Result<(Vec<MotorSpec>, Vec<MotorSpec>)> {
+        if !matches!(self.bound, Bound::Spline { .. }) {
+            bail!("keys: the method is not the spline");
+        }
+        let centres = self.centres();
+        let keys = self
+            .specs
+            .iter()
+            .zip(&centres)
+            .map(|(s, &c)| after_translation(s, c))
+            .collect();
+        let rest = centres
+            .iter()
+            .map(|c| MotorSpec {
+                translate: Some(c.to_array()),
+                ..MotorSpec::default()
+            })
+            .collect();
+        Ok((keys, rest))
+    }
+}
+
+/// `x -> m(x + c)` for the motor `m` of `spec` (`x -> k + s R (x - k) + t`, `k` its centre):
+/// the same rotation and scale about `k - c`, then the translation `t + c`.
+fn after_translation(spec: &MotorSpec, c: DVec3) -> MotorSpec {
+    let k = spec
+        .rotate
+        .as_ref()
+        .and_then(|r| r.center)
+        .or(spec.center)
+        .map(DVec3::from_array)
+        .unwrap_or(DVec3::ZERO);
+    let centre = (k - c).to_array();
+    let t = spec.translate.map(DVec3::from_array).unwrap_or(DVec3::ZERO) + c;
+    MotorSpec {
+        rotate: spec.rotate.as_ref().map(|r| RotateSpec {
+            center: Some(centre),
+            ..r.clone()
+        }),
+        center: spec.rotate.is_none().then_some(centre),
+        translate: Some(t.to_array()),
+        scale: spec.scale,
+    }
+}

@@ -1,0 +1,170 @@
+//! The replay command the page shows, run as written on the files the page exports, poses
+//! what the server posed: handles under two blends, the spline, an FFD lattice, a cage with
+//! harmonic coordinates in the positional form, and ARAP (to convergence).
+
+use crate::client::{worst, Client, Frame, Server};
+use glam::DVec3;
+use serde_json::{json, Value};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// A fresh folder under `target/` for one case's files.
+fn folder(name: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../target/view-replay")
+        .join(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Export `what` and save it under the name the server gives it.
+fn save(c: &mut Client, dir: &Path, what: &str) {
+    c.send(json!({"op": "export", "what": what}));
+    let (name, text) = c.until(false, |f| match f {
+        Frame::Text(v) if v["type"] == "file" => Some((
+            v["name"].as_str().unwrap().to_string(),
+            v["text"].as_str().unwrap().to_string(),
+        )),
+        _ => None,
+    });
+    assert!(!name.contains('/') && !name.contains(".."), "{name}");
+    std::fs::write(dir.join(name), text).unwrap();
+}
+
+/// Save `files`, run the state's replay line in `dir` and read the mesh it writes.
+fn replayed(c: &mut Client, state: &Value, dir: &Path, files: &[&str]) -> Vec<DVec3> {
+    for what in files {
+        save(c, dir, what);
+    }
+    let line = state["replay"].as_str().unwrap();
+    let words: Vec<&str> = line.split_whitespace().collect();
+    assert_eq!(words[0], "deform", "{line}");
+    let out = Command::new(env!("CARGO_BIN_EXE_deform"))
+        .args(&words[1..])
+        .arg("-q")
+        .current_dir(dir)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{line}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let written = words[words.iter().position(|w| *w == "-o").unwrap() + 1];
+    deform::io::read_obj(dir.join(written)).unwrap().positions
+}
+
+#[test]
+fn the_replay_line_poses_the_exported_files_as_the_server_posed_them() {
+    let server = Server::start(&[]);
+    let mut c = server.connect(None).expect("connects");
+    let s = c.state();
+    assert_eq!(s["scene"], "sphere");
+    let rest: Vec<DVec3> = {
+        let m = deform::shapes::icosphere(1.0, 4);
+        m.positions
+    };
+    let specs = json!([{"translate": [0, 0.3, 0]}, {"translate": [0, 0.8, 0], "scale": 1.4, "center": [0, 1, 0]},
+        {"rotate": {"axis": [1, 0, 0], "degrees": 90, "center": [1, 0, 0]}, "translate": [0.1, 0, 0]}]);
+    let mut seq = 30;
+    let mut pose = |c: &mut Client, specs: &Value| {
+        seq += 1;
+        c.send(json!({"op": "motors", "seq": seq, "motors": specs}));
+        c.positions(seq)
+    };
+    let check = |what: &str, got: &[DVec3], want: &[DVec3], tol: f64| {
+        let e = worst(got, want);
+        assert!(e <= tol, "{what}: {e}");
+        assert!(worst(got, &rest) > 0.2, "{what}: it moved");
+    };
+
+    // Handles, motor log blending, then dual quaternions.
+    for blend in ["motor-log", "dual-quaternion"] {
+        c.send(json!({"op": "method", "method": "handles", "blend": blend}));
+        let s = c.state();
+        assert!(s["replay"].as_str().unwrap().contains(blend));
+        let got = pose(&mut c, &specs);
+        let dir = folder(&format!("handles-{blend}"));
+        let files = ["rest", "selection", "motors"];
+        check(blend, &replayed(&mut c, &s, &dir, &files), &got, 1e-12);
+    }
+
+    // The spline between the first and last group, its keys after their centres.
+    c.send(json!({"op": "method", "method": "spline", "blend": "motor-log"}));
+    let s = c.state();
+    let got = pose(&mut c, &specs);
+    let dir = folder("spline");
+    let files = ["rest", "selection", "keys", "rest-keys"];
+    check("spline", &replayed(&mut c, &s, &dir, &files), &got, 1e-12);
+
+    // ARAP: the page iterates twice per frame from the last frame; after enough frames of one
+    // drag it rests where the CLI's run to convergence ends.
+    c.send(json!({"op": "method", "method": "arap", "blend": "motor-log", "iterations": 50}));
+    let s = c.state();
+    let mut got = pose(&mut c, &specs);
+    for _ in 0..20 {
+        got = pose(&mut c, &specs);
+    }
+    let dir = folder("arap");
+    let files = ["rest", "selection", "motors"];
+    check("arap", &replayed(&mut c, &s, &dir, &files), &got, 1e-6);
+
+    // A 5x3x3 quadratic B-spline lattice, motor linear blending.
+    c.send(json!({"op": "scene", "name": "lattice"}));
+    c.state();
+    c.send(
+        json!({"op": "method", "method": "ffd", "blend": "motor-linear",
+        "controls": {"lattice": [5, 3, 3], "basis": "bspline-2"}}),
+    );
+    let s = c.state();
+    let bar = deform::shapes::tube(1.0, 10.0, 16, 41).positions;
+    let lift = |s: &Value| -> Value {
+        let points: Vec<[f64; 3]> =
+            serde_json::from_value(s["controls"]["points"].clone()).unwrap();
+        points
+            .iter()
+            .map(|p| {
+                if p[0] > 5.0 {
+                    json!({"rotate": {"axis": [1, 0, 0], "degrees": 40, "center": [p[0], 0, 0]}, "translate": [0, 0.5, 0]})
+                } else {
+                    json!({})
+                }
+            })
+            .collect()
+    };
+    let got = pose(&mut c, &lift(&s));
+    let dir = folder("ffd");
+    let moved = replayed(&mut c, &s, &dir, &["rest", "motors"]);
+    assert!(worst(&moved, &got) <= 1e-12, "ffd: {}", worst(&moved, &got));
+    assert!(worst(&got, &bar) > 0.2, "ffd: it moved");
+
+    // The cage with harmonic coordinates on a 24-node grid, positional form.
+    c.send(json!({"op": "scene", "name": "cage"}));
+    c.state();
+    c.send(
+        json!({"op": "method", "method": "cage", "blend": "positional",
+        "controls": {"coordinates": "harmonic", "grid": 24}}),
+    );
+    let s = c.state();
+    assert!(s["replay"].as_str().unwrap().contains("--grid 24"));
+    let got = pose(&mut c, &lift(&s));
+    let dir = folder("cage");
+    let moved = replayed(&mut c, &s, &dir, &["rest", "cage", "motors"]);
+    assert!(
+        worst(&moved, &got) <= 1e-12,
+        "cage: {}",
+        worst(&moved, &got)
+    );
+    assert!(worst(&got, &bar) > 0.2, "cage: it moved");
+
+    // Exports that do not belong to the method are refused, the connection stays.
+    for what in ["cage", "keys"] {
+        c.send(json!({"op": "scene", "name": "sphere"}));
+        c.state();
+        c.send(json!({"op": "export", "what": what}));
+        assert!(c.error().contains("the method is not"), "{what}");
+    }
+    c.send(json!({"op": "export", "what": "../../etc/passwd"}));
+    assert!(c.error().contains("cannot export"));
+}
