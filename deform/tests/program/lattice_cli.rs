@@ -166,7 +166,8 @@ fn the_partial_bar_cage_exits_2() {
 
 /// `ffd --gpu` and `cage --gpu` pose on the GPU what the CPU poses (f32: to 1e-5 of the
 /// bounding-box diagonal), in both forms; a program without the `gpu` feature or a machine
-/// without an adapter says so with exit code 2 and writes nothing.
+/// without an adapter says so with exit code 2 and writes nothing. `--gpu=auto` poses on the
+/// GPU where `--gpu` can, else on the CPU (the CPU's bits) with a note.
 #[test]
 fn ffd_and_cage_on_the_gpu_pose_as_the_cpu() {
     let dir = scratch("gpu");
@@ -195,26 +196,52 @@ fn ffd_and_cage_on_the_gpu_pose_as_the_cpu() {
             &["--positional"][..],
             &["--blend", "dual-quaternion"][..],
         ] {
-            let pose = |gpu: bool, out: &str| {
+            let pose = |gpu: Option<&str>, out: &str| {
                 let mut args: Vec<&str> = head.to_vec();
                 args.extend_from_slice(&["--motors", s(&m), "-o", out, "--quiet"]);
                 args.extend_from_slice(form);
-                if gpu {
-                    args.push("--gpu");
-                }
+                args.extend(gpu);
                 run(&args)
             };
             let (cpu_obj, gpu_obj) = (dir.join("cpu.obj"), dir.join("gpu.obj"));
-            let o = pose(false, s(&cpu_obj));
+            let auto_obj = dir.join("auto.obj");
+            let o = pose(None, s(&cpu_obj));
             assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
             let _ = std::fs::remove_file(&gpu_obj);
-            let o = pose(true, s(&gpu_obj));
+            let auto = pose(Some("--gpu=auto"), s(&auto_obj));
+            assert!(
+                auto.status.success(),
+                "{}",
+                String::from_utf8_lossy(&auto.stderr)
+            );
+            let o = pose(Some("--gpu"), s(&gpu_obj));
             if o.status.code() == Some(2) {
                 let err = String::from_utf8_lossy(&o.stderr);
                 assert!(err.contains("--gpu"), "{what} {form:?}: {err}");
                 assert!(!gpu_obj.exists());
+                // auto fell back to the CPU: its bits, and a note (not printed: --quiet).
+                assert_eq!(
+                    std::fs::read(&auto_obj).unwrap(),
+                    std::fs::read(&cpu_obj).unwrap(),
+                    "{what} {form:?}"
+                );
+                let mut args: Vec<&str> = head.to_vec();
+                args.extend_from_slice(&["--motors", s(&m), "-o", s(&auto_obj), "--json"]);
+                args.extend_from_slice(form);
+                args.push("--gpu=auto");
+                let o = run(&args);
+                let report: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+                assert_eq!(report["device"], "cpu", "{what} {form:?}");
+                let err = String::from_utf8_lossy(&o.stderr);
+                assert!(err.contains("posing on the CPU (--gpu=auto)"), "{err}");
                 continue;
             }
+            let b = deform::io::read_mesh(&auto_obj).unwrap();
+            let g = deform::io::read_mesh(&gpu_obj).unwrap();
+            assert_eq!(
+                b.positions, g.positions,
+                "{what} {form:?}: auto is the GPU's pose"
+            );
             assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
             let a = deform::io::read_mesh(&cpu_obj).unwrap();
             let b = deform::io::read_mesh(&gpu_obj).unwrap();

@@ -53,22 +53,21 @@ pub fn displacement(rest: &Mesh, posed: &[DVec3]) -> Vec<f64> {
         .collect()
 }
 
-/// [`pose_and_finish`] for a lattice or a cage, posed on the GPU when `gpu` (its adapter in
-/// the report).
+/// [`pose_and_finish`] for a lattice or a cage, posed on the GPU as `gpu` chooses (its adapter
+/// in the report).
 pub fn pose_control_and_finish(
     d: &dyn Deformer,
     binding: &deform::control::ControlBinding,
-    gpu: bool,
+    gpu: crate::shared_args::GpuChoice,
     (mesh, motors): (&Mesh, &[cga::ScaledMotor]),
     look: Look,
     out: &OutputArgs,
     mut report: Report,
 ) -> Result<()> {
-    if !gpu {
+    let open = || crate::gpu_pose::GpuPoser::open_control(binding);
+    let Some(mut g) = crate::gpu_pose::GpuPoser::choose(gpu, &mut report, out.quiet, open)? else {
         return pose_and_finish(d, mesh, motors, look, out, report);
-    }
-    let mut g = crate::gpu_pose::GpuPoser::open_control(binding)?;
-    report.add("device", g.adapter());
+    };
     let mut posed = vec![DVec3::ZERO; mesh.vertex_count()];
     report.add("pose_ms", g.pose(motors, &mut posed)?);
     let moved = displacement(mesh, &posed);

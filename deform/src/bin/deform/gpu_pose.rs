@@ -1,7 +1,40 @@
 //! `--gpu`: posing through `deform::gpu` when the program is built with the `gpu` feature.
 
+use crate::report::Report;
+use crate::shared_args::GpuChoice;
 use anyhow::Result;
 use glam::DVec3;
+
+impl GpuPoser {
+    /// The poser `choice` asks for: none for [`GpuChoice::Off`]; `open()` or its error for
+    /// [`GpuChoice::On`]; for [`GpuChoice::Auto`], `open()`, else none with the reason as a
+    /// note (on stderr unless `quiet`, and in the report). The device is added to `report`.
+    pub fn choose(
+        choice: GpuChoice,
+        report: &mut Report,
+        quiet: bool,
+        open: impl FnOnce() -> Result<GpuPoser>,
+    ) -> Result<Option<GpuPoser>> {
+        let opened = match choice {
+            GpuChoice::Off => return Ok(None),
+            GpuChoice::On => open()?,
+            GpuChoice::Auto => match open() {
+                Ok(g) => g,
+                Err(e) => {
+                    let note = format!("{e:#}; posing on the CPU (--gpu=auto)");
+                    if !quiet {
+                        eprintln!("note: {note}");
+                    }
+                    report.add("device", "cpu");
+                    report.add("note", note.as_str());
+                    return Ok(None);
+                }
+            },
+        };
+        report.add("device", opened.adapter());
+        Ok(Some(opened))
+    }
+}
 
 /// A bound blend on the GPU, with its device.
 #[cfg(feature = "gpu")]

@@ -119,9 +119,22 @@ pub struct FormArgs {
     #[arg(long, value_parser = blend_method(), default_value = "motor-log")]
     pub blend: BlendMethod,
     /// Pose on the GPU (wgpu), in f32: needs a program built with `--features gpu`, and a GPU
-    /// or Mesa's lavapipe (otherwise exit code 2).
-    #[arg(long)]
-    pub gpu: bool,
+    /// or Mesa's lavapipe (otherwise exit code 2); `--gpu=auto` poses on the CPU instead,
+    /// with a note, where there is none.
+    #[arg(long, value_enum, num_args = 0..=1, require_equals = true, default_value = "off",
+          default_missing_value = "on", value_name = "WHEN")]
+    pub gpu: GpuChoice,
+}
+
+/// Where `--gpu` poses.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
+pub enum GpuChoice {
+    /// On the CPU (no `--gpu`).
+    Off,
+    /// On the GPU, or exit code 2 when there is none (`--gpu`).
+    On,
+    /// On the GPU when there is one, else on the CPU with a note (`--gpu=auto`).
+    Auto,
 }
 
 impl FormArgs {

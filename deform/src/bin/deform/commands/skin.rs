@@ -118,9 +118,11 @@ pub struct SkinArgs {
     #[arg(long, value_parser = backend(), default_value = "cga")]
     pub backend: Backend,
     /// Pose on the GPU (wgpu; every backend), in f32: needs a program built
-    /// with `--features gpu`, and a GPU or Mesa's lavapipe (otherwise exit code 2).
-    #[arg(long)]
-    pub gpu: bool,
+    /// with `--features gpu`, and a GPU or Mesa's lavapipe (otherwise exit code 2);
+    /// `--gpu=auto` poses on the CPU instead, with a note, where there is none.
+    #[arg(long, value_enum, num_args = 0..=1, require_equals = true, default_value = "off",
+          default_missing_value = "on", value_name = "WHEN")]
+    pub gpu: crate::shared_args::GpuChoice,
     /// A joint edit JOINT=MOTOR.json (joint name or skin joint index; the motor acts in the
     /// joint's own frame: rotate or dilate about its pivot, translate along its axes).
     #[arg(long = "edit", value_parser = parse_edit)]
@@ -224,13 +226,9 @@ pub fn run(a: &SkinArgs) -> Result<()> {
     for note in &rig.report.notes {
         report.add("note", note.as_str());
     }
-    let mut gpu = if a.gpu {
-        let g = crate::gpu_pose::GpuPoser::open(bound.blend())?;
-        report.add("device", g.adapter());
-        Some(g)
-    } else {
-        None
-    };
+    let mut gpu = crate::gpu_pose::GpuPoser::choose(a.gpu, &mut report, a.out.quiet, || {
+        crate::gpu_pose::GpuPoser::open(bound.blend())
+    })?;
     report.add("load_ms", load_ms);
     report.add("bind_ms", bind_ms);
     let dmat = match &a.dmat_animation {
