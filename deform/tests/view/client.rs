@@ -119,6 +119,11 @@ pub enum Frame {
         seq: u32,
         posed: Vec<DVec3>,
     },
+    /// Positions in f32 (after a `precision` request).
+    PositionsF32 {
+        seq: u32,
+        posed: Vec<[f32; 3]>,
+    },
     Field(Vec<f32>),
     Groups(Vec<u8>),
     Closed,
@@ -192,6 +197,17 @@ impl Client {
                             .collect(),
                     ),
                     4 => Frame::Groups(b[8..8 + u32_at(&b, 4) as usize].to_vec()),
+                    5 => Frame::PositionsF32 {
+                        seq: u32_at(&b, 4),
+                        posed: b[16..]
+                            .chunks(12)
+                            .map(|c| {
+                                std::array::from_fn(|k| {
+                                    f32::from_le_bytes(c[4 * k..4 * k + 4].try_into().unwrap())
+                                })
+                            })
+                            .collect(),
+                    },
                     k => panic!("unknown frame kind {k}"),
                 },
                 Message::Close(_) => Frame::Closed,

@@ -674,3 +674,36 @@ fn slow_requests_are_announced_and_closed() {
     c.send(json!({"op": "bind"}));
     assert_eq!(texts(&mut c), ["binding", "state", "idle"]);
 }
+
+/// The page's positions come in f32 once it asks (half the bytes): each the f64 frame's value
+/// rounded; f64 again when asked; an unknown precision is a malformed message.
+#[test]
+fn positions_come_in_f32_when_asked_and_round_the_f64_ones() {
+    let server = Server::start(&[]);
+    let mut c = server.connect(None).expect("connects");
+    assert_eq!(c.state()["groups"].as_array().unwrap().len(), 3);
+    let specs = json!([{"translate": [0, 0.3, 0]}, {"scale": 1.2, "center": [0, 1, 0]},
+        {"rotate": {"axis": [1, 0, 0], "degrees": 40, "center": [1, 0, 0]}}]);
+    c.send(json!({"op": "motors", "seq": 5, "motors": specs}));
+    let exact = c.positions(5);
+    c.send(json!({"op": "precision", "positions": "f32"}));
+    c.send(json!({"op": "motors", "seq": 6, "motors": specs}));
+    let rounded = c.until(false, |f| match f {
+        Frame::PositionsF32 { seq: 6, posed } => Some(posed.clone()),
+        Frame::Positions { seq: 6, .. } => panic!("f64 positions after asking for f32"),
+        _ => None,
+    });
+    assert_eq!(rounded.len(), exact.len());
+    for (r, e) in rounded.iter().zip(&exact) {
+        assert_eq!(*r, [e.x as f32, e.y as f32, e.z as f32]);
+    }
+    c.send(json!({"op": "precision", "positions": "f64"}));
+    c.send(json!({"op": "motors", "seq": 7, "motors": specs}));
+    assert_eq!(c.positions(7), exact);
+    c.send(json!({"op": "precision", "positions": "f16"}));
+    assert!(matches!(
+        c.until(true, |f| matches!(f, Frame::Closed)
+            .then_some(Frame::Closed)),
+        Frame::Closed
+    ));
+}

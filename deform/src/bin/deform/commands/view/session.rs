@@ -13,7 +13,7 @@ mod select;
 mod surgery;
 
 use super::controls::{self, Controls};
-use super::protocol::{Frame, Reply, Request};
+use super::protocol::{Frame, Precision, Reply, Request};
 use super::rig_edit::RigEdit;
 use super::scenes::{Content, Method, Scene};
 use crate::timing::ms;
@@ -101,6 +101,8 @@ pub struct Session {
     analysed: analysis::Analysed,
     /// Undo and redo of selection changes.
     history: select::SelectionHistory,
+    /// The precision of the positions frames the client asked for.
+    precision: Precision,
 }
 
 fn v3(a: [f64; 3]) -> DVec3 {
@@ -140,6 +142,7 @@ impl Session {
             },
             analysed: analysis::Analysed::default(),
             history: Default::default(),
+            precision: Precision::F64,
         };
         let out = s.open(0)?;
         Ok((s, out))
@@ -218,7 +221,8 @@ impl Session {
                 rig.compare = self.field.name == "dqs-difference";
                 let reply = rig.pose(seq, animation, time, &backend, &edits, &mut self.posed)?;
                 let mut out = vec![Out::Text(reply)];
-                out.push(Out::Binary(Frame::positions(seq, rig.pose_ms, &self.posed)));
+                let ms = rig.pose_ms;
+                out.push(self.positions_frame(seq, ms));
                 out.extend(self.field_frame());
                 Ok(out)
             }
@@ -243,7 +247,19 @@ impl Session {
             Request::Export { what } => self.export(&what),
             Request::Load { what, text } => self.load(&what, &text),
             Request::Upload { name, base64 } => self.upload(&name, &base64),
+            Request::Precision { positions } => {
+                self.precision = positions;
+                Ok(Vec::new())
+            }
         }
+    }
+
+    /// The posed positions as the client asked for them.
+    fn positions_frame(&self, seq: u32, pose_ms: f64) -> Out {
+        Out::Binary(match self.precision {
+            Precision::F64 => Frame::positions(seq, pose_ms, &self.posed),
+            Precision::F32 => Frame::positions_f32(seq, pose_ms, &self.posed),
+        })
     }
 
     pub(super) fn mesh_only(&self, what: &str) -> Result<()> {
@@ -546,7 +562,7 @@ impl Session {
                 energy,
                 joints: None,
             }),
-            Out::Binary(Frame::positions(seq, pose_ms, &self.posed)),
+            self.positions_frame(seq, pose_ms),
         ];
         out.extend(self.field_frame());
         Ok(out)

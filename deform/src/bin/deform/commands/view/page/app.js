@@ -26,6 +26,8 @@ socket.binaryType = "arraybuffer";
 ed.socket = socket;
 function send(request) { if (socket.readyState === 1) socket.send(JSON.stringify(request)); }
 socket.onclose = () => say("connection closed: reload the page to start a new session");
+// Positions in f32 (kind 5), as they are drawn: half the bytes of the library's f64.
+socket.onopen = () => send({ op: "precision", positions: "f32" });
 socket.onmessage = (e) => {
   const t = performance.now();
   if (typeof e.data === "string") onText(JSON.parse(e.data)); else onBinary(e.data);
@@ -52,10 +54,10 @@ function onBinary(buf) {
     ed.bbox = { min, max };
     camera.frame(min, max);
     ed.plane = null; $("plane").checked = false;
-  } else if (kind === 2) {
+  } else if (kind === 2 || kind === 5) {
     const seq = new Uint32Array(buf, 4, 1)[0];
     ed.poseMs = new Float32Array(buf, 8, 1)[0];
-    ed.positions = new Float32Array(new Float64Array(buf, 16));
+    ed.positions = kind === 2 ? new Float32Array(new Float64Array(buf, 16)) : new Float32Array(buf.slice(16));
     ed.upload.positions = true;
     // A pose answers its request and every older one (the server drops a pose that a newer
     // one replaced before it started).
