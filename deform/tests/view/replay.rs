@@ -97,6 +97,18 @@ fn the_replay_line_poses_the_exported_files_as_the_server_posed_them() {
     let dir = folder("spline");
     let files = ["rest", "selection", "keys", "rest-keys"];
     check("spline", &replayed(&mut c, &s, &dir, &files), &got, 1e-12);
+    // A new group painted and not yet bound: the keys would not match the groups.
+    c.send(
+        json!({"op": "paint", "origin": [0.0, 0.0, 5.0], "direction": [0.0, 0.0, -1.0],
+        "radius": 0.3, "group": 3, "begin": true}),
+    );
+    let s = c.state();
+    assert_eq!(s["stale"], true);
+    assert!(s["replay"].as_str().unwrap().starts_with("none yet"));
+    c.send(json!({"op": "export", "what": "keys"}));
+    assert!(c.error().contains("since the last bind"));
+    c.send(json!({"op": "undo"}));
+    assert_eq!(c.state()["groups"].as_array().unwrap().len(), 3);
 
     // ARAP: the page iterates twice per frame from the last frame; after enough frames of one
     // drag it rests where the CLI's run to convergence ends.

@@ -37,6 +37,9 @@ impl Session {
                 file_name(scene, "glb").unwrap_or_default()
             );
         }
+        if self.stale {
+            return "none yet: the groups changed since the last bind".into();
+        }
         let f = |what: &str| file_name(scene, what).unwrap_or_default();
         let blend = if self.positional {
             " --positional".to_string()
@@ -93,7 +96,10 @@ impl Session {
     /// translation to its centre (the rest key), as one motor.
     pub(super) fn spline_keys(&self) -> Result<(Vec<MotorSpec>, Vec<MotorSpec>)> {
         if !matches!(self.bound, Bound::Spline { .. }) {
-            bail!("keys: the method is not the spline");
+            bail!("keys: the method is not the spline (or it has fewer than two groups)");
+        }
+        if self.stale || self.specs.len() != self.groups.len() {
+            bail!("keys: the groups changed since the last bind (bind first)");
         }
         let centres = self.centres();
         let keys = self
