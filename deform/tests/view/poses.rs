@@ -289,6 +289,12 @@ fn the_rig_poses_as_the_library_poses_it_and_a_cut_undoes_and_redoes() {
     std::fs::write(out.join(format!("view-{name}")), &bytes).unwrap();
     c.send(json!({"op": "undo"}));
     let s = c.state();
+    // The replay line names the file the export wrote.
+    assert!(
+        s["replay"].as_str().unwrap().contains(&name),
+        "{}",
+        s["replay"]
+    );
     assert_eq!(
         (s["vertices"].as_u64(), s["rig"]["redo"].as_u64()),
         (Some(rig.mesh.vertex_count() as u64), Some(1))

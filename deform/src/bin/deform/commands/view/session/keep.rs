@@ -1,7 +1,7 @@
 //! Files of a session: export the pose, selection, motors, edits or the rig; load a selection
 //! or motors through the CLI's parsers; open an uploaded model as the CLI opens one.
 
-use super::replay::file_name;
+use super::replay::{file_name, glb_name};
 use super::{Bound, Out, Session};
 use crate::commands::view::protocol::{Frame, Reply};
 use crate::commands::view::scenes::{Content, Method, Scene};
@@ -55,13 +55,14 @@ impl Session {
                 use base64::Engine;
                 let scene = &self.scenes[self.scene].name;
                 // A rig keeps its skin, edits and animations; a mesh scene its posed surface.
-                let (name, bytes) = match &self.rig {
-                    Some(rig) => (format!("{scene}-edited.glb"), rig.glb()?),
+                let bytes = match &self.rig {
+                    Some(rig) => rig.glb()?,
                     None => {
                         let posed = Mesh::new(self.posed.clone(), self.mesh.triangles.clone());
-                        (name, deform::io::glb_bytes(&posed)?)
+                        deform::io::glb_bytes(&posed)?
                     }
                 };
+                let name = glb_name(scene, self.rig.is_some());
                 (
                     name,
                     base64::engine::general_purpose::STANDARD.encode(bytes),
@@ -74,7 +75,7 @@ impl Session {
                     .ok_or_else(|| anyhow!("edits: this scene has no rig"))?;
                 (name, rig.edits_json()?)
             }
-            _ => unreachable!("file_name refused {what:?}"),
+            _ => bail!("cannot export {what:?}"),
         };
         let base64 = what == "glb";
         Ok(vec![Out::Text(Reply::File { name, text, base64 })])

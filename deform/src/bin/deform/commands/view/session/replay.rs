@@ -18,9 +18,18 @@ pub(super) fn file_name(scene: &str, what: &str) -> Result<String> {
         "motors" | "selection" | "keys" | "rest-keys" | "edits" => {
             format!("{scene}-{what}.json")
         }
-        "glb" => format!("{scene}-posed.glb"),
+        "glb" => glb_name(scene, false),
         _ => bail!("cannot export {what:?} (obj, rest, glb, motors, selection, keys, rest-keys, cage, edits)"),
     })
+}
+
+/// The `.glb` export's name: a rig's keeps its edits and cuts, a mesh scene's is its pose.
+pub(super) fn glb_name(scene: &str, rig: bool) -> String {
+    if rig {
+        format!("{scene}-edited.glb")
+    } else {
+        format!("{scene}-posed.glb")
+    }
 }
 
 impl Session {
@@ -34,7 +43,7 @@ impl Session {
         if self.rig.is_some() {
             return format!(
                 "the .glb export keeps the cuts and joint edits baked in: deform skin {} ...",
-                file_name(scene, "glb").unwrap_or_default()
+                glb_name(scene, true)
             );
         }
         if self.stale {
