@@ -223,6 +223,16 @@ pub enum LocalStep {
     Svd,
 }
 
+impl LocalStep {
+    /// The name the CLI and the editor use: `rotor` or `svd`.
+    pub fn name(self) -> &'static str {
+        match self {
+            LocalStep::Rotor => "rotor",
+            LocalStep::Svd => "svd",
+        }
+    }
+}
+
 /// Fits every cell's rotation: `quats` hold the previous rotors on entry (the warm start)
 /// and the new ones on exit (for [`LocalStep::Svd`] they are left as they were), `rots` the
 /// new rotation matrices.

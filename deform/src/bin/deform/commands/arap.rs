@@ -158,13 +158,7 @@ pub fn run(a: &ArapArgs) -> Result<()> {
     let pose_ms = ms(t);
     let mut report = Report::new("arap", &mesh);
     report.add("energy_kind", options.energy.name());
-    report.add(
-        "local_step",
-        match options.local_step {
-            LocalStep::Rotor => "rotor",
-            LocalStep::Svd => "svd",
-        },
-    );
+    report.add("local_step", options.local_step.name());
     report.add("fixed", fixed.len());
     report.add("handles", handles.len());
     report.add("iterations", energies.len());
@@ -182,10 +176,7 @@ pub fn run(a: &ArapArgs) -> Result<()> {
     let title = format!(
         "arap  {}  {}  {} iter",
         options.energy.name(),
-        match options.local_step {
-            LocalStep::Rotor => "rotor",
-            LocalStep::Svd => "svd",
-        },
+        options.local_step.name(),
         energies.len()
     );
     let mut look = Look::new(title, "displacement");

@@ -62,10 +62,7 @@ impl Session {
                 "arap {select} --motors {} --energy {} --local-step {} --iterations 1000",
                 f("motors"),
                 self.arap.energy.name(),
-                match self.arap.local_step {
-                    deform::arap::LocalStep::Rotor => "rotor",
-                    deform::arap::LocalStep::Svd => "svd",
-                }
+                self.arap.local_step.name()
             ),
             Method::Spline => format!(
                 "spline {select} --keys {} --rest-keys {}{blend}",

@@ -85,10 +85,7 @@ impl Session {
             control: self.control,
             iterations: self.iterations,
             energy: self.arap.energy.name(),
-            local_step: match self.arap.local_step {
-                deform::arap::LocalStep::Rotor => "rotor",
-                deform::arap::LocalStep::Svd => "svd",
-            },
+            local_step: self.arap.local_step.name(),
             groups: self
                 .groups
                 .iter()
