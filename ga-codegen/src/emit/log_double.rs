@@ -26,6 +26,14 @@ impl Gen<'_> {
     /// squares). `cos S = r0 - sig`, `cos D = r0 + sig`, and the sines are the norms
     /// `sin^2 S = -<(P + Q)^2>_0 / 2`, `sin^2 D = -<(P - Q)^2>_0 / 2` (not `-<P P>_0 ± 2 r0 sig`,
     /// which loses the precision of `r0` near the double half turn).
+    ///
+    /// The branch is not taken where `r4sq` is far below the squares of `r4`'s coefficients
+    /// (under 1/16 of them) unless the squares of `P`'s commuting parts (`mr`, `mo`) are within a
+    /// factor two (where the split by them would divide by their small difference): a grade-4
+    /// part that is nearly null (a screw motion, perturbed) has a `sig` made of cancelling
+    /// terms, and `1 / sig` multiplies their rounding (2e-10 in f64 on a case the property tests
+    /// found), while the split by the squares is exact to the precision there. Near the double
+    /// half turn `r4` is nearly a unit 4-blade and the branch is kept.
     pub(super) fn log_double_rotation(
         &mut self,
         cx: &mut Ctx<'_>,
@@ -92,7 +100,10 @@ impl Gen<'_> {
         });
         quote! {
             let r4sq: #s = #r4sq;
-            if r4sq > #min_sq {
+            let r4n: #s = r4.iter().map(|x| x * x).sum();
+            if r4sq > #min_sq
+                && (r4sq >= 0.0625 * r4n || (mr - mo).abs() <= 0.5 * mr.abs().max(mo.abs()))
+            {
                 let sig = r4sq.sqrt();
                 let isg = 1.0 / sig;
                 #q_stmt
