@@ -51,20 +51,34 @@ const COS: [f64; 14] = series(1.0, -1.0, -1, 0);
 /// `k`: `(-1)^n 4^(n+1) / (2n+3)!`.
 const K: [f64; 16] = series(4.0 / 6.0, -4.0, 2, 3);
 
-/// `sum c[n] x^n` by Horner's rule.
+/// `a * b + c`: fused (one rounding) when `FMA`, else a multiply and an add.
 #[inline(always)]
-fn horner<W: Lane<Scalar = f64>, const N: usize>(c: &[f64; N], x: W) -> W {
-    horner_first::<W, N, N>(c, x)
+fn madd<W: Lane, const FMA: bool>(a: W, b: W, c: W) -> W {
+    if FMA {
+        a.mul_add(b, c)
+    } else {
+        a * b + c
+    }
 }
 
-/// `sum c[n] x^n` over the first `M` coefficients of `c`.
+/// `sum c[n] x^n` by Horner's rule (the full series: what the tests compare the cuts with).
+#[cfg(test)]
 #[inline(always)]
-fn horner_first<W: Lane<Scalar = f64>, const M: usize, const N: usize>(c: &[f64; N], x: W) -> W {
+fn horner<W: Lane<Scalar = f64>, const N: usize>(c: &[f64; N], x: W) -> W {
+    horner_first::<W, N, N, false>(c, x)
+}
+
+/// `sum c[n] x^n` over the first `M` coefficients of `c` (each step fused when `FMA`).
+#[inline(always)]
+fn horner_first<W: Lane<Scalar = f64>, const M: usize, const N: usize, const FMA: bool>(
+    c: &[f64; N],
+    x: W,
+) -> W {
     let mut acc = W::splat(c[M - 1]);
     let mut n = M - 1;
     while n > 0 {
         n -= 1;
-        acc = acc * x + W::splat(c[n]);
+        acc = madd::<W, FMA>(acc, x, W::splat(c[n]));
     }
     acc
 }
@@ -78,11 +92,22 @@ pub trait ExpLanes<W> {
     /// one `exp` per lane and the scalar form's guarded quotients, lane by lane. The result
     /// agrees with the scalar closed form to rounding.
     fn exp_transform(self, p: [W; 3]) -> Option<[W; 3]>;
+
+    /// [`ExpLanes::exp_transform`] with its series and its final sums written as fused
+    /// multiply-adds when `FMA` (call it with `true` only from code compiled with the `fma`
+    /// target feature: elsewhere each is a call into the C library). Fused, a lane agrees
+    /// with the scalar closed form to rounding as before, not to the unfused bits.
+    fn exp_transform_with<const FMA: bool>(self, p: [W; 3]) -> Option<[W; 3]>;
 }
 
 impl<W: Lane<Scalar = f64>> ExpLanes<W> for Bivector<W> {
     #[inline(always)]
     fn exp_transform(self, p: [W; 3]) -> Option<[W; 3]> {
+        self.exp_transform_with::<false>(p)
+    }
+
+    #[inline(always)]
+    fn exp_transform_with<const FMA: bool>(self, p: [W; 3]) -> Option<[W; 3]> {
         // The half rotation vector u and the translation part v (see `quat_map`).
         let (ux, uy, uz) = (-self.e23, self.e13, -self.e12);
         let two = W::splat(2.0);
@@ -95,10 +120,10 @@ impl<W: Lane<Scalar = f64>> ExpLanes<W> for Bivector<W> {
         // The series cut for the largest half-angle of the batch: most blends turn by much
         // less than the range allows.
         let (sc, c, k_series) = match tier_of(phi2) {
-            0 => series_cut::<W, { CUTS[0][0] }, { CUTS[0][1] }, { CUTS[0][2] }>(phi2),
-            1 => series_cut::<W, { CUTS[1][0] }, { CUTS[1][1] }, { CUTS[1][2] }>(phi2),
-            2 => series_cut::<W, { CUTS[2][0] }, { CUTS[2][1] }, { CUTS[2][2] }>(phi2),
-            _ => (horner(&SINC, phi2), horner(&COS, phi2), horner(&K, phi2)),
+            0 => series_cut::<W, { CUTS[0][0] }, { CUTS[0][1] }, { CUTS[0][2] }, FMA>(phi2),
+            1 => series_cut::<W, { CUTS[1][0] }, { CUTS[1][1] }, { CUTS[1][2] }, FMA>(phi2),
+            2 => series_cut::<W, { CUTS[2][0] }, { CUTS[2][1] }, { CUTS[2][2] }, FMA>(phi2),
+            _ => series_cut::<W, 13, 14, 16, FMA>(phi2),
         };
         // The translation is t = zr v + k (u . v) u + zi (u x v) with `(zr, k, zi)` below, and
         // the rotation by the rotor (sinc u, cos) moves p to
@@ -115,8 +140,23 @@ impl<W: Lane<Scalar = f64>> ExpLanes<W> for Bivector<W> {
             (zr, k, zi, [s * p[0], s * p[1], s * p[2]])
         };
         let [px, py, pz] = p;
-        let along = two * a * (px * ux + py * uy + pz * uz) + k * (ux * vx + uy * vy + uz * vz);
         let b2 = two * b;
+        if FMA {
+            let m = madd::<W, true>;
+            let along = m(
+                two * a,
+                m(px, ux, m(py, uy, pz * uz)),
+                k * m(ux, vx, m(uy, vy, uz * vz)),
+            );
+            let (wx, wy, wz) = (m(b2, px, zi * vx), m(b2, py, zi * vy), m(b2, pz, zi * vz));
+            let k0 = m(c, c, -(a * phi2));
+            return Some([
+                m(k0, px, m(zr, vx, m(along, ux, m(uy, wz, -(uz * wy))))),
+                m(k0, py, m(zr, vy, m(along, uy, m(uz, wx, -(ux * wz))))),
+                m(k0, pz, m(zr, vz, m(along, uz, m(ux, wy, -(uy * wx))))),
+            ]);
+        }
+        let along = two * a * (px * ux + py * uy + pz * uz) + k * (ux * vx + uy * vy + uz * vz);
         let (wx, wy, wz) = (b2 * px + zi * vx, b2 * py + zi * vy, b2 * pz + zi * vz);
         let k0 = c * c - a * phi2;
         Some([
@@ -151,13 +191,19 @@ fn tier_of<W: Lane<Scalar = f64>>(phi2: W) -> usize {
 
 /// `(sinc, cos, k)` of `phi2` from the first `A`, `B` and `C` terms of their series.
 #[inline(always)]
-fn series_cut<W: Lane<Scalar = f64>, const A: usize, const B: usize, const C: usize>(
+fn series_cut<
+    W: Lane<Scalar = f64>,
+    const A: usize,
+    const B: usize,
+    const C: usize,
+    const FMA: bool,
+>(
     phi2: W,
 ) -> (W, W, W) {
     (
-        horner_first::<W, A, 13>(&SINC, phi2),
-        horner_first::<W, B, 14>(&COS, phi2),
-        horner_first::<W, C, 16>(&K, phi2),
+        horner_first::<W, A, 13, FMA>(&SINC, phi2),
+        horner_first::<W, B, 14, FMA>(&COS, phi2),
+        horner_first::<W, C, 16, FMA>(&K, phi2),
     )
 }
 
@@ -261,9 +307,9 @@ mod tests {
         assert!(COS.len() >= terms(&COS, MAX_PHI));
         assert!(K.len() >= terms(&K, MAX_PHI));
         let cut = |t: usize, x: f64| match t {
-            0 => series_cut::<f64, { CUTS[0][0] }, { CUTS[0][1] }, { CUTS[0][2] }>(x),
-            1 => series_cut::<f64, { CUTS[1][0] }, { CUTS[1][1] }, { CUTS[1][2] }>(x),
-            _ => series_cut::<f64, { CUTS[2][0] }, { CUTS[2][1] }, { CUTS[2][2] }>(x),
+            0 => series_cut::<f64, { CUTS[0][0] }, { CUTS[0][1] }, { CUTS[0][2] }, false>(x),
+            1 => series_cut::<f64, { CUTS[1][0] }, { CUTS[1][1] }, { CUTS[1][2] }, false>(x),
+            _ => series_cut::<f64, { CUTS[2][0] }, { CUTS[2][1] }, { CUTS[2][2] }, false>(x),
         };
         for (t, &b) in TIERS.iter().enumerate() {
             for i in 0..=100 {
@@ -301,12 +347,20 @@ mod tests {
             F64x4::from_fn(|i| pts[i].y),
             F64x4::from_fn(|i| pts[i].z),
         ];
-        // Every lane of `g`'s batch against the scalar form.
+        // Every lane of `g`'s batch against the scalar form, unfused and fused (here the C
+        // library's `fma`: the same values as the instruction).
         let check = |g: &[ScalarBivector; 4], what: &str| {
-            let q = Bivector::<F64x4>::gather(g)
-                .exp_transform(p)
-                .expect("in range");
-            for i in 0..4 {
+            let w = Bivector::<F64x4>::gather(g);
+            let plain = w.exp_transform(p).expect("in range");
+            let fused = w.exp_transform_with::<true>(p).expect("in range");
+            assert_ne!(
+                plain, fused,
+                "{what}: fused sums round differently somewhere"
+            );
+            for (q, i) in [plain, fused]
+                .into_iter()
+                .flat_map(|q| (0..4).map(move |i| (q, i)))
+            {
                 let want = scalar(g[i], pts[i]);
                 let got = DVec3::new(q[0].lane(i), q[1].lane(i), q[2].lane(i));
                 assert!(

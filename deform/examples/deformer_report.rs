@@ -163,13 +163,13 @@ fn report(name: &str, mesh: &Mesh, targets: &Targets, tally: &mut Tally) {
     let ns_per_byte = limits::stream_ns_per_byte(limits::bytes(4) as usize * n, threads);
     let clock = limits::ghz();
     for method in BlendMethod::ALL {
-        let compute = limits::flops(method, 4) / (16.0 * clock * threads as f64);
+        let compute = limits::operations(method, 4) / (16.0 * clock * threads as f64);
         let memory = limits::bytes(4) * ns_per_byte;
         println!(
-            "  {} limit: {:.1} ns/vertex (compute {compute:.1} for {:.0} flops, memory {memory:.1} for {:.0} bytes)",
+            "  {} limit: {:.1} ns/vertex (compute {compute:.1} for {:.0} operations, memory {memory:.1} for {:.0} bytes)",
             method.name(),
             compute.max(memory),
-            limits::flops(method, 4),
+            limits::operations(method, 4),
             limits::bytes(4)
         );
         let d = scenes::rebind_spline(mesh, &spline, method);

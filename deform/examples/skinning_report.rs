@@ -1,8 +1,8 @@
 //! Quick report of skinning speed: every backend on libigl's armadillo (5 weights), arm and
 //! CesiumMan, on 1 and 2 threads: ms per frame and ns per vertex of the batch loop and of the
 //! vertex-by-vertex loop it replaced (`BoundBlend::pose_vertex_by_vertex`), alternated in the
-//! same run; per backend an estimate of the compute limit (flops per vertex at 16 flops per cycle
-//! per core) and of the memory limit (bytes per vertex at the streaming rate measured here for
+//! same run; per backend an estimate of the compute limit (operations per vertex at 16 per cycle
+//! per core; a fused multiply-add is one) and of the memory limit (bytes per vertex at the streaming rate measured here for
 //! the same working set) and the ratio to the larger. Graded (`met` / `MISSED`): motor blending
 //! <= 1 ms on the armadillo and no slower than dual quaternions, equation (17) within 1.1x of
 //! matrix LBS, log blending within 1.5x of motor blending, and on one thread the speed-ups of
@@ -17,7 +17,7 @@ mod limits;
 #[path = "../benches/support/skin_scenes.rs"]
 mod skin_scenes;
 
-use limits::{bytes, flops, ghz, stream_ns_per_byte};
+use limits::{bytes, flops, ghz, operations, stream_ns_per_byte};
 
 use devkit::grade::{Spread, Tally, Target};
 use devkit::measure::{median_ms, spread_ms};
@@ -67,7 +67,7 @@ fn main() {
     let clock = ghz();
     println!(
         "skinning: the batch loop ({} lanes) against the vertex-by-vertex loop in the same run; \
-         limits: {clock:.2} GHz x 16 flops/cycle/core (two 4-wide adds and two multiplies, no FMA), and streaming \
+         limits: {clock:.2} GHz x 16 operations/cycle/core (two 4-wide adds and two multiplies; log blending's fused multiply-adds count once), and streaming \
          the bytes at the rate measured here for the same working set",
         deform::simd_level()
     );
@@ -93,7 +93,7 @@ fn main() {
                 }
                 let t = pool.install(|| measure(&s, method));
                 let per_vertex = |ms: Spread| ms.scale(1e6 / n as f64);
-                let compute = flops(method, w) / (16.0 * clock * threads as f64);
+                let compute = operations(method, w) / (16.0 * clock * threads as f64);
                 let memory = bytes(w) * ns_per_byte;
                 let limit = compute.max(memory);
                 let target = (s.name == "armadillo" && method == BlendMethod::MotorLinear)
@@ -109,13 +109,14 @@ fn main() {
                 );
                 println!(
                     "      {:.1} ns/vertex (vertex by vertex {:.1}, x{:.2}); limit {:.1} ns \
-                     (compute {:.1} for {:.0} flops, memory {:.1} for {:.0} bytes): {:.1}x the limit",
+                     (compute {:.1} for {:.0} flops in {:.0} operations, memory {:.1} for {:.0} bytes): {:.1}x the limit",
                     per_vertex(t.batch).value,
                     per_vertex(t.vertex).value,
                     t.vertex.value / t.batch.value,
                     limit,
                     compute,
                     flops(method, w),
+                    operations(method, w),
                     memory,
                     bytes(w),
                     per_vertex(t.batch).value / limit

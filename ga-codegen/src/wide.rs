@@ -12,7 +12,9 @@
 //! (part of the x86-64 baseline) or whatever the target has. Callers choose at run time
 //! (`is_x86_feature_detected!`) which copy of their loop to call, so a binary stays portable.
 //! No lane operation fuses a multiply and an add, so every copy gives the same bits as the
-//! scalar expressions with the same grouping, on every CPU.
+//! scalar expressions with the same grouping, on every CPU; the one exception is
+//! [`Lane::mul_add`], which callers use only in a copy compiled with the `fma` target feature
+//! (elsewhere it is a call into the C library's software `fma`, correct but slow).
 
 use core::ops::{Add, AddAssign, Div, Mul, Neg, Sub};
 
@@ -45,6 +47,9 @@ pub trait Lane:
     fn flip_sign_if_negative(self, x: Self) -> Self;
     /// Lane-wise `if self > t { yes } else { no }` (a compare and a blend; NaN picks `no`).
     fn gt_select(self, t: Self, yes: Self, no: Self) -> Self;
+    /// Lane-wise `self * a + b` with one rounding (a fused multiply-add instruction where the
+    /// function calling it is compiled with the `fma` target feature).
+    fn mul_add(self, a: Self, b: Self) -> Self;
 }
 
 impl Lane for f64 {
@@ -87,6 +92,10 @@ impl Lane for f64 {
             no
         }
     }
+    #[inline(always)]
+    fn mul_add(self, a: f64, b: f64) -> f64 {
+        f64::mul_add(self, a, b)
+    }
 }
 
 impl Lane for f32 {
@@ -128,6 +137,10 @@ impl Lane for f32 {
         } else {
             no
         }
+    }
+    #[inline(always)]
+    fn mul_add(self, a: f32, b: f32) -> f32 {
+        f32::mul_add(self, a, b)
     }
 }
 
@@ -195,6 +208,14 @@ macro_rules! lanes {
                     if self.0[i] > t.0[i] {
                         r[i] = yes.0[i];
                     }
+                }
+                $name(r)
+            }
+            #[inline(always)]
+            fn mul_add(self, a: $name, b: $name) -> $name {
+                let mut r = self.0;
+                for i in 0..$n {
+                    r[i] = r[i].mul_add(a.0[i], b.0[i]);
                 }
                 $name(r)
             }

@@ -28,6 +28,18 @@ pub fn flops(m: BlendMethod, w: usize) -> f64 {
     }
 }
 
+/// Arithmetic operations per vertex of the batch kernel of `m` in the copy this process runs
+/// (`deform::simd_level`): the [`flops`], except where the AVX2 copy fuses a multiply and an
+/// add into one instruction (log blending: row sums 8 per key, the three series of 13, 14 and
+/// 16 terms one each, the exponential's sums 50), which is what the compute limit divides by the
+/// machine's operations per cycle.
+pub fn operations(m: BlendMethod, w: usize) -> f64 {
+    match m {
+        BlendMethod::MotorLog if deform::simd_level() == "avx2" => 8.0 * w as f64 + 43.0 + 50.0,
+        _ => flops(m, w),
+    }
+}
+
 /// Bytes per vertex streamed by a pose: the weight (8) and key index (4) of each influence,
 /// the rest point (24) and the posed point (24). The key tables stay in cache.
 pub fn bytes(w: usize) -> f64 {

@@ -9,8 +9,11 @@
 //!
 //! The loop is compiled twice: for CPUs with AVX2 (256-bit lanes, chosen at run time with
 //! `is_x86_feature_detected!`, so one binary runs everywhere) and for the x86-64 baseline
-//! (SSE2; `DEFORM_SIMD=baseline` forces it). Both copies run the same lane operations, which
-//! never fuse a multiply and an add, so they give the same bits.
+//! (SSE2; `DEFORM_SIMD=baseline` forces it). The AVX2 copy also needs FMA (every AVX2 CPU
+//! made has it) and runs [`Kernel::batch_fused`], which is the same lane operations as
+//! [`Kernel::batch`], so the same bits in both copies, except in the kernels that override it
+//! with fused multiply-adds (log blending: agreeing with the per-vertex path to rounding, as
+//! the unfused form does).
 
 use super::PARALLEL_MIN;
 use crate::blend::KeyWeights;
@@ -109,15 +112,15 @@ impl Batches {
             unsafe { self.range_avx2(kernel, single, first, out) };
             return;
         }
-        self.range(kernel, single, first, out);
+        self.range::<K, false>(kernel, single, first, out);
     }
 
-    /// [`Batches::range`] compiled for AVX2.
+    /// [`Batches::range`] compiled for AVX2 and FMA, with the fused kernels.
     ///
     /// # Safety
-    /// The CPU must have AVX2.
+    /// The CPU must have AVX2 and FMA.
     #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
+    #[target_feature(enable = "avx2,fma")]
     unsafe fn range_avx2<K: Kernel>(
         &self,
         kernel: &K,
@@ -125,12 +128,13 @@ impl Batches {
         first: usize,
         out: &mut [DVec3],
     ) {
-        self.range(kernel, single, first, out);
+        self.range::<K, true>(kernel, single, first, out);
     }
 
-    /// The batch loop: `out` holds the vertices from `first` (a multiple of [`LANES`]).
+    /// The batch loop: `out` holds the vertices from `first` (a multiple of [`LANES`]);
+    /// [`Kernel::batch_fused`] when `FMA` (only in a copy compiled with the `fma` feature).
     #[inline(always)]
-    fn range<K: Kernel>(
+    fn range<K: Kernel, const FMA: bool>(
         &self,
         kernel: &K,
         single: &(impl Fn(usize) -> DVec3 + Sync),
@@ -148,7 +152,12 @@ impl Batches {
             .zip(weights.chunks_exact(w))
             .enumerate()
         {
-            match kernel.batch(k, wt, p) {
+            let q = if FMA {
+                kernel.batch_fused(k, wt, p)
+            } else {
+                kernel.batch(k, wt, p)
+            };
+            match q {
                 Some(q) => {
                     for (l, o) in o.iter_mut().enumerate() {
                         *o = DVec3::new(q[0].lane(l), q[1].lane(l), q[2].lane(l));
@@ -165,7 +174,7 @@ impl Batches {
     }
 }
 
-/// Whether to run the AVX2 copy: the CPU has AVX2 and the environment variable
+/// Whether to run the AVX2 copy: the CPU has AVX2 and FMA and the environment variable
 /// `DEFORM_SIMD` is not `baseline` (which benchmarks and CI use to measure and test the
 /// baseline copy on the same machine). Decided once per process.
 #[cfg(target_arch = "x86_64")]
@@ -174,6 +183,7 @@ fn avx2() -> bool {
     static AVX2: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
     *AVX2.get_or_init(|| {
         std::is_x86_feature_detected!("avx2")
+            && std::is_x86_feature_detected!("fma")
             && std::env::var("DEFORM_SIMD").map_or(true, |v| v != "baseline")
     })
 }
@@ -192,4 +202,16 @@ pub(crate) trait Kernel: Sync {
     /// The four posed points from the slots' `keys` and `weights` and the rest `points`;
     /// `None` declines the batch (the caller poses its vertices one by one).
     fn batch(&self, keys: &[[u32; LANES]], weights: &[F64x4], points: &Points4) -> Option<Points4>;
+
+    /// [`Kernel::batch`] where the CPU fuses multiply-adds: the batch loop's AVX2 copy (compiled
+    /// with the `fma` feature) calls this. The same operations unless a kernel says otherwise.
+    #[inline(always)]
+    fn batch_fused(
+        &self,
+        keys: &[[u32; LANES]],
+        weights: &[F64x4],
+        points: &Points4,
+    ) -> Option<Points4> {
+        self.batch(keys, weights, points)
+    }
 }

@@ -52,7 +52,7 @@ type Rows<'a> = &'a [[F64x4; 4]];
 ///
 /// `index(k)` is the row of key `k` (`k` itself, or its entry in the aligned table).
 #[inline(always)]
-fn accumulate<const N: usize>(
+fn accumulate<const N: usize, const FMA: bool>(
     rows: Rows,
     keys: &[[u32; LANES]],
     weights: &[F64x4],
@@ -65,7 +65,7 @@ fn accumulate<const N: usize>(
         let row = at(rows, index(k[l]));
         let w = F64x4::splat(weight(row, w.0[l]));
         for (a, r) in acc.iter_mut().zip(row) {
-            *a += *r * w;
+            *a = if FMA { r.mul_add(w, *a) } else { *a + *r * w };
         }
     }
     acc
@@ -135,10 +135,10 @@ fn hemisphere_sum(
 ) -> [F64x4; 2] {
     let k0 = keys[0][l];
     match aligned {
-        Some(n) => accumulate(rows, keys, weights, l, |k| n + k0 * n + k, |_, w| w),
+        Some(n) => accumulate::<2, false>(rows, keys, weights, l, |k| n + k0 * n + k, |_, w| w),
         None => {
             let r0 = at(rows, k0)[0];
-            accumulate(
+            accumulate::<2, false>(
                 rows,
                 keys,
                 weights,
@@ -250,7 +250,7 @@ impl Kernel for Affine<'_> {
     #[inline(always)]
     fn batch(&self, keys: &[[u32; LANES]], weights: &[F64x4], p: &Points4) -> Option<Points4> {
         let q: [[F64x4; 1]; LANES] = each!(LANES, l => {
-            let a: [F64x4; 4] = accumulate(self.rows, keys, weights, l, |k| k, |_, w| w);
+            let a: [F64x4; 4] = accumulate::<4, false>(self.rows, keys, weights, l, |k| k, |_, w| w);
             let e = apply(&a, p, l);
             // `1 / eo` is exact for the rigid keys' `eo = 1`.
             [if self.project { e * F64x4::splat(1.0 / e.0[3]) } else { e }]
@@ -359,8 +359,32 @@ struct MotorLog<'a> {
 impl Kernel for MotorLog<'_> {
     #[inline(always)]
     fn batch(&self, keys: &[[u32; LANES]], weights: &[F64x4], p: &Points4) -> Option<Points4> {
+        self.blend::<false>(keys, weights, p)
+    }
+
+    #[inline(always)]
+    fn batch_fused(
+        &self,
+        keys: &[[u32; LANES]],
+        weights: &[F64x4],
+        p: &Points4,
+    ) -> Option<Points4> {
+        self.blend::<true>(keys, weights, p)
+    }
+}
+
+impl MotorLog<'_> {
+    /// `exp(sum w log M)` applied to the four points; the series and the sums of the
+    /// exponential fused when `FMA` (`ExpLanes::exp_transform_with`).
+    #[inline(always)]
+    fn blend<const FMA: bool>(
+        &self,
+        keys: &[[u32; LANES]],
+        weights: &[F64x4],
+        p: &Points4,
+    ) -> Option<Points4> {
         let sums: [[F64x4; 2]; LANES] =
-            each!(LANES, l => accumulate(self.rows, keys, weights, l, |k| k, |_, w| w));
+            each!(LANES, l => accumulate::<2, FMA>(self.rows, keys, weights, l, |k| k, |_, w| w));
         let (a, b) = (transpose(&sums, 0), transpose(&sums, 1));
         let zero = F64x4::splat(0.0);
         let log = WBivector::<F64x4> {
@@ -375,7 +399,7 @@ impl Kernel for MotorLog<'_> {
             e2i: b[0],
             e3i: b[1],
         };
-        if let Some(q) = log.exp_transform(*p) {
+        if let Some(q) = log.exp_transform_with::<FMA>(*p) {
             return Some(q);
         }
         let q: [DVec3; LANES] = each!(LANES, l => log
