@@ -30,13 +30,20 @@ pub fn flops(m: BlendMethod, w: usize) -> f64 {
 
 /// Arithmetic operations per vertex of the batch kernel of `m` in the copy this process runs
 /// (`deform::simd_level`): the [`flops`], except where the AVX2 copy fuses a multiply and an
-/// add into one instruction (log blending: row sums 8 per key, the three series of 13, 14 and
-/// 16 terms one each, the exponential's sums 50), which is what the compute limit divides by the
-/// machine's operations per cycle.
+/// add into one instruction (the row sums of dual quaternions, matrix LBS, equation (17) and
+/// log blending, half their flops; and log blending's three series, 43, and its exponential's
+/// sums, 50), which is what the compute limit divides by the machine's operations per cycle.
 pub fn operations(m: BlendMethod, w: usize) -> f64 {
+    let w = w as f64;
+    if deform::simd_level() != "avx2" {
+        return flops(m, w as usize);
+    }
     match m {
-        BlendMethod::MotorLog if deform::simd_level() == "avx2" => 8.0 * w as f64 + 43.0 + 50.0,
-        _ => flops(m, w),
+        BlendMethod::DualQuaternion => 8.0 * w + 65.0,
+        BlendMethod::Matrix => 12.0 * w + 18.0,
+        BlendMethod::Conformal => 13.0 * w + 21.0,
+        BlendMethod::MotorLog => 8.0 * w + 43.0 + 50.0,
+        _ => flops(m, w as usize),
     }
 }
 

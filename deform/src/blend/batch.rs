@@ -12,8 +12,9 @@
 //! (SSE2; `DEFORM_SIMD=baseline` forces it). The AVX2 copy also needs FMA (every AVX2 CPU
 //! made has it) and runs [`Kernel::batch_fused`], which is the same lane operations as
 //! [`Kernel::batch`], so the same bits in both copies, except in the kernels that override it
-//! with fused multiply-adds (log blending: agreeing with the per-vertex path to rounding, as
-//! the unfused form does).
+//! with fused multiply-adds (the row sums of dual quaternions, matrix LBS and equation (17),
+//! and all of log blending: each agreeing with the per-vertex path to rounding, as its unfused
+//! form does).
 
 use super::PARALLEL_MIN;
 use crate::blend::KeyWeights;
