@@ -188,21 +188,8 @@ fn hemisphere_sum<const FMA: bool>(
 impl Kernel for MotorLinear<'_> {
     #[inline(always)]
     fn batch(&self, keys: &[[u32; LANES]], weights: &[F64x4], p: &Points4) -> Option<Points4> {
-        self.blend::<false>(keys, weights, p)
-    }
-}
-
-impl MotorLinear<'_> {
-    /// The batch; the row sums fused when `FMA`.
-    #[inline(always)]
-    fn blend<const FMA: bool>(
-        &self,
-        keys: &[[u32; LANES]],
-        weights: &[F64x4],
-        p: &Points4,
-    ) -> Option<Points4> {
         let sums: [[F64x4; 2]; LANES] =
-            each!(LANES, l => hemisphere_sum::<FMA>(self.rows, self.aligned, keys, weights, l));
+            each!(LANES, l => hemisphere_sum::<false>(self.rows, self.aligned, keys, weights, l));
         let (r, d) = (transpose(&sums, 0), transpose(&sums, 1));
         let acc = WMotor::<F64x4> {
             s: r[0],
