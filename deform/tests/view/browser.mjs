@@ -84,6 +84,7 @@ try {
   });
   check(moved.t[0] > 0.05 && Math.abs(moved.t[1]) < 1e-9 && Math.abs(moved.t[2]) < 1e-9, `the drag moved group 3 along x by ${moved.t[0].toFixed(3)}`);
   check(moved.worst < 1e-5, `the server moved its ${moved.count} vertices by exactly that (worst ${moved.worst.toExponential(2)})`);
+  check(await page.isVisible('button[data-export=selection]'), 'handles offer their selection for export');
   await shot('dragged');
   // Undo the drag, then redo it (Ctrl+Z, Ctrl+Shift+Z).
   await page.keyboard.press('Control+z');
@@ -131,6 +132,10 @@ try {
     return d;
   });
   check(bent > 0.05, `dragging the control point moved the bar (${bent.toFixed(3)})`);
+  // A lattice is replayed from its motors alone: no selection to export.
+  check(!(await page.isVisible('button[data-export=selection]')) && !(await page.isVisible('#load-selection'))
+    && await page.isVisible('button[data-export=motors]'),
+    'the lattice offers its motors, not a selection, for export');
   await shot('lattice');
   // A finer B-spline lattice from the panel: the server rebinds to 6 x 3 x 3 points.
   await page.fill('#lattice-x', '6');

@@ -125,6 +125,8 @@ function onState(s) {
   document.querySelectorAll(".mesh-only").forEach((e) => e.classList.toggle("hidden", rig));
   document.querySelectorAll(".spline-only").forEach((e) => e.classList.toggle("hidden", rig || s.method !== "spline"));
   document.querySelectorAll(".cage-only").forEach((e) => e.classList.toggle("hidden", rig || s.method !== "cage"));
+  // Lattices and cages are replayed from their motors alone (no --select).
+  document.querySelectorAll(".select-only").forEach((e) => e.classList.toggle("hidden", rig || s.method === "ffd" || s.method === "cage"));
   const field = $("field").value;
   fill($("field"), s.fields, s.fields.includes(field) && !first ? field : "displacement");
   if (!rig) {
