@@ -51,16 +51,6 @@ const COS: [f64; 14] = series(1.0, -1.0, -1, 0);
 /// `k`: `(-1)^n 4^(n+1) / (2n+3)!`.
 const K: [f64; 16] = series(4.0 / 6.0, -4.0, 2, 3);
 
-/// `a * b + c`: fused (one rounding) when `FMA`, else a multiply and an add.
-#[inline(always)]
-fn madd<W: Lane, const FMA: bool>(a: W, b: W, c: W) -> W {
-    if FMA {
-        a.mul_add(b, c)
-    } else {
-        a * b + c
-    }
-}
-
 /// `sum c[n] x^n` by Horner's rule (the full series: what the tests compare the cuts with).
 #[cfg(test)]
 #[inline(always)]
@@ -78,7 +68,7 @@ fn horner_first<W: Lane<Scalar = f64>, const M: usize, const N: usize, const FMA
     let mut n = M - 1;
     while n > 0 {
         n -= 1;
-        acc = madd::<W, FMA>(acc, x, W::splat(c[n]));
+        acc = acc.mul_add_if::<FMA>(x, W::splat(c[n]));
     }
     acc
 }
@@ -141,28 +131,19 @@ impl<W: Lane<Scalar = f64>> ExpLanes<W> for Bivector<W> {
         };
         let [px, py, pz] = p;
         let b2 = two * b;
-        if FMA {
-            let m = madd::<W, true>;
-            let along = m(
-                two * a,
-                m(px, ux, m(py, uy, pz * uz)),
-                k * m(ux, vx, m(uy, vy, uz * vz)),
-            );
-            let (wx, wy, wz) = (m(b2, px, zi * vx), m(b2, py, zi * vy), m(b2, pz, zi * vz));
-            let k0 = m(c, c, -(a * phi2));
-            return Some([
-                m(k0, px, m(zr, vx, m(along, ux, m(uy, wz, -(uz * wy))))),
-                m(k0, py, m(zr, vy, m(along, uy, m(uz, wx, -(ux * wz))))),
-                m(k0, pz, m(zr, vz, m(along, uz, m(ux, wy, -(uy * wx))))),
-            ]);
-        }
-        let along = two * a * (px * ux + py * uy + pz * uz) + k * (ux * vx + uy * vy + uz * vz);
-        let (wx, wy, wz) = (b2 * px + zi * vx, b2 * py + zi * vy, b2 * pz + zi * vz);
-        let k0 = c * c - a * phi2;
+        // `m(a, b, c) = a b + c`, one instruction where fused.
+        let m = |a: W, b: W, c: W| a.mul_add_if::<FMA>(b, c);
+        let along = m(
+            two * a,
+            m(px, ux, m(py, uy, pz * uz)),
+            k * m(ux, vx, m(uy, vy, uz * vz)),
+        );
+        let (wx, wy, wz) = (m(b2, px, zi * vx), m(b2, py, zi * vy), m(b2, pz, zi * vz));
+        let k0 = m(c, c, -(a * phi2));
         Some([
-            k0 * px + zr * vx + along * ux + (uy * wz - uz * wy),
-            k0 * py + zr * vy + along * uy + (uz * wx - ux * wz),
-            k0 * pz + zr * vz + along * uz + (ux * wy - uy * wx),
+            m(k0, px, m(zr, vx, m(along, ux, m(uy, wz, -(uz * wy))))),
+            m(k0, py, m(zr, vy, m(along, uy, m(uz, wx, -(ux * wz))))),
+            m(k0, pz, m(zr, vz, m(along, uz, m(ux, wy, -(uy * wx))))),
         ])
     }
 }

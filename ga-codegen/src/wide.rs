@@ -50,6 +50,16 @@ pub trait Lane:
     /// Lane-wise `self * a + b` with one rounding (a fused multiply-add instruction where the
     /// function calling it is compiled with the `fma` target feature).
     fn mul_add(self, a: Self, b: Self) -> Self;
+    /// `self * a + b`: [`Lane::mul_add`] when `FUSED`, else a multiply and an add (the form
+    /// a kernel written once for both copies of its loop uses).
+    #[inline(always)]
+    fn mul_add_if<const FUSED: bool>(self, a: Self, b: Self) -> Self {
+        if FUSED {
+            self.mul_add(a, b)
+        } else {
+            self * a + b
+        }
+    }
 }
 
 impl Lane for f64 {

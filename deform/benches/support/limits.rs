@@ -34,16 +34,14 @@ pub fn flops(m: BlendMethod, w: usize) -> f64 {
 /// log blending, half their flops; and log blending's three series, 43, and its exponential's
 /// sums, 50), which is what the compute limit divides by the machine's operations per cycle.
 pub fn operations(m: BlendMethod, w: usize) -> f64 {
-    let w = w as f64;
-    if deform::simd_level() != "avx2" {
-        return flops(m, w as usize);
-    }
+    let fused_rows = |per_key: f64| per_key * w as f64;
     match m {
-        BlendMethod::DualQuaternion => 8.0 * w + 65.0,
-        BlendMethod::Matrix => 12.0 * w + 18.0,
-        BlendMethod::Conformal => 13.0 * w + 21.0,
-        BlendMethod::MotorLog => 8.0 * w + 43.0 + 50.0,
-        _ => flops(m, w as usize),
+        _ if deform::simd_level() != "avx2" => flops(m, w),
+        BlendMethod::DualQuaternion => fused_rows(8.0) + 65.0,
+        BlendMethod::Matrix => fused_rows(12.0) + 18.0,
+        BlendMethod::Conformal => fused_rows(13.0) + 21.0,
+        BlendMethod::MotorLog => fused_rows(8.0) + 43.0 + 50.0,
+        _ => flops(m, w),
     }
 }
 

@@ -98,7 +98,7 @@ fn accumulate<const N: usize, const FMA: bool>(
         let row = at(rows, index(k[l]));
         let w = F64x4::splat(weight(row, w.0[l]));
         for (a, r) in acc.iter_mut().zip(row) {
-            *a = if FMA { r.mul_add(w, *a) } else { *a + *r * w };
+            *a = r.mul_add_if::<FMA>(w, *a);
         }
     }
     acc
