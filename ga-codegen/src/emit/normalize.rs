@@ -1,9 +1,11 @@
 //! The emitted closed-form normalisation and square root of an even versor
 //! (`impl EvenVersor`); see [`super::exp_log`].
 
+use super::exp_log::negative_squares;
 use super::exp_log::{build, grade_part, Ctx};
 use super::render::{doc, ident};
 use super::Gen;
+use crate::blade::grade;
 use crate::rational::Rational;
 use crate::spec::TypeDef;
 use crate::symbolic::{Poly, Product, SymMv, Var};
@@ -99,9 +101,18 @@ impl Gen<'_> {
         let dr = doc(
             "The square root (half the motion): `normalize(1 + self)`, which is `sqrt(self)` for \
              a unit even versor because `1 + v = sqrt(v) (~sqrt(v) + sqrt(v))` and the second \
-             factor is a scalar plus a grade-4 part that normalisation removes. Not finite for \
-             `-1` (a full turn has no unique half).",
+             factor is a scalar plus a grade-4 part that normalisation removes. Where the \
+             grade-4 part `u4` of `self` squares to `p^2 > 0` (two commuting rotations) and \
+             `p > (1 + <self>_0) / 2`, that factor is nearly a zero divisor (it is one where the \
+             two angles sum to a half turn) and `normalize(1 + self)` would cancel; there the \
+             root is taken in the two halves `P+- = (1 +- J) / 2`, `J = u4 / p`, separately: \
+             each is a complex number `<self>_0 +- p + X P+-` (`X` the bivector part) whose root \
+             is taken in the stable form (near `-1` through its unit imaginary part, projected \
+             on its half again), so that the result squares back to `self` to rounding. Not \
+             finite for `-1` (a full turn has no unique half), nor exactly on that cut, where \
+             the roots form a sphere.",
         );
+        let root = self.root_body(vt, &scalar_field);
         quote! {
             impl EvenVersor for #vn {
                 #dn
@@ -114,12 +125,150 @@ impl Gen<'_> {
                 }
                 #dr
                 #[inline]
+                #[allow(unused_variables, clippy::neg_multiply, clippy::double_parens)]
                 fn sqrt(self) -> Self {
+                    #root
+                }
+            }
+        }
+    }
+
+    /// The body of `sqrt`: `normalize(1 + self)`, and where `self`'s grade-4 part `u4` can
+    /// square positive (two commuting rotations), the root split along `J = u4 / sqrt(u4 u4)`
+    /// when `normalize(1 + self)` would cancel (see the method's doc).
+    fn root_body(&mut self, vt: &TypeDef, scalar_field: &proc_macro2::Ident) -> TokenStream {
+        let fallback = quote! {
+            let mut v = self;
+            v.#scalar_field += 1.0;
+            v.normalize()
+        };
+        self.split_root(vt)
+            .map(|split| {
+                quote! {
+                    #split
                     let mut v = self;
                     v.#scalar_field += 1.0;
                     v.normalize()
                 }
-            }
+            })
+            .unwrap_or(fallback)
+    }
+
+    /// The split root's early return (`None` where `u4 u4` is never positive or the products
+    /// leave the type).
+    fn split_root(&mut self, vt: &TypeDef) -> Option<TokenStream> {
+        let s = self.s.clone();
+        let mut cx = Ctx::new(vt, s.clone());
+        let u = SymMv::of_type(vt, 0);
+        let u2 = grade_part(&u, 2);
+        let u4 = grade_part(&u, 4);
+        if u2.0.is_empty() || u4.0.is_empty() {
+            return None;
         }
+        let qu = self.table.product(&u4, &u4, Product::Geometric).get(0);
+        if qu.is_zero() || negative_squares(&qu) {
+            return None;
+        }
+        let blades = u2.support();
+        let nb = proc_macro2::Literal::usize_unsuffixed(blades.len());
+        // `x J` times `p` for a bivector `x` on `u2`'s blades (grade 2 only: `x` commutes
+        // with `J` for the parts of a versor).
+        let x = cx.declare(ident("x"), blades.iter().copied());
+        let xj = self.table.product(&x, &u4, Product::Geometric);
+        if !xj
+            .support()
+            .iter()
+            .all(|b| grade(*b) != 2 || blades.contains(b))
+        {
+            return None;
+        }
+        let xj_terms: Vec<TokenStream> = blades.iter().map(|b| cx.at(&xj, *b)).collect();
+        let xx = cx.poly(&self.table.product(&x, &x, Product::Geometric).get(0));
+        // `J x J` times `p^2` through `t = u4 x`.
+        let t = self.table.product(&u4, &x, Product::Geometric);
+        let t_terms: Vec<TokenStream> = t.0.values().map(|p| cx.poly(p)).collect();
+        let nt = proc_macro2::Literal::usize_unsuffixed(t_terms.len());
+        let t_sym = cx.declare(ident("t"), t.0.keys().copied());
+        let jxj = self.table.product(&t_sym, &u4, Product::Geometric);
+        let jxj_terms: Vec<TokenStream> = blades.iter().map(|b| cx.at(&jxj, *b)).collect();
+        let s0 = cx.at(&u, 0);
+        let qu = cx.poly(&qu);
+        let x_terms: Vec<TokenStream> = blades.iter().map(|b| cx.at(&u, *b)).collect();
+        let result = build(vt, |b| match grade(b) {
+            0 => Some(quote!(a)),
+            2 => blades.iter().position(|x| *x == b).map(|i| {
+                let i = proc_macro2::Literal::usize_unsuffixed(i);
+                quote!(yp[#i] + ym[#i])
+            }),
+            4 => u4.0.contains_key(&b).then(|| {
+                let e = cx.at(&u, b);
+                quote!(bj * (#e))
+            }),
+            _ => None,
+        });
+        Some(quote! {
+            let s: #s = #s0;
+            let qu: #s = #qu;
+            let p = qu.max(0.0).sqrt();
+            if qu > 0.0 && p > 0.5 * (1.0 + s) {
+                // P+- = (1 +- J) / 2 split `self` into two complex numbers `s +- p + X P+-`.
+                let ip = 1.0 / p;
+                let times_j = |x: [#s; #nb]| -> [#s; #nb] { [#((#xj_terms) * ip),*] };
+                let j_x_j = |x: [#s; #nb]| -> [#s; #nb] {
+                    let t: [#s; #nt] = [#(#t_terms),*];
+                    [#((#jxj_terms) * (ip * ip)),*]
+                };
+                let neg_square = |x: [#s; #nb]| -> #s { -2.0 * (#xx) };
+                // Twice the part of `x` that commutes with `J` (`(x + J x J) / 2`) and lies in
+                // the half `P+-`, up to a positive factor.
+                let in_half = |x: [#s; #nb], sign: #s| -> [#s; #nb] {
+                    let jxj = j_x_j(x);
+                    let c: [#s; #nb] = std::array::from_fn(|i| x[i] + jxj[i]);
+                    let cj = times_j(c);
+                    std::array::from_fn(|i| c[i] + sign * cj[i])
+                };
+                let xs: [#s; #nb] = [#(#x_terms),*];
+                let xj = times_j(xs);
+                let half = |r: #s, y: [#s; #nb], sign: #s| -> (#s, [#s; #nb]) {
+                    let m = neg_square(y).max(0.0).sqrt();
+                    let rho = (r * r + m * m).sqrt();
+                    if r >= 0.0 {
+                        let re = (0.5 * (rho + r)).sqrt();
+                        let c = 0.5 / re;
+                        (re, y.map(|v| c * v))
+                    } else {
+                        // Near -1: the imaginary unit `y / m`, projected on its half again
+                        // (rounding leaks into the other half and into bivectors that do not
+                        // commute with `J`, divided by `m`) and rescaled to unit length.
+                        let t = (0.5 * (rho - r)).sqrt();
+                        let e = y.map(|v| v / m);
+                        let mut f = in_half(e, sign);
+                        let mut n = neg_square(f);
+                        if n.is_nan() || n <= 0.0 {
+                            // Exactly on the cut every unit imaginary of the half gives a
+                            // root: take the largest part of a basis bivector in the half.
+                            n = 0.0;
+                            for k in 0..#nb {
+                                let mut x: [#s; #nb] = [0.0; #nb];
+                                x[k] = 1.0;
+                                let g = in_half(x, sign);
+                                let ng = neg_square(g);
+                                if ng > n {
+                                    n = ng;
+                                    f = g;
+                                }
+                            }
+                        }
+                        let k = t / n.sqrt();
+                        (m / (2.0 * t), f.map(|v| k * v))
+                    }
+                };
+                let (rp, yp) = half(s + p, std::array::from_fn(|i| 0.5 * (xs[i] + xj[i])), 1.0);
+                let (rm, ym) = half(s - p, std::array::from_fn(|i| 0.5 * (xs[i] - xj[i])), -1.0);
+                let a = 0.5 * (rp + rm);
+                let bj = 0.5 * (rp - rm) * ip;
+                return #result;
+            }
+        })
     }
 }
