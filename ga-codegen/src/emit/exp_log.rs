@@ -11,7 +11,8 @@
 //! - `impl Log for V`: the principal logarithm of a unit versor, into the smallest type that holds
 //!   its bivector blades;
 //! - `impl EvenVersor for V`: `normalize` (divide by the square root of `V ~V`, a scalar plus a
-//!   grade-4 part, in closed form) and `sqrt` (`normalize(1 + V)`).
+//!   grade-4 part, in closed form) and `sqrt` (`normalize(1 + V)`, or per half of the grade-4
+//!   part's `J` where that cancels: `normalize.rs`).
 //!
 //! Every intermediate multivector (`W = <B B>_4`, `W B`, ...) is expanded symbolically, so
 //! only the blades that can be non-zero are computed; a grade-4 part that squares to zero
@@ -321,7 +322,9 @@ impl Gen<'_> {
             pub trait EvenVersor: ::core::marker::Sized {
                 /// `self / sqrt(self ~self)`, where `self ~self` is a scalar plus a grade-4 part.
                 fn normalize(self) -> Self;
-                /// The square root (half the motion), `normalize(1 + self)`.
+                /// The square root (half the motion): `normalize(1 + self)`, or where that
+                /// cancels (two rotations whose angles sum to nearly a half turn) the root of
+                /// each half of the grade-4 part's `J` in the stable form.
                 fn sqrt(self) -> Self;
             }
         });
