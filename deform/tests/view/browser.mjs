@@ -64,6 +64,11 @@ try {
   await page.click('#redo-select');
   await until(page, () => editor.state.groups.length === 5 && !editor.state.stale, null, 'the lasso redone');
   check(await page.evaluate(() => editor.groupsOf.filter((g) => g === 5).length) === lassoed, 'Redo selection brought it back');
+  // The second rebind of the same method came with the first one's time (the progress bar's
+  // estimate); the bar is gone once the server is idle.
+  const expect = await page.evaluate(() => editor.busyExpect);
+  check(expect > 0, `the redo's rebind was expected to take about ${expect && expect.toFixed(1)} ms`);
+  await until(page, () => document.getElementById('busy-box').hidden, null, 'the progress bar hidden when idle');
   await page.selectOption('#group', '3');
 
   // Drag the gizmo's x arrow of group 3.

@@ -648,19 +648,24 @@ fn lattice_size_basis_and_cage_coordinates_are_chosen_from_the_page() {
 }
 
 /// A slow request is announced (`binding`, what it is), answered, then closed by `idle`, also
-/// when it is refused; a quick one (a pose) has neither.
+/// when it is refused; a quick one (a pose) has neither. The announcement carries the time the
+/// same request took last time (`expect_ms`, for the page's progress bar) once there was one.
 #[test]
 fn slow_requests_are_announced_and_closed() {
     let server = Server::start(&[]);
     let mut c = server.connect(None).expect("connects");
     let groups = c.state()["groups"].as_array().unwrap().len();
     // The text replies until `idle`, in order, without the `posed` replies of poses sent
-    // before (the opening pose's may still be on its way).
+    // before (the opening pose's may still be on its way), and the `binding` reply's estimate.
     let texts = |c: &mut crate::client::Client| {
         let mut seen = Vec::new();
+        let mut expect = None;
         c.until(true, |f| {
             if let Frame::Text(v) = f {
                 let t = v["type"].as_str().unwrap().to_string();
+                if t == "binding" {
+                    expect = v.get("expect_ms").map(|e| e.as_f64().expect("a number"));
+                }
                 let done = t == "idle";
                 seen.push(t);
                 return done.then_some(());
@@ -668,17 +673,30 @@ fn slow_requests_are_announced_and_closed() {
             None
         });
         seen.retain(|t| t != "posed");
-        seen
+        (seen, expect)
     };
     c.send(json!({"op": "method", "method": "arap", "blend": "motor-log"}));
-    assert_eq!(texts(&mut c), ["binding", "state", "idle"]);
+    assert_eq!(
+        texts(&mut c),
+        (vec!["binding".into(), "state".into(), "idle".into()], None)
+    );
     c.send(json!({"op": "method", "method": "nonsense", "blend": "motor-log"}));
-    assert_eq!(texts(&mut c), ["binding", "error", "idle"]);
+    let (seen, expect) = texts(&mut c);
+    assert_eq!(
+        (seen, expect),
+        (vec!["binding".into(), "error".into(), "idle".into()], None)
+    );
     // A pose is not slow: its reply and positions, no `binding`.
     c.send(json!({"op": "motors", "seq": 9, "motors": vec![json!({}); groups]}));
     c.positions(9);
+    // Binding ARAP again: expected to take as long as the first time.
     c.send(json!({"op": "bind"}));
-    assert_eq!(texts(&mut c), ["binding", "state", "idle"]);
+    let (seen, expect) = texts(&mut c);
+    assert_eq!(seen, ["binding", "state", "idle"]);
+    assert!(expect.is_some_and(|ms| ms > 0.0), "{expect:?}");
+    // Another method on the same scene has no estimate yet.
+    c.send(json!({"op": "method", "method": "handles", "blend": "motor-log"}));
+    assert_eq!(texts(&mut c).1, None);
 }
 
 /// The page's positions come in f32 once it asks (half the bytes): each the f64 frame's value

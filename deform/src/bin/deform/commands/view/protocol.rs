@@ -258,8 +258,14 @@ pub enum Reply {
     /// The whole editing state (after a scene, a bind, a method change or a surgery).
     State(Box<StateInfo>),
     /// A bind started (it may take a while); the page shows it, with the time it has taken,
-    /// until [`Reply::Idle`].
-    Binding { what: String },
+    /// until [`Reply::Idle`]: against `expect_ms` where known, the time the last request of
+    /// the same kind took on the same scene with the same method (an estimate, so the page
+    /// can draw a fraction).
+    Binding {
+        what: String,
+        #[serde(skip_serializing_if = "Option::is_none")]
+        expect_ms: Option<f64>,
+    },
     /// The slow request announced by [`Reply::Binding`] is done (its results were sent).
     Idle,
     /// A pose was not made, or a request was refused, and why.

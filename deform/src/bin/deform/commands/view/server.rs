@@ -210,15 +210,26 @@ fn run_session(scenes: Vec<Scene>, mailbox: &Mailbox, tx: &mpsc::Sender<Out>) {
             return;
         }
     };
+    // How long the last slow request of each kind took (`Session::slow_key`).
+    let mut took: std::collections::HashMap<String, f64> = std::collections::HashMap::new();
     while let Some(request) = mailbox.pop() {
         let slow = request.slow();
-        if let Some(what) = slow {
-            if !send(Out::Text(Reply::Binding { what: what.into() })) {
+        let key = slow.map(|what| session.slow_key(&request, what));
+        if let (Some(what), Some(key)) = (slow, &key) {
+            let expect_ms = took.get(key).copied();
+            if !send(Out::Text(Reply::Binding {
+                what: what.into(),
+                expect_ms,
+            })) {
                 return;
             }
         }
+        let started = std::time::Instant::now();
         let result =
             std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| session.handle(request)));
+        if let (Some(key), Ok(Ok(_))) = (key, &result) {
+            took.insert(key, started.elapsed().as_secs_f64() * 1e3);
+        }
         let ok = match result {
             Ok(Ok(out)) => {
                 out.into_iter().all(send) && (slow.is_none() || send(Out::Text(Reply::Idle)))

@@ -148,6 +148,18 @@ impl Session {
         Ok((s, out))
     }
 
+    /// What the last duration of a slow request `what` is kept under: the kind, the scene and
+    /// the method it binds (the one it asks for, or the current one).
+    pub fn slow_key(&self, request: &Request, what: &str) -> String {
+        let method = match request {
+            Request::Method { method, .. } => method.as_str(),
+            Request::Scene { name } => name.as_str(),
+            Request::Upload { name, .. } => name.as_str(),
+            _ => self.method.name(),
+        };
+        format!("{what} / {} / {method}", self.scene)
+    }
+
     /// Answer one request. `Err` is a refused request (the page shows it; the session is
     /// unchanged where the error says so).
     pub fn handle(&mut self, request: Request) -> Result<Vec<Out>> {

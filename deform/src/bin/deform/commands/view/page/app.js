@@ -78,21 +78,35 @@ function onBinary(buf) {
 }
 
 // A slow request in the server (a bind, a cut): its name and the seconds it has taken so far,
-// counted until the server's `idle` (or a state) says it is done.
-function busy(what) {
+// over the top of the view,
+// counted until the server's `idle` (or a state) says it is done; where the server knows how
+// long the same request took last time (`expect_ms`), a bar shows the fraction of that
+// estimate (held below full until it is done), else an indeterminate bar.
+function busy(what, expectMs) {
   clearInterval(ed.busyTimer);
   ed.busySince = performance.now();
-  const show = () => { $("busy").textContent = `${what} ... ${((performance.now() - ed.busySince) / 1000).toFixed(1)} s`; };
+  const bar = $("busy-bar");
+  $("busy-box").hidden = false;
+  if (!expectMs) bar.removeAttribute("value");
+  const show = () => {
+    const s = (performance.now() - ed.busySince) / 1000;
+    if (expectMs) {
+      bar.value = Math.min(s * 1000 / expectMs, 0.99);
+      $("busy").textContent = `${what} ... ${s.toFixed(1)} s of about ${(expectMs / 1000).toFixed(1)} s`;
+    } else {
+      $("busy").textContent = `${what} ... ${s.toFixed(1)} s`;
+    }
+  };
   show();
   ed.busyTimer = setInterval(show, 100);
 }
-function idle() { clearInterval(ed.busyTimer); $("busy").textContent = ""; }
+function idle() { clearInterval(ed.busyTimer); $("busy").textContent = ""; $("busy-box").hidden = true; }
 
 function onText(m) {
   if (m.type === "state") return onState(m);
   if (m.type === "error") { ed.received = ed.seq; return say(m.message); }
   if (m.type === "note") return say(m.message, false);
-  if (m.type === "binding") { busy(m.what); return; }
+  if (m.type === "binding") { ed.busyExpect = m.expect_ms ?? null; busy(m.what, m.expect_ms); return; }
   if (m.type === "idle") { idle(); return; }
   if (m.type === "posed") {
     if (m.joints) ed.joints = m.joints;
