@@ -272,39 +272,33 @@ mod edges {
             for d in [1e-1, 1e-3, 1e-5, 1e-7, 1e-9, 0.0, -1e-9, -1e-7, -1e-3] {
                 let b = std::f64::consts::PI - a - d;
                 let what = format!("a = {a}, d = {d:e}");
-                let planes = on_blades(&g4, &["e12", "e34"], &[2], &[a, b], 1.0);
-                let v: sig400::Even = sig400::Exp::exp(sig400::Bivector::from_multivector(&planes));
-                let w = sig400::EvenVersor::sqrt(v);
-                check(
-                    &format!("G(4,0) {what}"),
-                    v.to_multivector(),
-                    w.to_multivector(),
-                    1e-14,
+                // The root of `exp(planes)` in an algebra and its f32 twin.
+                macro_rules! case {
+                    ($m:ident, $m32:ident, $planes:expr, $label:expr) => {{
+                        let v: $m::Even = $m::Exp::exp($m::Bivector::from_multivector(&$planes));
+                        let w = $m::EvenVersor::sqrt(v).to_multivector();
+                        check(&format!("{} {what}", $label), v.to_multivector(), w, 1e-14);
+                        let v = $m32::Even::from_array(v.to_array().map(|x| x as f32));
+                        let w = $m32::EvenVersor::sqrt(v).to_multivector();
+                        check(
+                            &format!("{} f32 {what}", $label),
+                            v.to_multivector(),
+                            w,
+                            1e-6,
+                        );
+                    }};
+                }
+                case!(
+                    sig400,
+                    sig400_f32,
+                    on_blades(&g4, &["e12", "e34"], &[2], &[a, b], 1.0),
+                    "G(4,0)"
                 );
-                let v = sig400_f32::Even::from_array(v.to_array().map(|x| x as f32));
-                let w = sig400_f32::EvenVersor::sqrt(v);
-                check(
-                    &format!("G(4,0) f32 {what}"),
-                    v.to_multivector(),
-                    w.to_multivector(),
-                    1e-6,
-                );
-                let planes = on_blades(&c5, &["e12", "eo3", "e3i"], &[2], &[a, -b, -0.5 * b], 1.0);
-                let v: cga::Even = cga::Exp::exp(cga::Bivector::from_multivector(&planes));
-                let w = cga::EvenVersor::sqrt(v);
-                check(
-                    &format!("CGA {what}"),
-                    v.to_multivector(),
-                    w.to_multivector(),
-                    1e-14,
-                );
-                let v = cga_f32::Even::from_array(v.to_array().map(|x| x as f32));
-                let w = cga_f32::EvenVersor::sqrt(v);
-                check(
-                    &format!("CGA f32 {what}"),
-                    v.to_multivector(),
-                    w.to_multivector(),
-                    1e-6,
+                case!(
+                    cga,
+                    cga_f32,
+                    on_blades(&c5, &["e12", "eo3", "e3i"], &[2], &[a, -b, -0.5 * b], 1.0),
+                    "CGA"
                 );
             }
         }
