@@ -19,7 +19,6 @@ use crate::mesh::Mesh;
 use crate::mesh::MeshError;
 use crate::operators::pattern::LaplacianPattern;
 use crate::operators::Result;
-use rayon::prelude::*;
 use sprs::CsMat;
 
 /// What to do with triangles of (numerically) zero area, see
@@ -110,26 +109,22 @@ fn cotangent(
     options: CotangentOptions,
     pattern: &LaplacianPattern,
 ) -> Result<CsMat<f64>> {
-    // Per-triangle weights in parallel (`None`: degenerate).
-    let per_face: Vec<Option<[f64; 3]>> = mesh
-        .triangles
-        .par_iter()
-        .map(|t| Frame::new(t.map(|v| mesh.positions[v as usize])).map(|f| f.half_cotangents()))
-        .collect();
-    let degenerate: Vec<u32> = (0..per_face.len() as u32)
-        .filter(|&f| per_face[f as usize].is_none())
-        .collect();
-    let weights: Vec<[[f64; 2]; 3]> = per_face
-        .iter()
-        .map(|w| w.unwrap_or([0.0; 3]).map(|w| [w, w]))
-        .collect();
+    // Each triangle's weights computed as they are added (`None`: degenerate, skipped).
+    let mut degenerate = Vec::new();
+    let mut l = pattern.assemble_with(&mesh.triangles, |f| {
+        let t = mesh.triangles[f];
+        let frame = Frame::new(t.map(|v| mesh.positions[v as usize]));
+        if frame.is_none() {
+            degenerate.push(f as u32);
+        }
+        frame.map(|frame| frame.half_cotangents().map(|w| [w, w]))
+    });
     if options.degenerate == DegeneratePolicy::Error && !degenerate.is_empty() {
         return Err(MeshError::DegenerateTriangles {
             faces: IndexList(degenerate),
         }
         .into());
     }
-    let mut l = pattern.assemble(&mesh.triangles, &weights);
     if options.clamp_negative {
         for_each_off_diagonal(&mut l, |w| *w = w.max(0.0));
         rebuild_diagonal(&mut l);
