@@ -108,9 +108,10 @@ impl Gen<'_> {
              root is taken in the two halves `P+- = (1 +- J) / 2`, `J = u4 / p`, separately: \
              each is a complex number `<self>_0 +- p + X P+-` (`X` the bivector part) whose root \
              is taken in the stable form (near `-1` through its unit imaginary part, projected \
-             on its half again), so that the result squares back to `self` to rounding. Not \
-             finite for `-1` (a full turn has no unique half), nor exactly on that cut, where \
-             the roots form a sphere.",
+             on its half and on the bivectors commuting with `J` again), so that the result \
+             squares back to `self` to rounding; exactly on that cut, where the roots form a \
+             sphere, the one through the basis bivector with the largest part in the half. Not \
+             finite for `-1` (a full turn has no unique half).",
         );
         let root = self.root_body(vt, &scalar_field);
         quote! {
