@@ -196,6 +196,11 @@ fn bad_arguments_and_input_exit_2_and_leave_no_file() {
         assert!(!Path::new(&out).exists(), "{args:?} left an output");
     };
     expect_2(&["spline", &mesh, "--select", &sel, "-o", &out], "--keys");
+    // `--gpu auto` with a space: clap takes `auto` for the model; the hint says `--gpu=auto`.
+    expect_2(
+        &["skin", "--gpu", "auto", &mesh, "-o", &out],
+        "write --gpu=auto",
+    );
     expect_2(
         &[
             "spline", &mesh, "--select", &sel, "--keys", &keys, "-o", &out, "--scheme", "cubic",

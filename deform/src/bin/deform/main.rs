@@ -33,6 +33,9 @@ fn main() -> ExitCode {
         Ok(c) => c,
         Err(e) => {
             let _ = e.print();
+            if let Some(hint) = gpu_value_hint(std::env::args().skip(1)) {
+                eprintln!("{hint}");
+            }
             return if e.use_stderr() {
                 ExitCode::from(2)
             } else {
@@ -49,4 +52,18 @@ fn main() -> ExitCode {
             ExitCode::from(2)
         }
     }
+}
+
+/// `--gpu auto` (a space, not `=`): clap reads `auto` as the next positional argument, since
+/// `--gpu` alone means `--gpu=on`; say how to write it.
+fn gpu_value_hint(args: impl Iterator<Item = String>) -> Option<String> {
+    let args: Vec<String> = args.collect();
+    args.windows(2).find_map(|w| {
+        (w[0] == "--gpu" && ["on", "off", "auto"].contains(&w[1].as_str())).then(|| {
+            format!(
+                "hint: --gpu takes its value after '=': write --gpu={}",
+                w[1]
+            )
+        })
+    })
 }
