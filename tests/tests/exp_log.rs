@@ -240,9 +240,10 @@ mod edges {
         let v: cga::Even = cga::Exp::exp(cga::Bivector::from_multivector(&planes));
         let u4 = [v.eo123, v.eo12i, v.eo13i, v.eo23i, v.e123i];
         let p = (2.0 * u4[0] * u4[4] - u4[1] * u4[1] - u4[2] * u4[2] - u4[3] * u4[3]).sqrt();
+        let s1 = (1.0 + v.s) * (1.0 + v.s);
         assert!(
-            p > 0.5 * (1.0 + v.s) && v.s - p < -0.9999,
-            "the case under test"
+            s1 - p * p < p * s1 && v.s - p < -0.9999,
+            "the case under test (the split root, near the cut)"
         );
         let w = cga::EvenVersor::sqrt(v).to_multivector();
         near("f64", &w.gp(&w), &v.to_multivector(), 1e-15);

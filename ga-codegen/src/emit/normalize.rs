@@ -103,14 +103,16 @@ impl Gen<'_> {
              a unit even versor because `1 + v = sqrt(v) (~sqrt(v) + sqrt(v))` and the second \
              factor is a scalar plus a grade-4 part that normalisation removes. Where the \
              grade-4 part `u4` of `self` squares to `p^2 > 0` (two commuting rotations) and \
-             `p > (1 + <self>_0) / 2`, that factor is nearly a zero divisor (it is one where the \
+             `N = (1 + <self>_0)^2 - p^2` is under `p (1 + <self>_0)^2` (so that dividing by `N` \
+             would lose more than dividing by `p`), that factor is nearly a zero divisor (it is one where the \
              two angles sum to a half turn) and `normalize(1 + self)` would cancel; there the \
              root is taken in the two halves `P+- = (1 +- J) / 2`, `J = u4 / p`, separately: \
              each is a complex number `<self>_0 +- p + X P+-` (`X` the bivector part) whose root \
              is taken in the stable form (near `-1` through its unit imaginary part, projected \
              on its half and on the bivectors commuting with `J` again), so that the result \
-             squares back to `self` to rounding; exactly on that cut, where the roots form a \
-             sphere, the one through the basis bivector with the largest part in the half. Not \
+             squares back to `self` to rounding; on that cut (to the precision), where the \
+             roots form a sphere, the one through the basis bivector with the largest part in \
+             the half. Not \
              finite for `-1` (a full turn has no unique half).",
         );
         let root = self.root_body(vt, &scalar_field);
@@ -211,7 +213,10 @@ impl Gen<'_> {
             let s: #s = #s0;
             let qu: #s = #qu;
             let p = qu.max(0.0).sqrt();
-            if qu > 0.0 && p > 0.5 * (1.0 + s) {
+            // `normalize(1 + self)` loses about `(1 + s)^2 / N` (`N = (1 + s)^2 - p^2`), the
+            // split about `1 / p` (through `J`): the smaller loss.
+            let s1 = (1.0 + s) * (1.0 + s);
+            if qu > 0.0 && s1 - qu < p * s1 {
                 // P+- = (1 +- J) / 2 split `self` into two complex numbers `s +- p + X P+-`.
                 let ip = 1.0 / p;
                 let times_j = |x: [#s; #nb]| -> [#s; #nb] { [#((#xj_terms) * ip),*] };
@@ -245,9 +250,11 @@ impl Gen<'_> {
                         let e = y.map(|v| v / m);
                         let mut f = in_half(e, sign);
                         let mut n = neg_square(f);
-                        if n.is_nan() || n <= 0.0 {
-                            // Exactly on the cut every unit imaginary of the half gives a
-                            // root: take the largest part of a basis bivector in the half.
+                        // `f` is 4 e for an `e` in the half; under a quarter of that, `y` was
+                        // rounding (on the cut at this precision) and its direction is noise.
+                        if n.is_nan() || n <= 4.0 {
+                            // On the cut every unit imaginary of the half gives a root: take
+                            // the largest part of a basis bivector in the half.
                             n = 0.0;
                             for k in 0..#nb {
                                 let mut x: [#s; #nb] = [0.0; #nb];
