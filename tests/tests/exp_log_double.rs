@@ -132,6 +132,33 @@ proptest! {
     }
 }
 
+/// An f32 root on the cut to f32's precision (angles 2.0747 and pi - 2.0747 + 1e-10, planes in
+/// general position), found by `sqrt_near_the_half_turn_cut`: the rounding that stood for the
+/// small imaginary part kept little of itself on its half, and its direction, rescaled, gave
+/// a root whose square was 1.37 off; it now takes a basis bivector's part of the half.
+#[test]
+fn sqrt_f32_on_the_cut_to_its_precision() {
+    use tests::sig400_f32::{Even, EvenVersor};
+    let c = [
+        -0.38550345842063294,
+        -0.15230866099951892,
+        -0.5175253574927167,
+        0.0,
+        0.0,
+        0.6260850408402142,
+    ];
+    let theta = 2.074703617665705;
+    let bm = double_rotation(
+        theta,
+        std::f64::consts::PI - theta + 10f64.powf(-9.989113475538314),
+        &c,
+    );
+    let v = Even::from_multivector(&bm.exp());
+    let w = v.sqrt().to_multivector();
+    let ok = close("sqrt^2 f32", &w.gp(&w), &v.to_multivector(), 1e-5);
+    assert!(ok.is_ok(), "{ok:?}");
+}
+
 /// The exact double half turn, `v = ±e1234` and turned copies: a finite logarithm whose
 /// exponential is `±v` (there are infinitely many; any is correct).
 #[test]

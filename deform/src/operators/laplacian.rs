@@ -111,8 +111,7 @@ fn cotangent(
 ) -> Result<CsMat<f64>> {
     // Each triangle's weights computed as they are added (`None`: degenerate, skipped).
     let mut degenerate = Vec::new();
-    let mut l = pattern.assemble_with(&mesh.triangles, |f| {
-        let t = mesh.triangles[f];
+    let mut l = pattern.assemble_with(&mesh.triangles, |f, t| {
         let frame = Frame::new(t.map(|v| mesh.positions[v as usize]));
         if frame.is_none() {
             degenerate.push(f as u32);

@@ -106,21 +106,22 @@ impl LaplacianPattern {
     /// triangle `f` (`a, b` the next corners in order); `w_ab` is added to `L_ab` and
     /// subtracted from `L_aa`, `w_ba` likewise in row `b`.
     pub(crate) fn assemble(&self, triangles: &[[u32; 3]], weights: &[[[f64; 2]; 3]]) -> CsMat<f64> {
-        self.assemble_with(triangles, |f| Some(weights[f]))
+        self.assemble_with(triangles, |f, _| weights.get(f).copied())
     }
 
-    /// [`LaplacianPattern::assemble`] with each triangle's weights computed as they are
-    /// added (`None`: the triangle adds nothing), so that no array of them is stored.
+    /// [`LaplacianPattern::assemble`] with the weights of triangle `f` (its index and
+    /// corners) computed as they are added (`None`: it adds nothing), so that no array of
+    /// them is stored.
     pub(crate) fn assemble_with(
         &self,
         triangles: &[[u32; 3]],
-        mut weight: impl FnMut(usize) -> Option<[[f64; 2]; 3]>,
+        mut weight: impl FnMut(usize, [u32; 3]) -> Option<[[f64; 2]; 3]>,
     ) -> CsMat<f64> {
         let n = self.len();
         let mut data = vec![0.0; self.indices.len()];
         let mut diag = vec![0.0f64; n];
         for (f, t) in triangles.iter().enumerate() {
-            let Some(w) = weight(f) else {
+            let Some(w) = weight(f, *t) else {
                 continue;
             };
             for k in 0..3 {

@@ -103,17 +103,16 @@ impl Gen<'_> {
              a unit even versor because `1 + v = sqrt(v) (~sqrt(v) + sqrt(v))` and the second \
              factor is a scalar plus a grade-4 part that normalisation removes. Where the \
              grade-4 part `u4` of `self` squares to `p^2 > 0` (two commuting rotations) and \
-             `N = (1 + <self>_0)^2 - p^2` is under `p (1 + <self>_0)^2` (so that dividing by `N` \
-             would lose more than dividing by `p`), that factor is nearly a zero divisor (it is one where the \
-             two angles sum to a half turn) and `normalize(1 + self)` would cancel; there the \
+             `N = (1 + <self>_0)^2 - p^2` is under `p (1 + <self>_0)^2` (dividing by `N` would \
+             lose more than dividing by `p`), that factor is nearly a zero divisor (it is one \
+             where the two angles sum to a half turn) and `normalize(1 + self)` would cancel; there the \
              root is taken in the two halves `P+- = (1 +- J) / 2`, `J = u4 / p`, separately: \
              each is a complex number `<self>_0 +- p + X P+-` (`X` the bivector part) whose root \
              is taken in the stable form (near `-1` through its unit imaginary part, projected \
              on its half and on the bivectors commuting with `J` again), so that the result \
              squares back to `self` to rounding; on that cut (to the precision), where the \
              roots form a sphere, the one through the basis bivector with the largest part in \
-             the half. Not \
-             finite for `-1` (a full turn has no unique half).",
+             the half. Not finite for `-1` (a full turn has no unique half).",
         );
         let root = self.root_body(vt, &scalar_field);
         quote! {
@@ -140,21 +139,13 @@ impl Gen<'_> {
     /// square positive (two commuting rotations), the root split along `J = u4 / sqrt(u4 u4)`
     /// when `normalize(1 + self)` would cancel (see the method's doc).
     fn root_body(&mut self, vt: &TypeDef, scalar_field: &proc_macro2::Ident) -> TokenStream {
-        let fallback = quote! {
+        let split = self.split_root(vt).unwrap_or_default();
+        quote! {
+            #split
             let mut v = self;
             v.#scalar_field += 1.0;
             v.normalize()
-        };
-        self.split_root(vt)
-            .map(|split| {
-                quote! {
-                    #split
-                    let mut v = self;
-                    v.#scalar_field += 1.0;
-                    v.normalize()
-                }
-            })
-            .unwrap_or(fallback)
+        }
     }
 
     /// The split root's early return (`None` where `u4 u4` is never positive or the products
@@ -174,7 +165,7 @@ impl Gen<'_> {
         }
         let blades = u2.support();
         let nb = proc_macro2::Literal::usize_unsuffixed(blades.len());
-        // `x J` times `p` for a bivector `x` on `u2`'s blades (grade 2 only: `x` commutes
+        // `x u4 = p x J` for a bivector `x` on `u2`'s blades (its grade-2 part: `x` commutes
         // with `J` for the parts of a versor).
         let x = cx.declare(ident("x"), blades.iter().copied());
         let xj = self.table.product(&x, &u4, Product::Geometric);

@@ -77,11 +77,10 @@ function onBinary(buf) {
   }
 }
 
-// A slow request in the server (a bind, a cut): its name and the seconds it has taken so far,
-// over the top of the view,
-// counted until the server's `idle` (or a state) says it is done; where the server knows how
-// long the same request took last time (`expect_ms`), a bar shows the fraction of that
-// estimate (held below full until it is done), else an indeterminate bar.
+// A slow request in the server (a bind, a cut), over the top of the view: its name and the
+// seconds it has taken so far, counted until the server's `idle` says it is done; where it
+// knows how long the same request took last time (`expect_ms`), a bar shows the fraction of
+// that estimate (held below full until it is done), else an indeterminate bar.
 function busy(what, expectMs) {
   clearInterval(ed.busyTimer);
   ed.busySince = performance.now();
