@@ -30,6 +30,12 @@ use faer::{Conj, MatMut, Par, Side};
 use sprs::CsMat;
 use structure::{split, Reduced, Split};
 
+/// The index type of the factor's pattern: 32 bits halve the index traffic of the ordering,
+/// the symbolic analysis and the triangular solves against `usize` (AMD and the analysis of
+/// armadillo-50k's harmonic system 29.8 -> 24.2 ms). A system whose pattern does not fit
+/// gets [`SolveError::Solver`].
+pub(crate) type FactorIndex = u32;
+
 /// Fails unless every index of `constrained` is below `n` and listed once
 /// ([`MeshError::ConstraintOutOfRange`], [`MeshError::OverlappingConstraints`]).
 pub(crate) fn check_constrained(n: usize, constrained: &[u32]) -> Result<()> {
@@ -123,8 +129,8 @@ pub struct DirichletSolver {
     q_indptr: Vec<usize>,
     q_indices: Vec<usize>,
     /// Upper triangle of `Q_ff`, compressed columns; `ff_src[k]` indexes `Q`'s data.
-    ff_col_ptr: Vec<usize>,
-    ff_row_idx: Vec<usize>,
+    ff_col_ptr: Vec<FactorIndex>,
+    ff_row_idx: Vec<FactorIndex>,
     ff_src: Vec<usize>,
     ff_values: Vec<f64>,
     /// `Q_fc` by free rows; columns are positions in `constrained`.
@@ -133,7 +139,7 @@ pub struct DirichletSolver {
     fc_src: Vec<usize>,
     fc_values: Vec<f64>,
     /// Shared with the [`SystemAnalysis`] it came from, if any.
-    symbolic: std::sync::Arc<SymbolicCholesky<usize>>,
+    symbolic: std::sync::Arc<SymbolicCholesky<FactorIndex>>,
     l_values: Vec<f64>,
     /// With a [`SystemAnalysis`]: every row is an unknown of the factor (the constrained ones
     /// as identity rows), `0..n`. Otherwise the free rows.
@@ -264,7 +270,7 @@ impl DirichletSolver {
                     SymbolicCholeskyRaw::Supernodal(_) => index,
                 };
                 let local = match self.symbolic.perm() {
-                    Some(p) => p.arrays().0.get(index).copied(),
+                    Some(p) => p.arrays().0.get(index).map(|&i| i as usize),
                     None => Some(index),
                 };
                 let vertex = local.and_then(|i| self.rows().get(i));
@@ -439,7 +445,7 @@ impl DirichletSolver {
         }
         if nf > 0 && ncols > 0 {
             let par = self.options.parallelism.to_faer();
-            let llt = LltRef::<usize, f64>::new(&self.symbolic, &self.l_values);
+            let llt = LltRef::<FactorIndex, f64>::new(&self.symbolic, &self.l_values);
             llt.solve_in_place_with_conj(
                 Conj::No,
                 MatMut::from_column_major_slice_mut(y, nf, ncols),

@@ -10,8 +10,8 @@
 //! with only the numeric factorisation and the solves left per selection.
 
 use super::components::ensure_csr;
-use super::structure::{analyse, split, Split, FREE};
-use super::{DirichletSolver, Factorization, SolverOptions};
+use super::structure::{analyse, fits_factor_index, split, Split, FREE};
+use super::{DirichletSolver, FactorIndex, Factorization, SolverOptions};
 use crate::mesh::MeshError;
 use crate::operators::laplacian::ensure_finite;
 use crate::operators::Result;
@@ -46,10 +46,10 @@ pub struct SystemAnalysis {
     q: CsMat<f64>,
     /// Upper triangle of `Q`, compressed columns (column `v` holds rows `u <= v`), and the
     /// index of each entry in `Q`'s values.
-    col_ptr: Vec<usize>,
-    row_idx: Vec<usize>,
+    col_ptr: Vec<FactorIndex>,
+    row_idx: Vec<FactorIndex>,
     src: Vec<usize>,
-    symbolic: Arc<SymbolicCholesky<usize>>,
+    symbolic: Arc<SymbolicCholesky<FactorIndex>>,
 }
 
 impl SystemAnalysis {
@@ -71,6 +71,7 @@ impl SystemAnalysis {
         let q = ensure_csr(q).into_owned();
         ensure_finite(&q, "system matrix row")?;
         let indptr = q.indptr().into_raw_storage().to_vec();
+        fits_factor_index(n, q.nnz())?;
         let mut col_ptr = Vec::with_capacity(n + 1);
         let (mut row_idx, mut src) = (Vec::new(), Vec::new());
         col_ptr.push(0);
@@ -78,11 +79,12 @@ impl SystemAnalysis {
             for k in indptr[v]..indptr[v + 1] {
                 let u = q.indices()[k];
                 if u <= v {
-                    row_idx.push(u);
+                    // Below `n`, which fits (checked above), as does `q.nnz()`.
+                    row_idx.push(u as FactorIndex);
                     src.push(k);
                 }
             }
-            col_ptr.push(row_idx.len());
+            col_ptr.push(row_idx.len() as FactorIndex);
         }
         let sym = SymbolicSparseColMatRef::new_checked(n, n, &col_ptr, None, &row_idx);
         // Each selection factorises and solves once: the supernodal layout.
@@ -135,10 +137,11 @@ impl DirichletSolver {
         // The full pattern, constrained rows and columns masked to the identity.
         let mut ff_src = analysis.src.clone();
         for (v, span) in analysis.col_ptr.windows(2).enumerate() {
-            let rows = &analysis.row_idx[span[0]..span[1]];
-            for (src, &u) in ff_src[span[0]..span[1]].iter_mut().zip(rows) {
-                if slot[u] != FREE || slot[v] != FREE {
-                    *src = if u == v { ONE } else { ZERO };
+            let span = span[0] as usize..span[1] as usize;
+            let rows = &analysis.row_idx[span.clone()];
+            for (src, &u) in ff_src[span].iter_mut().zip(rows) {
+                if slot[u as usize] != FREE || slot[v] != FREE {
+                    *src = if u as usize == v { ONE } else { ZERO };
                 }
             }
         }

@@ -5,7 +5,7 @@
 //! being computed ([`DirichletSolver::overlapped`](super::DirichletSolver::overlapped)).
 
 use super::components::check_components;
-use super::{DirichletSolver, Factorization, SolverOptions};
+use super::{DirichletSolver, FactorIndex, Factorization, SolverOptions};
 use crate::mesh::IndexList;
 use crate::mesh::MeshError;
 use crate::operators::laplacian::ensure_finite;
@@ -22,9 +22,9 @@ use sprs::CsMat;
 /// The symbolic Cholesky factor of the upper triangle `upper` (AMD ordering), laid out as
 /// asked.
 pub(super) fn analyse(
-    upper: SymbolicSparseColMatRef<'_, usize>,
+    upper: SymbolicSparseColMatRef<'_, FactorIndex>,
     factorization: Factorization,
-) -> Result<SymbolicCholesky<usize>> {
+) -> Result<SymbolicCholesky<FactorIndex>> {
     let params = CholeskySymbolicParams {
         supernodal_flop_ratio_threshold: match factorization {
             Factorization::Auto => SupernodalThreshold::AUTO,
@@ -35,6 +35,17 @@ pub(super) fn analyse(
     };
     factorize_symbolic_cholesky(upper, Side::Upper, SymmetricOrdering::Amd, params)
         .map_err(|e| SolveError::Solver(format!("{e:?}")))
+}
+
+/// Fails with [`SolveError::Solver`] when an `n x n` pattern of `entries` nonzeros is too
+/// large for the factor's 32-bit indices.
+pub(super) fn fits_factor_index(n: usize, entries: usize) -> Result<()> {
+    if FactorIndex::try_from(n.max(entries)).is_err() {
+        return Err(SolveError::Solver(format!(
+            "a {n} x {n} pattern of {entries} nonzeros exceeds the factor's 32-bit indices"
+        )));
+    }
+    Ok(())
 }
 
 /// Marks a row as free in the slots of [`classify`].
@@ -108,13 +119,13 @@ pub(super) fn classify(n: usize, constrained: &[u32]) -> Result<Vec<u32>> {
 /// in `Q`'s values, with the symbolic factor of `Q_ff`.
 pub(super) struct Reduced {
     pub(super) free: Vec<u32>,
-    pub(super) ff_col_ptr: Vec<usize>,
-    pub(super) ff_row_idx: Vec<usize>,
+    pub(super) ff_col_ptr: Vec<FactorIndex>,
+    pub(super) ff_row_idx: Vec<FactorIndex>,
     pub(super) ff_src: Vec<usize>,
     pub(super) fc_ptr: Vec<usize>,
     pub(super) fc_col: Vec<u32>,
     pub(super) fc_src: Vec<usize>,
-    pub(super) symbolic: SymbolicCholesky<usize>,
+    pub(super) symbolic: SymbolicCholesky<FactorIndex>,
 }
 
 impl Reduced {
@@ -129,9 +140,11 @@ impl Reduced {
         factorization: Factorization,
     ) -> Result<Reduced> {
         let n = slot.len();
-        let mut local = vec![0usize; n];
+        fits_factor_index(n, indices.len())?;
+        let mut local = vec![0 as FactorIndex; n];
         for (i, &v) in free.iter().enumerate() {
-            local[v as usize] = i;
+            // `free` holds vertex indices, so `i` fits.
+            local[v as usize] = i as FactorIndex;
         }
         let mut ff_col_ptr = Vec::with_capacity(free.len() + 1);
         let mut ff_row_idx = Vec::new();
@@ -145,7 +158,7 @@ impl Reduced {
             let row = indptr[v as usize]..indptr[v as usize + 1];
             for (k, &u) in row.clone().zip(&indices[row]) {
                 if slot[u] == FREE {
-                    if local[u] <= j {
+                    if local[u] as usize <= j {
                         ff_row_idx.push(local[u]);
                         ff_src.push(k);
                     }
@@ -154,7 +167,8 @@ impl Reduced {
                     fc_src.push(k);
                 }
             }
-            ff_col_ptr.push(ff_row_idx.len());
+            // At most `indices.len()`, checked above.
+            ff_col_ptr.push(ff_row_idx.len() as FactorIndex);
             fc_ptr.push(fc_col.len());
         }
         let nf = free.len();
