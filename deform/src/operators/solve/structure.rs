@@ -234,3 +234,22 @@ impl DirichletSolver {
         )
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn patterns_beyond_32_bit_indices_are_refused() {
+        let max = FactorIndex::MAX as usize;
+        assert!(fits_factor_index(max, max).is_ok());
+        for (n, entries) in [(max + 1, 0), (3, max + 1)] {
+            match fits_factor_index(n, entries) {
+                Err(SolveError::Solver(m)) => {
+                    assert!(m.contains("32-bit"), "{m}")
+                }
+                other => panic!("{n} x {n}, {entries} nonzeros: {other:?}"),
+            }
+        }
+    }
+}
