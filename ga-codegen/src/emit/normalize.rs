@@ -76,13 +76,6 @@ impl Gen<'_> {
                 #result
             }
         };
-        let scalar_field = ident(
-            &vt.fields
-                .iter()
-                .find(|f| f.bitmap == 0)
-                .expect("an even versor stores its scalar")
-                .name,
-        );
         let first = ident(&vt.fields[0].name);
         let maxes = vt.fields[1..].iter().map(|f| {
             let id = ident(&f.name);
@@ -99,9 +92,14 @@ impl Gen<'_> {
             vt.name
         ));
         let dr = doc(
-            "The square root (half the motion): `normalize(1 + self)`, which is `sqrt(self)` for \
-             a unit even versor because `1 + v = sqrt(v) (~sqrt(v) + sqrt(v))` and the second \
-             factor is a scalar plus a grade-4 part that normalisation removes. Where the \
+            "The square root (half the motion) of `v = self / |self|`: `normalize(1 + v)`, \
+             which is `sqrt(v)` for a unit even versor because `1 + v = sqrt(v) (~sqrt(v) + \
+             sqrt(v))` and the second factor is a scalar plus a grade-4 part that normalisation \
+             removes. `self` is divided by its largest coefficient first, and `1 + v` is taken \
+             as `|self| + <self>_0` (`|self|^2 = <self>_0^2 + <y ~y>_0`, `y` the rest of \
+             `self`), which for `<self>_0 < 0` is computed as `<y ~y>_0 / (|self| - <self>_0)`: \
+             near `-1` (a full turn) `1 + <self>_0` would cancel and lose about `eps / d` at a \
+             distance `d`; this keeps the root to rounding of `self`'s own coefficients. Where the \
              grade-4 part `u4` of `self` squares to `p^2 > 0` (two commuting rotations) and \
              `N = (1 + <self>_0)^2 - p^2` is under `p (1 + <self>_0)^2` (dividing by `N` would \
              lose more than dividing by `p`), that factor is nearly a zero divisor (it is one \
@@ -112,9 +110,9 @@ impl Gen<'_> {
              on its half and on the bivectors commuting with `J` again), so that the result \
              squares back to `self` to rounding; on that cut (to the precision), where the \
              roots form a sphere, the one through the basis bivector with the largest part in \
-             the half. Not finite for `-1` (a full turn has no unique half).",
+             the half. Not finite for zero or `-1` (a full turn has no unique half).",
         );
-        let root = self.root_body(vt, &scalar_field);
+        let root = self.root_body(vt);
         quote! {
             impl EvenVersor for #vn {
                 #dn
@@ -138,13 +136,40 @@ impl Gen<'_> {
     /// The body of `sqrt`: `normalize(1 + self)`, and where `self`'s grade-4 part `u4` can
     /// square positive (two commuting rotations), the root split along `J = u4 / sqrt(u4 u4)`
     /// when `normalize(1 + self)` would cancel (see the method's doc).
-    fn root_body(&mut self, vt: &TypeDef, scalar_field: &proc_macro2::Ident) -> TokenStream {
+    fn root_body(&mut self, vt: &TypeDef) -> TokenStream {
         let split = self.split_root(vt).unwrap_or_default();
+        let s = self.s.clone();
+        let mut cx = Ctx::new(vt, s.clone());
+        let v0 = SymMv::of_type(vt, 0);
+        // `self` over its largest coefficient, so that `|self|^2` cannot overflow.
+        let (v_stmt, v) = cx.local("v", &v0, Some(&quote!(k)));
+        let mut y = v.clone();
+        y.0.remove(&0);
+        let yy = cx.poly(&self.table.product(&y, &y.rev(), Product::Geometric).get(0));
+        let s0 = cx.at(&v, 0);
+        let result = build(vt, |b| {
+            if b == 0 {
+                Some(quote!(a))
+            } else {
+                v.0.contains_key(&b).then(|| cx.at(&v, b))
+            }
+        });
+        let first = ident(&vt.fields[0].name);
+        let maxes = vt.fields[1..].iter().map(|f| {
+            let id = ident(&f.name);
+            quote!(self.#id.abs())
+        });
         quote! {
             #split
-            let mut v = self;
-            v.#scalar_field += 1.0;
-            v.normalize()
+            let m: #s = self.#first.abs() #(.max(#maxes))*;
+            let k: #s = 1.0 / m;
+            #v_stmt
+            let s: #s = #s0;
+            // `|v|^2 = s^2 + <y ~y>`, `y = v - s`; `|v| + s` without cancelling near `-1`.
+            let yy: #s = #yy;
+            let l = (s * s + yy).max(0.0).sqrt();
+            let a: #s = if s >= 0.0 { l + s } else { yy / (l - s) };
+            #result.normalize()
         }
     }
 
