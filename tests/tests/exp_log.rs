@@ -646,6 +646,58 @@ mod edges {
         );
     }
 
+    /// Motors whose rotation part is tiny next to their translation (a turn of 0.14 rad with a
+    /// shift of `1e6` to `1e11` units in f32, `1e60` and `1e100` in f64): `normalize` took
+    /// `1 / sqrt(2 a N^2)` with `a ~ N ~ n0` (the squared rotation part over the largest
+    /// coefficient squared), which underflowed to zero, so `inf` or `NaN`, once that ratio
+    /// fell under about `1e-8` in f32 and `1e-51` in f64; `sqrt` of a motor within `1e-9` of
+    /// a full turn went through it too. Below `1e-19` (f32) and `1e-154` (f64) `n0` itself
+    /// underflows.
+    #[test]
+    fn motors_far_from_the_origin_normalise_finitely() {
+        use tests::cga_f32;
+        let unit = |w: Multivector, what: &str, tol: f64| {
+            let one = Multivector::scalar(w.algebra(), 1.0);
+            near(what, &w.gp(&w.rev()), &one, tol);
+        };
+        for (far, f32_too) in [
+            (1e6, true),
+            (1e7, true),
+            (1e11, true),
+            (1e60, false),
+            (1e100, false),
+        ] {
+            let mut c = cga::Bivector::default();
+            (c.e12, c.e13, c.e1i, c.e2i) = (0.1, -0.1, far, -0.5 * far);
+            let m: cga::Motor = cga::Exp::exp(c);
+            let drift = cga::Motor::from_array(m.to_array().map(|x| x * 1.001));
+            let n = cga::EvenVersor::normalize(drift).to_multivector();
+            near(
+                &format!("f64 normalize, {far:e}"),
+                &n,
+                &m.to_multivector(),
+                1e-13 * far,
+            );
+            unit(n, &format!("f64 normalize unit, {far:e}"), 1e-13 * far);
+            if f32_too {
+                let m32 = cga_f32::Motor::from_array(m.to_array().map(|x| x as f32));
+                let drift = cga_f32::Motor::from_array(m32.to_array().map(|x| x * 1.001));
+                let n = cga_f32::EvenVersor::normalize(drift);
+                assert!(
+                    n.to_array().iter().all(|x| x.is_finite()),
+                    "f32 normalize, {far:e}: {:?}",
+                    n.to_array()
+                );
+                near(
+                    &format!("f32 normalize, {far:e}"),
+                    &n.to_multivector(),
+                    &m32.to_multivector(),
+                    1e-6 * far,
+                );
+            }
+        }
+    }
+
     #[test]
     fn negative_scalar_versors_log_to_the_same_motion() {
         use sta::{Exp as _, Log as _};

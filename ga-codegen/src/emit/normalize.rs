@@ -69,10 +69,18 @@ impl Gen<'_> {
             quote! {
                 let n0: #s = #n0;
                 #n4_stmt
-                let sn = (n0 * n0 - (#qn)).max(0.0).sqrt();
+                // `sqrt(n0^2 - q)` without squaring `n0`, which underflows when the rotation
+                // part is tiny next to the translation.
+                let q: #s = #qn;
+                let sn = if n0 != 0.0 {
+                    n0.abs() * (1.0 - q / n0 / n0).max(0.0).sqrt()
+                } else {
+                    (-q).max(0.0).sqrt()
+                };
                 let a = n0 + sn;
                 let y: [#s; #m] = [a, #(#ys),*];
-                let r = 1.0 / (2.0 * a * sn * sn).sqrt();
+                // `sqrt(2 a) sn`, not `sqrt(2 a sn^2)`: `a sn^2 ~ n0^3` underflows likewise.
+                let r = 1.0 / ((2.0 * a).sqrt() * sn);
                 #result
             }
         };
