@@ -252,6 +252,13 @@ mod edges {
         near("f32", &w.gp(&w), &vf.to_multivector(), 1e-6);
     }
 
+    /// `w` is a root of `v` (`w^2 = v`) and a unit (`w ~w = 1`), to `tol`.
+    fn root_of(what: &str, v: Multivector, w: Multivector, tol: f64) {
+        near(&format!("{what}: w^2 = v"), &w.gp(&w), &v, tol);
+        let one = Multivector::scalar(v.algebra(), 1.0);
+        near(&format!("{what}: w ~w = 1"), &w.gp(&w.rev()), &one, tol);
+    }
+
     /// Two commuting rotations whose angles sum to about a half turn, `a + b = pi - d`: there
     /// `1 + v` is nearly a zero divisor (one on the cut), and `normalize(1 + v)` cancelled
     /// (its square 1.6e-4 off `v` at `d = 1e-6` in f64, not finite at `d = 0`). The root taken
@@ -261,12 +268,6 @@ mod edges {
     #[test]
     fn sqrt_across_the_half_turn_cut() {
         use tests::{cga_f32, sig400, sig400_f32};
-        let check = |what: &str, v: Multivector, w: Multivector, tol: f64| {
-            let alg = v.algebra().clone();
-            near(&format!("{what}: w^2 = v"), &w.gp(&w), &v, tol);
-            let one = Multivector::scalar(&alg, 1.0);
-            near(&format!("{what}: w ~w = 1"), &w.gp(&w.rev()), &one, tol);
-        };
         let g4 = sig400::algebra();
         let c5 = cga::algebra();
         for a in [0.4, 1.0, 1.3] {
@@ -278,10 +279,10 @@ mod edges {
                     ($m:ident, $m32:ident, $planes:expr, $label:expr) => {{
                         let v: $m::Even = $m::Exp::exp($m::Bivector::from_multivector(&$planes));
                         let w = $m::EvenVersor::sqrt(v).to_multivector();
-                        check(&format!("{} {what}", $label), v.to_multivector(), w, 1e-14);
+                        root_of(&format!("{} {what}", $label), v.to_multivector(), w, 1e-14);
                         let v = $m32::Even::from_array(v.to_array().map(|x| x as f32));
                         let w = $m32::EvenVersor::sqrt(v).to_multivector();
-                        check(
+                        root_of(
                             &format!("{} f32 {what}", $label),
                             v.to_multivector(),
                             w,
@@ -314,12 +315,6 @@ mod edges {
     #[test]
     fn sqrt_near_a_full_turn_and_of_a_scaled_versor() {
         use tests::{cga_f32, sig400};
-        let check = |what: &str, v: Multivector, w: Multivector, tol: f64| {
-            let alg = v.algebra().clone();
-            near(&format!("{what}: w^2 = v"), &w.gp(&w), &v, tol);
-            let one = Multivector::scalar(&alg, 1.0);
-            near(&format!("{what}: w ~w = 1"), &w.gp(&w.rev()), &one, tol);
-        };
         let (a3, a5, a4) = (g3::algebra(), cga::algebra(), sig400::algebra());
         let tau = std::f64::consts::TAU;
         for d in [1e-1, 1e-3, 1e-5, 1e-7, 1e-9] {
@@ -331,7 +326,7 @@ mod edges {
             let v: g3::Rotor = g3::Exp::exp(g3::Bivector::from_multivector(&b));
             assert!(v.s + 1.0 < 0.6 * d * d, "{what}: near -1");
             let w = g3::EvenVersor::sqrt(v);
-            check(
+            root_of(
                 &format!("G(3) {what}"),
                 v.to_multivector(),
                 w.to_multivector(),
@@ -342,7 +337,7 @@ mod edges {
             let b5 = b5.scale(0.5 * t / b5.gp(&b5.rev()).get(0).sqrt());
             let r: cga::Rotor = cga::Exp::exp(cga::Bivector::from_multivector(&b5));
             let w = cga::EvenVersor::sqrt(r);
-            check(
+            root_of(
                 &format!("CGA {what}"),
                 r.to_multivector(),
                 w.to_multivector(),
@@ -350,7 +345,7 @@ mod edges {
             );
             let r32 = cga_f32::Rotor::from_array(r.to_array().map(|x| x as f32));
             let w = cga_f32::EvenVersor::sqrt(r32);
-            check(
+            root_of(
                 &format!("CGA f32 {what}"),
                 r32.to_multivector(),
                 w.to_multivector(),
@@ -367,7 +362,7 @@ mod edges {
             let b = b.scale(0.5 * t / b.gp(&b.rev()).get(0).sqrt());
             let v: sig400::Even = sig400::Exp::exp(sig400::Bivector::from_multivector(&b));
             let w = sig400::EvenVersor::sqrt(v);
-            check(
+            root_of(
                 &format!("G(4,0) {what}"),
                 v.to_multivector(),
                 w.to_multivector(),
