@@ -320,54 +320,34 @@ mod edges {
         for d in [1e-1, 1e-3, 1e-5, 1e-7, 1e-9] {
             let t = tau - d;
             let what = format!("{d:e} from a full turn");
+            // A bivector on the named planes with norm t / 2 (a turn by t).
+            let turn = |alg: &std::sync::Arc<ga_codegen::Algebra>, names: &[&str], c: &[f64]| {
+                let b = on_blades(alg, names, &[2], c, 1.0);
+                b.scale(0.5 * t / b.gp(&b.rev()).get(0).sqrt())
+            };
+            let oblique = [0.3, -0.5, 0.8, 0.1];
             // G(3): a rotor about an oblique axis.
-            let b = on_blades(&a3, &["e12", "e13", "e23"], &[2], &[0.3, -0.5, 0.8], 1.0);
-            let b = b.scale(0.5 * t / b.gp(&b.rev()).get(0).sqrt());
-            let v: g3::Rotor = g3::Exp::exp(g3::Bivector::from_multivector(&b));
+            let v: g3::Rotor = g3::Exp::exp(g3::Bivector::from_multivector(&turn(
+                &a3,
+                &["e12", "e13", "e23"],
+                &oblique,
+            )));
             assert!(v.s + 1.0 < 0.6 * d * d, "{what}: near -1");
-            let w = g3::EvenVersor::sqrt(v);
-            root_of(
-                &format!("G(3) {what}"),
-                v.to_multivector(),
-                w.to_multivector(),
-                1e-15,
-            );
+            let w = g3::EvenVersor::sqrt(v).to_multivector();
+            root_of(&format!("G(3) {what}"), v.to_multivector(), w, 1e-15);
             // CGA: a rotor and its f32 twin.
-            let b5 = on_blades(&a5, &["e12", "e13", "e23"], &[2], &[0.3, -0.5, 0.8], 1.0);
-            let b5 = b5.scale(0.5 * t / b5.gp(&b5.rev()).get(0).sqrt());
+            let b5 = turn(&a5, &["e12", "e13", "e23"], &oblique);
             let r: cga::Rotor = cga::Exp::exp(cga::Bivector::from_multivector(&b5));
-            let w = cga::EvenVersor::sqrt(r);
-            root_of(
-                &format!("CGA {what}"),
-                r.to_multivector(),
-                w.to_multivector(),
-                1e-15,
-            );
+            let w = cga::EvenVersor::sqrt(r).to_multivector();
+            root_of(&format!("CGA {what}"), r.to_multivector(), w, 1e-15);
             let r32 = cga_f32::Rotor::from_array(r.to_array().map(|x| x as f32));
-            let w = cga_f32::EvenVersor::sqrt(r32);
-            root_of(
-                &format!("CGA f32 {what}"),
-                r32.to_multivector(),
-                w.to_multivector(),
-                1e-6,
-            );
+            let w = cga_f32::EvenVersor::sqrt(r32).to_multivector();
+            root_of(&format!("CGA f32 {what}"), r32.to_multivector(), w, 1e-6);
             // G(4,0): a simple rotation in the general `Even` type.
-            let b = on_blades(
-                &a4,
-                &["e12", "e13", "e24", "e34"],
-                &[2],
-                &[0.3, -0.5, 0.8, 0.1],
-                1.0,
-            );
-            let b = b.scale(0.5 * t / b.gp(&b.rev()).get(0).sqrt());
-            let v: sig400::Even = sig400::Exp::exp(sig400::Bivector::from_multivector(&b));
-            let w = sig400::EvenVersor::sqrt(v);
-            root_of(
-                &format!("G(4,0) {what}"),
-                v.to_multivector(),
-                w.to_multivector(),
-                1e-14,
-            );
+            let b4 = turn(&a4, &["e12", "e13", "e24", "e34"], &oblique);
+            let v: sig400::Even = sig400::Exp::exp(sig400::Bivector::from_multivector(&b4));
+            let w = sig400::EvenVersor::sqrt(v).to_multivector();
+            root_of(&format!("G(4,0) {what}"), v.to_multivector(), w, 1e-14);
             // Scaled: the same root (a motor only away from the full turn, see above).
             for k in [1e-3, 2.5, 1e3] {
                 let scaled = cga::Rotor::from_multivector(&r.to_multivector().scale(k));
