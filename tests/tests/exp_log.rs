@@ -621,11 +621,11 @@ mod edges {
         );
     }
 
-    /// Motors whose rotation part is tiny next to their translation (a turn of 0.14 rad with a
+    /// Motors whose rotation part is tiny next to their translation (a turn of 0.28 rad with a
     /// shift of `1e6` to `1e11` units in f32, `1e60` and `1e100` in f64): `normalize` took
     /// `1 / sqrt(2 a N^2)` with `a ~ N ~ n0` (the squared rotation part over the largest
     /// coefficient squared), which underflowed to zero, so `inf` or `NaN`, once that ratio
-    /// fell under about `1e-8` in f32 and `1e-51` in f64; `sqrt` of a motor within `1e-9` of
+    /// fell under about `3e-8` in f32 and `1e-54` in f64; `sqrt` of a motor within `1e-9` of
     /// a full turn went through it too. Below `1e-19` (f32) and `1e-154` (f64) `n0` itself
     /// underflows.
     #[test]
