@@ -5,8 +5,9 @@
 //! per core; a fused multiply-add is one) and of the memory limit (bytes per vertex at the
 //! streaming rate measured here for the same working set) and the ratio to the larger.
 //! Graded (`met` / `MISSED`): motor blending <= 1 ms on the armadillo and no slower than dual
-//! quaternions, equation (17) within 1.1x of matrix LBS, log blending within 1.5x of motor blending, and on one thread the speed-ups of
-//! issue 23 (dual quaternions 2x, motor blending 3x, matrix 1.25x); and the time to sample
+//! quaternions, equation (17) within 1.1x of matrix LBS, log blending within 1.5x of motor
+//! blending, and on one thread the speed-ups of issue 23 (dual quaternions 2x, motor blending
+//! 3x, matrix 1.25x); and the time to sample
 //! CesiumMan's animation and build its motors. The criterion bench `skinning` measures the same.
 //!
 //! `cargo run --release -p deform --example skinning_report [BACKEND..]`

@@ -84,11 +84,7 @@ impl Gen<'_> {
                 #result
             }
         };
-        let first = ident(&vt.fields[0].name);
-        let maxes = vt.fields[1..].iter().map(|f| {
-            let id = ident(&f.name);
-            quote!(self.#id.abs())
-        });
+        let largest = largest_coefficient(vt);
         let dn = doc(&format!(
             "`self` divided by the square root of `self ~self`, in closed form. `x = self ~self` \
              is a scalar `n0` plus a grade-4 part `n4` with `n4 n4 = q` a scalar, so \
@@ -107,7 +103,9 @@ impl Gen<'_> {
              as `|self| + <self>_0` (`|self|^2 = <self>_0^2 + <y ~y>_0`, `y` the rest of \
              `self`), which for `<self>_0 < 0` is computed as `<y ~y>_0 / (|self| - <self>_0)`: \
              near `-1` (a full turn) `1 + <self>_0` would cancel and lose about `eps / d` at a \
-             distance `d`; this keeps the root to rounding of `self`'s own coefficients. Where the \
+             distance `d`; this keeps a rotation's root to rounding of `self`'s coefficients (a \
+             motor that also shifts along its axis still loses about `eps / d` there: its \
+             `1 + v` is mostly translation, and normalising it cancels). Where the \
              grade-4 part `u4` of `self` squares to `p^2 > 0` (two commuting rotations) and \
              `N = (1 + <self>_0)^2 - p^2` is under `p (1 + <self>_0)^2` (dividing by `N` would \
              lose more than dividing by `p`), that factor is nearly a zero divisor (it is one \
@@ -127,7 +125,7 @@ impl Gen<'_> {
                 #[inline]
                 #[allow(unused_variables, clippy::neg_multiply, clippy::double_parens)]
                 fn normalize(self) -> Self {
-                    let k: #s = 1.0 / self.#first.abs() #(.max(#maxes))*;
+                    let k: #s = 1.0 / #largest;
                     #v_stmt
                     #body
                 }
@@ -162,15 +160,10 @@ impl Gen<'_> {
                 v.0.contains_key(&b).then(|| cx.at(&v, b))
             }
         });
-        let first = ident(&vt.fields[0].name);
-        let maxes = vt.fields[1..].iter().map(|f| {
-            let id = ident(&f.name);
-            quote!(self.#id.abs())
-        });
+        let largest = largest_coefficient(vt);
         quote! {
             #split
-            let m: #s = self.#first.abs() #(.max(#maxes))*;
-            let k: #s = 1.0 / m;
+            let k: #s = 1.0 / #largest;
             #v_stmt
             let s: #s = #s0;
             // `|v|^2 = s^2 + <y ~y>`, `y = v - s`; `|v| + s` without cancelling near `-1`.
@@ -303,4 +296,15 @@ impl Gen<'_> {
             }
         })
     }
+}
+
+/// `self`'s largest coefficient in absolute value (the scale `normalize` and `sqrt` divide by
+/// first, so that no square of a coefficient overflows).
+fn largest_coefficient(vt: &TypeDef) -> TokenStream {
+    let first = ident(&vt.fields[0].name);
+    let rest = vt.fields[1..].iter().map(|f| {
+        let id = ident(&f.name);
+        quote!(self.#id.abs())
+    });
+    quote!(self.#first.abs() #(.max(#rest))*)
 }
