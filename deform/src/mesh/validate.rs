@@ -124,69 +124,111 @@ pub fn check_solvable(mesh: &Mesh) -> Result<()> {
 /// Validation; `full = false` skips duplicates and components. Linear in the mesh size
 /// (plus sorting), whatever the valences.
 fn inspect(mesh: &Mesh, full: bool) -> ValidationReport {
-    let n = mesh.positions.len();
-    let mut r = ValidationReport {
-        vertex_count: n,
-        triangle_count: mesh.triangles.len(),
-        ..Default::default()
-    };
-    for (v, p) in mesh.positions.iter().enumerate() {
-        if !p.is_finite() {
-            r.non_finite_vertices.push(v as u32);
-        } else if p.abs().max_element() > MAX_COORDINATE {
-            r.huge_vertices.push(v as u32);
-        }
-    }
-    // Triangles usable for topology: in range and with three distinct indices.
-    let mut good = Vec::with_capacity(mesh.triangles.len());
-    let mut good_ids = Vec::with_capacity(mesh.triangles.len());
-    for (f, t) in mesh.triangles.iter().enumerate() {
-        if t.iter().any(|&v| v as usize >= n) {
-            r.out_of_range_faces.push(f as u32);
-            continue;
-        }
-        let repeated = t[0] == t[1] || t[1] == t[2] || t[0] == t[2];
-        // Zero area matters to the full report only (the solvable checks do not fail on it).
-        let flat = || {
-            let [a, b, c] = t.map(|v| mesh.positions[v as usize]);
-            is_degenerate_triangle(a, b, c)
+    Scan::new(mesh, full).finish(full)
+}
+
+/// The first half of a validation: the positions, the triangles usable for topology and
+/// their edge table, kept so that the Laplacian's pattern can be laid out from the same
+/// edges ([`crate::Harmonic::new`] orders that pattern while the second half runs).
+pub(crate) struct Scan {
+    report: ValidationReport,
+    /// Triangles in range with three distinct indices.
+    good: Vec<[u32; 3]>,
+    /// The edges of `good`.
+    pub(crate) edges: adjacency::Edges,
+}
+
+impl Scan {
+    /// Positions, triangles and edges; `full` also looks for zero-area and duplicate
+    /// triangles.
+    pub(crate) fn new(mesh: &Mesh, full: bool) -> Scan {
+        let n = mesh.positions.len();
+        let mut r = ValidationReport {
+            vertex_count: n,
+            triangle_count: mesh.triangles.len(),
+            ..Default::default()
         };
-        if repeated || (full && flat()) {
-            r.degenerate_faces.push(f as u32);
-        }
-        if !repeated {
-            good.push(*t);
-            good_ids.push(f as u32);
-        }
-    }
-    if full {
-        r.duplicate_faces = duplicates(&good, &good_ids);
-    }
-    let edges = adjacency::edges(&good, n);
-    r.boundary_edges = edges.boundary().count();
-    r.non_manifold_edges = edges.non_manifold().map(|e| edges.edges[e]).collect();
-    // A vertex is manifold when its triangles form one edge-connected fan.
-    let fans = adjacency::fan_counts(&good, n, &edges);
-    for (v, &k) in fans.iter().enumerate() {
-        match k {
-            0 => r.unreferenced_vertices.push(v as u32),
-            1 => {}
-            _ => r.non_manifold_vertices.push(v as u32),
-        }
-    }
-    if full {
-        // Components among referenced vertices.
-        let comps = adjacency::components(&good, n);
-        let mut seen = vec![false; comps.count];
-        for (v, &k) in fans.iter().enumerate() {
-            let c = comps.labels[v] as usize;
-            if k > 0 && !seen[c] {
-                seen[c] = true;
-                r.components.push(v as u32);
+        for (v, p) in mesh.positions.iter().enumerate() {
+            if !p.is_finite() {
+                r.non_finite_vertices.push(v as u32);
+            } else if p.abs().max_element() > MAX_COORDINATE {
+                r.huge_vertices.push(v as u32);
             }
         }
+        // Triangles usable for topology: in range and with three distinct indices.
+        let mut good = Vec::with_capacity(mesh.triangles.len());
+        let mut good_ids = Vec::with_capacity(mesh.triangles.len());
+        for (f, t) in mesh.triangles.iter().enumerate() {
+            if t.iter().any(|&v| v as usize >= n) {
+                r.out_of_range_faces.push(f as u32);
+                continue;
+            }
+            let repeated = t[0] == t[1] || t[1] == t[2] || t[0] == t[2];
+            // Zero area matters to the full report only (the solvable checks do not fail on it).
+            let flat = || {
+                let [a, b, c] = t.map(|v| mesh.positions[v as usize]);
+                is_degenerate_triangle(a, b, c)
+            };
+            if repeated || (full && flat()) {
+                r.degenerate_faces.push(f as u32);
+            }
+            if !repeated {
+                good.push(*t);
+                good_ids.push(f as u32);
+            }
+        }
+        if full {
+            r.duplicate_faces = duplicates(&good, &good_ids);
+        }
+        let edges = adjacency::edges(&good, n);
+        r.boundary_edges = edges.boundary().count();
+        r.non_manifold_edges = edges.non_manifold().map(|e| edges.edges[e]).collect();
+        Scan {
+            report: r,
+            good,
+            edges,
+        }
     }
-    r
+
+    /// Whether every triangle of the mesh is usable, so that `edges` are the edges of all of
+    /// them.
+    pub(crate) fn covers_all(&self) -> bool {
+        self.good.len() == self.report.triangle_count
+    }
+
+    /// [`ValidationReport::check_solvable`] of the finished report.
+    pub(crate) fn check_solvable(&self) -> Result<()> {
+        self.finish(false).check_solvable()
+    }
+
+    /// The second half: fans (manifold vertices, unreferenced ones) and, if `full`, the
+    /// components.
+    fn finish(&self, full: bool) -> ValidationReport {
+        let (n, good) = (self.report.vertex_count, &self.good);
+        let mut r = self.report.clone();
+        // A vertex is manifold when its triangles form one edge-connected fan.
+        let fans = adjacency::fan_counts(good, n, &self.edges);
+        for (v, &k) in fans.iter().enumerate() {
+            match k {
+                0 => r.unreferenced_vertices.push(v as u32),
+                1 => {}
+                _ => r.non_manifold_vertices.push(v as u32),
+            }
+        }
+        if full {
+            // Components among referenced vertices.
+            let comps = adjacency::components(good, n);
+            let mut seen = vec![false; comps.count];
+            for (v, &k) in fans.iter().enumerate() {
+                let c = comps.labels[v] as usize;
+                if k > 0 && !seen[c] {
+                    seen[c] = true;
+                    r.components.push(v as u32);
+                }
+            }
+        }
+        r
+    }
 }
 
 /// `[face, earlier]` pairs of triangles with the same vertex set (any order), sorted.

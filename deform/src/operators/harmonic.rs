@@ -6,6 +6,7 @@
 //! with prescribed values on the constrained vertex sets.
 
 use crate::mesh::validate::check_solvable;
+use crate::mesh::validate::Scan;
 use crate::mesh::IndexList;
 use crate::mesh::Mesh;
 use crate::mesh::MeshError;
@@ -182,15 +183,21 @@ impl Harmonic {
             let solver = DirichletSolver::new(&q, &constrained, options.solver)?;
             return Ok(Harmonic::of(solver, sets));
         }
-        // -L has the Laplacian's pattern: order it while the checks and weights run.
-        let pattern = pattern_of(mesh);
+        // -L has the Laplacian's pattern, laid out from the checks' edge table when every
+        // triangle is usable: order it while the rest of the checks and the weights run.
+        let scan = Scan::new(mesh, false);
+        let pattern = if scan.covers_all() {
+            LaplacianPattern::from_edges(n, &mesh.triangles, &scan.edges)
+        } else {
+            pattern_of(mesh)
+        };
         let solver = DirichletSolver::overlapped(
             &pattern.indptr,
             &pattern.indices,
             &constrained,
             options.solver,
             || {
-                check_solvable(mesh)?;
+                scan.check_solvable()?;
                 checked_system(mesh, &options, &pattern)
             },
         )?;

@@ -5,6 +5,7 @@
 //! being computed ([`crate::operators::harmonic::Harmonic::new`] does both at once on two
 //! threads).
 
+use crate::mesh::adjacency::Edges;
 use sprs::CsMat;
 
 /// Compressed rows of a Laplacian's pattern: row `i` holds `i` and every vertex sharing a
@@ -96,6 +97,64 @@ impl LaplacianPattern {
         }
     }
 
+    /// [`LaplacianPattern::new`] from the triangles' edge table (`edges` must be
+    /// [`crate::mesh::adjacency::edges`] of these `triangles`, whose indices must be in range and distinct):
+    /// the edges come sorted, so every row is laid out in order without sorting.
+    pub(crate) fn from_edges(n: usize, triangles: &[[u32; 3]], edges: &Edges) -> LaplacianPattern {
+        let mut indptr = vec![0usize; n + 1];
+        for &[a, b] in &edges.edges {
+            indptr[a as usize + 1] += 1;
+            indptr[b as usize + 1] += 1;
+        }
+        for i in 0..n {
+            indptr[i + 1] += indptr[i] + 1;
+        }
+        let mut indices = vec![0usize; indptr[n]];
+        let mut fill: Vec<usize> = indptr[..n].to_vec();
+        // Edges `[a, b]` run by `a`, then `b`: row `b` receives its columns `a < b` in order,
+        // then its diagonal, then (second pass) its columns above `b` in order.
+        let mut lower = Vec::with_capacity(edges.edges.len());
+        for &[a, b] in &edges.edges {
+            let at = &mut fill[b as usize];
+            indices[*at] = a as usize;
+            lower.push(*at as u32);
+            *at += 1;
+        }
+        let mut diagonal = Vec::with_capacity(n);
+        for (i, at) in fill.iter_mut().enumerate() {
+            indices[*at] = i;
+            diagonal.push(*at);
+            *at += 1;
+        }
+        let mut upper = Vec::with_capacity(edges.edges.len());
+        for &[a, b] in &edges.edges {
+            let at = &mut fill[a as usize];
+            indices[*at] = b as usize;
+            upper.push(*at as u32);
+            *at += 1;
+        }
+        let mut places = vec![NOWHERE; 6 * triangles.len()];
+        for (f, (t, e)) in triangles.iter().zip(&edges.face_edges).enumerate() {
+            for k in 0..3 {
+                let e = e[k] as usize;
+                // Row `a` column `b` first: the upper entry when `a < b`.
+                let (ab, ba) = if t[(k + 1) % 3] < t[(k + 2) % 3] {
+                    (upper[e], lower[e])
+                } else {
+                    (lower[e], upper[e])
+                };
+                places[6 * f + 2 * k] = ab;
+                places[6 * f + 2 * k + 1] = ba;
+            }
+        }
+        LaplacianPattern {
+            indptr,
+            indices,
+            diagonal,
+            places,
+        }
+    }
+
     /// Rows (and columns).
     pub(crate) fn len(&self) -> usize {
         self.diagonal.len()
@@ -141,5 +200,49 @@ impl LaplacianPattern {
             data[d] = diag[i];
         }
         CsMat::new((n, n), self.indptr.clone(), self.indices.clone(), data)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::adjacency::edges;
+    use crate::mesh::shapes::{icosphere, tube};
+
+    /// The edge table's pattern is the sorted one: rows, diagonals and the place of every
+    /// triangle's entries, on closed, open and non-manifold meshes (an edge of three
+    /// triangles, a bow-tie vertex) and a mesh with unreferenced vertices.
+    #[test]
+    fn the_edge_table_gives_the_sorted_pattern() {
+        let fin = vec![[0, 1, 2], [1, 0, 3], [0, 1, 4], [4, 5, 6], [4, 7, 8]];
+        let meshes: Vec<(usize, Vec<[u32; 3]>)> = vec![
+            (
+                icosphere(1.0, 2).vertex_count(),
+                icosphere(1.0, 2).triangles,
+            ),
+            (
+                tube(1.0, 2.0, 7, 5).vertex_count(),
+                tube(1.0, 2.0, 7, 5).triangles,
+            ),
+            (12, fin),
+            (3, vec![]),
+        ];
+        for (n, t) in meshes {
+            let sorted = LaplacianPattern::new(n, &t);
+            assert_eq!(LaplacianPattern::from_edges(n, &t, &edges(&t, n)), sorted);
+            // The rows do hold the diagonal and each triangle's two entries per edge.
+            for (f, tri) in t.iter().enumerate() {
+                for k in 0..3 {
+                    let (a, b) = (tri[(k + 1) % 3] as usize, tri[(k + 2) % 3] as usize);
+                    let at = &sorted.places[6 * f + 2 * k..6 * f + 2 * k + 2];
+                    let (ra, rb) = (
+                        sorted.indptr[a]..sorted.indptr[a + 1],
+                        sorted.indptr[b]..sorted.indptr[b + 1],
+                    );
+                    assert!(ra.contains(&(at[0] as usize)) && sorted.indices[at[0] as usize] == b);
+                    assert!(rb.contains(&(at[1] as usize)) && sorted.indices[at[1] as usize] == a);
+                }
+            }
+        }
     }
 }
