@@ -12,7 +12,8 @@
 //   node benches/view/fps.mjs target/release/deform ../shared/data/meshes/large/armadillo-50k.obj [SECONDS] [WxH]
 //
 // Runs the server and the browser on this machine (both cores shared); the browser draws with
-// SwiftShader (software GL), so "drawn" is a floor for a machine with a GPU.
+// SwiftShader (software GL), or with Mesa's llvmpipe under CHROMIUM_GL=llvmpipe (a faster
+// software rasteriser), so "drawn" is a floor for a machine with a GPU.
 import { startServer, openPage, until, settled, drag, arrow, drawnNear } from '../../deform/tests/view/driver.mjs';
 
 const [program, model, seconds = '4', size = '1200x760'] = process.argv.slice(2);

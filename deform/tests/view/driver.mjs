@@ -23,10 +23,15 @@ export async function openPage(url, problems, viewport = { width: 1200, height: 
   // playwright-core from $PLAYWRIGHT_DIR, else .ci/node (where .ci/run installs it).
   const require = createRequire(path.resolve(process.env.PLAYWRIGHT_DIR ?? path.join(root, '.ci/node')) + '/');
   const { chromium } = require('playwright-core');
+  // WebGL through SwiftShader by default; CHROMIUM_GL=llvmpipe draws with Mesa's llvmpipe
+  // (ANGLE over EGL), a faster software rasteriser.
+  const gl = process.env.CHROMIUM_GL === 'llvmpipe'
+    ? ['--use-angle=gl-egl', '--ignore-gpu-blocklist']
+    : ['--disable-gpu', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'];
   const browser = await chromium.launch({
     executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium', headless: true,
-    args: ['--no-sandbox', '--disable-gpu', '--disable-background-networking', '--disable-component-update',
-      '--disable-sync', '--no-first-run', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
+    args: ['--no-sandbox', '--disable-background-networking', '--disable-component-update',
+      '--disable-sync', '--no-first-run', ...gl],
   });
   const page = await browser.newPage({ viewport });
   page.on('console', (m) => { if (m.type() === 'error') problems.push(`console error: ${m.text()}`); });
