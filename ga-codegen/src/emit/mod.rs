@@ -37,6 +37,7 @@ mod quad_lanes;
 mod render;
 mod sandwich;
 mod summary;
+mod turn_root;
 mod types;
 mod wgsl;
 mod wgsl_exp;

@@ -95,7 +95,19 @@ impl Gen<'_> {
              finite for zero.",
             vt.name
         ));
-        let dr = doc(
+        let turn = self.turn_root(vt);
+        let screw = if turn.is_some() {
+            " For a screw (a rotation plus a translation along its axis, as here) `1 + v` near \
+             `-1` is mostly translation and normalising it would cancel terms of size `1 / d`, so \
+             beyond a half turn (`<self>_0 < 0`) the root is `exp(log(v) / 2)` with the \
+             logarithm read the long way round, its rotation part split off as `log` does and \
+             projected on the lines once more: an exact screw whose square is `v` to rounding \
+             (near the full turn its axis is fixed by `v` only to `eps |translation| / d`, which \
+             moves the motion by `eps |translation|`)."
+        } else {
+            ""
+        };
+        let dr = doc(&format!(
             "The square root (half the motion) of `v = self / |self|`: `normalize(1 + v)`, \
              which is `sqrt(v)` for a unit even versor because `1 + v = sqrt(v) (~sqrt(v) + \
              sqrt(v))` and the second factor is a scalar plus a grade-4 part that normalisation \
@@ -103,9 +115,8 @@ impl Gen<'_> {
              as `|self| + <self>_0` (`|self|^2 = <self>_0^2 + <y ~y>_0`, `y` the rest of \
              `self`), which for `<self>_0 < 0` is computed as `<y ~y>_0 / (|self| - <self>_0)`: \
              near `-1` (a full turn) `1 + <self>_0` would cancel and lose about `eps / d` at a \
-             distance `d`; this keeps a rotation's root to rounding of `self`'s coefficients (a \
-             motor that also shifts along its axis still loses about `eps / d` there: its \
-             `1 + v` is mostly translation, and normalising it cancels). Where the \
+             distance `d`; this keeps a rotation's root to rounding of `self`'s \
+             coefficients.{screw} Where the \
              grade-4 part `u4` of `self` squares to `p^2 > 0` (two commuting rotations) and \
              `N = (1 + <self>_0)^2 - p^2` is under `p (1 + <self>_0)^2` (dividing by `N` would \
              lose more than dividing by `p`), that factor is nearly a zero divisor (it is one \
@@ -116,10 +127,11 @@ impl Gen<'_> {
              on its half and on the bivectors commuting with `J` again), so that the result \
              squares back to `self` to rounding; on that cut (to the precision), where the \
              roots form a sphere, the one through the basis bivector with the largest part in \
-             the half. Not finite for zero or `-1` (a full turn has no unique half).",
-        );
-        let root = self.root_body(vt);
+             the half. Not finite for zero or `-1` (a full turn has no unique half)."
+        ));
+        let root = self.root_body(vt, turn.is_some());
         quote! {
+            #turn
             impl EvenVersor for #vn {
                 #dn
                 #[inline]
@@ -142,11 +154,23 @@ impl Gen<'_> {
     /// The body of `sqrt`: `normalize(1 + self)`, and where `self`'s grade-4 part `u4` can
     /// square positive (two commuting rotations), the root split along `J = u4 / sqrt(u4 u4)`
     /// when `normalize(1 + self)` would cancel (see the method's doc).
-    fn root_body(&mut self, vt: &TypeDef) -> TokenStream {
+    fn root_body(&mut self, vt: &TypeDef, screw: bool) -> TokenStream {
         let split = self.split_root(vt).unwrap_or_default();
         let s = self.s.clone();
         let mut cx = Ctx::new(vt, s.clone());
         let v0 = SymMv::of_type(vt, 0);
+        // Screws beyond a half turn: `exp(log / 2)` the long way round (`turn_root.rs`).
+        let beyond = if screw {
+            let method = ident(super::turn_root::METHOD);
+            let s0 = cx.at(&v0, 0);
+            quote! {
+                if #s0 < 0.0 {
+                    return EvenVersor::normalize(self).#method();
+                }
+            }
+        } else {
+            TokenStream::new()
+        };
         // `self` over its largest coefficient, so that `|self|^2` cannot overflow.
         let (v_stmt, v) = cx.local("v", &v0, Some(&quote!(k)));
         let mut y = v.clone();
@@ -162,6 +186,7 @@ impl Gen<'_> {
         });
         let largest = largest_coefficient(vt);
         quote! {
+            #beyond
             #split
             let k: #s = 1.0 / #largest;
             #v_stmt
