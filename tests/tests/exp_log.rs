@@ -313,7 +313,8 @@ mod edges {
     /// their axis) lost about `eps / d` there until their root beyond a half turn became
     /// `exp(log / 2)` the long way round: `normalize(1 + v)` cancels terms of size `1 / d`
     /// (f64 1.8e-13 off at `d = 1e-3` and 1.7e-7 at `1e-9`; f32 1.6e-4 at `1e-3`, 0.8 at `1e-7`
-    /// and 58 at `1e-9`).
+    /// and 58 at `1e-9`); a CGA similarity with a dilation of 0.3 lost more (f64 1.7e-11 at
+    /// `1e-3`, 2e-4 at `1e-7`, not finite at `1e-9`), and gets the same root.
     #[test]
     fn sqrt_near_a_full_turn_and_of_a_scaled_versor() {
         use tests::{cga_f32, sig400};
@@ -363,23 +364,37 @@ mod edges {
             let mp: pga3d::Motor = pga3d::Exp::exp(pga3d::Line::from_multivector(&bp));
             let w = pga3d::EvenVersor::sqrt(mp).to_multivector();
             root_of(&format!("PGA motor {what}"), mp.to_multivector(), w, 1e-15);
+            // A similarity (the screw and a dilation) and a Lorentz rotor (a rotation and a
+            // boost along and across its axis): the other part is not null there.
+            let dil = on_blades(&a5, &["eoi"], &[2], &[0.3], 1.0);
+            let sm: cga::ScaledMotor =
+                cga::Exp::exp(cga::Bivector::from_multivector(&(&(&b5 + &shift5) + &dil)));
+            let w = cga::EvenVersor::sqrt(sm).to_multivector();
+            root_of(
+                &format!("CGA scaled motor {what}"),
+                sm.to_multivector(),
+                w,
+                1e-15,
+            );
+            let a13 = sta::algebra();
+            let bl = &turn(&a13, &["e23", "e31", "e12"], &oblique)
+                + &on_blades(&a13, &["e01", "e02", "e03"], &[2], &[0.3, -0.1, 0.2], 1.0);
+            let l: sta::Rotor = sta::Exp::exp(sta::Bivector::from_multivector(&bl));
+            let w = sta::EvenVersor::sqrt(l).to_multivector();
+            root_of(&format!("STA rotor {what}"), l.to_multivector(), w, 1e-15);
             if d >= 1e-7 {
-                let m32 = cga_f32::Motor::from_array(m.to_array().map(|x| x as f32));
-                let w = cga_f32::EvenVersor::sqrt(m32).to_multivector();
-                root_of(
-                    &format!("CGA f32 motor {what}"),
-                    m32.to_multivector(),
-                    w,
-                    1e-6,
-                );
-                let mp32 = tests::pga3d_f32::Motor::from_array(mp.to_array().map(|x| x as f32));
-                let w = tests::pga3d_f32::EvenVersor::sqrt(mp32).to_multivector();
-                root_of(
-                    &format!("PGA f32 motor {what}"),
-                    mp32.to_multivector(),
-                    w,
-                    1e-6,
-                );
+                // The f32 twin of a versor roots to 1e-6.
+                macro_rules! root_f32 {
+                    ($m:ident, $t:ident, $x:expr, $label:expr) => {{
+                        let x = tests::$m::$t::from_array($x.to_array().map(|c| c as f32));
+                        let w = tests::$m::EvenVersor::sqrt(x).to_multivector();
+                        root_of(&format!("{} {what}", $label), x.to_multivector(), w, 1e-6);
+                    }};
+                }
+                root_f32!(cga_f32, ScaledMotor, sm, "CGA f32 scaled motor");
+                root_f32!(sta_f32, Rotor, l, "STA f32 rotor");
+                root_f32!(cga_f32, Motor, m, "CGA f32 motor");
+                root_f32!(pga3d_f32, Motor, mp, "PGA f32 motor");
             }
             // Scaled: the same root (for a screw away from the full turn).
             for k in [1e-3, 2.5, 1e3] {

@@ -12,8 +12,8 @@
 //!   its bivector blades;
 //! - `impl EvenVersor for V`: `normalize` (divide by the square root of `V ~V`, a scalar plus a
 //!   grade-4 part, in closed form) and `sqrt` (`normalize(1 + V)`, or per half of the grade-4
-//!   part's `J` where that cancels: `normalize.rs`; for screws beyond a half turn `exp(log / 2)`
-//!   the long way round: `turn_root.rs`).
+//!   part's `J` where that cancels: `normalize.rs`; for a rotation with a translation, boost or
+//!   dilation beyond a half turn `exp(log / 2)` the long way round: `turn_root.rs`).
 //!
 //! Every intermediate multivector (`W = <B B>_4`, `W B`, ...) is expanded symbolically, so
 //! only the blades that can be non-zero are computed; a grade-4 part that squares to zero
@@ -325,8 +325,9 @@ impl Gen<'_> {
                 fn normalize(self) -> Self;
                 /// The square root (half the motion): `normalize(1 + self)`, or where that
                 /// cancels the root of each half of the grade-4 part's `J` in the stable form
-                /// (two rotations whose angles sum to nearly a half turn) or, for a screw beyond
-                /// a half turn, `exp(log(self) / 2)` with the logarithm read the long way round.
+                /// (two rotations whose angles sum to nearly a half turn) or, for a rotation with
+                /// a translation, boost or dilation beyond a half turn, `exp(log(self) / 2)` with
+                /// the logarithm read the long way round.
                 fn sqrt(self) -> Self;
             }
         });

@@ -7,41 +7,58 @@ use super::render::{doc, float, ident};
 use super::{Gen, ScalarType};
 use crate::blade::Bitmap;
 use crate::spec::TypeDef;
-use crate::symbolic::{Product, SymMv};
+use crate::symbolic::{Poly, Product, SymMv};
 use proc_macro2::TokenStream;
 use quote::quote;
 
+/// What every closed-form logarithm reads first: the bivector part `p` and grade-4 part `r4`
+/// of `V` as locals, `<p p>_0`, `(p ^ p)/2` as the local `wp`, its square and `(W p)/2`.
+pub(super) struct Preamble {
+    /// `let p = ..; let r4 = ..; let sp = ..; let wp = ..;`
+    pub(super) stmts: TokenStream,
+    pub(super) p: SymMv,
+    pub(super) r4: SymMv,
+    /// `((p ^ p)/2)^2`, a scalar.
+    pub(super) qp: Poly,
+    /// `(W p)/2`, `W = p ^ p`.
+    pub(super) wpp: SymMv,
+    /// `<p p>_0` is a negative sum of squares and `W W = 0` identically: a rotation plus a null
+    /// part (PGA and CGA motors).
+    pub(super) null: bool,
+}
+
 impl Gen<'_> {
-    /// `impl Log for V`, into the smallest type holding `V`'s bivector blades.
-    pub(super) fn log_impl(&mut self, vt: &TypeDef, kind: SpanKind) -> TokenStream {
-        let s = self.s.clone();
-        let v = SymMv::of_type(vt, 0);
-        // The smallest bivector type holding every bivector blade of `V`.
-        let g2: Vec<Bitmap> = grade_part(&v, 2).support();
-        let Some(lo) = self.by_size.iter().copied().find(|&i| {
+    /// The smallest bivector type holding every bivector blade of `V`.
+    pub(super) fn log_type(&self, vt: &TypeDef) -> Option<usize> {
+        let g2: Vec<Bitmap> = grade_part(&SymMv::of_type(vt, 0), 2).support();
+        self.by_size.iter().copied().find(|&i| {
             let t = &self.spec.types[i];
             is_bivector(t) && g2.iter().all(|b| t.blades().any(|x| x == *b))
-        }) else {
-            return TokenStream::new();
-        };
-        let spec = self.spec;
-        let lt = &spec.types[lo];
-        let mut cx = Ctx::new(vt, s.clone());
-        let sg = quote!(sg);
-        let r0 = cx.at(&v, 0);
-        // Rotation plus null part: the hemisphere sign goes into one factor (see `log_null`), so
-        // the parts are read as stored. Each local is one field up to sign, so these identities
-        // hold for the locals as they do for the fields.
+        })
+    }
+
+    /// The [`Preamble`] of `V` in `cx` (operand 0 is `V`); `sign` multiplies `p` and `r4`
+    /// unless the parts are a rotation plus a null part (read as stored).
+    pub(super) fn log_preamble(
+        &mut self,
+        vt: &TypeDef,
+        cx: &mut Ctx<'_>,
+        sign: Option<&TokenStream>,
+    ) -> Preamble {
+        let s = self.s.clone();
+        let v = SymMv::of_type(vt, 0);
+        // Each local is one field up to sign, so these identities hold for the locals as they
+        // do for the fields.
         let g2 = grade_part(&v, 2);
         let g2sq = self.table.product(&g2, &g2, Product::Geometric);
         let g4 = grade_part(&g2sq, 4);
-        let fast = negative_squares(&g2sq.get(0))
+        let null = negative_squares(&g2sq.get(0))
             && self
                 .table
                 .product(&g4, &g4, Product::Geometric)
                 .get(0)
                 .is_zero();
-        let factor = (!fast).then_some(&sg);
+        let factor = if null { None } else { sign };
         let (p_stmt, p) = cx.local("p", &g2, factor);
         let (r4_stmt, r4) = cx.local("r4", &grade_part(&v, 4), factor);
         let pp = self.table.product(&p, &p, Product::Geometric);
@@ -50,45 +67,77 @@ impl Gen<'_> {
         let (wp_stmt, wp) = cx.local("wp", &half(&grade_part(&pp, 4)), None);
         let qp = self.table.product(&wp, &wp, Product::Geometric).get(0);
         let wpp = grade_part(&self.table.product(&wp, &p, Product::Geometric), 2);
-        if fast {
-            return self.log_null(vt, lt, cx, [p_stmt, r4_stmt, wp_stmt], sp, &p, &r4, &wpp);
+        Preamble {
+            stmts: quote!(#p_stmt #r4_stmt let sp: #s = #sp; #wp_stmt),
+            p,
+            r4,
+            qp,
+            wpp,
+            null,
         }
-        let squares = if qp.is_zero() {
+    }
+
+    /// The general split of a logarithm (not the null form), after [`Gen::log_preamble`]:
+    /// `head` computes the squares `mr` (rotation) and `mo` of the commuting parts, `tail` the
+    /// rotation part (the local named in the result: `pr`, or in the `long` form `pl`, `pr`
+    /// projected on the simple bivectors once more), `kr`, `uo` and `ko`, so that the
+    /// logarithm is `kr rot + ko uo`. The `long` form reads `V` as stored (no sign taken out:
+    /// the rotation's half-angle `atan2(|pr|, <V>_0)` lies in `[pi/2, pi]` for a negative
+    /// scalar part) and splits whatever `mr - mo` is not zero.
+    pub(super) fn log_general(
+        &mut self,
+        cx: &mut Ctx<'_>,
+        pre: &Preamble,
+        long: bool,
+    ) -> (TokenStream, TokenStream, &'static str) {
+        let s = self.s.clone();
+        let (p, r4, wpp) = (&pre.p, &pre.r4, &pre.wpp);
+        let head = if pre.qp.is_zero() {
             quote!(let (mr, mo) = (sp.min(0.0), sp.max(0.0));)
         } else {
-            let qe = cx.poly(&qp);
+            let qe = cx.poly(&pre.qp);
             quote!(let (mr, mo) = exp_log_squares(sp, 4.0 * (#qe));)
         };
         // p_r = (mr p - (W p)/2) / (mr - mo): the part with the smaller square.
         let pr_vals = p.0.keys().map(|b| {
-            let pe = cx.at(&p, *b);
+            let pe = cx.at(p, *b);
             if wpp.0.contains_key(b) {
-                let we = cx.at(&wpp, *b);
+                let we = cx.at(wpp, *b);
                 quote!((mr * #pe - (#we)) * k)
             } else {
                 quote!(mr * #pe * k)
             }
         });
-        let n = proc_macro2::Literal::usize_unsuffixed(p.0.len());
-        let tiny = self.tiny();
+        let keys: Vec<Bitmap> = p.0.keys().copied().collect();
+        let n = proc_macro2::Literal::usize_unsuffixed(keys.len());
+        let tiny = if long { quote!(0.0) } else { self.tiny() };
         let pr_stmt = quote! {
             let d = mr - mo;
             let pr: [#s; #n] = if d.abs() > #tiny { let k = 1.0 / d; [#(#pr_vals),*] } else { [0.0; #n] };
         };
-        let pr_sym = cx.declare(ident("pr"), p.0.keys().copied());
-        let prr4 = grade_part(&self.table.product(&pr_sym, &r4, Product::Geometric), 2);
-        let uo_vals = p.0.keys().enumerate().map(|(i, b)| {
+        let mut rot = cx.declare(ident("pr"), keys.iter().copied());
+        let mut rot_stmt = TokenStream::new();
+        let mut rot_name = "pr";
+        if long {
+            let (stmt, pl) = self.lines_projection(cx, &rot, &keys, "wr", "pl");
+            rot_stmt = stmt;
+            rot = pl;
+            rot_name = "pl";
+        }
+        let rot_id = ident(rot_name);
+        let prr4 = grade_part(&self.table.product(&rot, r4, Product::Geometric), 2);
+        let uo_vals = keys.iter().enumerate().map(|(i, b)| {
             let i = proc_macro2::Literal::usize_unsuffixed(i);
-            let pe = cx.at(&p, *b);
+            let pe = cx.at(p, *b);
             if prr4.0.contains_key(b) {
                 let re = cx.at(&prr4, *b);
-                quote!((r0 * (#pe - pr[#i]) - (#re)) * ic)
+                quote!((r0 * (#pe - #rot_id[#i]) - (#re)) * ic)
             } else {
-                quote!(r0 * (#pe - pr[#i]) * ic)
+                quote!(r0 * (#pe - #rot_id[#i]) * ic)
             }
         });
         let uo_stmt = quote!(let ic = 1.0 / co; let uo: [#s; #n] = [#(#uo_vals),*];);
-        let uo_sym = cx.declare(ident("uo"), p.0.keys().copied());
+        let uo_sym = cx.declare(ident("uo"), keys.iter().copied());
         let sig = self
             .table
             .product(&uo_sym, &uo_sym, Product::Geometric)
@@ -112,20 +161,94 @@ impl Gen<'_> {
                 };
             }
         };
-        let keys: Vec<Bitmap> = p.0.keys().copied().collect();
+        // The long form has no rotation to read for `a = 0` (a negative versor without one has
+        // no unique root): `kr` is not finite there.
+        let kr = if long {
+            quote!(let kr = th / a;)
+        } else {
+            quote!(let kr = if a > 0.0 { th / a } else { 1.0 / r0 };)
+        };
+        let tail = quote! {
+            #pr_stmt
+            #rot_stmt
+            let a = (-mr).max(0.0).sqrt();
+            let th = a.atan2(r0);
+            let co = (r0 * r0 + a * a).sqrt();
+            #kr
+            #uo_stmt
+            #ko
+        };
+        (head, tail, rot_name)
+    }
+
+    /// `x - (W x)/(2 <x x>_0)`, `W = x ^ x` (the first-order projection of a bivector on the
+    /// simple ones, exact for `W W = 0`), as the local `out` with `(x ^ x)/2` in `w_name`.
+    pub(super) fn lines_projection(
+        &mut self,
+        cx: &mut Ctx<'_>,
+        x: &SymMv,
+        keys: &[Bitmap],
+        w_name: &str,
+        out: &str,
+    ) -> (TokenStream, SymMv) {
+        let s = self.s.clone();
+        let xx = self.table.product(x, x, Product::Geometric);
+        let sx = cx.poly(&xx.get(0));
+        let (w_stmt, w) = cx.local(w_name, &half(&grade_part(&xx, 4)), None);
+        let wx = grade_part(&self.table.product(&w, x, Product::Geometric), 2);
+        let vals = keys.iter().map(|b| {
+            let xe = cx.at(x, *b);
+            if wx.0.contains_key(b) {
+                let we = cx.at(&wx, *b);
+                quote!(#xe - (#we) * k)
+            } else {
+                xe
+            }
+        });
+        let n = proc_macro2::Literal::usize_unsuffixed(keys.len());
+        let out_id = ident(out);
+        let stmt = quote! {
+            #w_stmt
+            let k: #s = { let sx: #s = #sx; if sx < 0.0 { 1.0 / sx } else { 0.0 } };
+            let #out_id: [#s; #n] = [#(#vals),*];
+        };
+        (stmt, cx.declare(out_id, keys.iter().copied()))
+    }
+
+    /// `impl Log for V`, into the smallest type holding `V`'s bivector blades.
+    pub(super) fn log_impl(&mut self, vt: &TypeDef, kind: SpanKind) -> TokenStream {
+        let s = self.s.clone();
+        let Some(lo) = self.log_type(vt) else {
+            return TokenStream::new();
+        };
+        let spec = self.spec;
+        let lt = &spec.types[lo];
+        let mut cx = Ctx::new(vt, s.clone());
+        let sg = quote!(sg);
+        let r0 = cx.at(&SymMv::of_type(vt, 0), 0);
+        // Rotation plus null part: the hemisphere sign goes into one factor (see `log_null`), so
+        // the parts are read as stored.
+        let pre = self.log_preamble(vt, &mut cx, Some(&sg));
+        if pre.null {
+            return self.log_null(vt, lt, cx, &pre);
+        }
+        let (head, tail, rot) = self.log_general(&mut cx, &pre, false);
+        let rot = ident(rot);
+        let keys: Vec<Bitmap> = pre.p.0.keys().copied().collect();
         let result = build(lt, |x| {
             keys.iter().position(|b| *b == x).map(|i| {
                 let i = proc_macro2::Literal::usize_unsuffixed(i);
-                quote!(kr * pr[#i] + ko * uo[#i])
+                quote!(kr * #rot[#i] + ko * uo[#i])
             })
         });
         // Two rotations: by the sum and difference of their angles (`log_double.rs`).
-        let double = if kind.double_rotation() && !r4.0.is_empty() {
-            self.log_double_rotation(&mut cx, lt, &p, &r4)
+        let double = if kind.double_rotation() && !pre.r4.0.is_empty() {
+            self.log_double_rotation(&mut cx, lt, &pre.p, &pre.r4)
         } else {
             TokenStream::new()
         };
         let (vn, ln) = (ident(&vt.name), ident(&lt.name));
+        let pre_stmts = pre.stmts;
         let d = doc(&format!(
             "The principal logarithm of a unit `{}` (normalise first otherwise), in closed \
              form: `exp(log(v)) = ±v`, the sign that makes the scalar part non-negative (the \
@@ -154,19 +277,10 @@ impl Gen<'_> {
                 fn log(self) -> #ln {
                     let sg: #s = if #r0 < 0.0 { -1.0 } else { 1.0 };
                     let r0: #s = sg * (#r0);
-                    #p_stmt
-                    #r4_stmt
-                    let sp: #s = #sp;
-                    #wp_stmt
-                    #squares
+                    #pre_stmts
+                    #head
                     #double
-                    #pr_stmt
-                    let a = (-mr).max(0.0).sqrt();
-                    let th = a.atan2(r0);
-                    let co = (r0 * r0 + a * a).sqrt();
-                    let kr = if a > 0.0 { th / a } else { 1.0 / r0 };
-                    #uo_stmt
-                    #ko
+                    #tail
                     #result
                 }
             }
@@ -186,18 +300,14 @@ impl Gen<'_> {
     /// `impl Log for V` when `<P P>_0` is a negative sum of squares and `W W = 0` identically:
     /// `P` is a rotation (or nothing) plus a null part (PGA and CGA motors), so the squares are
     /// `<P P>_0` and `0` with nothing to solve, and the null part needs no scaling.
-    #[allow(clippy::too_many_arguments)]
     fn log_null(
         &mut self,
         vt: &TypeDef,
         lt: &TypeDef,
         mut cx: Ctx<'_>,
-        stmts: [TokenStream; 3],
-        sp: TokenStream,
-        p: &SymMv,
-        r4: &SymMv,
-        wpp: &SymMv,
+        pre: &Preamble,
     ) -> TokenStream {
+        let (p, r4, wpp) = (&pre.p, &pre.r4, &pre.wpp);
         let s = self.s.clone();
         let r0 = cx.at(&SymMv::of_type(vt, 0), 0);
         let keys: Vec<Bitmap> = p.0.keys().copied().collect();
@@ -230,7 +340,7 @@ impl Gen<'_> {
                 t
             })
         });
-        let [p_stmt, r4_stmt, wp_stmt] = stmts;
+        let pre_stmts = &pre.stmts;
         let tiny = self.tiny();
         let (vn, ln) = (ident(&vt.name), ident(&lt.name));
         let d = doc(&format!(
@@ -245,10 +355,7 @@ impl Gen<'_> {
                 #[allow(unused_variables, clippy::neg_multiply, clippy::double_parens)]
                 fn log(self) -> #ln {
                     let r0: #s = #r0;
-                    #p_stmt
-                    #r4_stmt
-                    let sp: #s = #sp;
-                    #wp_stmt
+                    #pre_stmts
                     let k: #s = if sp < -#tiny { 1.0 / sp } else { 0.0 };
                     let rk = r0 * k;
                     #pr_stmt

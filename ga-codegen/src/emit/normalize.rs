@@ -97,13 +97,14 @@ impl Gen<'_> {
         ));
         let turn = self.turn_root(vt);
         let screw = if turn.is_some() {
-            " For a screw (a rotation plus a translation along its axis, as here) `1 + v` near \
-             `-1` is mostly translation and normalising it would cancel terms of size `1 / d`, so \
-             beyond a half turn (`<self>_0 < 0`) the root is `exp(log(v) / 2)` with the \
-             logarithm read the long way round, its rotation part split off as `log` does and \
-             projected on the lines once more: an exact screw whose square is `v` to rounding \
-             (near the full turn its axis is fixed by `v` only to `eps |translation| / d`, which \
-             moves the motion by `eps |translation|`)."
+            " For a rotation with a commuting part that is not one (as here: a translation along \
+             its axis, a boost or a dilation) `1 + v` near `-1` is mostly that other part and \
+             normalising it would cancel terms of size `1 / d`, so beyond a half turn \
+             (`<self>_0 < 0`) the root is `exp(log(v) / 2)` with the logarithm read the long way \
+             round, its rotation part split off as `log` does and projected on the simple \
+             bivectors once more: an exact versor whose square is `v` to rounding (near the full \
+             turn the rotation's axis is fixed by `v` only to `eps |other part| / d`, which moves \
+             the motion by `eps |other part|`)."
         } else {
             ""
         };
