@@ -354,34 +354,36 @@ mod edges {
             // Screws in CGA and PGA, f64 and f32: the rotation and a shift along and across
             // its axis. (In f32 below `d = 1e-7` the motor's translation, rounded, no longer
             // fixes the axis: `eps |t| / d` exceeds its size.)
+            // `exp` of a bivector of an algebra into a versor type, and its root to 1e-15.
+            macro_rules! exp_and_root {
+                ($m:ident, $b:ident, $t:ident, $biv:expr, $label:expr) => {{
+                    let v: $m::$t = $m::Exp::exp($m::$b::from_multivector(&$biv));
+                    let w = $m::EvenVersor::sqrt(v).to_multivector();
+                    root_of(&format!("{} {what}", $label), v.to_multivector(), w, 1e-15);
+                    v
+                }};
+            }
             let shift5 = on_blades(&a5, &["e1i", "e2i", "e3i"], &[2], &[0.7, -0.2, 0.4], 1.0);
-            let m: cga::Motor = cga::Exp::exp(cga::Bivector::from_multivector(&(&b5 + &shift5)));
-            let w = cga::EvenVersor::sqrt(m).to_multivector();
-            root_of(&format!("CGA motor {what}"), m.to_multivector(), w, 1e-15);
+            let m = exp_and_root!(cga, Bivector, Motor, &b5 + &shift5, "CGA motor");
             let ap = pga3d::algebra();
             let bp = &turn(&ap, &["e23", "e31", "e12"], &oblique)
                 + &on_blades(&ap, &["e01", "e02", "e03"], &[2], &[0.7, -0.2, 0.4], 1.0);
-            let mp: pga3d::Motor = pga3d::Exp::exp(pga3d::Line::from_multivector(&bp));
-            let w = pga3d::EvenVersor::sqrt(mp).to_multivector();
-            root_of(&format!("PGA motor {what}"), mp.to_multivector(), w, 1e-15);
+            let mp = exp_and_root!(pga3d, Line, Motor, bp, "PGA motor");
             // A similarity (the screw and a dilation) and a Lorentz rotor (a rotation and a
             // boost along and across its axis): the other part is not null there.
             let dil = on_blades(&a5, &["eoi"], &[2], &[0.3], 1.0);
-            let sm: cga::ScaledMotor =
-                cga::Exp::exp(cga::Bivector::from_multivector(&(&(&b5 + &shift5) + &dil)));
-            let w = cga::EvenVersor::sqrt(sm).to_multivector();
-            root_of(
-                &format!("CGA scaled motor {what}"),
-                sm.to_multivector(),
-                w,
-                1e-15,
+            let screw5 = &b5 + &shift5;
+            let sm = exp_and_root!(
+                cga,
+                Bivector,
+                ScaledMotor,
+                &screw5 + &dil,
+                "CGA scaled motor"
             );
             let a13 = sta::algebra();
             let bl = &turn(&a13, &["e23", "e31", "e12"], &oblique)
                 + &on_blades(&a13, &["e01", "e02", "e03"], &[2], &[0.3, -0.1, 0.2], 1.0);
-            let l: sta::Rotor = sta::Exp::exp(sta::Bivector::from_multivector(&bl));
-            let w = sta::EvenVersor::sqrt(l).to_multivector();
-            root_of(&format!("STA rotor {what}"), l.to_multivector(), w, 1e-15);
+            let l = exp_and_root!(sta, Bivector, Rotor, bl, "STA rotor");
             if d >= 1e-7 {
                 // The f32 twin of a versor roots to 1e-6.
                 macro_rules! root_f32 {
