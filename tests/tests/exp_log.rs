@@ -314,7 +314,8 @@ mod edges {
     /// `exp(log / 2)` the long way round: `normalize(1 + v)` cancels terms of size `1 / d`
     /// (f64 1.8e-13 off at `d = 1e-3` and 1.7e-7 at `1e-9`; f32 1.6e-4 at `1e-3`, 0.8 at `1e-7`
     /// and 58 at `1e-9`); a CGA similarity with a dilation of 0.3 lost more (f64 1.7e-11 at
-    /// `1e-3`, 2e-4 at `1e-7`, not finite at `1e-9`), and gets the same root.
+    /// `1e-3`, 2e-4 at `1e-7`, not finite at `1e-9`), and gets the same root, in its own type
+    /// and in CGA's `Even` (where the grade-4 part does not square positive).
     #[test]
     fn sqrt_near_a_full_turn_and_of_a_scaled_versor() {
         use tests::{cga_f32, sig400};
@@ -380,6 +381,8 @@ mod edges {
                 &screw5 + &dil,
                 "CGA scaled motor"
             );
+            // The same in CGA's general `Even`, which may also hold two rotations.
+            let ev = exp_and_root!(cga, Bivector, Even, &screw5 + &dil, "CGA even similarity");
             let a13 = sta::algebra();
             let bl = &turn(&a13, &["e23", "e31", "e12"], &oblique)
                 + &on_blades(&a13, &["e01", "e02", "e03"], &[2], &[0.3, -0.1, 0.2], 1.0);
@@ -394,6 +397,7 @@ mod edges {
                     }};
                 }
                 root_f32!(cga_f32, ScaledMotor, sm, "CGA f32 scaled motor");
+                root_f32!(cga_f32, Even, ev, "CGA f32 even similarity");
                 root_f32!(sta_f32, Rotor, l, "STA f32 rotor");
                 root_f32!(cga_f32, Motor, m, "CGA f32 motor");
                 root_f32!(pga3d_f32, Motor, mp, "PGA f32 motor");

@@ -130,9 +130,10 @@ impl Gen<'_> {
              roots form a sphere, the one through the basis bivector with the largest part in \
              the half. Not finite for zero or `-1` (a full turn has no unique half)."
         ));
-        let root = self.root_body(vt, turn.is_some());
+        let item = turn.as_ref().map(|t| t.item.clone());
+        let root = self.root_body(vt, turn.map(|t| t.guard));
         quote! {
-            #turn
+            #item
             impl EvenVersor for #vn {
                 #dn
                 #[inline]
@@ -155,22 +156,28 @@ impl Gen<'_> {
     /// The body of `sqrt`: `normalize(1 + self)`, and where `self`'s grade-4 part `u4` can
     /// square positive (two commuting rotations), the root split along `J = u4 / sqrt(u4 u4)`
     /// when `normalize(1 + self)` would cancel (see the method's doc).
-    fn root_body(&mut self, vt: &TypeDef, screw: bool) -> TokenStream {
+    fn root_body(&mut self, vt: &TypeDef, turn: Option<Option<Poly>>) -> TokenStream {
         let split = self.split_root(vt).unwrap_or_default();
         let s = self.s.clone();
         let mut cx = Ctx::new(vt, s.clone());
         let v0 = SymMv::of_type(vt, 0);
-        // Screws beyond a half turn: `exp(log / 2)` the long way round (`turn_root.rs`).
-        let beyond = if screw {
-            let method = ident(super::turn_root::METHOD);
-            let s0 = cx.at(&v0, 0);
-            quote! {
-                if #s0 < 0.0 {
-                    return EvenVersor::normalize(self).#method();
+        // A rotation with a translation, boost or dilation beyond a half turn: `exp(log / 2)`
+        // the long way round (`turn_root.rs`).
+        let beyond = match turn {
+            Some(guard) => {
+                let method = ident(super::turn_root::METHOD);
+                let s0 = cx.at(&v0, 0);
+                let guard = guard.map(|q| {
+                    let q = cx.poly(&q);
+                    quote!(&& (#q) <= 0.0)
+                });
+                quote! {
+                    if #s0 < 0.0 #guard {
+                        return EvenVersor::normalize(self).#method();
+                    }
                 }
             }
-        } else {
-            TokenStream::new()
+            None => TokenStream::new(),
         };
         // `self` over its largest coefficient, so that `|self|^2` cannot overflow.
         let (v_stmt, v) = cx.local("v", &v0, Some(&quote!(k)));

@@ -22,22 +22,33 @@ use super::Gen;
 use crate::blade::Bitmap;
 use crate::rational::Rational;
 use crate::spec::TypeDef;
-use crate::symbolic::{Product, SymMv};
+use crate::symbolic::{Poly, Product, SymMv};
 use proc_macro2::TokenStream;
 use quote::quote;
 
 /// The name of the emitted inherent method (private to the generated module).
 pub(super) const METHOD: &str = "root_beyond_a_half_turn";
 
+/// The emitted root and when `sqrt` takes it.
+pub(super) struct TurnRoot {
+    /// `impl V { fn root_beyond_a_half_turn(self) -> V }`.
+    pub(super) item: TokenStream,
+    /// `<V>_4 <V>_4` over `V`'s fields, where it may be positive (two rotations): the root is
+    /// taken only where it is not. `None`: always (for a negative scalar part).
+    pub(super) guard: Option<Poly>,
+}
+
 impl Gen<'_> {
     /// `impl V { fn root_beyond_a_half_turn(self) -> V }` for a versor type with a rotation
     /// and another commuting part that is not a rotation: a translation along its axis (the
     /// null form, PGA and CGA motors) or a boost or dilation (STA rotors, CGA similarities),
     /// when the smallest bivector type holding its bivector blades has an `exp` into it.
-    /// `None` for every other type: rotors alone (whose root `normalize(1 + v)` keeps to
-    /// rounding), types that may hold two rotations (their half-turn cut has its own form)
-    /// and types without a logarithm.
-    pub(super) fn turn_root(&mut self, vt: &TypeDef) -> Option<TokenStream> {
+    /// In a type that may also hold two rotations (CGA's `Even`) it is taken only where the
+    /// grade-4 part does not square positive (two rotations keep `normalize(1 + v)` and their
+    /// half-turn cut's own form). `None` for every other type: rotors alone (whose root
+    /// `normalize(1 + v)` keeps to rounding), types whose grade-4 part only squares positive
+    /// (G(4,0)) and types without a logarithm.
+    pub(super) fn turn_root(&mut self, vt: &TypeDef) -> Option<TurnRoot> {
         let spec = self.spec;
         let lo = self.log_type(vt)?;
         let vi = spec.types.iter().position(|t| t.name == vt.name)?;
@@ -56,11 +67,24 @@ impl Gen<'_> {
             sp.0.iter()
                 .any(|(m, c)| m.len() == 2 && m[0] == m[1] && *c < Rational::ZERO);
         let r4sq = self.table.product(r4, r4, Product::Geometric).get(0);
-        let one_rotation = r4sq.is_zero() || negative_squares(&r4sq);
         let other_part = !pre.wpp.0.is_empty() || !r4.0.is_empty();
-        if !rotation || !one_rotation || !other_part {
+        // A grade-4 part that only squares positive belongs to two rotations (G(4,0)).
+        let positive = !r4sq.is_zero()
+            && r4sq
+                .0
+                .iter()
+                .all(|(m, c)| m.len() == 2 && m[0] == m[1] && *c > Rational::ZERO);
+        if !rotation || !other_part || positive {
             return None;
         }
+        // Where the grade-4 part may square positive (two rotations, CGA's `Even`), the root
+        // is taken here only when it does not: then the other part is not a rotation.
+        let guard = if r4sq.is_zero() || negative_squares(&r4sq) {
+            None
+        } else {
+            let u4 = grade_part(&SymMv::of_type(vt, 0), 4);
+            Some(self.table.product(&u4, &u4, Product::Geometric).get(0))
+        };
         let pre_stmts = pre.stmts.clone();
         let (body, halved) = if pre.null {
             // The rotation part split off as `log` does, then projected on the lines again.
@@ -103,7 +127,7 @@ impl Gen<'_> {
         };
         let (vn, ln) = (ident(&vt.name), ident(&spec.types[lo].name));
         let method = ident(METHOD);
-        Some(quote! {
+        let item = quote! {
             impl #vn {
                 /// The root of a unit versor whose scalar part is negative (a rotation beyond
                 /// a half turn): `exp(log(self) / 2)`, the logarithm read the long way round,
@@ -117,6 +141,7 @@ impl Gen<'_> {
                     <#ln as Exp<#vn>>::exp(#halved)
                 }
             }
-        })
+        };
+        Some(TurnRoot { item, guard })
     }
 }
