@@ -78,7 +78,7 @@ pub enum MeshError {
         vertices: IndexList,
     },
     /// Edges shared by more than two triangles, or vertices whose triangles form several fans.
-    #[error("non-manifold mesh: vertices {vertices} (non-manifold edges touch {edge_vertices})")]
+    #[error("non-manifold mesh: {}", non_manifold(vertices, edge_vertices))]
     NonManifold {
         /// Non-manifold vertices (bow-ties).
         vertices: IndexList,
@@ -152,3 +152,44 @@ pub enum MeshError {
 
 /// `Result` with [`MeshError`].
 pub type Result<T, E = MeshError> = std::result::Result<T, E>;
+
+/// What a non-manifold mesh has, naming only the kinds it has.
+fn non_manifold(vertices: &IndexList, edge_vertices: &IndexList) -> String {
+    let mut parts = Vec::new();
+    if !vertices.0.is_empty() {
+        parts.push(format!(
+            "vertices whose triangles form several fans {vertices}"
+        ));
+    }
+    if !edge_vertices.0.is_empty() {
+        parts.push(format!(
+            "edges of more than two triangles, touching vertices {edge_vertices}"
+        ));
+    }
+    parts.join("; ")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn non_manifold_names_only_what_the_mesh_has() {
+        let edges = MeshError::NonManifold {
+            vertices: IndexList(vec![]),
+            edge_vertices: IndexList(vec![1, 4]),
+        };
+        assert_eq!(
+            edges.to_string(),
+            "non-manifold mesh: edges of more than two triangles, touching vertices [1, 4]"
+        );
+        let both = MeshError::NonManifold {
+            vertices: IndexList(vec![7]),
+            edge_vertices: IndexList(vec![1, 4]),
+        };
+        assert!(
+            both.to_string().contains("several fans [7]; edges"),
+            "{both}"
+        );
+    }
+}

@@ -291,7 +291,7 @@ impl Gen<'_> {
                 self.closed_forms.push(format!("{:<12} log", vt.name));
             }
             items.extend(log);
-            let root = self.root_impl(vt);
+            let root = self.root_impl(vt, &pairs);
             if !root.is_empty() {
                 self.closed_forms
                     .push(format!("{:<12} sqrt, normalize", vt.name));

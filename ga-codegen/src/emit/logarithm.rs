@@ -196,23 +196,8 @@ impl Gen<'_> {
         let sx = cx.poly(&xx.get(0));
         let (w_stmt, w) = cx.local(w_name, &half(&grade_part(&xx, 4)), None);
         let wx = grade_part(&self.table.product(&w, x, Product::Geometric), 2);
-        let vals = keys.iter().map(|b| {
-            let xe = cx.at(x, *b);
-            if wx.0.contains_key(b) {
-                let we = cx.at(&wx, *b);
-                quote!(#xe - (#we) * k)
-            } else {
-                xe
-            }
-        });
-        let n = proc_macro2::Literal::usize_unsuffixed(keys.len());
-        let out_id = ident(out);
-        let stmt = quote! {
-            #w_stmt
-            let k: #s = { let sx: #s = #sx; if sx < 0.0 { 1.0 / sx } else { 0.0 } };
-            let #out_id: [#s; #n] = [#(#vals),*];
-        };
-        (stmt, cx.declare(out_id, keys.iter().copied()))
+        let (stmt, sym) = project_on_lines(cx, &s, x, keys, quote!(#sx), &wx, out);
+        (quote!(#w_stmt #stmt), sym)
     }
 
     /// `impl Log for V`, into the smallest type holding `V`'s bivector blades.
@@ -367,4 +352,33 @@ impl Gen<'_> {
             }
         }
     }
+}
+
+/// [`Gen::lines_projection`] with `<x x>_0` (an expression) and `(W x)/2` already at hand (the
+/// preamble's `sp` and `wpp` for the bivector part itself).
+pub(super) fn project_on_lines(
+    cx: &mut Ctx<'_>,
+    s: &TokenStream,
+    x: &SymMv,
+    keys: &[Bitmap],
+    sx: TokenStream,
+    wx: &SymMv,
+    out: &str,
+) -> (TokenStream, SymMv) {
+    let vals = keys.iter().map(|b| {
+        let xe = cx.at(x, *b);
+        if wx.0.contains_key(b) {
+            let we = cx.at(wx, *b);
+            quote!(#xe - (#we) * k)
+        } else {
+            xe
+        }
+    });
+    let n = proc_macro2::Literal::usize_unsuffixed(keys.len());
+    let out_id = ident(out);
+    let stmt = quote! {
+        let k: #s = { let sx: #s = #sx; if sx < 0.0 { 1.0 / sx } else { 0.0 } };
+        let #out_id: [#s; #n] = [#(#vals),*];
+    };
+    (stmt, cx.declare(out_id, keys.iter().copied()))
 }

@@ -15,7 +15,8 @@ use quote::quote;
 impl Gen<'_> {
     /// `impl EvenVersor for V` when `(a + W) V` stays in `V` for the grade-4 part `W` of
     /// `V ~V`.
-    pub(super) fn root_impl(&mut self, vt: &TypeDef) -> TokenStream {
+    /// `pairs` are [`Gen::exp_pairs`] (a screw's root beyond a half turn calls `exp`).
+    pub(super) fn root_impl(&mut self, vt: &TypeDef, pairs: &[(usize, usize)]) -> TokenStream {
         let s = self.s.clone();
         let mut cx = Ctx::new(vt, s.clone());
         let v0 = SymMv::of_type(vt, 0);
@@ -95,7 +96,7 @@ impl Gen<'_> {
              finite for zero.",
             vt.name
         ));
-        let turn = self.turn_root(vt);
+        let turn = self.turn_root(vt, pairs);
         let screw = if turn.is_some() {
             " For a rotation with a commuting part that is not one (as here: a translation along \
              its axis, a boost or a dilation) `1 + v` near `-1` is mostly that other part and \

@@ -17,6 +17,7 @@
 //! cancellation at a quarter turn, is the root.
 
 use super::exp_log::{build, grade_part, negative_squares, Ctx};
+use super::logarithm::project_on_lines;
 use super::render::ident;
 use super::Gen;
 use crate::blade::Bitmap;
@@ -48,11 +49,12 @@ impl Gen<'_> {
     /// half-turn cut's own form). `None` for every other type: rotors alone (whose root
     /// `normalize(1 + v)` keeps to rounding), types whose grade-4 part only squares positive
     /// (G(4,0)) and types without a logarithm.
-    pub(super) fn turn_root(&mut self, vt: &TypeDef) -> Option<TurnRoot> {
+    /// `pairs` are [`Gen::exp_pairs`].
+    pub(super) fn turn_root(&mut self, vt: &TypeDef, pairs: &[(usize, usize)]) -> Option<TurnRoot> {
         let spec = self.spec;
         let lo = self.log_type(vt)?;
         let vi = spec.types.iter().position(|t| t.name == vt.name)?;
-        if !self.exp_pairs().contains(&(lo, vi)) {
+        if !pairs.contains(&(lo, vi)) {
             return None;
         }
         let s = self.s.clone();
@@ -87,8 +89,9 @@ impl Gen<'_> {
         };
         let pre_stmts = pre.stmts.clone();
         let (body, halved) = if pre.null {
-            // The rotation part split off as `log` does, then projected on the lines again.
-            let (pr_stmt, pr) = self.lines_projection(&mut cx, p, &keys, "wq", "pr");
+            // The rotation part split off as `log` does (from the preamble's `sp` and `wpp`),
+            // then projected on the lines again.
+            let (pr_stmt, pr) = project_on_lines(&mut cx, &s, p, &keys, quote!(sp), &pre.wpp, "pr");
             let (pl_stmt, pl) = self.lines_projection(&mut cx, &pr, &keys, "wr", "pl");
             let aa = cx.poly(&self.table.product(&pl, &pl, Product::Geometric).get(0));
             let plr4 = grade_part(&self.table.product(&pl, r4, Product::Geometric), 2);
