@@ -5,8 +5,9 @@
 // drawn) per second. Each row also gives the edits made per second: in a mouse drag the
 // driver's mouse events (which a busy renderer delivers late) bound the poses. Two more rows
 // make one edit per animation frame from the page itself, with and without the renderer's
-// draw call, and one drag skips the draw call: without the rasteriser (a GPU's job) what is
-// left is the socket, the page's upload and normals, and the server.
+// draw call, and one drag with handles and one with ARAP skip the draw call: without the
+// rasteriser (a GPU's job) what is left is the socket, the page's upload and normals, and the
+// server.
 //
 //   cargo build --release -p deform
 //   node benches/view/fps.mjs target/release/deform ../shared/data/meshes/large/armadillo-50k.obj [SECONDS] [WxH]
@@ -114,6 +115,9 @@ try {
   await until(page, () => editor.state.method === 'arap' && !editor.state.stale, null, 'ARAP bound');
   rows.push({ name: 'bind ARAP', bindMs: await page.evaluate(() => editor.state.bind_ms), pageMs: Date.now() - t });
   await measureDrag('ARAP, 2 iterations per frame, dragging', +seconds);
+  await page.evaluate(() => { editor.renderer.draw = () => {}; });
+  await measureDrag('ARAP, 2 iterations per frame, dragging, draw call skipped', +seconds);
+  await page.evaluate(() => { editor.renderer.draw = editor.renderer.realDraw; });
   console.log(`deform view on ${model} (${n} vertices)`);
   for (const r of rows) {
     if (r.poses !== undefined) {
