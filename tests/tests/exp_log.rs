@@ -264,45 +264,59 @@ mod edges {
     /// (its square 1.6e-4 off `v` at `d = 1e-6` in f64, not finite at `d = 0`). The root taken
     /// in the two halves of `J` squares back to `v` and is a unit, to rounding, on both sides
     /// of the cut and on it, in G(4,0) (planes `e12`, `e34`) and CGA (`e12` and `e3 ^ e+`,
-    /// `e+ = eo - ei/2`), in f64 and f32.
+    /// `e+ = eo - ei/2`), in f64 and f32. So it does with one of the two rotations near a full
+    /// turn (`<v>_0 < 0`, where CGA's `Even` keeps `normalize(1 + v)` and its cut form for two
+    /// rotations, not the screws' root beyond a half turn).
     #[test]
     fn sqrt_across_the_half_turn_cut() {
         use tests::{cga_f32, sig400, sig400_f32};
         let g4 = sig400::algebra();
         let c5 = cga::algebra();
+        let pi = std::f64::consts::PI;
+        let mut pairs = Vec::new();
         for a in [0.4, 1.0, 1.3] {
             for d in [1e-1, 1e-3, 1e-5, 1e-7, 1e-9, 0.0, -1e-9, -1e-7, -1e-3] {
-                let b = std::f64::consts::PI - a - d;
-                let what = format!("a = {a}, d = {d:e}");
-                // The root of `exp(planes)` in an algebra and its f32 twin.
-                macro_rules! case {
-                    ($m:ident, $m32:ident, $planes:expr, $label:expr) => {{
-                        let v: $m::Even = $m::Exp::exp($m::Bivector::from_multivector(&$planes));
-                        let w = $m::EvenVersor::sqrt(v).to_multivector();
-                        root_of(&format!("{} {what}", $label), v.to_multivector(), w, 1e-14);
-                        let v = $m32::Even::from_array(v.to_array().map(|x| x as f32));
-                        let w = $m32::EvenVersor::sqrt(v).to_multivector();
-                        root_of(
-                            &format!("{} f32 {what}", $label),
-                            v.to_multivector(),
-                            w,
-                            1e-6,
-                        );
-                    }};
-                }
-                case!(
-                    sig400,
-                    sig400_f32,
-                    on_blades(&g4, &["e12", "e34"], &[2], &[a, b], 1.0),
-                    "G(4,0)"
-                );
-                case!(
-                    cga,
-                    cga_f32,
-                    on_blades(&c5, &["e12", "eo3", "e3i"], &[2], &[a, -b, -0.5 * b], 1.0),
-                    "CGA"
-                );
+                pairs.push((a, pi - a - d, format!("a = {a}, d = {d:e}")));
             }
+            // The other rotation within `2 d` of a full turn (its half-angle `pi - d`:
+            // `<v>_0 < 0`, away from the cut).
+            for d in [1e-1, 1e-3, 1e-5, 1e-7, 1e-9] {
+                pairs.push((
+                    a,
+                    pi - d,
+                    format!("a = {a}, the other {d:e} from a full turn"),
+                ));
+            }
+        }
+        for (a, b, what) in pairs {
+            // The root of `exp(planes)` in an algebra and its f32 twin.
+            macro_rules! case {
+                ($m:ident, $m32:ident, $planes:expr, $label:expr) => {{
+                    let v: $m::Even = $m::Exp::exp($m::Bivector::from_multivector(&$planes));
+                    let w = $m::EvenVersor::sqrt(v).to_multivector();
+                    root_of(&format!("{} {what}", $label), v.to_multivector(), w, 1e-14);
+                    let v = $m32::Even::from_array(v.to_array().map(|x| x as f32));
+                    let w = $m32::EvenVersor::sqrt(v).to_multivector();
+                    root_of(
+                        &format!("{} f32 {what}", $label),
+                        v.to_multivector(),
+                        w,
+                        1e-6,
+                    );
+                }};
+            }
+            case!(
+                sig400,
+                sig400_f32,
+                on_blades(&g4, &["e12", "e34"], &[2], &[a, b], 1.0),
+                "G(4,0)"
+            );
+            case!(
+                cga,
+                cga_f32,
+                on_blades(&c5, &["e12", "eo3", "e3i"], &[2], &[a, -b, -0.5 * b], 1.0),
+                "CGA"
+            );
         }
     }
 
