@@ -297,18 +297,7 @@ impl Gen<'_> {
         let r0 = cx.at(&SymMv::of_type(vt, 0), 0);
         let keys: Vec<Bitmap> = p.0.keys().copied().collect();
         // pr = p - (W p) / (2 <P P>_0): the rotation part.
-        let pr_vals = keys.iter().map(|b| {
-            let pe = cx.at(p, *b);
-            if wpp.0.contains_key(b) {
-                let we = cx.at(wpp, *b);
-                quote!(#pe - (#we) * k)
-            } else {
-                pe
-            }
-        });
-        let n = proc_macro2::Literal::usize_unsuffixed(keys.len());
-        let pr_stmt = quote!(let pr: [#s; #n] = [#(#pr_vals),*];);
-        let pr_sym = cx.declare(ident("pr"), keys.iter().copied());
+        let (pr_stmt, pr_sym) = minus_k_times(&mut cx, &s, p, &keys, wpp, "pr");
         let prr4 = grade_part(&self.table.product(&pr_sym, r4, Product::Geometric), 2);
         let result = build(lt, |x| {
             keys.iter().position(|b| *b == x).map(|i| {
@@ -365,6 +354,25 @@ pub(super) fn project_on_lines(
     wx: &SymMv,
     out: &str,
 ) -> (TokenStream, SymMv) {
+    let (stmt, sym) = minus_k_times(cx, s, x, keys, wx, out);
+    let stmt = quote! {
+        let k: #s = { let sx: #s = #sx; if sx < 0.0 { 1.0 / sx } else { 0.0 } };
+        #stmt
+    };
+    (stmt, sym)
+}
+
+/// `let out: [s; n] = [x_b - (W x)_b * k, ...]` over `keys` (`k` declared by the caller), and
+/// `out` declared in `cx`: the rotation part's projection shared by `log` and
+/// [`project_on_lines`].
+fn minus_k_times(
+    cx: &mut Ctx<'_>,
+    s: &TokenStream,
+    x: &SymMv,
+    keys: &[Bitmap],
+    wx: &SymMv,
+    out: &str,
+) -> (TokenStream, SymMv) {
     let vals = keys.iter().map(|b| {
         let xe = cx.at(x, *b);
         if wx.0.contains_key(b) {
@@ -376,9 +384,6 @@ pub(super) fn project_on_lines(
     });
     let n = proc_macro2::Literal::usize_unsuffixed(keys.len());
     let out_id = ident(out);
-    let stmt = quote! {
-        let k: #s = { let sx: #s = #sx; if sx < 0.0 { 1.0 / sx } else { 0.0 } };
-        let #out_id: [#s; #n] = [#(#vals),*];
-    };
+    let stmt = quote!(let #out_id: [#s; #n] = [#(#vals),*];);
     (stmt, cx.declare(out_id, keys.iter().copied()))
 }
