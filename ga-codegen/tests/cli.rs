@@ -172,6 +172,12 @@ fn bad_arguments() {
         assert_eq!(out.status.code(), Some(2), "{args:?}");
         assert!(!String::from_utf8_lossy(&out.stderr).contains("panicked"));
     }
+    // The value is quoted as given, not as Rust's debug form of an option.
+    let err =
+        String::from_utf8_lossy(&run(&["--scalar", "f16", "algebras/g3.toml"]).stderr).into_owned();
+    assert!(err.contains("not `f16`") && !err.contains("Some("), "{err}");
+    let err = String::from_utf8_lossy(&run(&["algebras/g3.toml", "--scalar"]).stderr).into_owned();
+    assert!(err.contains("--scalar needs f32 or f64"), "{err}");
 }
 
 /// A spec over `basis` with a diagonal metric of `diagonal` entries and the given items.

@@ -65,7 +65,10 @@ fn parse_args() -> Result<Args, String> {
                 a.scalar = match it.next().as_deref() {
                     Some("f32") => ScalarType::F32,
                     Some("f64") => ScalarType::F64,
-                    other => return Err(format!("--scalar must be f32 or f64, not {other:?}")),
+                    Some(other) => {
+                        return Err(format!("--scalar must be f32 or f64, not `{other}`"))
+                    }
+                    None => return Err("--scalar needs f32 or f64".into()),
                 }
             }
             "--summary" => a.summary = true,
