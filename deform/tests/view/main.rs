@@ -7,6 +7,7 @@
 mod common;
 
 mod client;
+mod controls;
 mod hostile;
 mod models;
 mod poses;

@@ -1,7 +1,10 @@
-//! Undo and redo of selection changes in a mesh scene: a paint stroke (many dabs) is one
-//! step, clearing and lassos are steps, an undo rebinds, a new change drops the redo steps.
+//! Selections in a mesh scene: a lasso takes the vertices seen inside it; undo and redo of
+//! selection changes (a paint stroke of many dabs is one step, clearing and lassos are steps,
+//! an undo rebinds, a new change drops the redo steps).
 
 use crate::client::{Client, Frame, Server};
+use deform::shapes::icosphere;
+use glam::DVec3;
 use serde_json::{json, Value};
 
 /// The owners of the next groups frame and the state after it.
@@ -104,4 +107,57 @@ fn a_stroke_is_one_undo_step_and_an_undo_rebinds() {
         (s["selection_undo"].as_u64(), s["selection_redo"].as_u64()),
         (Some(0), Some(0))
     );
+}
+
+#[test]
+fn a_lasso_takes_the_vertices_seen_inside_it_and_not_those_behind() {
+    use glam::DMat4;
+    let server = Server::start(&[]);
+    let mut c = server.connect(None).expect("connects");
+    c.state();
+    c.send(json!({"op": "clear-groups"}));
+    c.state();
+    let eye = DVec3::new(0.0, 0.0, 5.0);
+    let m = DMat4::perspective_rh_gl(0.8, 1.0, 0.1, 100.0)
+        * DMat4::look_at_rh(eye, DVec3::ZERO, DVec3::Y);
+    let polygon = json!([[-0.1, -0.1], [0.1, -0.1], [0.1, 0.1], [-0.1, 0.1]]);
+    c.send(
+        json!({"op": "lasso", "eye": eye.to_array(), "view_proj": m.to_cols_array(),
+        "polygon": polygon, "group": 0}),
+    );
+    let owner = c.until(false, |f| match f {
+        Frame::Groups(g) => Some(g.clone()),
+        _ => None,
+    });
+    let mesh = icosphere(1.0, 4);
+    let chosen: Vec<usize> = (0..mesh.vertex_count())
+        .filter(|&v| owner[v] == 1)
+        .collect();
+    let project = |p: DVec3| {
+        let q = m * p.extend(1.0);
+        (q.x / q.w, q.y / q.w)
+    };
+    let inside = |p: DVec3| {
+        let (x, y) = project(p);
+        x.abs() < 0.1 && y.abs() < 0.1
+    };
+    assert!(chosen.len() > 5);
+    assert!(chosen
+        .iter()
+        .all(|&v| mesh.positions[v].z > 0.5 && inside(mesh.positions[v])));
+    // Every front vertex inside is taken; the back ones that project inside are not.
+    let front = (0..mesh.vertex_count())
+        .filter(|&v| inside(mesh.positions[v]) && mesh.positions[v].z > 0.0);
+    assert_eq!(front.count(), chosen.len());
+    let behind = (0..mesh.vertex_count())
+        .filter(|&v| inside(mesh.positions[v]) && mesh.positions[v].z < 0.0);
+    assert!(
+        behind.count() > 5,
+        "the back of the sphere projects inside too"
+    );
+    c.send(
+        json!({"op": "lasso", "eye": eye.to_array(), "view_proj": m.to_cols_array(),
+        "polygon": [[0, 0], [1, 1]], "group": 1}),
+    );
+    assert!(c.error().contains("3 to 10000"));
 }
