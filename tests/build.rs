@@ -25,6 +25,16 @@ fn main() {
         "sig400".to_string(),
         Spec::for_signature(4, 0, 0).unwrap_or_else(|e| panic!("{e}")),
     ));
+    // Two directions of each sign: the squares of a bivector's commuting parts may be a
+    // complex pair (exp only, in complex arithmetic).
+    specs.push((
+        "sig220".to_string(),
+        Spec::for_signature(2, 2, 0).unwrap_or_else(|e| panic!("{e}")),
+    ));
+    specs.push((
+        "sig320".to_string(),
+        Spec::for_signature(3, 2, 0).unwrap_or_else(|e| panic!("{e}")),
+    ));
     // The f32 twin of every module too (CGA's with 4-lane products), checked with an f32
     // tolerance; the closed-form exp/log tests use both.
     let f32_opts = EmitOptions {

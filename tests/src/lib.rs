@@ -62,6 +62,24 @@ algebra_module!(
     "G(4) from `--signature 4,0,0`, f32."
 );
 algebra_module!(
+    sig220,
+    "sig220.rs",
+    "sig220_checks.rs",
+    "G(2,2) from `--signature 2,2,0` (complex squares)."
+);
+algebra_module!(
+    sig220_f32,
+    "sig220_f32.rs",
+    "sig220_f32_checks.rs",
+    "G(2,2) from `--signature 2,2,0`, f32."
+);
+algebra_module!(
+    sig320,
+    "sig320.rs",
+    "sig320_checks.rs",
+    "G(3,2) from `--signature 3,2,0` (complex squares)."
+);
+algebra_module!(
     pga3d_f32,
     "pga3d_f32.rs",
     "pga3d_f32_checks.rs",

@@ -46,3 +46,13 @@ fn signature_201_generated_matches_generic() {
 fn signature_400_generated_matches_generic() {
     run("sig400", tests::sig400::checks::check_all(200, 6));
 }
+
+#[test]
+fn signature_220_generated_matches_generic() {
+    run("sig220", tests::sig220::checks::check_all(200, 7));
+}
+
+#[test]
+fn signature_320_generated_matches_generic() {
+    run("sig320", tests::sig320::checks::check_all(200, 8));
+}

@@ -8,8 +8,12 @@
 //! and `l2` are the roots of `l^2 - s l + q/4`. They are real when the metric restricted to
 //! the span has no two time-like and two space-like directions at once (`min(p, q) <= 1`); then
 //! `exp(B) = exp(B1) exp(B2)` is a sum of four terms whose coefficients depend only on `l1`
-//! and `l2` (see [`helpers`]). Above five dimensions a bivector may have three or more parts
-//! and the roots are those of a cubic or worse: the emitter refuses it.
+//! and `l2` (see [`helpers`]). With two of each (G(2,2), G(3,2), G(2,3)) the roots may be a
+//! complex-conjugate pair: the four coefficients are symmetric functions of `l1` and `l2`, so
+//! they stay real, and `exp` computes them in complex arithmetic ([`complex_helpers`]); the
+//! logarithm, square root and normalisation are not emitted there. Above five dimensions a
+//! bivector may have three or more parts and the roots are those of a cubic or worse: the
+//! emitter refuses it.
 
 use super::render::float;
 use super::ScalarType;
@@ -46,7 +50,8 @@ pub enum Refusal {
     /// The bivector spans more than five basis vectors (`MAX_SPAN`): three or more commuting parts.
     TooManyDimensions(u32),
     /// Two or more time-like and two or more space-like directions: the squares of the parts
-    /// may be complex.
+    /// may be complex. The exponential is emitted; the logarithm, square root and
+    /// normalisation are not.
     ComplexSquares {
         /// Directions squaring positive.
         positive: usize,
@@ -64,8 +69,19 @@ impl std::fmt::Display for Refusal {
             ),
             Refusal::ComplexSquares { positive, negative } => write!(
                 f,
-                "the span has {positive} positive and {negative} negative directions: the squares of the commuting parts can be complex"
+                "the span has {positive} positive and {negative} negative directions: the squares of the commuting parts can be complex (its exp is emitted, in complex arithmetic)"
             ),
+        }
+    }
+}
+
+impl Refusal {
+    /// What a refused type goes without: `exp/log`, or (complex squares) `log, sqrt and
+    /// normalize`.
+    pub fn missing(&self) -> &'static str {
+        match self {
+            Refusal::TooManyDimensions(_) => "exp/log",
+            Refusal::ComplexSquares { .. } => "log, sqrt and normalize",
         }
     }
 }
@@ -85,6 +101,20 @@ impl SpanKind {
     pub fn double_rotation(&self) -> bool {
         self.inertia.0 >= 4 || self.inertia.1 >= 4
     }
+
+    /// Whether the squares of the two commuting parts can be a complex-conjugate pair (two or
+    /// more directions of each sign): `exp` only, by [`complex_helpers`].
+    pub fn complex_squares(&self) -> bool {
+        self.inertia.0 >= 2 && self.inertia.1 >= 2
+    }
+
+    /// The refusal of the logarithm, square root and normalisation on this span, if any.
+    pub fn log_refusal(&self) -> Option<Refusal> {
+        self.complex_squares().then_some(Refusal::ComplexSquares {
+            positive: self.inertia.0,
+            negative: self.inertia.1,
+        })
+    }
 }
 
 /// The union of the basis vectors of `blades`.
@@ -92,7 +122,8 @@ pub fn span(blades: impl IntoIterator<Item = Bitmap>) -> Bitmap {
     blades.into_iter().fold(0, |a, b| a | b)
 }
 
-/// Decide at generation time whether the closed form applies to bivectors over `span`.
+/// Decide at generation time whether the closed form applies to bivectors over `span` (for
+/// `exp`; see [`SpanKind::log_refusal`] for the rest).
 pub fn classify(metric: &Metric, span: Bitmap) -> Result<SpanKind, Refusal> {
     let dimension = span.count_ones();
     if dimension > MAX_SPAN {
@@ -104,12 +135,6 @@ pub fn classify(metric: &Metric, span: Bitmap) -> Result<SpanKind, Refusal> {
             .map(|&i| idx.iter().map(|&j| metric.get(i, j).to_f64()).collect())
             .collect::<Vec<Vec<f64>>>(),
     );
-    if inertia.0 >= 2 && inertia.1 >= 2 {
-        return Err(Refusal::ComplexSquares {
-            positive: inertia.0,
-            negative: inertia.1,
-        });
-    }
     Ok(SpanKind { dimension, inertia })
 }
 
@@ -321,6 +346,99 @@ pub fn helpers(scalar: ScalarType) -> TokenStream {
     }
 }
 
+/// Taylor terms of `cosh z` and `sinh(z)/z` in `l = z^2` that the complex series sums (for
+/// `|l| <= 1` the next is under `1e-19`).
+const SERIES_TERMS: u32 = 11;
+
+/// The helper of an `exp` on a span whose squares may be complex (emitted only there):
+///
+/// - `exp_log_coefficients_of(s, q) -> [c1 c2, alpha, beta, s1 s2]`, the coefficients of
+///   `exp_log_coefficients` from the invariants `s = <B B>_0`, `q = W W`: with real roots
+///   (`s^2 >= q`) exactly that; with a complex pair `l = a ± i b` (`a = s/2`,
+///   `b = sqrt(q - s^2)/2`), `c1 c2 = |c(l)|^2`, `s1 s2 = |s(l)|^2`,
+///   `alpha = Im(l s(l) conj c(l)) / b` and `beta = Im(c(l) conj s(l)) / b`, where
+///   `c(l) = cosh(sqrt l)` and `s(l) = sinh(sqrt l)/sqrt l` are taken in complex arithmetic:
+///   by their Taylor series in `l` for `|l| <= 1` (no cancellation of `sinh z / z` at small
+///   `z`), else from `z = sqrt(l) = u + i v` (`cosh z = cosh u cos v + i sinh u sin v`, ...).
+///   When `2b` is within the cube root of the precision of `|l|` the equal-squares limit at `a`
+///   is used, as for real squares.
+pub fn complex_helpers(scalar: ScalarType) -> TokenStream {
+    let s = scalar.tokens();
+    let tol = constant(
+        scalar,
+        match scalar {
+            ScalarType::F64 => 6e-6,
+            ScalarType::F32 => 5e-3,
+        },
+    );
+    let fact = |n: u32| -> f64 { (1..=n).map(f64::from).product() };
+    let cosh_terms: Vec<TokenStream> = (0..SERIES_TERMS)
+        .rev()
+        .map(|k| constant(scalar, 1.0 / fact(2 * k)))
+        .collect();
+    let sinhc_terms: Vec<TokenStream> = (0..SERIES_TERMS)
+        .rev()
+        .map(|k| constant(scalar, 1.0 / fact(2 * k + 1)))
+        .collect();
+    quote! {
+        /// `[c1 c2, alpha, beta, s1 s2]` with `exp(B) = c1 c2 + alpha B + beta (W B)/2 +
+        /// s1 s2 W/2`, from `s = <B B>_0` and `q = W W`: [`exp_log_coefficients`] of the real
+        /// roots of `l^2 - s l + q/4`, or, for a complex pair `l = a ± i b`, the same symmetric
+        /// functions in complex arithmetic (`c = cosh(sqrt l)`, `sn = sinh(sqrt l)/sqrt l`):
+        /// `|c|^2`, `Im(l sn conj c)/b`, `Im(c conj sn)/b`, `|sn|^2`. By the series in `l` for
+        /// `|l| <= 1`; the equal-squares limit when `2 b` is within the cube root of the
+        /// precision of `|l|`.
+        #[inline]
+        #[allow(dead_code)]
+        fn exp_log_coefficients_of(s: #s, q: #s) -> [#s; 4] {
+            let disc = s * s - q;
+            if disc >= 0.0 {
+                let (l1, l2) = exp_log_squares(s, q);
+                return exp_log_coefficients(l1, l2);
+            }
+            let a = 0.5 * s;
+            let b = 0.5 * (-disc).sqrt();
+            let m = a.hypot(b);
+            if 2.0 * b <= #tol * m {
+                return exp_log_coefficients(a, a);
+            }
+            let ((cr, ci), (sr, si)) = if m <= 1.0 {
+                // Horner's rule in complex arithmetic on the Taylor series in `l`.
+                let series = |terms: &[#s]| {
+                    let (mut xr, mut xi): (#s, #s) = (0.0, 0.0);
+                    for &t in terms {
+                        let r = xr * a - xi * b + t;
+                        xi = xr * b + xi * a;
+                        xr = r;
+                    }
+                    (xr, xi)
+                };
+                (series(&[#(#cosh_terms),*]), series(&[#(#sinhc_terms),*]))
+            } else {
+                // z = sqrt(l) = u + i v (v > 0), each part without cancellation.
+                let (u, v) = if a >= 0.0 {
+                    let u = (0.5 * (m + a)).sqrt();
+                    (u, 0.5 * b / u)
+                } else {
+                    let v = (0.5 * (m - a)).sqrt();
+                    (0.5 * b / v, v)
+                };
+                let (ch, sh, cv, sv) = (u.cosh(), u.sinh(), v.cos(), v.sin());
+                let (hr, hi) = (sh * cv, ch * sv);
+                // sinh(z) / z = sinh(z) conj(z) / |z|^2, |z|^2 = |l|.
+                ((ch * cv, sh * sv), ((hr * u + hi * v) / m, (hi * u - hr * v) / m))
+            };
+            let (lr, li) = (a * sr - b * si, a * si + b * sr);
+            [
+                cr * cr + ci * ci,
+                (li * cr - lr * ci) / b,
+                (ci * sr - cr * si) / b,
+                sr * sr + si * si,
+            ]
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -350,10 +468,17 @@ mod tests {
         assert_eq!(classify(&g6, 0b111111), Err(Refusal::TooManyDimensions(6)));
         assert!(classify(&g6, 0b011111).is_ok());
         let g22 = signature(2, 2, 0);
+        let k = classify(&g22, 0b1111).expect("G(2,2) has a closed-form exp");
+        assert!(k.complex_squares());
         assert!(matches!(
-            classify(&g22, 0b1111),
-            Err(Refusal::ComplexSquares { .. })
+            k.log_refusal(),
+            Some(Refusal::ComplexSquares {
+                positive: 2,
+                negative: 2
+            })
         ));
+        assert!(!classify(&g22, 0b0111).expect("G(2,1)").complex_squares());
+        assert_eq!(classify(&cga, 0b11111).expect("CGA").log_refusal(), None);
         let pga = signature(3, 0, 1);
         assert_eq!(classify(&pga, 0b1111).expect("PGA").inertia, (3, 0, 1));
     }

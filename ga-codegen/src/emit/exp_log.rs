@@ -21,7 +21,7 @@
 //! quadratic to solve. A span the decomposition is not closed form on (more than five basis
 //! vectors, or complex squares) gets none of these ([`refusals`] lists them).
 
-use super::decompose::{classify, constant, helpers, span, Refusal};
+use super::decompose::{classify, complex_helpers, constant, helpers, span, Refusal};
 use super::render::{doc, ident};
 use super::{Gen, OutType};
 use crate::blade::{grade, Bitmap};
@@ -74,16 +74,22 @@ fn is_even_versor(t: &TypeDef) -> bool {
         && t.fields.iter().any(|f| grade(f.bitmap) == 2)
 }
 
-/// The types of a spec that get no closed forms, and why (their span is too large or has
-/// complex squares). `ga-codegen --exp-log` refuses a spec for which this is not empty.
+/// The types of a spec that miss closed forms, and why: their span is too large (no `exp` or
+/// `log`), or its squares may be complex (a versor type gets no `log`, `sqrt` or `normalize`;
+/// [`Refusal::missing`]). `ga-codegen --exp-log` refuses a spec for which this is not empty.
 pub fn refusals(spec: &Spec) -> Vec<(String, Refusal)> {
     spec.types
         .iter()
         .filter(|t| is_bivector(t) || is_even_versor(t))
         .filter_map(|t| {
-            classify(&spec.metric, span(t.blades()))
-                .err()
-                .map(|r| (t.name.clone(), r))
+            let why = match classify(&spec.metric, span(t.blades())) {
+                Err(r) => r,
+                // Complex squares: a bivector type gets its `exp`, a versor type goes without
+                // its `log`, `sqrt` and `normalize`.
+                Ok(kind) if is_even_versor(t) => kind.log_refusal()?,
+                Ok(_) => return None,
+            };
+            Some((t.name.clone(), why))
         })
         .collect()
 }
@@ -286,6 +292,9 @@ impl Gen<'_> {
             let Ok(kind) = classify(&spec.metric, span(vt.blades())) else {
                 continue;
             };
+            if kind.log_refusal().is_some() {
+                continue;
+            }
             let log = self.log_impl(vt, kind);
             if !log.is_empty() {
                 self.closed_forms.push(format!("{:<12} log", vt.name));
@@ -332,7 +341,26 @@ impl Gen<'_> {
             }
         });
         self.out.extend(helpers(self.scalar));
+        if self.any_complex_exp(&pairs) {
+            self.out.extend(complex_helpers(self.scalar));
+        }
         self.out.extend(items);
+    }
+
+    /// Whether the squares of `B` (restricted to `keep`) may be a complex pair.
+    pub(super) fn complex_squares(&self, bt: &TypeDef, keep: &dyn Fn(Bitmap) -> bool) -> bool {
+        classify(&self.spec.metric, span(bt.blades().filter(|b| keep(*b))))
+            .is_ok_and(|k| k.complex_squares())
+    }
+
+    /// Whether any `exp` of `pairs` takes [`ExpBranch::Complex`].
+    fn any_complex_exp(&mut self, pairs: &[(usize, usize)]) -> bool {
+        pairs.iter().any(|&(bi, vi)| {
+            let (_, keep) = self.exp_keep(bi, vi);
+            let spec = self.spec;
+            let p = self.exp_parts(&spec.types[bi], &spec.types[vi], &keep);
+            matches!(p.branch, ExpBranch::Complex(_))
+        })
     }
 
     /// Symbolic `B` (restricted to `keep`), `W = <B B>_4` and the blades of `exp(B)`.
@@ -385,6 +413,8 @@ impl Gen<'_> {
             ExpBranch::Simple
         } else if q.is_zero() {
             ExpBranch::Null
+        } else if self.complex_squares(bt, keep) {
+            ExpBranch::Complex(cx.poly(&q))
         } else {
             ExpBranch::General(cx.poly(&q))
         };
@@ -500,6 +530,20 @@ impl Gen<'_> {
                  sign of its square; equal squares by the limit)."
                     .to_string(),
             ),
+            ExpBranch::Complex(qe) => (
+                quote! {
+                    let q: #s = 4.0 * (#qe);
+                    let [c, alpha, beta, s12] = exp_log_coefficients_of(s, q);
+                },
+                "General, on a span with two or more directions of each sign: `B B = s + W`, \
+                 `W W = q`; the commuting parts square to the roots of `l^2 - s l + q/4`, which \
+                 may be a complex pair `a ± i b`. \
+                 `exp(B) = c1 c2 + alpha B + beta (W B)/2 + s1 s2 W/2` with coefficients that \
+                 are symmetric in the two roots, so real: `exp_log_coefficients_of` takes them \
+                 from `exp_log_coefficients` for real roots, and in complex arithmetic \
+                 (`cosh` and `sinh(z)/z` of `z = sqrt(l)`) for a complex pair."
+                    .to_string(),
+            ),
         };
         let fields = vt.fields.iter().map(|f| ident(&f.name));
         let values = &parts.fields;
@@ -531,8 +575,10 @@ pub(super) enum ExpBranch {
     Simple,
     /// `W W = 0`: a rotation or boost plus a null part.
     Null,
-    /// Two commuting parts; `(W W)/4` as an expression.
+    /// Two commuting parts with real squares; `(W W)/4` as an expression.
     General(TokenStream),
+    /// Two commuting parts whose squares may be a complex pair; `(W W)/4` as an expression.
+    Complex(TokenStream),
 }
 
 /// The pieces of one `exp`, see [`Gen::exp_parts`].

@@ -112,7 +112,15 @@ impl Gen<'_> {
     /// spec has none).
     pub(super) fn wgsl_exps(&mut self, out: &mut String) {
         let spec = self.spec;
-        let pairs = self.exp_pairs();
+        // The complex-pair coefficients have no WGSL helper: those `exp`s are Rust only.
+        let pairs: Vec<(usize, usize)> = self
+            .exp_pairs()
+            .into_iter()
+            .filter(|&(bi, vi)| {
+                let (_, keep) = self.exp_keep(bi, vi);
+                !self.complex_squares(&spec.types[bi], &keep)
+            })
+            .collect();
         if pairs.is_empty() {
             return;
         }
@@ -152,6 +160,7 @@ impl Gen<'_> {
                     "    let q = 4.0 * ({});\n    let l = exp_log_squares(s, q);\n    let k = exp_log_coefficients(l.x, l.y);\n    let c = k.x;\n    let alpha = k.y;\n    let beta = k.z;\n    let s12 = k.w;\n",
                     text(q)
                 ),
+                ExpBranch::Complex(_) => unreachable!("complex spans are filtered out above"),
             };
             out.push_str(&coeffs);
             let fields: Vec<String> = p.fields.iter().map(text).collect();

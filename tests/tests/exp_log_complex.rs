@@ -1,0 +1,206 @@
+//! The generated closed-form `exp` on spans with two or more directions of each sign (G(2,2)
+//! and G(3,2) from `--signature`), where the squares of a bivector's two commuting parts can be
+//! a complex-conjugate pair: against the generic multivector's scaling-and-squaring series, on
+//! random bivectors (a share of them with complex squares, counted), on each branch of
+//! `exp_log_coefficients_of` (the series in `l`, `z = sqrt(l)`, the equal-squares limit) and
+//! across the boundary between real and complex squares, in f64 and f32; and `exp(B) ~exp(B) =
+//! 1`. The logarithm, square root and normalisation are not emitted there (checked too).
+
+use ga_codegen::Multivector;
+use proptest::prelude::*;
+use std::sync::Arc;
+use tests::{sig220, sig220_f32, sig320};
+
+/// The roots' discriminant `s^2 - q` of `B` (`s = <B B>_0`, `q = W W`, `W = <B B>_4`), and
+/// `|l|` (the larger root's magnitude): negative for a complex pair.
+fn discriminant(b: &Multivector) -> (f64, f64) {
+    let bb = b.gp(b);
+    let s = bb.grade(0).get(0);
+    let w = bb.grade(4);
+    let q = w.gp(&w).get(0);
+    (s * s - q, q.abs().sqrt().max(s.abs()))
+}
+
+/// A bivector of `alg` with coefficients `c` (cycled) on its bivector blades, times `scale`.
+fn bivector(alg: &Arc<ga_codegen::Algebra>, c: &[f64], scale: f64) -> Multivector {
+    let mut m = Multivector::zero(alg);
+    let blades: Vec<usize> = (0..1usize << alg.dim())
+        .filter(|&b| b.count_ones() == 2)
+        .collect();
+    for (i, b) in blades.into_iter().enumerate() {
+        m.set(b as _, c[i % c.len()] * scale);
+    }
+    m
+}
+
+/// `|got - want| <= tol (1 + |want|)`, coefficientwise, and finite.
+fn check(what: &str, got: &Multivector, want: &Multivector, tol: f64) -> Result<(), String> {
+    let ok = got.coeffs().iter().all(|x| x.is_finite())
+        && got.max_diff(want) <= tol * (1.0 + want.max_abs());
+    if ok {
+        Ok(())
+    } else {
+        Err(format!(
+            "{what}: got {:?}\nwant {:?}\n(diff {:e})",
+            got.coeffs(),
+            want.coeffs(),
+            got.max_diff(want)
+        ))
+    }
+}
+
+/// The generated `exp` of `b` (f64 and f32 G(2,2), f64 G(3,2)) against the series, and a unit.
+fn exp_checks(b: &Multivector, tol64: f64, tol32: f64) -> Result<(), String> {
+    let want = b.exp();
+    let one = Multivector::scalar(b.algebra(), 1.0);
+    let (got, got32) = if b.algebra().dim() == 4 {
+        use sig220::Exp as _;
+        use sig220_f32::Exp as _;
+        let e: sig220::Even = sig220::Bivector::from_multivector(b).exp();
+        let b32 = sig220_f32::Bivector::from_multivector(b);
+        let e32: sig220_f32::Even = b32.exp();
+        (e.to_multivector(), Some(e32.to_multivector()))
+    } else {
+        use sig320::Exp as _;
+        let e: sig320::Even = sig320::Bivector::from_multivector(b).exp();
+        (e.to_multivector(), None)
+    };
+    check("exp", &got, &want, tol64)?;
+    // A unit: the size of the coefficients multiplies the rounding of `e ~e`.
+    let size = 1.0 + want.max_abs() * want.max_abs();
+    check("exp ~exp", &got.gp(&got.rev()), &one, tol64 * size)?;
+    if let Some(g32) = got32 {
+        check("exp f32", &g32, &want, tol32)?;
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    #[test]
+    fn exp_matches_series_in_g22(c in prop::array::uniform6(-1.0f64..1.0), scale in 0.0f64..3.0) {
+        let b = bivector(&sig220::algebra(), &c, scale);
+        exp_checks(&b, 1e-12, 1e-4).map_err(TestCaseError::fail)?;
+    }
+
+    #[test]
+    fn exp_matches_series_in_g32(c in prop::array::uniform10(-1.0f64..1.0), scale in 0.0f64..2.0) {
+        let b = bivector(&sig320::algebra(), &c, scale);
+        exp_checks(&b, 1e-12, 1e-4).map_err(TestCaseError::fail)?;
+    }
+}
+
+/// The random bivectors above are not all real-squared: about a third of them in G(2,2) (and
+/// of G(3,2)'s) have complex squares, so the property tests cover that branch.
+#[test]
+fn a_share_of_random_bivectors_have_complex_squares() {
+    // Uniform in [-1, 1), as the property tests draw them (a fixed linear congruential
+    // sequence).
+    let mut state = 0x2545_f491_4f6c_dd1du64;
+    let mut uniform = move || {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (state >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+    };
+    for (alg, n) in [(sig220::algebra(), 6), (sig320::algebra(), 10)] {
+        let mut complex = 0;
+        for _ in 0..400 {
+            let c: Vec<f64> = (0..n).map(|_| uniform()).collect();
+            if discriminant(&bivector(&alg, &c, 1.0)).0 < 0.0 {
+                complex += 1;
+            }
+        }
+        assert!(
+            complex > 60,
+            "{complex} of 400 complex in G({},..)",
+            alg.dim()
+        );
+    }
+}
+
+/// `x e12 + y e34 + z (e13 + e24)` in G(2,2) (`e1, e2` positive, `e3, e4` negative): two
+/// rotations at `z = 0`, a complex pair once `z` passes a threshold.
+fn family(x: f64, y: f64, z: f64) -> Multivector {
+    let alg = sig220::algebra();
+    let mut m = Multivector::zero(&alg);
+    m.set(0b0011, x);
+    m.set(0b1100, y);
+    m.set(0b0101, z);
+    m.set(0b1010, z);
+    m
+}
+
+/// Each branch of the complex coefficients: small and large `|l|` (the series in `l`, and
+/// `z = sqrt(l)` with `Re l` of either sign), and the complex pair within the cube root of the
+/// precision of equal squares (the limit), down to `b = 0`.
+#[test]
+fn every_branch_of_the_complex_coefficients() {
+    let mut seen = [0; 3];
+    for scale in [1e-6, 1e-3, 0.1, 0.5, 0.99, 1.5, 3.0, 6.0] {
+        for (x, y, z) in [
+            (0.3, 0.2, 1.0),
+            (1.0, -1.0, 1.0),
+            (0.1, 0.9, 0.7),
+            (0.5, 0.0, 1.0),
+        ] {
+            let b = family(x * scale, y * scale, z * scale);
+            let (d, m) = discriminant(&b);
+            assert!(d < 0.0, "{x} {y} {z} at {scale}: not complex ({d})");
+            seen[if m <= 1.0 { 0 } else { 1 }] += 1;
+            exp_checks(&b, 1e-12, 1e-4).unwrap_or_else(|e| panic!("{x} {y} {z} at {scale}: {e}"));
+        }
+    }
+    // Near equal squares: `z` just past the threshold where the pair turns complex, found by
+    // bisection on the discriminant of `e12 + 0.5 e34 + z (e13 + e24)`.
+    let (mut lo, mut hi) = (0.0, 2.0);
+    assert!(discriminant(&family(1.0, 0.5, lo)).0 > 0.0);
+    assert!(discriminant(&family(1.0, 0.5, hi)).0 < 0.0);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if discriminant(&family(1.0, 0.5, mid)).0 < 0.0 {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    for dz in [0.0, 1e-15, 1e-12, 1e-9, 1e-6, 1e-4, 1e-2] {
+        for z in [hi + dz, lo - dz] {
+            let b = family(1.0, 0.5, z);
+            let (d, m) = discriminant(&b);
+            if d < 0.0 && (-d).sqrt() <= 6e-6 * m {
+                seen[2] += 1;
+            }
+            exp_checks(&b, 1e-12, 1e-4).unwrap_or_else(|e| panic!("z = {z}: {e}"));
+        }
+    }
+    assert!(seen.iter().all(|&n| n > 0), "branches seen: {seen:?}");
+}
+
+/// Along a path from real to complex squares and back, `exp` agrees with the series at every
+/// step (no jump where the discriminant changes sign).
+#[test]
+fn exp_is_continuous_across_the_real_complex_boundary() {
+    for i in 0..=400 {
+        let z = 0.5 + f64::from(i) / 400.0;
+        let b = family(1.0, 0.5, z);
+        exp_checks(&b, 1e-12, 1e-4).unwrap_or_else(|e| panic!("z = {z}: {e}"));
+    }
+}
+
+/// No `log`, `sqrt` or `normalize` is emitted where the squares can be complex: the code says
+/// which it omits and why.
+#[test]
+fn log_sqrt_and_normalize_are_not_emitted_there() {
+    let spec = ga_codegen::Spec::for_signature(2, 2, 0).expect("spec");
+    let generated =
+        ga_codegen::generate(&spec, &ga_codegen::EmitOptions::default()).expect("generates");
+    let code = generated.code().expect("formats");
+    assert!(code.contains("impl Exp<Even> for Bivector"));
+    assert!(!code.contains("impl Log for") && !code.contains("impl EvenVersor for"));
+    let refused = ga_codegen::emit::refusals(&spec);
+    assert_eq!(refused.len(), 1, "{refused:?}");
+    assert_eq!(refused[0].0, "Even");
+    assert_eq!(refused[0].1.missing(), "log, sqrt and normalize");
+}
