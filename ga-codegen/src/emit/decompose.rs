@@ -10,8 +10,9 @@
 //! `exp(B) = exp(B1) exp(B2)` is a sum of four terms whose coefficients depend only on `l1`
 //! and `l2` (see [`helpers`]). With two of each (G(2,2), G(3,2), G(2,3)) the roots may be a
 //! complex-conjugate pair: the four coefficients are symmetric functions of `l1` and `l2`, so
-//! they stay real, and `exp` computes them in complex arithmetic ([`complex_helpers`]); the
-//! logarithm, square root and normalisation are not emitted there. Above five dimensions a
+//! they stay real, and `exp` computes them in complex arithmetic ([`complex_helpers`]); `log`
+//! reads the pair from the sum and difference of the two (complex) angles, real and imaginary
+//! (`log_double.rs`); the square root and normalisation are not emitted there. Above five dimensions a
 //! bivector may have three or more parts and the roots are those of a cubic or worse: the
 //! emitter refuses it.
 
@@ -50,7 +51,7 @@ pub enum Refusal {
     /// The bivector spans more than five basis vectors (`MAX_SPAN`): three or more commuting parts.
     TooManyDimensions(u32),
     /// Two or more time-like and two or more space-like directions: the squares of the parts
-    /// may be complex. The exponential is emitted; the logarithm, square root and
+    /// may be complex. The exponential and logarithm are emitted; the square root and
     /// normalisation are not.
     ComplexSquares {
         /// Directions squaring positive.
@@ -69,19 +70,19 @@ impl std::fmt::Display for Refusal {
             ),
             Refusal::ComplexSquares { positive, negative } => write!(
                 f,
-                "the span has {positive} positive and {negative} negative directions: the squares of the commuting parts can be complex (its exp is emitted, in complex arithmetic)"
+                "the span has {positive} positive and {negative} negative directions: the squares of the commuting parts can be complex (exp and log are emitted, in complex arithmetic)"
             ),
         }
     }
 }
 
 impl Refusal {
-    /// What a refused type goes without: `exp/log`, or (complex squares) `log, sqrt and
+    /// What a refused type goes without: `exp/log`, or (complex squares) `sqrt and
     /// normalize`.
     pub fn missing(&self) -> &'static str {
         match self {
             Refusal::TooManyDimensions(_) => "exp/log",
-            Refusal::ComplexSquares { .. } => "log, sqrt and normalize",
+            Refusal::ComplexSquares { .. } => "sqrt and normalize",
         }
     }
 }
@@ -103,13 +104,13 @@ impl SpanKind {
     }
 
     /// Whether the squares of the two commuting parts can be a complex-conjugate pair (two or
-    /// more directions of each sign): `exp` only, by [`complex_helpers`].
+    /// more directions of each sign): `exp` and `log` only, by [`complex_helpers`].
     pub fn complex_squares(&self) -> bool {
         self.inertia.0 >= 2 && self.inertia.1 >= 2
     }
 
-    /// The refusal of the logarithm, square root and normalisation on this span, if any.
-    pub fn log_refusal(&self) -> Option<Refusal> {
+    /// The refusal of the square root and normalisation on this span, if any.
+    pub fn root_refusal(&self) -> Option<Refusal> {
         self.complex_squares().then_some(Refusal::ComplexSquares {
             positive: self.inertia.0,
             negative: self.inertia.1,
@@ -123,7 +124,7 @@ pub fn span(blades: impl IntoIterator<Item = Bitmap>) -> Bitmap {
 }
 
 /// Decide at generation time whether the closed form applies to bivectors over `span` (for
-/// `exp`; see [`SpanKind::log_refusal`] for the rest).
+/// `exp` and `log`; see [`SpanKind::root_refusal`] for the rest).
 pub fn classify(metric: &Metric, span: Bitmap) -> Result<SpanKind, Refusal> {
     let dimension = span.count_ones();
     if dimension > MAX_SPAN {
@@ -350,8 +351,11 @@ pub fn helpers(scalar: ScalarType) -> TokenStream {
 /// `|l| <= 1` the next is under `1e-19`).
 const SERIES_TERMS: u32 = 11;
 
-/// The helper of an `exp` on a span whose squares may be complex (emitted only there):
+/// The helpers of `exp` and `log` on a span whose squares may be complex (emitted only there):
 ///
+/// - `exp_log_x_over_sin_or_sinh(n, c)`: `x / sin x` (`x = atan2(sqrt n, c)`) for
+///   `n = sin^2 x >= 0`, `x / sinh x` (`x = asinh(sqrt(-n))`) for `n < 0`, the factor of each
+///   half of a double-angle logarithm whose angle may be imaginary;
 /// - `exp_log_coefficients_of(s, q) -> [c1 c2, alpha, beta, s1 s2]`, the coefficients of
 ///   `exp_log_coefficients` from the invariants `s = <B B>_0`, `q = W W`: with real roots
 ///   (`s^2 >= q`) exactly that; with a complex pair `l = a ± i b` (`a = s/2`,
@@ -388,6 +392,27 @@ pub fn complex_helpers(scalar: ScalarType) -> TokenStream {
         /// `|c|^2`, `Im(l sn conj c)/b`, `Im(c conj sn)/b`, `|sn|^2`. By the series in `l` for
         /// `|l| <= 1`; the equal-squares limit when `2 b` is within the cube root of the
         /// precision of `|l|`.
+        /// `x / sin x` for `x = atan2(sqrt(n), c)` when `n = sin^2 x >= 0`, or `x / sinh x`
+        /// for `x = asinh(sqrt(-n))` when `n = -sinh^2 x < 0` (an imaginary angle): the factor
+        /// of the logarithm's part along the sum or difference of two angles. `1` at `n = 0`
+        /// from both sides.
+        #[inline]
+        #[allow(dead_code)]
+        fn exp_log_x_over_sin_or_sinh(n: #s, c: #s) -> #s {
+            if n >= 0.0 {
+                let sn = n.sqrt();
+                exp_log_x_over_sin(sn.atan2(c), sn)
+            } else {
+                let sh = (-n).sqrt();
+                if sh < 1e-4 {
+                    let x2 = sh * sh;
+                    1.0 - x2 * (1.0 / 6.0 - x2 * (3.0 / 40.0))
+                } else {
+                    sh.asinh() / sh
+                }
+            }
+        }
+
         #[inline]
         #[allow(dead_code)]
         fn exp_log_coefficients_of(s: #s, q: #s) -> [#s; 4] {
@@ -471,14 +496,14 @@ mod tests {
         let k = classify(&g22, 0b1111).expect("G(2,2) has a closed-form exp");
         assert!(k.complex_squares());
         assert!(matches!(
-            k.log_refusal(),
+            k.root_refusal(),
             Some(Refusal::ComplexSquares {
                 positive: 2,
                 negative: 2
             })
         ));
         assert!(!classify(&g22, 0b0111).expect("G(2,1)").complex_squares());
-        assert_eq!(classify(&cga, 0b11111).expect("CGA").log_refusal(), None);
+        assert_eq!(classify(&cga, 0b11111).expect("CGA").root_refusal(), None);
         let pga = signature(3, 0, 1);
         assert_eq!(classify(&pga, 0b1111).expect("PGA").inertia, (3, 0, 1));
     }

@@ -75,7 +75,7 @@ fn is_even_versor(t: &TypeDef) -> bool {
 }
 
 /// The types of a spec that miss closed forms, and why: their span is too large (no `exp` or
-/// `log`), or its squares may be complex (a versor type gets no `log`, `sqrt` or `normalize`;
+/// `log`), or its squares may be complex (a versor type gets no `sqrt` or `normalize`;
 /// [`Refusal::missing`]). `ga-codegen --exp-log` refuses a spec for which this is not empty.
 pub fn refusals(spec: &Spec) -> Vec<(String, Refusal)> {
     spec.types
@@ -84,9 +84,9 @@ pub fn refusals(spec: &Spec) -> Vec<(String, Refusal)> {
         .filter_map(|t| {
             let why = match classify(&spec.metric, span(t.blades())) {
                 Err(r) => r,
-                // Complex squares: a bivector type gets its `exp`, a versor type goes without
-                // its `log`, `sqrt` and `normalize`.
-                Ok(kind) if is_even_versor(t) => kind.log_refusal()?,
+                // Complex squares: a bivector type gets its `exp`, a versor type its `log`
+                // but no `sqrt` or `normalize`.
+                Ok(kind) if is_even_versor(t) => kind.root_refusal()?,
                 Ok(_) => return None,
             };
             Some((t.name.clone(), why))
@@ -288,18 +288,20 @@ impl Gen<'_> {
             ));
             items.extend(self.exp_impl(&spec.types[bi], vt, &keep));
         }
+        let mut complex_log = false;
         for vt in spec.types.iter().filter(|t| is_even_versor(t)) {
             let Ok(kind) = classify(&spec.metric, span(vt.blades())) else {
                 continue;
             };
-            if kind.log_refusal().is_some() {
-                continue;
-            }
             let log = self.log_impl(vt, kind);
             if !log.is_empty() {
                 self.closed_forms.push(format!("{:<12} log", vt.name));
+                complex_log |= kind.complex_squares();
             }
             items.extend(log);
+            if kind.root_refusal().is_some() {
+                continue;
+            }
             let root = self.root_impl(vt, &pairs);
             if !root.is_empty() {
                 self.closed_forms
@@ -341,7 +343,7 @@ impl Gen<'_> {
             }
         });
         self.out.extend(helpers(self.scalar));
-        if self.any_complex_exp(&pairs) {
+        if complex_log || self.any_complex_exp(&pairs) {
             self.out.extend(complex_helpers(self.scalar));
         }
         self.out.extend(items);

@@ -40,6 +40,7 @@ impl Gen<'_> {
         lt: &TypeDef,
         p: &SymMv,
         r4: &SymMv,
+        imaginary: bool,
     ) -> TokenStream {
         let s = self.s.clone();
         let keys: Vec<Bitmap> = p.0.keys().copied().collect();
@@ -98,11 +99,27 @@ impl Gen<'_> {
             ScalarType::F64 => 1e-8,
             ScalarType::F32 => 3e-4,
         });
+        // On spans with two directions of each sign, `S` or `D` may be imaginary (a complex
+        // pair of squares: `cos D = r0 + sig > 1`; two boosts: both): `x / sinh x` of its
+        // `sinh x`, and the branch is the only one that reads them.
+        let (hyperbolic, f_s, f_d) = if imaginary {
+            (
+                quote!(|| r0 + r4sq.max(0.0).sqrt() > 1.0),
+                quote!(exp_log_x_over_sin_or_sinh(-0.5 * (#pa2), r0 - sig)),
+                quote!(exp_log_x_over_sin_or_sinh(-0.5 * (#pd2), r0 + sig)),
+            )
+        } else {
+            (
+                TokenStream::new(),
+                quote!(exp_log_x_over_sin(ss.atan2(r0 - sig), ss)),
+                quote!(exp_log_x_over_sin(sd.atan2(r0 + sig), sd)),
+            )
+        };
         quote! {
             let r4sq: #s = #r4sq;
             let r4n: #s = r4.iter().map(|x| x * x).sum();
             if r4sq > #min_sq
-                && (r4sq >= 0.0625 * r4n || (mr - mo).abs() <= 0.5 * mr.abs().max(mo.abs()))
+                && (r4sq >= 0.0625 * r4n || (mr - mo).abs() <= 0.5 * mr.abs().max(mo.abs()) #hyperbolic)
             {
                 let sig = r4sq.sqrt();
                 let isg = 1.0 / sig;
@@ -114,8 +131,8 @@ impl Gen<'_> {
                 if ss < #near && r0 < sig {
                     #fallback
                 }
-                let fs = 0.5 * exp_log_x_over_sin(ss.atan2(r0 - sig), ss);
-                let fd = 0.5 * exp_log_x_over_sin(sd.atan2(r0 + sig), sd);
+                let fs = 0.5 * #f_s;
+                let fd = 0.5 * #f_d;
                 return #result;
             }
         }

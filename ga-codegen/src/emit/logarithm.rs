@@ -227,8 +227,10 @@ impl Gen<'_> {
             })
         });
         // Two rotations: by the sum and difference of their angles (`log_double.rs`).
-        let double = if kind.double_rotation() && !pre.r4.0.is_empty() {
-            self.log_double_rotation(&mut cx, lt, &pre.p, &pre.r4)
+        // Two rotations, or (two directions of each sign) a complex pair of squares or two
+        // boosts: by the sum and difference of their angles, real or imaginary.
+        let double = if (kind.double_rotation() || kind.complex_squares()) && !pre.r4.0.is_empty() {
+            self.log_double_rotation(&mut cx, lt, &pre.p, &pre.r4, kind.complex_squares())
         } else {
             TokenStream::new()
         };
@@ -250,8 +252,17 @@ impl Gen<'_> {
              `log = f(S) (P + Q)/2 + f(D) (P - Q)/2`, `f(x) = x / sin x`, \
              `Q = -<P <v>_4>_2 / |<v>_4|`, exact for equal angles (isoclinic) and near them; the \
              double half turn (`v` a unit 4-blade, whose logarithm is not unique) returns one of \
-             its logarithms.",
-            vt.name
+             its logarithms.{}",
+            vt.name,
+            if kind.complex_squares() {
+                " On this span (two directions of each sign) the two squares may also be a \
+                 complex pair or two boosts: then `S` or `D` is imaginary (`cos D = <v>_0 + \
+                 |<v>_4| > 1`, `<(P - Q)^2>_0 > 0`) and its factor is `x / sinh x` with \
+                 `x = asinh(sqrt(<(P - Q)^2>_0 / 2))`, so the same formula reads them; a rotation \
+                 with a boost (`<v>_4` squaring negative) takes the split above."
+            } else {
+                ""
+            }
         ));
         quote! {
             impl Log for #vn {
