@@ -12,7 +12,8 @@
 //! complex-conjugate pair: the four coefficients are symmetric functions of `l1` and `l2`, so
 //! they stay real, and `exp` computes them in complex arithmetic ([`complex_helpers`]); `log`
 //! reads the pair from the sum and difference of the two (complex) angles, real and imaginary
-//! (`log_double.rs`); the square root and normalisation are not emitted there. Above five dimensions a
+//! (`log_double.rs`), and the square root takes the halves of the grade-4 part's `J` as
+//! complex or split-complex numbers (`normalize.rs`). Above five dimensions a
 //! bivector may have three or more parts and the roots are those of a cubic or worse: the
 //! emitter refuses it.
 
@@ -50,15 +51,6 @@ pub const MAX_SPAN: u32 = 5;
 pub enum Refusal {
     /// The bivector spans more than five basis vectors (`MAX_SPAN`): three or more commuting parts.
     TooManyDimensions(u32),
-    /// Two or more time-like and two or more space-like directions: the squares of the parts
-    /// may be complex. The exponential and logarithm are emitted; the square root and
-    /// normalisation are not.
-    ComplexSquares {
-        /// Directions squaring positive.
-        positive: usize,
-        /// Directions squaring negative.
-        negative: usize,
-    },
 }
 
 impl std::fmt::Display for Refusal {
@@ -68,21 +60,6 @@ impl std::fmt::Display for Refusal {
                 f,
                 "the bivector spans {k} basis vectors: above {MAX_SPAN} it can have three or more commuting simple parts, with no closed-form split"
             ),
-            Refusal::ComplexSquares { positive, negative } => write!(
-                f,
-                "the span has {positive} positive and {negative} negative directions: the squares of the commuting parts can be complex (exp and log are emitted, in complex arithmetic)"
-            ),
-        }
-    }
-}
-
-impl Refusal {
-    /// What a refused type goes without: `exp/log`, or (complex squares) `sqrt and
-    /// normalize`.
-    pub fn missing(&self) -> &'static str {
-        match self {
-            Refusal::TooManyDimensions(_) => "exp/log",
-            Refusal::ComplexSquares { .. } => "sqrt and normalize",
         }
     }
 }
@@ -104,17 +81,9 @@ impl SpanKind {
     }
 
     /// Whether the squares of the two commuting parts can be a complex-conjugate pair (two or
-    /// more directions of each sign): `exp` and `log` only, by [`complex_helpers`].
+    /// more directions of each sign): `exp` and `log` use [`complex_helpers`] there.
     pub fn complex_squares(&self) -> bool {
         self.inertia.0 >= 2 && self.inertia.1 >= 2
-    }
-
-    /// The refusal of the square root and normalisation on this span, if any.
-    pub fn root_refusal(&self) -> Option<Refusal> {
-        self.complex_squares().then_some(Refusal::ComplexSquares {
-            positive: self.inertia.0,
-            negative: self.inertia.1,
-        })
     }
 }
 
@@ -123,8 +92,7 @@ pub fn span(blades: impl IntoIterator<Item = Bitmap>) -> Bitmap {
     blades.into_iter().fold(0, |a, b| a | b)
 }
 
-/// Decide at generation time whether the closed form applies to bivectors over `span` (for
-/// `exp` and `log`; see [`SpanKind::root_refusal`] for the rest).
+/// Decide at generation time whether the closed form applies to bivectors over `span`.
 pub fn classify(metric: &Metric, span: Bitmap) -> Result<SpanKind, Refusal> {
     let dimension = span.count_ones();
     if dimension > MAX_SPAN {
@@ -493,17 +461,10 @@ mod tests {
         assert_eq!(classify(&g6, 0b111111), Err(Refusal::TooManyDimensions(6)));
         assert!(classify(&g6, 0b011111).is_ok());
         let g22 = signature(2, 2, 0);
-        let k = classify(&g22, 0b1111).expect("G(2,2) has a closed-form exp");
+        let k = classify(&g22, 0b1111).expect("G(2,2) is closed form");
         assert!(k.complex_squares());
-        assert!(matches!(
-            k.root_refusal(),
-            Some(Refusal::ComplexSquares {
-                positive: 2,
-                negative: 2
-            })
-        ));
         assert!(!classify(&g22, 0b0111).expect("G(2,1)").complex_squares());
-        assert_eq!(classify(&cga, 0b11111).expect("CGA").root_refusal(), None);
+        assert!(!classify(&cga, 0b11111).expect("CGA").complex_squares());
         let pga = signature(3, 0, 1);
         assert_eq!(classify(&pga, 0b1111).expect("PGA").inertia, (3, 0, 1));
     }

@@ -18,8 +18,10 @@
 //! Every intermediate multivector (`W = <B B>_4`, `W B`, ...) is expanded symbolically, so
 //! only the blades that can be non-zero are computed; a grade-4 part that squares to zero
 //! identically (PGA's `e0123`, CGA's `e123i`) selects the one-rotation-plus-null form with no
-//! quadratic to solve. A span the decomposition is not closed form on (more than five basis
-//! vectors, or complex squares) gets none of these ([`refusals`] lists them).
+//! quadratic to solve. On a span with two directions of each sign the two squares may be a
+//! complex pair: `exp` computes its coefficients in complex arithmetic, `log` reads an imaginary
+//! angle with `x / sinh x`, `sqrt` takes split-complex halves. A span the decomposition is not
+//! closed form on (more than five basis vectors) gets none of these ([`refusals`] lists them).
 
 use super::decompose::{classify, complex_helpers, constant, helpers, span, Refusal};
 use super::render::{doc, ident};
@@ -74,22 +76,16 @@ fn is_even_versor(t: &TypeDef) -> bool {
         && t.fields.iter().any(|f| grade(f.bitmap) == 2)
 }
 
-/// The types of a spec that miss closed forms, and why: their span is too large (no `exp` or
-/// `log`), or its squares may be complex (a versor type gets no `sqrt` or `normalize`;
-/// [`Refusal::missing`]). `ga-codegen --exp-log` refuses a spec for which this is not empty.
+/// The types of a spec that get no closed forms, and why (their span is too large).
+/// `ga-codegen --exp-log` refuses a spec for which this is not empty.
 pub fn refusals(spec: &Spec) -> Vec<(String, Refusal)> {
     spec.types
         .iter()
         .filter(|t| is_bivector(t) || is_even_versor(t))
         .filter_map(|t| {
-            let why = match classify(&spec.metric, span(t.blades())) {
-                Err(r) => r,
-                // Complex squares: a bivector type gets its `exp`, a versor type its `log`
-                // but no `sqrt` or `normalize`.
-                Ok(kind) if is_even_versor(t) => kind.root_refusal()?,
-                Ok(_) => return None,
-            };
-            Some((t.name.clone(), why))
+            classify(&spec.metric, span(t.blades()))
+                .err()
+                .map(|r| (t.name.clone(), r))
         })
         .collect()
 }
@@ -299,9 +295,6 @@ impl Gen<'_> {
                 complex_log |= kind.complex_squares();
             }
             items.extend(log);
-            if kind.root_refusal().is_some() {
-                continue;
-            }
             let root = self.root_impl(vt, &pairs);
             if !root.is_empty() {
                 self.closed_forms

@@ -1,6 +1,7 @@
 //! The emitted closed-form normalisation and square root of an even versor
 //! (`impl EvenVersor`); see [`super::exp_log`].
 
+use super::decompose::{classify, span};
 use super::exp_log::negative_squares;
 use super::exp_log::{build, grade_part, Ctx};
 use super::render::{doc, ident};
@@ -93,8 +94,16 @@ impl Gen<'_> {
              `self / sqrt(x) = (a - n4) self / sqrt(2 a N)` (on the left, so that the result times its reverse is `x^(-1/2) x x^(-1/2) = 1` even when `n4` does not commute with `self`), `a = n0 + sqrt(N)` (for PGA and \
              CGA motors `q = 0`: `(1 - n4/(2 n0)) self / sqrt(n0)`). `self` is first divided by \
              its largest coefficient, so huge and tiny `{}`s normalise without overflow. Not \
-             finite for zero.",
-            vt.name
+             finite for zero{}.",
+            vt.name,
+            if classify(&self.spec.metric, span(vt.blades())).is_ok_and(|k| k.complex_squares()) {
+                ", nor where `N < 0` or `n0 + sqrt(N) <= 0` (with two directions of each sign \
+                 `q` can be positive, and `x` then has the two halves `n0 +- sqrt(q)`: one of \
+                 them negative, as for an element drifted across the null cone, leaves no real \
+                 square root)"
+            } else {
+                ""
+            }
         ));
         let turn = self.turn_root(vt, pairs);
         let screw = if turn.is_some() {
@@ -238,6 +247,23 @@ impl Gen<'_> {
         }
         let xj_terms: Vec<TokenStream> = blades.iter().map(|b| cx.at(&xj, *b)).collect();
         let xx = cx.poly(&self.table.product(&x, &x, Product::Geometric).get(0));
+        // With two directions of each sign a half can be a split-complex number (`y y > 0`,
+        // from two boosts or a complex pair of squares): its root `re + y / (2 re)` has
+        // `re^2 = (r + sqrt(r^2 - y y))/2`, the elliptic formula with `m^2 = -y y` of either
+        // sign.
+        let m_rho =
+            if classify(&self.spec.metric, span(vt.blades())).is_ok_and(|k| k.complex_squares()) {
+                quote! {
+                    let m2 = neg_square(y);
+                    let m = m2.max(0.0).sqrt();
+                    let rho = (r * r + m2).max(0.0).sqrt();
+                }
+            } else {
+                quote! {
+                    let m = neg_square(y).max(0.0).sqrt();
+                    let rho = (r * r + m * m).sqrt();
+                }
+            };
         // `J x J` times `p^2` through `t = u4 x`.
         let t = self.table.product(&u4, &x, Product::Geometric);
         let t_terms: Vec<TokenStream> = t.0.values().map(|p| cx.poly(p)).collect();
@@ -287,8 +313,7 @@ impl Gen<'_> {
                 let xs: [#s; #nb] = [#(#x_terms),*];
                 let xj = times_j(xs);
                 let half = |r: #s, y: [#s; #nb], sign: #s| -> (#s, [#s; #nb]) {
-                    let m = neg_square(y).max(0.0).sqrt();
-                    let rho = (r * r + m * m).sqrt();
+                    #m_rho
                     if r >= 0.0 {
                         let re = (0.5 * (rho + r)).sqrt();
                         let c = 0.5 / re;
