@@ -6,6 +6,7 @@
 
 use ga_codegen::Multivector;
 use proptest::prelude::*;
+use tests::close;
 
 /// Relative tolerance: the one of the generated-vs-generic checks (1e-12 for f64, 1e-4 for f32).
 fn tol(f32: bool) -> f64 {
@@ -13,22 +14,6 @@ fn tol(f32: bool) -> f64 {
         1e-4
     } else {
         1e-12
-    }
-}
-
-/// `|got - want| <= tol (1 + |want|)`, coefficientwise, and finite.
-fn close(what: &str, got: &Multivector, want: &Multivector, tol: f64) -> Result<(), String> {
-    let ok = got.coeffs().iter().all(|x| x.is_finite())
-        && got.max_diff(want) <= tol * (1.0 + want.max_abs());
-    if ok {
-        Ok(())
-    } else {
-        Err(format!(
-            "{what}: got {:?}\nwant {:?}\n(diff {:e})",
-            got.coeffs(),
-            want.coeffs(),
-            got.max_diff(want)
-        ))
     }
 }
 
@@ -71,6 +56,13 @@ fn on_blades(
 /// The property tests of one algebra module and its (bivector, versor) pairs.
 macro_rules! suite {
     ($name:ident, $m:path, $f32:expr, [$(($b:ident, $v:ident)),* $(,)?]) => {
+        suite!($name, $m, $f32, [$(($b, $v)),*], false);
+    };
+    // `$indefinite`: the round trip `exp(log(v))` on two directions of each sign loses about
+    // `30 eps |v|` (measured: 1.7e-12 relative at `|v| = 246`, two boosts at scale 2.9), and
+    // near a half turn of the sum of the two (complex) angles `eps / sin S`
+    // (`tests::half_turn_conditioning`), so its tolerance there grows with both.
+    ($name:ident, $m:path, $f32:expr, [$(($b:ident, $v:ident)),* $(,)?], $indefinite:expr) => {
         mod $name {
             use super::*;
             use $m as m;
@@ -109,10 +101,16 @@ macro_rules! suite {
                         let b = m::$b::from_multivector(&on_blades(&alg, &m::$v::BLADES, &[2], &c, scale));
                         let v: m::$v = b.exp();
                         let back: m::$v = v.log().exp();
-                        close_up_to_sign(concat!("exp log ", stringify!($v)), &back.to_multivector(), &v.to_multivector(), tol($f32))
+                        let vm = v.to_multivector();
+                        let size = if $indefinite {
+                            (1.0 + vm.max_abs()) * tests::half_turn_conditioning(&vm)
+                        } else {
+                            1.0
+                        };
+                        close_up_to_sign(concat!("exp log ", stringify!($v)), &back.to_multivector(), &v.to_multivector(), tol($f32) * size)
                             .map_err(TestCaseError::fail)?;
                         // log(-v) = log(v): the same motion.
-                        close(concat!("log -", stringify!($v)), &(-v).log().to_multivector(), &v.log().to_multivector(), tol($f32))
+                        close(concat!("log -", stringify!($v)), &(-v).log().to_multivector(), &v.log().to_multivector(), tol($f32) * size)
                             .map_err(TestCaseError::fail)?;
                     })*
                 }
@@ -152,24 +150,35 @@ macro_rules! suite {
                         let drift = on_blades(&alg, &m::$v::BLADES, &[0, 2, 4], &d, 0.05);
                         let drifted = &vm + &drift;
                         let n = m::$v::from_multivector(&drifted).normalize().to_multivector();
-                        // `x = v ~v` of the drifted `v` is `n0 + n4`; where `n4` squares to
-                        // `q > 0` (two directions of each sign: G(2,2), G(3,2)) its halves are
-                        // `n0 +- sqrt(q)`, and a drift across the null cone (a boost's
-                        // coefficients are large) leaves one negative: no real root, and the
-                        // result must not be finite. Elsewhere the root is conditioned by
-                        // `(n0 + sqrt q) / (n0 - sqrt q)` (1 where `q <= 0`).
+                        // `x = v ~v` of the drifted `v` is `n0 + n4`. Where `n4` squares to
+                        // `q > 0` (CGA's `e1234`; two directions of each sign: G(2,2), G(3,2))
+                        // its halves are `n0 +- sqrt(q)`, and a drift across the null cone (a
+                        // boost's coefficients are large) leaves one negative: no real root, and
+                        // the result must not be finite; otherwise the root is conditioned by
+                        // `(n0 + sqrt q) / (n0 - sqrt q)`. Where `q <= 0` it is a complex number
+                        // with a root (as before).
                         let x = drifted.gp(&drifted.rev());
                         let (n0, x4) = (x.get(0), x.grade(4));
-                        let e = x4.gp(&x4).get(0).max(0.0).sqrt();
-                        if n0 - e <= 0.0 {
-                            prop_assert!(!n.coeffs().iter().all(|c| c.is_finite()), "normalised without a root: {:?}", n.coeffs());
+                        let q = x4.gp(&x4).get(0);
+                        // `n ~n = 1` cancels products of `n`'s coefficients: rounding `n` alone
+                        // moves it by about `eps |n|^2` (boosts have coefficients of 10 and more).
+                        let size = 1.0 + n.max_abs() * n.max_abs();
+                        let unit = |cond: f64| {
+                            close(concat!("normalize drift ", stringify!($v)), &n.gp(&n.rev()), &Multivector::scalar(&alg, 1.0), tol($f32) * size * cond)
+                        };
+                        if q > 0.0 {
+                            let e = q.sqrt();
+                            // Within 1e-3 of the cone whether the root exists is decided by the
+                            // rounding of the input (f32 rounds it), and the conditioning is over
+                            // 2000: no claim either way there.
+                            let margin = 1e-3 * (n0.abs() + e);
+                            if n0 - e < -margin {
+                                prop_assert!(!n.coeffs().iter().all(|c| c.is_finite()), "normalised without a root (n0 {n0}, sqrt q {e}): {:?}", n.coeffs());
+                            } else if n0 - e > margin {
+                                unit((n0 + e) / (n0 - e)).map_err(TestCaseError::fail)?;
+                            }
                         } else {
-                            // `n ~n = 1` cancels products of `n`'s coefficients: rounding `n`
-                            // alone moves it by about `eps |n|^2` (boosts have coefficients of 10
-                            // and more).
-                            let size = (1.0 + n.max_abs() * n.max_abs()) * (n0 + e) / (n0 - e);
-                            close(concat!("normalize drift ", stringify!($v)), &n.gp(&n.rev()), &Multivector::scalar(&alg, 1.0), tol($f32) * size)
-                                .map_err(TestCaseError::fail)?;
+                            unit(1.0).map_err(TestCaseError::fail)?;
                         }
                     })*
                 }
@@ -198,9 +207,15 @@ suite!(sig201, tests::sig201, false, [(Bivector, Even)]);
 suite!(sig201_f32, tests::sig201_f32, true, [(Bivector, Even)]);
 suite!(sig400, tests::sig400, false, [(Bivector, Even)]);
 // Two directions of each sign: complex pairs of squares and two boosts (`exp_log_complex.rs`).
-suite!(sig220, tests::sig220, false, [(Bivector, Even)]);
-suite!(sig220_f32, tests::sig220_f32, true, [(Bivector, Even)]);
-suite!(sig320, tests::sig320, false, [(Bivector, Even)]);
+suite!(sig220, tests::sig220, false, [(Bivector, Even)], true);
+suite!(
+    sig220_f32,
+    tests::sig220_f32,
+    true,
+    [(Bivector, Even)],
+    true
+);
+suite!(sig320, tests::sig320, false, [(Bivector, Even)], true);
 suite!(sig400_f32, tests::sig400_f32, true, [(Bivector, Even)]);
 suite!(
     cga,
