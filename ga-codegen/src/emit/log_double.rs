@@ -32,8 +32,12 @@ impl Gen<'_> {
     /// factor two (where the split by them would divide by their small difference): a grade-4
     /// part that is nearly null (a screw motion, perturbed) has a `sig` made of cancelling
     /// terms, and `1 / sig` multiplies their rounding (2e-10 in f64 on a case the property tests
-    /// found), while the split by the squares is exact to the precision there. Near the double
-    /// half turn `r4` is nearly a unit 4-blade and the branch is kept.
+    /// found), while the split by the squares is exact to the precision there. It is always
+    /// taken where the angles sum to more than two thirds of a turn (`sig - r0 > 1/2`, `cos S <
+    /// -1/2`), which a nearly null `r4` never does: towards the double half turn only this
+    /// branch reads `v`, and a boost (in CGA, G(3,2)) makes `r4`'s coefficients large while
+    /// `r4sq` stays near 1, so the test by the coefficients alone once sent turned double half
+    /// turns to the split by the squares, whose logarithm was off by the size of `v`.
     pub(super) fn log_double_rotation(
         &mut self,
         cx: &mut Ctx<'_>,
@@ -119,7 +123,9 @@ impl Gen<'_> {
             let r4sq: #s = #r4sq;
             let r4n: #s = r4.iter().map(|x| x * x).sum();
             if r4sq > #min_sq
-                && (r4sq >= 0.0625 * r4n || (mr - mo).abs() <= 0.5 * mr.abs().max(mo.abs()) #hyperbolic)
+                && (r4sq >= 0.0625 * r4n
+                    || (mr - mo).abs() <= 0.5 * mr.abs().max(mo.abs())
+                    || r4sq.sqrt() - r0 > 0.5 #hyperbolic)
             {
                 let sig = r4sq.sqrt();
                 let isg = 1.0 / sig;

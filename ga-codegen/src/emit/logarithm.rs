@@ -247,7 +247,8 @@ impl Gen<'_> {
              c` with `c = sqrt(<v>_0^2 + |pr|^2)`, is a translation (kept as it is), a boost \
              (scaled by `asinh(|uo|)/|uo|`) or a second rotation (`asin(|uo|)/|uo|`). A pure \
              translation (`pr = 0`) returns the bivector part itself. Two rotations (`<v>_4` \
-             squares positive, not by cancellation, or their squares are within a factor two) \
+             squares positive, not by cancellation, or their squares are within a factor two, \
+             or their angles sum past two thirds of a turn) \
              are read from the sum `S` and difference `D` of their angles instead: \
              `log = f(S) (P + Q)/2 + f(D) (P - Q)/2`, `f(x) = x / sin x`, \
              `Q = -<P <v>_4>_2 / |<v>_4|`, exact for equal angles (isoclinic) and near them; the \
