@@ -320,3 +320,26 @@ proptest! {
         }
     }
 }
+
+/// A name, source path or doc with line breaks stays inside the comments it is written in: a
+/// name `"g3\nfn evil() {..}\n//"` once came out as a live line of code in the header, and a
+/// doc with a bare `\r` (a spec saved with old Mac line endings) made a doc comment rustc refuses.
+#[test]
+fn names_and_docs_cannot_leave_their_comments() {
+    let mut raw = diagonal_spec(&["e1", "e2"], &[1.0, 1.0], &[("Rotor", &["1", "e12"])]);
+    raw.name = Some("g2\nfn evil() { std::process::exit(7) }\n//".into());
+    raw.types[0].doc = Some("A rotor.\r\nTwo lines,\ra bare CR.".into());
+    let spec = Spec::from_raw(raw, "evil\n.toml").unwrap();
+    let g = generate(&spec, &EmitOptions::default()).unwrap();
+    let code = g.code().expect("formats");
+    // The name is written escaped, on the header's first line.
+    let first = code.lines().next().unwrap_or_default();
+    assert!(first.contains(r"(g2\nfn evil() {"), "{first}");
+    assert!(!code.contains('\r'), "a carriage return in the code");
+    assert!(!code.lines().any(|l| l.trim_start().starts_with("fn evil")));
+    assert!(code.contains("/// Two lines,\\ra bare CR."), "{code}");
+    let wgsl = ga_codegen::generate_wgsl(&spec).unwrap();
+    assert!(wgsl
+        .lines()
+        .all(|l| l.is_empty() || l.starts_with("//") || !l.contains("evil")));
+}

@@ -200,15 +200,32 @@ impl<'a> Names<'a> {
 
 /// A doc text as one `#[doc = " line"]` per line, each starting with a space as `///` comments
 /// do, so that the formatted code reads `/// line` (never `///line` or `/** .. */`).
+/// Lines end at `\n` or `\r\n` (a spec written on Windows); any other control character is
+/// written escaped (a bare `\r` is an error in a Rust doc comment).
 pub(super) fn doc(text: &str) -> TokenStream {
-    let lines = text.split('\n').map(|l| {
+    let lines = text.lines().map(|l| {
         if l.is_empty() {
             String::new()
         } else {
-            format!(" {l}")
+            format!(" {}", one_line(l))
         }
     });
     quote!(#(#[doc = #lines])*)
+}
+
+/// `text` with its control characters (line breaks included) escaped as `\n`, `\r`,
+/// `\u{..}`, so that it stays on the comment line it is written in (a spec's name, path or
+/// doc line).
+pub(super) fn one_line(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for c in text.chars() {
+        if c.is_control() && c != '\t' {
+            out.extend(c.escape_default());
+        } else {
+            out.push(c);
+        }
+    }
+    out
 }
 
 /// `c1 * m1 + c2 * m2 - ...` with monomials rendered by `mono`, or `0.0`: every emitted
