@@ -84,8 +84,32 @@ fn bone_lengths(joints: &[DVec3]) -> Result<Vec<f64>> {
 /// `b` moved to distance `l` from `a` along `b - a` (or along `fallback` when they coincide).
 #[inline]
 fn place(a: DVec3, b: DVec3, l: f64, fallback: DVec3) -> DVec3 {
-    let d = (b - a).try_normalize().unwrap_or(fallback);
-    a + l * d
+    a + l * direction(a, b).unwrap_or(fallback)
+}
+
+/// `b - a` and its largest component, from the halves (exact; no overflow for any finite
+/// `a`, `b`).
+fn half_difference(a: DVec3, b: DVec3) -> (DVec3, f64) {
+    let v = 0.5 * b - 0.5 * a;
+    (v, v.abs().max_element())
+}
+
+/// The unit direction from `a` to `b`, also where `|b - a|^2` overflows (a target 1e300 away
+/// once left the chain at rest); `None` where they coincide.
+fn direction(a: DVec3, b: DVec3) -> Option<DVec3> {
+    let (v, m) = half_difference(a, b);
+    (m > 0.0).then(|| (v / m).try_normalize()).flatten()
+}
+
+/// `|b - a|` without overflow where it is representable (a target 1e300 away is 1e300 short,
+/// not infinitely).
+fn distance(a: DVec3, b: DVec3) -> f64 {
+    let (v, m) = half_difference(a, b);
+    if m == 0.0 {
+        0.0
+    } else {
+        2.0 * m * (v / m).length()
+    }
 }
 
 /// Solve the chain `joints` (root first; its bone lengths are kept) for the end effector to
@@ -107,11 +131,11 @@ pub fn fabrik(joints: &[DVec3], target: DVec3, options: &FabrikOptions) -> Resul
     let mut p = joints.to_vec();
     let total: f64 = lengths.iter().sum();
     let fallback = (joints[n - 1] - root).try_normalize().unwrap_or(DVec3::X);
-    if root.distance(target) > total {
+    if distance(root, target) > total {
         for i in 0..n - 1 {
             p[i + 1] = place(p[i], target, lengths[i], fallback);
         }
-        let distance = p[n - 1].distance(target);
+        let distance = distance(p[n - 1], target);
         return Ok(FabrikSolution {
             joints: p,
             status: FabrikStatus::Unreachable,
@@ -120,7 +144,7 @@ pub fn fabrik(joints: &[DVec3], target: DVec3, options: &FabrikOptions) -> Resul
         });
     }
     let mut iterations = 0;
-    let mut distance = p[n - 1].distance(target);
+    let mut distance = distance(p[n - 1], target);
     while distance > options.tolerance && iterations < options.max_iterations {
         // Forward: the end effector onto the target, back to the root.
         p[n - 1] = target;
@@ -133,7 +157,7 @@ pub fn fabrik(joints: &[DVec3], target: DVec3, options: &FabrikOptions) -> Resul
             p[i + 1] = place(p[i], p[i + 1], lengths[i], fallback);
         }
         iterations += 1;
-        distance = p[n - 1].distance(target);
+        distance = self::distance(p[n - 1], target);
     }
     let status = if distance <= options.tolerance {
         FabrikStatus::Reached

@@ -148,6 +148,85 @@ impl Buffers {
     }
 }
 
+/// How glTF 2.0 lets an accessor of one use be stored (section 3.7.2.1, 3.7.3.1 and 3.11):
+/// its element type and the component types allowed, each with whether an integer type must
+/// be normalized.
+pub(crate) struct Layout {
+    /// The use, for messages (`"POSITION"`, `"indices"`, ...).
+    pub(crate) what: &'static str,
+    pub(crate) dimensions: Dimensions,
+    pub(crate) components: &'static [(DataType, bool)],
+}
+
+/// Floats only (positions, times, matrices, translations and scales).
+pub(crate) const FLOAT: &[(DataType, bool)] = &[(DataType::F32, false)];
+/// Unsigned integers, not normalized (indices with `U32`, joints without it).
+pub(crate) const INDEX: &[(DataType, bool)] = &[
+    (DataType::U8, false),
+    (DataType::U16, false),
+    (DataType::U32, false),
+];
+pub(crate) const JOINT: &[(DataType, bool)] = &[(DataType::U8, false), (DataType::U16, false)];
+/// Weights: floats or normalized unsigned integers.
+pub(crate) const WEIGHT: &[(DataType, bool)] = &[
+    (DataType::F32, false),
+    (DataType::U8, true),
+    (DataType::U16, true),
+];
+/// Rotations: floats or normalized integers.
+pub(crate) const ROTATION: &[(DataType, bool)] = &[
+    (DataType::F32, false),
+    (DataType::I8, true),
+    (DataType::U8, true),
+    (DataType::I16, true),
+    (DataType::U16, true),
+];
+/// Positions under `KHR_mesh_quantization`: floats or 8- and 16-bit integers, normalized or
+/// not.
+pub(crate) const QUANTIZED: &[(DataType, bool)] = &[
+    (DataType::F32, false),
+    (DataType::I8, false),
+    (DataType::I8, true),
+    (DataType::U8, false),
+    (DataType::U8, true),
+    (DataType::I16, false),
+    (DataType::I16, true),
+    (DataType::U16, false),
+    (DataType::U16, true),
+];
+
+impl Layout {
+    /// A typed error unless accessor `a` is stored as this use allows (a position read as
+    /// integers, or times as two-vectors, would otherwise be read as garbage).
+    pub(crate) fn check(&self, a: &gltf::Accessor, name: &str) -> Result<(), SkinError> {
+        let (t, normalized) = (a.data_type(), a.normalized());
+        let allowed = self
+            .components
+            .iter()
+            .any(|&(at, an)| at == t && an == normalized);
+        if a.dimensions() == self.dimensions && allowed {
+            return Ok(());
+        }
+        Err(SkinError::Data {
+            name: name.to_string(),
+            message: format!(
+                "accessor {} ({}): {:?} of {:?}{}, which glTF does not allow there (expected {:?} of {})",
+                a.index(),
+                self.what,
+                a.dimensions(),
+                t,
+                if normalized { ", normalized" } else { "" },
+                self.dimensions,
+                self.components
+                    .iter()
+                    .map(|(t, n)| format!("{t:?}{}", if *n { " normalized" } else { "" }))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        })
+    }
+}
+
 impl Buffers {
     /// The bytes of buffer view `view` (checked against its buffer).
     pub(crate) fn view_bytes(&self, view: &gltf::buffer::View) -> Option<&[u8]> {
@@ -216,8 +295,29 @@ impl Default for GltfReadOptions {
     }
 }
 
-/// Reads the first `length` bytes of the external buffer `uri` beside the model in `base`:
-/// never more than declared, and only inside `base` unless `allow_external`.
+/// `%XX` escapes of a URI decoded (glTF URIs are percent-encoded).
+pub(crate) fn percent_decoded(uri: &str) -> String {
+    let b = uri.as_bytes();
+    let mut out = Vec::with_capacity(b.len());
+    let mut i = 0;
+    while i < b.len() {
+        let hex = |c: u8| (c as char).to_digit(16);
+        if b[i] == b'%' && i + 2 < b.len() {
+            if let (Some(h), Some(l)) = (hex(b[i + 1]), hex(b[i + 2])) {
+                out.push((h * 16 + l) as u8);
+                i += 3;
+                continue;
+            }
+        }
+        out.push(b[i]);
+        i += 1;
+    }
+    String::from_utf8_lossy(&out).into_owned()
+}
+
+/// Reads the first `length` bytes of the external file `uri` (percent-encoded, as glTF URIs
+/// are) beside the model in `base`: never more than declared, and only inside `base` unless
+/// `allow_external`.
 pub(crate) fn read_external(
     base: &Path,
     uri: &str,
@@ -225,7 +325,7 @@ pub(crate) fn read_external(
     allow_external: bool,
 ) -> Result<Vec<u8>, String> {
     use std::io::Read as _;
-    let path = base.join(uri);
+    let path = base.join(percent_decoded(uri));
     let shown = path.display();
     let real = path.canonicalize().map_err(|e| format!("{shown}: {e}"))?;
     if !allow_external {

@@ -1,6 +1,8 @@
 //! glTF 2.0 rigs in (`.gltf` with embedded or external buffers, `.glb`).
 
-use super::accessor::{Buffers, GltfReadOptions};
+use super::accessor::{
+    Buffers, GltfReadOptions, Layout, FLOAT, INDEX, JOINT, QUANTIZED, ROTATION, WEIGHT,
+};
 use super::animation::{Animation, Channel, Interpolation, Property};
 use super::influences::Influences;
 use super::look_read::{merge_attributes, primitive_attributes, read_look};
@@ -9,7 +11,8 @@ use super::SkinError;
 use super::Trs;
 use crate::mesh::Mesh;
 use glam::{DMat4, DQuat, DVec3, DVec4};
-use std::path::Path;
+use gltf::accessor::Dimensions;
+use std::path::{Path, PathBuf};
 
 /// Read a glTF 2.0 rig (`.gltf` or `.glb`); see [`parse_gltf`].
 ///
@@ -37,6 +40,33 @@ pub fn read_gltf_with(path: impl AsRef<Path>, options: &GltfReadOptions) -> Resu
         }
     });
     parse_gltf_with(&bytes, &path.display().to_string(), base, options)
+}
+
+/// The external files a glTF model (`.gltf` or `.glb`) names: its buffers and images whose
+/// URI is not a `data:` URI, resolved against the model's folder as [`read_gltf`] resolves
+/// them (percent-decoded). Empty for a file that is not a glTF document (reading it fails
+/// later, with the reason). A program that writes files checks its outputs against these too,
+/// so that no output replaces a file the model is made of.
+pub fn gltf_external_files(path: impl AsRef<Path>) -> Vec<PathBuf> {
+    let path = path.as_ref();
+    let Ok(bytes) = std::fs::read(path) else {
+        return Vec::new();
+    };
+    let Ok(raw) = gltf::Gltf::from_slice_without_validation(&bytes) else {
+        return Vec::new();
+    };
+    let json = raw.document.as_json();
+    let base = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    let buffers = json.buffers.iter().filter_map(|b| b.uri.as_deref());
+    let images = json.images.iter().filter_map(|i| i.uri.as_deref());
+    buffers
+        .chain(images)
+        .filter(|uri| !uri.starts_with("data:"))
+        .map(|uri| base.join(super::accessor::percent_decoded(uri)))
+        .collect()
 }
 
 /// Parse a glTF 2.0 rig from its bytes (`.gltf` JSON or `.glb`); `base` is the folder that
@@ -100,6 +130,12 @@ pub fn parse_gltf_with(
     let inverse_bind = match skin.inverse_bind_matrices() {
         None => vec![DMat4::IDENTITY; joints.len()],
         Some(a) => {
+            let layout = Layout {
+                what: "inverse bind matrices",
+                dimensions: Dimensions::Mat4,
+                components: FLOAT,
+            };
+            layout.check(&a, name)?;
             let (v, dim) = buffers.read(&a, name)?;
             if dim != 16 || v.len() < 16 * joints.len() {
                 return Err(SkinError::Data {
@@ -122,6 +158,7 @@ pub fn parse_gltf_with(
     let mut primitives = Vec::new();
     let mut attributes = Vec::new();
     let mut materials = Vec::new();
+    let quantized = doc.extensions_used().any(|e| e == "KHR_mesh_quantization");
     for (mesh_index, prim_index, node) in instances {
         let m = doc
             .meshes()
@@ -131,7 +168,7 @@ pub fn parse_gltf_with(
             .primitives()
             .nth(prim_index)
             .expect("index from the document");
-        let info = read_primitive(&p, &buffers, name, &mut mesh, &mut influences)?;
+        let info = read_primitive(&p, &buffers, name, quantized, &mut mesh, &mut influences)?;
         attributes.push(primitive_attributes(
             &p,
             info.vertex_count,
@@ -289,10 +326,12 @@ fn skinned_primitives<'a>(
 }
 
 /// Append one primitive's positions, triangles and influences.
+/// `quantized`: the document uses `KHR_mesh_quantization`, so positions may be integers.
 fn read_primitive(
     p: &gltf::Primitive,
     buffers: &Buffers,
     name: &str,
+    quantized: bool,
     mesh: &mut Mesh,
     influences: &mut Influences,
 ) -> Result<PrimitiveInfo, SkinError> {
@@ -303,6 +342,12 @@ fn read_primitive(
     let pos = p
         .get(&gltf::Semantic::Positions)
         .ok_or_else(|| data(format!("primitive {}: no POSITION", p.index())))?;
+    let layout = Layout {
+        what: "POSITION",
+        dimensions: Dimensions::Vec3,
+        components: if quantized { QUANTIZED } else { FLOAT },
+    };
+    layout.check(&pos, name)?;
     let (v, dim) = buffers.read(&pos, name)?;
     if dim != 3 {
         return Err(data("POSITION is not VEC3".into()));
@@ -317,12 +362,19 @@ fn read_primitive(
         )));
     }
     let indices: Vec<u32> = match p.indices() {
-        Some(a) => buffers
-            .read(&a, name)?
-            .0
-            .iter()
-            .map(|&x| x as u32)
-            .collect(),
+        Some(a) => {
+            let layout = Layout {
+                what: "indices",
+                dimensions: Dimensions::Scalar,
+                components: INDEX,
+            };
+            layout.check(&a, name)?;
+            buffers.read(&a, name)?
+        }
+        .0
+        .iter()
+        .map(|&x| x as u32)
+        .collect(),
         None => (0..count as u32).collect(),
     };
     if !indices.len().is_multiple_of(3) {
@@ -351,7 +403,21 @@ fn read_primitive(
             let w = p.get(&gltf::Semantic::Weights(s))?;
             Some((j, w))
         })
-        .map(|(j, w)| Ok((buffers.read(&j, name)?.0, buffers.read(&w, name)?.0)))
+        .map(|(j, w)| {
+            let joints = Layout {
+                what: "JOINTS",
+                dimensions: Dimensions::Vec4,
+                components: JOINT,
+            };
+            let weights = Layout {
+                what: "WEIGHTS",
+                dimensions: Dimensions::Vec4,
+                components: WEIGHT,
+            };
+            joints.check(&j, name)?;
+            weights.check(&w, name)?;
+            Ok((buffers.read(&j, name)?.0, buffers.read(&w, name)?.0))
+        })
         .collect::<Result<_, SkinError>>()?;
     if sets.is_empty() {
         return Err(SkinError::NoSkin(format!(
@@ -428,6 +494,22 @@ fn read_animations(
                 gltf::animation::Interpolation::Step => Interpolation::Step,
                 gltf::animation::Interpolation::CubicSpline => Interpolation::CubicSpline,
             };
+            let times = Layout {
+                what: "keyframe times",
+                dimensions: Dimensions::Scalar,
+                components: FLOAT,
+            };
+            let (dimensions, components) = match property {
+                Property::Rotation => (Dimensions::Vec4, ROTATION),
+                _ => (Dimensions::Vec3, FLOAT),
+            };
+            let values = Layout {
+                what: "keyframe values",
+                dimensions,
+                components,
+            };
+            times.check(&s.input(), name)?;
+            values.check(&s.output(), name)?;
             let (times, _) = buffers.read(&s.input(), name)?;
             let (v, dim) = buffers.read(&s.output(), name)?;
             let want = if property == Property::Rotation { 4 } else { 3 };

@@ -2,6 +2,8 @@
 //! and its materials, textures, samplers and images (embedded, from `data:` URIs or from files
 //! beside the model, under the same rules as buffers).
 
+#[cfg(test)]
+use super::accessor::percent_decoded;
 use super::accessor::{read_external, Buffers, GltfReadOptions};
 use super::look::{extensions_in, Look, LookImage, VertexAttribute};
 use super::SkinError;
@@ -150,26 +152,6 @@ fn sniff(bytes: &[u8]) -> Option<&'static str> {
     }
 }
 
-/// `%XX` escapes of a URI decoded (glTF URIs are percent-encoded).
-fn percent_decoded(uri: &str) -> String {
-    let b = uri.as_bytes();
-    let mut out = Vec::with_capacity(b.len());
-    let mut i = 0;
-    while i < b.len() {
-        let hex = |c: u8| (c as char).to_digit(16);
-        if b[i] == b'%' && i + 2 < b.len() {
-            if let (Some(h), Some(l)) = (hex(b[i + 1]), hex(b[i + 2])) {
-                out.push((h * 16 + l) as u8);
-                i += 3;
-                continue;
-            }
-        }
-        out.push(b[i]);
-        i += 1;
-    }
-    String::from_utf8_lossy(&out).into_owned()
-}
-
 /// One image's bytes: from its buffer view, its `data:` URI or a file beside the model.
 fn image_bytes(
     image: &Value,
@@ -201,12 +183,7 @@ fn image_bytes(
             .map_err(|e| format!("bad base64: {e}"));
     }
     let base = base.ok_or("an external file without a base folder")?;
-    read_external(
-        base,
-        &percent_decoded(uri),
-        options.max_buffer_bytes,
-        options.allow_external,
-    )
+    read_external(base, uri, options.max_buffer_bytes, options.allow_external)
 }
 
 /// The materials, textures, samplers and images of the document (the attributes and the

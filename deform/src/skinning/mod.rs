@@ -49,7 +49,7 @@ pub use animation::{Animation, Channel, Interpolation, KeyframeBlend, Property};
 pub use bake::bake_edits;
 pub use edit::{in_betweens, JointEdit};
 pub use glb_write::{glb_bytes, write_glb, GlbOptions};
-pub use gltf_read::{parse_gltf, parse_gltf_with, read_gltf, read_gltf_with};
+pub use gltf_read::{gltf_external_files, parse_gltf, parse_gltf_with, read_gltf, read_gltf_with};
 pub use influences::Influences;
 pub use libigl_rig::{libigl_rig, read_libigl_animation, LibiglAnimation};
 pub use look::{planar_uvs, Look, LookImage, VertexAttribute};

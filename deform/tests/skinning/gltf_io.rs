@@ -360,3 +360,54 @@ fn external_buffers_stay_in_the_model_folder_and_within_their_length() {
     assert!(err.to_string().contains("over the limit"), "{err}");
     let _ = std::fs::remove_dir_all(&root);
 }
+
+/// Accessors stored as glTF does not allow for their use are typed errors: positions read as
+/// integers (`v 3204448256 0 0`), indices as floats, times as integers or two-vectors and
+/// non-normalized integer weights were all read as garbage with exit code 0. The layouts glTF
+/// allows still read: normalized 16-bit weights.
+#[test]
+fn accessors_stored_as_gltf_forbids_are_refused() {
+    let accessor_of = |doc: &serde_json::Value, what: &str| -> usize {
+        let prim = &doc["meshes"][0]["primitives"][0];
+        let a = match what {
+            "indices" => &prim["indices"],
+            "times" => &doc["animations"][0]["samplers"][0]["input"],
+            a => &prim["attributes"][a],
+        };
+        a.as_u64().expect("an accessor index") as usize
+    };
+    let cases: [(&str, &str, serde_json::Value, &str); 6] = [
+        ("POSITION", "componentType", 5125.into(), "POSITION"),
+        ("POSITION", "componentType", 5123.into(), "POSITION"),
+        ("indices", "componentType", 5126.into(), "indices"),
+        ("times", "componentType", 5125.into(), "keyframe times"),
+        ("times", "type", "VEC2".into(), "keyframe times"),
+        ("WEIGHTS_0", "componentType", 5125.into(), "WEIGHTS"),
+    ];
+    for (what, key, value, named) in cases {
+        let Some(r) = simple_skin_edited(|doc| {
+            let a = accessor_of(doc, what);
+            doc["accessors"][a][key] = value.clone();
+        }) else {
+            return;
+        };
+        let e = r.expect_err(&format!("{what} {key} = {value}"));
+        let message = e.to_string();
+        assert!(
+            message.contains(named) && message.contains("glTF does not allow"),
+            "{what} {key} = {value}: {message}"
+        );
+    }
+    // Allowed: normalized unsigned shorts for the weights (read as they say).
+    let Some(r) = simple_skin_edited(|doc| {
+        let a = accessor_of(doc, "WEIGHTS_0");
+        // The same bytes reinterpreted: only the layout check is under test here.
+        doc["accessors"][a]["componentType"] = 5123.into();
+        doc["accessors"][a]["normalized"] = true.into();
+    }) else {
+        return;
+    };
+    if let Err(e) = r {
+        assert!(!e.to_string().contains("glTF does not allow"), "{e}");
+    }
+}

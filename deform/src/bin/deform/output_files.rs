@@ -150,11 +150,26 @@ pub fn write_mesh(path: &Path, mesh: &Mesh) -> Result<()> {
     }
 }
 
-/// Every command's result goes through here: a non-finite vertex is an error, never a file.
+/// Every command's result goes through here: a non-finite vertex, or one beyond the
+/// coordinates every reader of this program accepts (`MAX_COORDINATE`, 1e300: a result the
+/// program could not read back), is an error, never a file.
 fn check_finite(path: &Path, mesh: &Mesh) -> Result<()> {
     if let Some(i) = mesh.positions.iter().position(|p| !p.is_finite()) {
         bail!(
             "{}: not written: vertex {i} of the result is not finite ({})",
+            path.display(),
+            mesh.positions[i]
+        );
+    }
+    let limit = deform::mesh::validate::MAX_COORDINATE;
+    if let Some(i) = mesh
+        .positions
+        .iter()
+        .position(|p| p.abs().max_element() > limit)
+    {
+        bail!(
+            "{}: not written: vertex {i} of the result lies beyond +-{limit:e} ({}), where no \
+             reader of this program would take it back",
             path.display(),
             mesh.positions[i]
         );

@@ -166,11 +166,13 @@ pub struct RigInput {
 }
 
 impl RigInput {
-    /// The input files.
-    pub fn paths(&self) -> Vec<&Path> {
-        let mut v = vec![self.model.as_path()];
-        v.extend(self.skeleton.as_deref());
-        v.extend(self.weights.as_deref());
+    /// The input files: the model (with the buffer and image files a glTF model names), the
+    /// skeleton and the weights.
+    pub fn paths(&self) -> Vec<PathBuf> {
+        let mut v = vec![self.model.clone()];
+        v.extend(deform::skinning::gltf_external_files(&self.model));
+        v.extend(self.skeleton.clone());
+        v.extend(self.weights.clone());
         v
     }
 }

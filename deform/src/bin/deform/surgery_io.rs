@@ -17,6 +17,7 @@ use deform::skinning::{GlbOptions, Rig, RigPart, Skinning};
 use deform::surgery::{Frame, Surgery};
 use deform::{BlendMethod, Deformer};
 use glam::{DAffine3, DVec3};
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 /// The posed positions and skin matrices of the frame the tool is given in (none: rest).
@@ -130,7 +131,9 @@ pub struct Prepared {
 }
 
 pub fn prepare(rig: &RigInput, frame: &ToolFrame, out: &OutputArgs) -> Result<Prepared> {
-    check_outputs(&rig.paths(), &out.paths())?;
+    let inputs = rig.paths();
+    let inputs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
+    check_outputs(&inputs, &out.paths())?;
     check_formats(out, &MESH_FORMATS)?;
     let rig = read_rig(rig)?;
     let posed = Posed::read(&rig, frame)?;

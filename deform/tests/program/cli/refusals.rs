@@ -57,11 +57,14 @@ fn huge_counts_and_non_finite_numbers_are_refused_before_any_work() {
         let args = ["ffd", &mesh, &flag, "--motors", &motors, "-o", &out];
         refused(&args, "--lattice", &out);
     }
-    let args = [
-        "cage", &mesh, "--cage", &mesh, "--coords", "harmonic", "--grid", "256", "--motors",
-        &motors, "-o", &out,
-    ];
-    refused(&args, "--grid", &out);
+    // 127 nodes a side passed the budget as 127^4 elements but took more than 6.7 GB.
+    for grid in ["256", "127"] {
+        let args = [
+            "cage", &mesh, "--cage", &mesh, "--coords", "harmonic", "--grid", grid, "--motors",
+            &motors, "-o", &out,
+        ];
+        refused(&args, "--grid", &out);
+    }
     let args = [
         "arap",
         &mesh,
@@ -262,4 +265,143 @@ fn outputs_must_name_a_format_the_command_writes() {
         "spline", &mesh, "--select", &sel, "--keys", &keys, "-o", &out, "--png", &png,
     ];
     refused(&args, "--png writes PNG", &out);
+}
+
+/// The buffer and image files a glTF model names are inputs too: an output (`-o` or `--png`)
+/// named like one is refused and the file is left as it was. Before, `skin model.gltf -o
+/// buf0.ply` replaced the model's buffer, and the model no longer read. The same reader
+/// serves `cut`, `tear` and `drill`.
+#[test]
+fn a_models_buffer_and_image_files_are_not_overwritten() {
+    use base64::Engine;
+    let Some(data) = common::data_dir() else {
+        return;
+    };
+    let s = Scene::new("external");
+    let mut json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(data.join("gltf/SimpleSkin.gltf")).unwrap()).unwrap();
+    // Buffer 0 into a file beside the model, under a name an output could take (percent-
+    // encoded in the URI, as glTF URIs are), and an image file the model names.
+    let uri = json["buffers"][0]["uri"].as_str().unwrap().to_string();
+    let payload = uri.split_once(";base64,").unwrap().1;
+    let bytes = base64::engine::general_purpose::STANDARD
+        .decode(payload)
+        .unwrap();
+    std::fs::write(s.p("buf 0.ply"), &bytes).unwrap();
+    json["buffers"][0]["uri"] = "buf%200.ply".into();
+    let png = b"\x89PNG\r\n\x1a\n not a real image";
+    std::fs::write(s.p("preview.png"), png).unwrap();
+    json["images"] = serde_json::json!([{ "uri": "preview.png" }]);
+    let model = s.p("model.gltf");
+    std::fs::write(&model, json.to_string()).unwrap();
+    let o = run(&["skin", &model, "-o", &s.p("ok.obj"), "--quiet"]);
+    assert!(o.status.success(), "the model reads: {}", stderr(&o));
+    let buffer = s.p("buf 0.ply");
+    let o = run(&["skin", &model, "-o", &buffer]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("refusing to overwrite an input"),
+        "{}",
+        stderr(&o)
+    );
+    assert_eq!(
+        std::fs::read(&buffer).unwrap(),
+        bytes,
+        "the buffer was replaced"
+    );
+    let o = run(&[
+        "cut",
+        &model,
+        "--plane",
+        "0,1,0,0.5",
+        "-o",
+        &s.p("c.obj"),
+        "--png",
+        &s.p("preview.png"),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("refusing to overwrite an input"),
+        "{}",
+        stderr(&o)
+    );
+    assert_eq!(
+        std::fs::read(s.p("preview.png")).unwrap(),
+        png,
+        "the image was replaced"
+    );
+    assert!(!Path::new(&s.p("c.obj")).exists());
+}
+
+/// Motors and targets far beyond the model: ARAP whose energy overflows, and results beyond the
+/// coordinates any reader of this program accepts, are refused with nothing written (they
+/// exited 0 with "energy NaN", or wrote OBJ files of 300-digit numbers that `deform` could not
+/// read back); FABRIK stretches the chain towards a target 1e300 away, across the bar (it stayed at rest,
+/// "inf short").
+#[test]
+fn far_motors_and_targets_are_refused_or_reached_for() {
+    let s = Scene::new("far");
+    let (mesh, sel, out) = (s.p("bar.obj"), s.p("sel.json"), s.p("o.obj"));
+    let far = s.p("far.json");
+    std::fs::write(
+        &far,
+        r#"{"0": {}, "1": {"rotate": {"axis": [0, 0, 1], "degrees": 90, "center": [1e300, 0, 0]}}}"#,
+    )
+    .unwrap();
+    refused(
+        &[
+            "arap", &mesh, "--select", &sel, "--motors", &far, "-o", &out,
+        ],
+        "energy",
+        &out,
+    );
+    let huge = s.p("huge.json");
+    std::fs::write(&huge, r#"{"0": {}, "1": {"translate": [1e308, 0, 0]}}"#).unwrap();
+    refused(
+        &[
+            "handles", &mesh, "--select", &sel, "--motors", &huge, "-o", &out,
+        ],
+        "beyond",
+        &out,
+    );
+    let rest = read_obj(&mesh);
+    let o = run(&[
+        "fabrik",
+        &mesh,
+        "--select",
+        &sel,
+        "--target",
+        "0,1e300,0",
+        "-o",
+        &out,
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let report: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let short = report["distance"].as_f64().expect("a finite distance");
+    assert!((short / 1e300 - 1.0).abs() < 1e-6, "{short:e}");
+    let posed = read_obj(&out);
+    let moved = rest
+        .positions
+        .iter()
+        .zip(&posed.positions)
+        .map(|(a, b)| a.distance(*b))
+        .fold(0.0, f64::max);
+    assert!(moved > 0.5, "the chain stayed at rest ({moved})");
+}
+
+/// A missing file is named once with its reason (the reason was written twice: "No such file
+/// or directory (os error 2): No such file or directory (os error 2)").
+#[test]
+fn a_missing_file_is_reported_once() {
+    let s = Scene::new("missing");
+    let (mesh, motors, out) = (s.p("bar.obj"), s.p("motors.json"), s.p("o.obj"));
+    let cage = s.p("no-such-cage.obj");
+    let o = run(&[
+        "cage", &mesh, "--cage", &cage, "--motors", &motors, "-o", &out,
+    ]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("no-such-cage.obj"), "{err}");
+    assert_eq!(err.matches("(os error 2)").count(), 1, "{err}");
 }

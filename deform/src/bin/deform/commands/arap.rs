@@ -155,6 +155,13 @@ pub fn run(a: &ArapArgs) -> Result<()> {
             },
         )
         .with_context(|| format!("{name}: cannot pose"))?;
+    if let Some((k, e)) = energies.iter().enumerate().find(|(_, e)| !e.is_finite()) {
+        bail!(
+            "{name}: the energy of iteration {} is {e}: the motors move the handles too far for \
+             double precision (nothing written)",
+            k + 1
+        );
+    }
     let pose_ms = ms(t);
     let mut report = Report::new("arap", &mesh);
     report.add("energy_kind", options.energy.name());

@@ -175,7 +175,8 @@ fn numbered(path: &Path, k: usize) -> PathBuf {
 }
 
 pub fn run(a: &SkinArgs) -> Result<()> {
-    let mut inputs = a.rig.paths();
+    let rig_files = a.rig.paths();
+    let mut inputs: Vec<&Path> = rig_files.iter().map(PathBuf::as_path).collect();
     inputs.extend(a.dmat_animation.as_deref());
     inputs.extend(a.edits.iter().map(|(_, p)| p.as_path()));
     check_outputs(&inputs, &a.out.paths())?;
