@@ -296,41 +296,28 @@ fn a_models_buffer_and_image_files_are_not_overwritten() {
     std::fs::write(&model, json.to_string()).unwrap();
     let o = run(&["skin", &model, "-o", &s.p("ok.obj"), "--quiet"]);
     assert!(o.status.success(), "the model reads: {}", stderr(&o));
-    let buffer = s.p("buf 0.ply");
-    let o = run(&["skin", &model, "-o", &buffer]);
-    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
-    assert!(
-        stderr(&o).contains("refusing to overwrite an input"),
-        "{}",
-        stderr(&o)
-    );
-    assert_eq!(
-        std::fs::read(&buffer).unwrap(),
-        bytes,
-        "the buffer was replaced"
-    );
-    let o = run(&[
+    // Refused, and `file` left holding `before`.
+    let refused_keeping = |args: &[&str], file: &str, before: &[u8]| {
+        let o = run(args);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{err}");
+        assert!(err.contains("refusing to overwrite an input"), "{err}");
+        assert_eq!(std::fs::read(file).unwrap(), before, "{file} was replaced");
+    };
+    let (buffer, preview, c) = (s.p("buf 0.ply"), s.p("preview.png"), s.p("c.obj"));
+    refused_keeping(&["skin", &model, "-o", &buffer], &buffer, &bytes);
+    let cut = [
         "cut",
         &model,
         "--plane",
         "0,1,0,0.5",
         "-o",
-        &s.p("c.obj"),
+        &c,
         "--png",
-        &s.p("preview.png"),
-    ]);
-    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
-    assert!(
-        stderr(&o).contains("refusing to overwrite an input"),
-        "{}",
-        stderr(&o)
-    );
-    assert_eq!(
-        std::fs::read(s.p("preview.png")).unwrap(),
-        png,
-        "the image was replaced"
-    );
-    assert!(!Path::new(&s.p("c.obj")).exists());
+        &preview,
+    ];
+    refused_keeping(&cut, &preview, png);
+    assert!(!Path::new(&c).exists());
 }
 
 /// Motors and targets far beyond the model: ARAP whose energy overflows, and results beyond the
