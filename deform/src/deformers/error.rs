@@ -89,17 +89,42 @@ pub enum CageError {
     Grid(String),
 }
 
+/// Which rule of [`FfdError::Dims`] `dims` breaks.
+fn lattice_dims_problem(dims: &[usize; 3]) -> String {
+    let max = crate::blend::MAX_KEYS;
+    if dims.iter().any(|&d| d < 2) {
+        return "every axis needs at least 2 control points".into();
+    }
+    match dims.iter().try_fold(1usize, |a, &d| a.checked_mul(d)) {
+        Some(n) => format!("{n} control points, more than the {max} supported"),
+        None => format!("more control points than the {max} supported"),
+    }
+}
+
+/// Why the interval `min .. max` of [`FfdError::ZeroExtent`] is not a box side.
+fn box_problem(min: f64, max: f64) -> &'static str {
+    if !(min.is_finite() && max.is_finite()) {
+        "not finite"
+    } else if max < min {
+        "inverted (its maximum below its minimum)"
+    } else if max == min {
+        "zero extent"
+    } else {
+        "an extent too large for double precision"
+    }
+}
+
 /// What is wrong with a lattice or the mesh inside it.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum FfdError {
     /// An axis with fewer than 2 control points, or too many points in all.
-    #[error("lattice {dims:?}: every axis needs at least 2 control points (at most {max} in all)", max = crate::blend::MAX_KEYS)]
+    #[error("lattice {dims:?}: {}", lattice_dims_problem(dims))]
     Dims {
         /// Control points per axis.
         dims: [usize; 3],
     },
     /// The box has no extent (or is not finite) along an axis.
-    #[error("lattice box has zero extent along axis {axis} ({min} .. {max}); give a box")]
+    #[error("lattice box {min} .. {max} along axis {axis}: {}; give a box", box_problem(*min, *max))]
     ZeroExtent {
         /// 0, 1 or 2.
         axis: usize,

@@ -17,6 +17,7 @@
 //! `--exp-log` makes it an error instead. `--wide` adds `pub mod wide`, structure-of-arrays twins of
 //! the versor types over a lane type (`F64x4`, `F32x8`), for loops over many operands. Errors name the file, the type and the blade, and exit with code 2.
 
+use ga_codegen::spec::SpecErrorKind;
 use ga_codegen::{generate, EmitOptions, ScalarType, Spec};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -115,11 +116,11 @@ fn parse_signature(v: &str) -> Result<(usize, usize, usize), String> {
         [p, q] => (*p, *q, 0),
         _ => return Err(bad()),
     };
+    let most = ga_codegen::spec::budget::MAX_DIMENSION;
     match p.checked_add(q).and_then(|s| s.checked_add(r)) {
-        Some(_) => Ok((p, q, r)),
-        None => Err(format!(
-            "--signature {v}: P + Q + R is too large (the generator takes at most {} basis vectors)",
-            ga_codegen::spec::budget::MAX_DIMENSION
+        Some(n) if (1..=most).contains(&n) => Ok((p, q, r)),
+        _ => Err(format!(
+            "--signature {v}: P + Q + R must be between 1 and {most} (the generator's limit)"
         )),
     }
 }
@@ -150,6 +151,13 @@ fn main() -> ExitCode {
         Ok(s) => s,
         Err(e) => {
             eprintln!("error: {e}");
+            if args.signature.is_some() && matches!(e.kind, SpecErrorKind::TooLarge(_)) {
+                eprintln!(
+                    "note: --signature declares a type for every grade, the even and the whole \
+                     algebra, with their sandwiches; with this many basis vectors write a spec \
+                     with only the types you need (see algebras/*.toml)"
+                );
+            }
             return ExitCode::from(2);
         }
     };

@@ -40,6 +40,27 @@ const OUTSIDE: u8 = 0;
 const INTERIOR: u8 = 1;
 const BOUNDARY: u8 = 2;
 
+impl HarmonicGrid {
+    /// The resolutions supported: 8 to 512 nodes a side.
+    pub const RESOLUTIONS: std::ops::RangeInclusive<usize> = 8..=512;
+
+    /// [`CageError::Grid`] for a resolution outside [`HarmonicGrid::RESOLUTIONS`] (what
+    /// [`harmonic_cage_coordinates`] checks first; a program can ask before it sizes anything
+    /// by the grid).
+    pub fn check(&self) -> std::result::Result<(), CageError> {
+        let r = Self::RESOLUTIONS;
+        if !r.contains(&self.resolution) {
+            return Err(CageError::Grid(format!(
+                "resolution {} outside {} ..= {}",
+                self.resolution,
+                r.start(),
+                r.end()
+            )));
+        }
+        Ok(())
+    }
+}
+
 /// Harmonic coordinates of `points` (inside `cage`, checked closed) on `grid`: vertex-major,
 /// `cage.vertex_count()` per point, each in `[0, 1]`, each row summing to one.
 ///
@@ -51,11 +72,7 @@ pub fn harmonic_cage_coordinates(
     points: &[DVec3],
     grid: HarmonicGrid,
 ) -> Result<Vec<f64>> {
-    if !(8..=512).contains(&grid.resolution) {
-        return Err(
-            CageError::Grid(format!("resolution {} outside 8 ..= 512", grid.resolution)).into(),
-        );
-    }
+    grid.check()?;
     let m = cage.vertex_count();
     let b = cage
         .bounding_box()

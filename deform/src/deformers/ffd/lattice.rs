@@ -58,6 +58,17 @@ pub struct Lattice {
 }
 
 impl Lattice {
+    /// [`FfdError::Dims`] unless every axis has at least 2 control points and there are at
+    /// most [`MAX_KEYS`] in all (what [`Lattice::new`] checks first; a program can ask before
+    /// it sizes anything by `dims`).
+    pub fn check_dims(dims: [usize; 3]) -> std::result::Result<(), FfdError> {
+        let count = dims.iter().try_fold(1usize, |a, &d| a.checked_mul(d));
+        if dims.iter().any(|&d| d < 2) || count.is_none_or(|n| n > MAX_KEYS) {
+            return Err(FfdError::Dims { dims });
+        }
+        Ok(())
+    }
+
     /// A lattice of `dims` control points over the box `min .. max`.
     ///
     /// # Errors
@@ -65,14 +76,7 @@ impl Lattice {
     /// [`MAX_KEYS`] points in all, [`FfdError::ZeroExtent`] for a box that is empty, flat
     /// or not finite along an axis, [`FfdError::Degree`] for a B-spline degree outside 1..=3.
     pub fn new(dims: [usize; 3], min: DVec3, max: DVec3, basis: LatticeBasis) -> Result<Self> {
-        if dims.iter().any(|&d| d < 2)
-            || dims
-                .iter()
-                .try_fold(1usize, |a, &d| a.checked_mul(d))
-                .is_none_or(|n| n > MAX_KEYS)
-        {
-            return Err(FfdError::Dims { dims }.into());
-        }
+        Lattice::check_dims(dims)?;
         for axis in 0..3 {
             let (lo, hi) = (min[axis], max[axis]);
             if !(lo.is_finite() && hi.is_finite() && hi - lo > 0.0 && (hi - lo).is_finite()) {

@@ -392,3 +392,31 @@ fn a_missing_file_is_reported_once() {
     assert!(err.contains("no-such-cage.obj"), "{err}");
     assert_eq!(err.matches("(os error 2)").count(), 1, "{err}");
 }
+
+/// A lattice or grid past the deformer's own limits says so, and does not suggest raising
+/// `--max-work` (which could not help); a lattice of 50 points an axis was told every axis
+/// needs 2.
+#[test]
+fn hard_limits_are_named_before_the_budget() {
+    let s = Scene::new("limits");
+    let (mesh, motors, out) = (s.p("bar.obj"), s.p("motors.json"), s.p("o.obj"));
+    for (lattice, says) in [
+        (
+            "50x50x50",
+            "125000 control points, more than the 65536 supported",
+        ),
+        ("100x100x100", "1000000 control points"),
+        ("1x4x4", "every axis needs at least 2"),
+    ] {
+        let flag = format!("--lattice={lattice}");
+        let args = ["ffd", &mesh, &flag, "--motors", &motors, "-o", &out];
+        refused(&args, says, &out);
+        assert!(!stderr(&run(&args)).contains("--max-work"), "{lattice}");
+    }
+    let args = [
+        "cage", &mesh, "--cage", &mesh, "--coords", "harmonic", "--grid", "1000", "--motors",
+        &motors, "-o", &out,
+    ];
+    refused(&args, "outside 8 ..= 512", &out);
+    assert!(!stderr(&run(&args)).contains("--max-work"));
+}

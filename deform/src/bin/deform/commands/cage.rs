@@ -10,7 +10,7 @@ use crate::progress::with_progress;
 use crate::report::Report;
 use crate::shared_args::{FormArgs, OutputArgs};
 use crate::timing::ms;
-use anyhow::Result;
+use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
 use deform::cage::{CageCoordinates, CageDeformer, CageOptions, HarmonicGrid};
 use deform::input::parse_group_motors;
@@ -49,9 +49,10 @@ pub struct CageArgs {
 }
 
 pub fn run(a: &CageArgs) -> Result<()> {
-    let mesh = read_mesh_checked(&a.mesh, &[a.cage.as_path(), a.motors.as_path()], &a.out)?;
-    let cage = read_mesh(&a.cage)?;
     if a.coords == CoordsArg::Harmonic {
+        // The grid's own limits first: the budget's hint to raise --max-work cannot help there.
+        let grid = HarmonicGrid { resolution: a.grid };
+        grid.check().context("--grid")?;
         let g = a.grid as u64;
         let what = format!(
             "a harmonic grid of {g} nodes per side (its factorisation grows as the 4th power)"
@@ -60,6 +61,8 @@ pub fn run(a: &CageArgs) -> Result<()> {
         // bytes (three f64s) per g^4: the budget counts three elements per g^4.
         crate::budget::check("--grid", &what, &[g, g, g, g, 3])?;
     }
+    let mesh = read_mesh_checked(&a.mesh, &[a.cage.as_path(), a.motors.as_path()], &a.out)?;
+    let cage = read_mesh(&a.cage)?;
     let name = a.motors.display().to_string();
     let motors = parse_group_motors(&read_text(&a.motors)?, &name, cage.vertex_count())?;
     let options = CageOptions {

@@ -41,6 +41,8 @@ pub struct FfdArgs {
 }
 
 pub fn run(a: &FfdArgs) -> Result<()> {
+    // The lattice's own limits first: the budget's hint to raise --max-work cannot help there.
+    deform::ffd::Lattice::check_dims(a.lattice).context("--lattice")?;
     let mesh = read_mesh_checked(&a.mesh, &[a.motors.as_path()], &a.out)?;
     // Per vertex: a weight per control point, and for Bernstein polynomials of degree L-1,
     // M-1, N-1 their evaluation (quadratic in the degree).
