@@ -2,6 +2,17 @@
 
 use crate::mesh::{IndexList, MeshError};
 
+/// The part of [`SolveError::Unconstrained`]'s message about single vertices.
+fn isolated_note(isolated: usize) -> String {
+    if isolated == 0 {
+        return String::new();
+    }
+    format!(
+        " ({isolated} of them single vertices without a weighted edge: unreferenced by the \
+         triangles, or only in zero-area ones; `clean` drops unreferenced vertices)"
+    )
+}
+
 /// What can go wrong building or solving a system on a mesh: the mesh's own errors
 /// ([`SolveError::Mesh`]), components without constraints, a matrix that is not positive
 /// definite, sizes beyond what can be stored.
@@ -11,10 +22,14 @@ pub enum SolveError {
     #[error(transparent)]
     Mesh(#[from] MeshError),
     /// The system is singular: some connected components contain no constrained vertex.
-    #[error("singular system: {components} connected component(s) have no constrained vertex; unconstrained vertices {vertices}")]
+    #[error("singular system: {components} connected component(s) have no constrained vertex{}; unconstrained vertices {vertices}", isolated_note(*isolated))]
     Unconstrained {
         /// Number of unconstrained components.
         components: usize,
+        /// How many of them are single vertices without a weighted edge: unreferenced by the
+        /// triangles, or only in zero-area ones ([`crate::mesh::validate::clean()`] drops
+        /// unreferenced vertices).
+        isolated: usize,
         /// Vertices of those components.
         vertices: IndexList,
     },

@@ -212,9 +212,11 @@ fn bad_input_gives_typed_errors_naming_vertices() {
     match harmonic_field(&two_triangles_apart(), &[0], &[1], o) {
         Err(SolveError::Unconstrained {
             components,
+            isolated,
             vertices,
         }) => {
             assert_eq!(components, 1);
+            assert_eq!(isolated, 0, "a triangle is no single vertex");
             assert_eq!(vertices.0, vec![3, 4, 5]);
         }
         other => panic!("{other:?}"),

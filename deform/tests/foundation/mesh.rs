@@ -163,9 +163,14 @@ fn raw_stanford_bunny_is_cleaned() {
     ) {
         Err(SolveError::Unconstrained {
             components,
+            isolated,
             vertices,
         }) => {
             assert_eq!(components, 1113);
+            assert_eq!(
+                isolated, 1113,
+                "every unreferenced vertex is a single vertex"
+            );
             assert_eq!(vertices.0, r.unreferenced_vertices);
         }
         other => panic!("{other:?}"),

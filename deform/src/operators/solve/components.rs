@@ -46,8 +46,13 @@ pub(super) fn check_components(
     let vertices: Vec<u32> = (0..n as u32)
         .filter(|&v| !anchored[comps.labels[v as usize] as usize])
         .collect();
+    let mut sizes = vec![0usize; comps.count];
+    for &v in &vertices {
+        sizes[comps.labels[v as usize] as usize] += 1;
+    }
     Err(SolveError::Unconstrained {
         components: unanchored,
+        isolated: sizes.iter().filter(|&&k| k == 1).count(),
         vertices: IndexList(vertices),
     })
 }

@@ -108,6 +108,7 @@ fn bad_input_is_a_typed_error() {
         Err(DeformError::Solve(SolveError::Unconstrained {
             components,
             vertices,
+            ..
         })) => {
             assert_eq!(components, 1);
             assert_eq!(vertices.0[0], offset);
