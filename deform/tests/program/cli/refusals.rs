@@ -420,3 +420,27 @@ fn hard_limits_are_named_before_the_budget() {
     refused(&args, "outside 8 ..= 512", &out);
     assert!(!stderr(&run(&args)).contains("--max-work"));
 }
+
+/// A cut plane's normal need not be unit, also where its squared length overflows:
+/// `1e308,1e308,1e308,0` is the plane `1,1,1,0` (it was refused, "normal is not unit: [NaN,
+/// NaN, NaN]").
+#[test]
+fn a_huge_plane_normal_is_the_same_plane() {
+    let Some(data) = common::data_dir() else {
+        return;
+    };
+    let man = data
+        .join("gltf/CesiumMan.glb")
+        .to_string_lossy()
+        .into_owned();
+    let s = Scene::new("plane");
+    let (unit, huge) = (s.p("unit.obj"), s.p("huge.obj"));
+    let cut = |plane: &str, out: &str| run(&["cut", &man, "--plane", plane, "-o", out, "--quiet"]);
+    let (a, b) = (
+        cut("1,1,1,0.5", &unit),
+        cut("1e308,1e308,1e308,5e307", &huge),
+    );
+    assert!(a.status.success(), "{}", stderr(&a));
+    assert!(b.status.success(), "{}", stderr(&b));
+    assert_eq!(std::fs::read(&unit).unwrap(), std::fs::read(&huge).unwrap());
+}

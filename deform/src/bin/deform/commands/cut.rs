@@ -37,11 +37,15 @@ pub struct CutArgs {
 
 pub fn run(a: &CutArgs) -> Result<()> {
     let [nx, ny, nz, d] = a.plane;
-    let normal = DVec3::new(nx, ny, nz);
-    let len = normal.length();
-    if len.is_nan() || len <= 0.0 {
+    // Scaled by its largest component first, so that a normal like 1e308,1e308,1e308 (whose
+    // squared length overflows) is normalised too.
+    let raw = DVec3::new(nx, ny, nz);
+    let scale = raw.abs().max_element();
+    if scale.is_nan() || scale <= 0.0 {
         bail!("--plane: the normal is zero");
     }
+    let (normal, d) = (raw / scale, d / scale);
+    let len = normal.length();
     let plane_d = d / len;
     let plane = cga::Plane::from_normal_distance(normal / len, plane_d);
     let Prepared {
