@@ -325,6 +325,11 @@ pub(crate) fn read_external(
     allow_external: bool,
 ) -> Result<Vec<u8>, String> {
     use std::io::Read as _;
+    if let Some((scheme, _)) = uri.split_once("://") {
+        return Err(format!(
+            "{uri:?}: a {scheme}:// URI; only files beside the model are read (nothing is fetched)"
+        ));
+    }
     let path = base.join(percent_decoded(uri));
     let shown = path.display();
     let real = path.canonicalize().map_err(|e| format!("{shown}: {e}"))?;

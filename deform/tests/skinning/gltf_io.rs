@@ -358,6 +358,14 @@ fn external_buffers_stay_in_the_model_folder_and_within_their_length() {
     };
     let err = parse_gltf_with(&with_uri("inside.bin"), "small", Some(&model), &small).unwrap_err();
     assert!(err.to_string().contains("over the limit"), "{err}");
+    // Percent-encoded names are decoded (as image URIs were); remote URIs are named as such,
+    // not looked for as a folder `http:` beside the model, even where external files are allowed.
+    std::fs::rename(model.join("inside.bin"), model.join("in side.bin")).unwrap();
+    let encoded = parse_gltf_with(&with_uri("in%20side.bin"), "encoded", Some(&model), &strict);
+    assert!(encoded.is_ok(), "{:?}", encoded.err());
+    let remote = with_uri("http://example.com/inside.bin");
+    let err = parse_gltf_with(&remote, "remote", Some(&model), &open).unwrap_err();
+    assert!(err.to_string().contains("nothing is fetched"), "{err}");
     let _ = std::fs::remove_dir_all(&root);
 }
 
