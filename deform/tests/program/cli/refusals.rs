@@ -80,18 +80,24 @@ fn huge_counts_and_non_finite_numbers_are_refused_before_any_work() {
     refused(&args, "--iterations", &out);
 }
 
+/// The shared data folder and CesiumMan's path in it (`None`: skipped, see `common`).
+fn cesium_man() -> Option<(std::path::PathBuf, String)> {
+    let data = common::data_dir()?;
+    let man = data
+        .join("gltf/CesiumMan.glb")
+        .to_string_lossy()
+        .into_owned();
+    Some((data, man))
+}
+
 /// Issue 20's reproducers on the shared rigs: `--time nan`, huge frame counts, an opening or a
 /// drill far beyond the model, a scalpel that returns to an earlier blade, a glTF naming a
 /// missing accessor, and a frame sequence whose generated names include an input.
 #[test]
 fn hostile_rig_inputs_exit_2_or_succeed_without_panicking() {
-    let Some(data) = common::data_dir() else {
+    let Some((data, man)) = cesium_man() else {
         return;
     };
-    let man = data
-        .join("gltf/CesiumMan.glb")
-        .to_string_lossy()
-        .into_owned();
     let simple = data.join("gltf/SimpleSkin.gltf");
     let s = Scene::new("rigs");
     let out = s.p("o.obj");
@@ -426,13 +432,9 @@ fn hard_limits_are_named_before_the_budget() {
 /// NaN, NaN]").
 #[test]
 fn a_huge_plane_normal_is_the_same_plane() {
-    let Some(data) = common::data_dir() else {
+    let Some((_, man)) = cesium_man() else {
         return;
     };
-    let man = data
-        .join("gltf/CesiumMan.glb")
-        .to_string_lossy()
-        .into_owned();
     let s = Scene::new("plane");
     let (unit, huge) = (s.p("unit.obj"), s.p("huge.obj"));
     let cut = |plane: &str, out: &str| run(&["cut", &man, "--plane", plane, "-o", out, "--quiet"]);
