@@ -248,8 +248,9 @@ impl Surgery {
             }
             if plan.removed == 0 {
                 let axis = nearest_to_segment(tris, fpos, drill.tip, drill.end);
+                // The model's own vertex count: `rest` may hold the vertices refinement added.
                 return Err(SurgeryError::Misses {
-                    vertices: rest.len(),
+                    vertices: src.mesh.vertex_count(),
                     where_: axis.map_or(String::new(), |n| {
                         format!(
                             "; the drill's axis (radius {:.4}): {}",

@@ -446,3 +446,18 @@ fn a_huge_plane_normal_is_the_same_plane() {
     assert!(b.status.success(), "{}", stderr(&b));
     assert_eq!(std::fs::read(&unit).unwrap(), std::fs::read(&huge).unwrap());
 }
+
+/// A drill too thin to remove a vertex names the model's vertex count (it named the count after
+/// its own refinement: 3381 for CesiumMan's 3273).
+#[test]
+fn a_drill_that_removes_nothing_names_the_models_vertex_count() {
+    let Some((_, man)) = cesium_man() else {
+        return;
+    };
+    let s = Scene::new("thin-drill");
+    let out = s.p("o.obj");
+    let args = [
+        "drill", &man, "--tip", "0,-1,0.9", "--end", "0,1,0.9", "--radius", "1e-6", "-o", &out,
+    ];
+    refused(&args, "(3273 vertices)", &out);
+}
