@@ -24,8 +24,16 @@ fn canonical(p: &Path) -> PathBuf {
     }
 }
 
-/// Refuse outputs that are inputs (or each other).
+/// Refuse outputs that are inputs (or each other), and inputs that are devices (a link to
+/// `/dev/zero` named as a mesh was read until memory ran out); files and pipes are read.
 pub fn check_outputs(inputs: &[&Path], outputs: &[&Path]) -> Result<()> {
+    for i in inputs {
+        if let Ok(m) = std::fs::metadata(i) {
+            if is_device(&m.file_type()) {
+                bail!("{}: a device, not a file: refusing to read it", i.display());
+            }
+        }
+    }
     let ins: Vec<PathBuf> = inputs.iter().map(|p| canonical(p)).collect();
     let mut seen: Vec<PathBuf> = Vec::new();
     for o in outputs {
@@ -39,6 +47,20 @@ pub fn check_outputs(inputs: &[&Path], outputs: &[&Path]) -> Result<()> {
         seen.push(c);
     }
     Ok(())
+}
+
+/// A character or block device, or a socket (Unix; nothing elsewhere).
+fn is_device(t: &std::fs::FileType) -> bool {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        t.is_char_device() || t.is_block_device() || t.is_socket()
+    }
+    #[cfg(not(unix))]
+    {
+        let _ = t;
+        false
+    }
 }
 
 /// Refuses an output whose extension names a format this command does not write (it would

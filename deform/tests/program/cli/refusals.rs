@@ -461,3 +461,32 @@ fn a_drill_that_removes_nothing_names_the_models_vertex_count() {
     ];
     refused(&args, "(3273 vertices)", &out);
 }
+
+/// A device named as an input (a link to `/dev/zero` named `x.obj`) is refused before it is
+/// read (it was read until memory ran out); a pipe still reads.
+#[cfg(unix)]
+#[test]
+fn devices_are_not_read_as_files() {
+    let s = Scene::new("device");
+    let (zero, out) = (s.p("zero.obj"), s.p("o.obj"));
+    std::os::unix::fs::symlink("/dev/zero", &zero).unwrap();
+    let motors = s.p("motors.json");
+    let args = [
+        "ffd",
+        &zero,
+        "--lattice",
+        "2x2x2",
+        "--motors",
+        &motors,
+        "-o",
+        &out,
+    ];
+    refused(&args, "a device, not a file", &out);
+    let o = run(&["view", &zero]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("a device, not a file"),
+        "{}",
+        stderr(&o)
+    );
+}

@@ -63,6 +63,12 @@ fn token() -> String {
 
 /// The scene of the model on the command line.
 fn model_scene(a: &ViewArgs, path: &Path) -> Result<Scene> {
+    // Nothing is written; the inputs are checked as every command checks them (no devices).
+    let mut inputs = vec![path];
+    inputs.extend(a.skeleton.as_deref());
+    inputs.extend(a.weights.as_deref());
+    inputs.extend(a.select.as_deref());
+    crate::output_files::check_outputs(&inputs, &[])?;
     let ext = path
         .extension()
         .and_then(|e| e.to_str())
