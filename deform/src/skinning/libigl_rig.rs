@@ -110,15 +110,18 @@ impl LibiglAnimation {
 /// 4x3 block `[A^T; t^T]` column-major (the layout `igl::lbs_matrix` multiplies).
 ///
 /// # Errors
-/// [`SkinError::NoAnimation`] when the row count is not `12 * bones`;
+/// [`SkinError::Data`] when the row count is not `12 * bones`;
 /// [`SkinError::BadTransform`] for a non-finite entry.
 pub fn read_libigl_animation(m: &Dmat, bones: usize) -> Result<LibiglAnimation, SkinError> {
     if bones == 0 || m.rows != 12 * bones {
-        return Err(SkinError::NoAnimation(format!(
-            "{} rows for {bones} bones (expected {})",
-            m.rows,
-            12 * bones
-        )));
+        return Err(SkinError::Data {
+            name: "libigl animation".into(),
+            message: format!(
+                "{} rows for {bones} bones (expected 12 a bone, {})",
+                m.rows,
+                12 * bones
+            ),
+        });
     }
     let mut frames = Vec::with_capacity(m.cols);
     for f in 0..m.cols {

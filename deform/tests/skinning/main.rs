@@ -340,6 +340,19 @@ fn elephant_animation() {
     let weights = deform::io::read_dmat(lib.join("elephant-weights.dmat")).unwrap();
     let anim = deform::io::read_dmat(lib.join("elephant-anim.dmat")).unwrap();
     let rig = libigl_rig(mesh, &skeleton, &weights).unwrap();
+    // A matrix of the wrong height is named as such (it read "no animation 47 rows ... in this
+    // rig").
+    let short = deform::io::Dmat {
+        rows: anim.rows - 1,
+        cols: 1,
+        data: anim.data[..anim.rows - 1].to_vec(),
+    };
+    let e = read_libigl_animation(&short, skeleton.bones.len()).unwrap_err();
+    let want = format!("{} rows for {} bones", anim.rows - 1, skeleton.bones.len());
+    assert!(
+        e.to_string().contains(&want) && !e.to_string().contains("no animation"),
+        "{e}"
+    );
     let anim = read_libigl_animation(&anim, skeleton.bones.len()).unwrap();
     assert_eq!(anim.frames.len(), 457);
     let diag = rig.mesh.bounding_box().unwrap().diagonal();
