@@ -4,6 +4,7 @@
 //! **May use**: the mesh foundation (selection files in DMAT). **Must not use**: any other
 //! layer or the crate-level `Error`; its error is [`InputError`].
 
+mod json;
 pub mod motors;
 pub mod selection;
 

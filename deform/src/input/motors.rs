@@ -88,7 +88,7 @@ impl MotorSpec {
 }
 
 fn parse_value(text: &str, name: &str) -> Result<serde_json::Value, InputError> {
-    serde_json::from_str(text).map_err(|e| InputError::new(name, "JSON", e.to_string()))
+    super::json::parse_json(text, name)
 }
 
 fn motor_of(

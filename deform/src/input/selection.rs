@@ -103,8 +103,7 @@ pub fn parse_selection_json(
     vertex_count: usize,
     name: &str,
 ) -> Result<Selection, InputError> {
-    let value: Value =
-        serde_json::from_str(text).map_err(|e| InputError::new(name, "JSON", e.to_string()))?;
+    let value: Value = super::json::parse_json(text, name)?;
     let object: BTreeMap<String, Value> = serde_json::from_value(value).map_err(|_| {
         InputError::new(
             name,
