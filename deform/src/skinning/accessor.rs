@@ -158,42 +158,89 @@ pub(crate) struct Layout {
     pub(crate) components: &'static [(DataType, bool)],
 }
 
-/// Floats only (positions, times, matrices, translations and scales).
-pub(crate) const FLOAT: &[(DataType, bool)] = &[(DataType::F32, false)];
-/// Unsigned integers, not normalized (indices with `U32`, joints without it).
-pub(crate) const INDEX: &[(DataType, bool)] = &[
-    (DataType::U8, false),
-    (DataType::U16, false),
-    (DataType::U32, false),
-];
-pub(crate) const JOINT: &[(DataType, bool)] = &[(DataType::U8, false), (DataType::U16, false)];
-/// Weights: floats or normalized unsigned integers.
-pub(crate) const WEIGHT: &[(DataType, bool)] = &[
-    (DataType::F32, false),
-    (DataType::U8, true),
-    (DataType::U16, true),
-];
-/// Rotations: floats or normalized integers.
-pub(crate) const ROTATION: &[(DataType, bool)] = &[
-    (DataType::F32, false),
-    (DataType::I8, true),
-    (DataType::U8, true),
-    (DataType::I16, true),
-    (DataType::U16, true),
-];
-/// Positions under `KHR_mesh_quantization`: floats or 8- and 16-bit integers, normalized or
-/// not.
-pub(crate) const QUANTIZED: &[(DataType, bool)] = &[
-    (DataType::F32, false),
-    (DataType::I8, false),
-    (DataType::I8, true),
-    (DataType::U8, false),
-    (DataType::U8, true),
-    (DataType::I16, false),
-    (DataType::I16, true),
-    (DataType::U16, false),
-    (DataType::U16, true),
-];
+const FLOAT: &[(DataType, bool)] = &[(DataType::F32, false)];
+
+impl Layout {
+    /// Vertex positions: floats.
+    pub(crate) const POSITION: Layout = Layout {
+        what: "POSITION",
+        dimensions: Dimensions::Vec3,
+        components: FLOAT,
+    };
+    /// Vertex positions under `KHR_mesh_quantization`: floats or 8- and 16-bit integers,
+    /// normalized or not.
+    pub(crate) const QUANTIZED_POSITION: Layout = Layout {
+        what: "POSITION",
+        dimensions: Dimensions::Vec3,
+        components: &[
+            (DataType::F32, false),
+            (DataType::I8, false),
+            (DataType::I8, true),
+            (DataType::U8, false),
+            (DataType::U8, true),
+            (DataType::I16, false),
+            (DataType::I16, true),
+            (DataType::U16, false),
+            (DataType::U16, true),
+        ],
+    };
+    /// Triangle indices: unsigned integers, not normalized.
+    pub(crate) const INDICES: Layout = Layout {
+        what: "indices",
+        dimensions: Dimensions::Scalar,
+        components: &[
+            (DataType::U8, false),
+            (DataType::U16, false),
+            (DataType::U32, false),
+        ],
+    };
+    /// `JOINTS_n`: 8- or 16-bit unsigned integers.
+    pub(crate) const JOINTS: Layout = Layout {
+        what: "JOINTS",
+        dimensions: Dimensions::Vec4,
+        components: &[(DataType::U8, false), (DataType::U16, false)],
+    };
+    /// `WEIGHTS_n`: floats or normalized unsigned integers.
+    pub(crate) const WEIGHTS: Layout = Layout {
+        what: "WEIGHTS",
+        dimensions: Dimensions::Vec4,
+        components: &[
+            (DataType::F32, false),
+            (DataType::U8, true),
+            (DataType::U16, true),
+        ],
+    };
+    /// Inverse bind matrices: float 4x4 matrices.
+    pub(crate) const INVERSE_BIND: Layout = Layout {
+        what: "inverse bind matrices",
+        dimensions: Dimensions::Mat4,
+        components: FLOAT,
+    };
+    /// Keyframe times: floats.
+    pub(crate) const TIMES: Layout = Layout {
+        what: "keyframe times",
+        dimensions: Dimensions::Scalar,
+        components: FLOAT,
+    };
+    /// Translation and scale keyframes: float 3-vectors.
+    pub(crate) const VECTOR_KEYS: Layout = Layout {
+        what: "keyframe values",
+        dimensions: Dimensions::Vec3,
+        components: FLOAT,
+    };
+    /// Rotation keyframes: floats or normalized integers, 4-vectors.
+    pub(crate) const ROTATION_KEYS: Layout = Layout {
+        what: "keyframe values",
+        dimensions: Dimensions::Vec4,
+        components: &[
+            (DataType::F32, false),
+            (DataType::I8, true),
+            (DataType::U8, true),
+            (DataType::I16, true),
+            (DataType::U16, true),
+        ],
+    };
+}
 
 impl Layout {
     /// A typed error unless accessor `a` is stored as this use allows (a position read as
@@ -228,6 +275,18 @@ impl Layout {
 }
 
 impl Buffers {
+    /// [`Buffers::read`] of an accessor that must be stored as `layout` says (checked first):
+    /// its values and their count per element (`layout`'s).
+    pub(crate) fn read_as(
+        &self,
+        a: &gltf::Accessor,
+        name: &str,
+        layout: &Layout,
+    ) -> Result<(Vec<f64>, usize), SkinError> {
+        layout.check(a, name)?;
+        self.read(a, name)
+    }
+
     /// The bytes of buffer view `view` (checked against its buffer).
     pub(crate) fn view_bytes(&self, view: &gltf::buffer::View) -> Option<&[u8]> {
         let buffer = self.data.get(view.buffer().index())?;

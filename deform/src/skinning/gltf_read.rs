@@ -1,8 +1,6 @@
 //! glTF 2.0 rigs in (`.gltf` with embedded or external buffers, `.glb`).
 
-use super::accessor::{
-    Buffers, GltfReadOptions, Layout, FLOAT, INDEX, JOINT, QUANTIZED, ROTATION, WEIGHT,
-};
+use super::accessor::{Buffers, GltfReadOptions, Layout};
 use super::animation::{Animation, Channel, Interpolation, Property};
 use super::influences::Influences;
 use super::look_read::{merge_attributes, primitive_attributes, read_look};
@@ -11,7 +9,6 @@ use super::SkinError;
 use super::Trs;
 use crate::mesh::Mesh;
 use glam::{DMat4, DQuat, DVec3, DVec4};
-use gltf::accessor::Dimensions;
 use std::path::{Path, PathBuf};
 
 /// Read a glTF 2.0 rig (`.gltf` or `.glb`); see [`parse_gltf`].
@@ -130,18 +127,12 @@ pub fn parse_gltf_with(
     let inverse_bind = match skin.inverse_bind_matrices() {
         None => vec![DMat4::IDENTITY; joints.len()],
         Some(a) => {
-            let layout = Layout {
-                what: "inverse bind matrices",
-                dimensions: Dimensions::Mat4,
-                components: FLOAT,
-            };
-            layout.check(&a, name)?;
-            let (v, dim) = buffers.read(&a, name)?;
-            if dim != 16 || v.len() < 16 * joints.len() {
+            let (v, _) = buffers.read_as(&a, name, &Layout::INVERSE_BIND)?;
+            if v.len() < 16 * joints.len() {
                 return Err(SkinError::Data {
                     name: name.to_string(),
                     message: format!(
-                        "inverse bind matrices: {} values of width {dim} for {} joints",
+                        "inverse bind matrices: {} values for {} joints",
                         v.len(),
                         joints.len()
                     ),
@@ -342,16 +333,12 @@ fn read_primitive(
     let pos = p
         .get(&gltf::Semantic::Positions)
         .ok_or_else(|| data(format!("primitive {}: no POSITION", p.index())))?;
-    let layout = Layout {
-        what: "POSITION",
-        dimensions: Dimensions::Vec3,
-        components: if quantized { QUANTIZED } else { FLOAT },
+    let layout = if quantized {
+        &Layout::QUANTIZED_POSITION
+    } else {
+        &Layout::POSITION
     };
-    layout.check(&pos, name)?;
-    let (v, dim) = buffers.read(&pos, name)?;
-    if dim != 3 {
-        return Err(data("POSITION is not VEC3".into()));
-    }
+    let (v, _) = buffers.read_as(&pos, name, layout)?;
     let offset = mesh.positions.len();
     let count = v.len() / 3;
     let positions: Vec<DVec3> = v.chunks_exact(3).map(DVec3::from_slice).collect();
@@ -362,19 +349,12 @@ fn read_primitive(
         )));
     }
     let indices: Vec<u32> = match p.indices() {
-        Some(a) => {
-            let layout = Layout {
-                what: "indices",
-                dimensions: Dimensions::Scalar,
-                components: INDEX,
-            };
-            layout.check(&a, name)?;
-            buffers.read(&a, name)?
-        }
-        .0
-        .iter()
-        .map(|&x| x as u32)
-        .collect(),
+        Some(a) => buffers
+            .read_as(&a, name, &Layout::INDICES)?
+            .0
+            .iter()
+            .map(|&x| x as u32)
+            .collect(),
         None => (0..count as u32).collect(),
     };
     if !indices.len().is_multiple_of(3) {
@@ -404,19 +384,10 @@ fn read_primitive(
             Some((j, w))
         })
         .map(|(j, w)| {
-            let joints = Layout {
-                what: "JOINTS",
-                dimensions: Dimensions::Vec4,
-                components: JOINT,
-            };
-            let weights = Layout {
-                what: "WEIGHTS",
-                dimensions: Dimensions::Vec4,
-                components: WEIGHT,
-            };
-            joints.check(&j, name)?;
-            weights.check(&w, name)?;
-            Ok((buffers.read(&j, name)?.0, buffers.read(&w, name)?.0))
+            Ok((
+                buffers.read_as(&j, name, &Layout::JOINTS)?.0,
+                buffers.read_as(&w, name, &Layout::WEIGHTS)?.0,
+            ))
         })
         .collect::<Result<_, SkinError>>()?;
     if sets.is_empty() {
@@ -494,31 +465,12 @@ fn read_animations(
                 gltf::animation::Interpolation::Step => Interpolation::Step,
                 gltf::animation::Interpolation::CubicSpline => Interpolation::CubicSpline,
             };
-            let times = Layout {
-                what: "keyframe times",
-                dimensions: Dimensions::Scalar,
-                components: FLOAT,
+            let keys = match property {
+                Property::Rotation => &Layout::ROTATION_KEYS,
+                _ => &Layout::VECTOR_KEYS,
             };
-            let (dimensions, components) = match property {
-                Property::Rotation => (Dimensions::Vec4, ROTATION),
-                _ => (Dimensions::Vec3, FLOAT),
-            };
-            let values = Layout {
-                what: "keyframe values",
-                dimensions,
-                components,
-            };
-            times.check(&s.input(), name)?;
-            values.check(&s.output(), name)?;
-            let (times, _) = buffers.read(&s.input(), name)?;
-            let (v, dim) = buffers.read(&s.output(), name)?;
-            let want = if property == Property::Rotation { 4 } else { 3 };
-            if dim != want {
-                return Err(SkinError::BadTransform {
-                    what,
-                    message: format!("values of width {dim}, expected {want}"),
-                });
-            }
+            let (times, _) = buffers.read_as(&s.input(), name, &Layout::TIMES)?;
+            let (v, dim) = buffers.read_as(&s.output(), name, keys)?;
             let values = v
                 .chunks_exact(dim)
                 .map(|c| {
