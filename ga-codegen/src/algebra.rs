@@ -251,7 +251,15 @@ impl Algebra {
     }
 
     /// The non-zero terms of the geometric product of blades `a` and `b`.
+    ///
+    /// # Panics
+    /// When `a` or `b` names a basis vector past the algebra's (it read another row).
     pub fn gp_blades(&self, a: Bitmap, b: Bitmap) -> &[(Bitmap, f64)] {
+        assert!(
+            (a as usize) < self.size && (b as usize) < self.size,
+            "blades {a:#b} and {b:#b} in an algebra of {} blades",
+            self.size
+        );
         &self.table[a as usize * self.size + b as usize]
     }
 

@@ -53,13 +53,13 @@ pub fn suffix(basis_name: &str) -> &str {
 }
 
 /// Canonical name of a blade: `s` for the scalar, else `e` followed by the basis suffixes in
-/// basis order.
+/// basis order. Bits past `basis` are ignored (and names past the 32 a [`Bitmap`] holds).
 pub fn blade_name(b: Bitmap, basis: &[String]) -> String {
     if b == 0 {
         return "s".to_string();
     }
     let mut s = String::from("e");
-    for (i, name) in basis.iter().enumerate() {
+    for (i, name) in basis.iter().take(Bitmap::BITS as usize).enumerate() {
         if b & (1 << i) != 0 {
             s.push_str(suffix(name));
         }
@@ -85,7 +85,8 @@ pub enum BladeNameError {
 /// Linear in the length of the name times the size of the basis: the ways to split each
 /// tail of the name are counted once (capped at two), from the end, instead of by
 /// backtracking. The bases of a [`crate::Metric`] are prefix-free, so there is at most one
-/// way; other bases may give [`BladeNameError::Ambiguous`].
+/// way; other bases may give [`BladeNameError::Ambiguous`]. A name that uses a basis vector
+/// past the 32 a [`Bitmap`] holds is [`BladeNameError::Unknown`].
 pub fn parse_blade(name: &str, basis: &[String]) -> Result<(Bitmap, i32), BladeNameError> {
     if name == "s" || name == "1" {
         return Ok((0, 1));
@@ -120,7 +121,10 @@ pub fn parse_blade(name: &str, basis: &[String]) -> Result<(Bitmap, i32), BladeN
             let mut p = 0;
             while p < len {
                 let i = next[p];
-                let bit = 1 << i;
+                let bit = u32::try_from(i)
+                    .ok()
+                    .and_then(|i| Bitmap::from(1u8).checked_shl(i))
+                    .ok_or(BladeNameError::Unknown)?;
                 if bitmap & bit != 0 {
                     return Err(BladeNameError::Repeated);
                 }
@@ -135,8 +139,12 @@ pub fn parse_blade(name: &str, basis: &[String]) -> Result<(Bitmap, i32), BladeN
 }
 
 /// All blades of an `n`-dimensional algebra in the canonical order: by grade, then by
-/// ascending basis indices (shortlex).
+/// ascending basis indices (shortlex): `2^n` of them.
+///
+/// # Panics
+/// For `n >= 32` (a [`Bitmap`] holds 31 and fewer dimensions here).
 pub fn canonical_order(n: usize) -> Vec<Bitmap> {
+    assert!(n < 32, "{n} dimensions: a blade bitmap holds fewer than 32");
     let mut all: Vec<Bitmap> = (0..(1u32 << n)).collect();
     all.sort_by_key(|&b| {
         let idx: Vec<u32> = (0..n as u32).filter(|i| b & (1 << i) != 0).collect();
@@ -148,6 +156,21 @@ pub fn canonical_order(n: usize) -> Vec<Bitmap> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Bases of more than 32 names: the names past a bitmap's 32 bits are unknown, not a
+    /// shift overflow.
+    #[test]
+    fn bases_past_32_names_do_not_overflow() {
+        // Two-letter suffixes: prefix-free.
+        let names: Vec<String> = (0..40u8)
+            .map(|i| format!("e{}{}", (b'a' + i / 26) as char, (b'a' + i % 26) as char))
+            .collect();
+        assert_eq!(blade_name(1, &names), "eaa");
+        assert_eq!(blade_name(u32::MAX, &names).len(), 1 + 2 * 32);
+        let past = format!("e{}", suffix(&names[35]));
+        assert_eq!(parse_blade(&past, &names), Err(BladeNameError::Unknown));
+        assert_eq!(parse_blade("eaaab", &names), Ok((3, 1)));
+    }
 
     fn basis() -> Vec<String> {
         ["eo", "e1", "e2", "e3", "ei"]

@@ -273,6 +273,9 @@ impl Metric {
     }
 
     /// `v_i . v_j`.
+    ///
+    /// # Panics
+    /// When `i` or `j` is not below [`Metric::dim`].
     pub fn get(&self, i: usize, j: usize) -> Rational {
         self.g[i][j]
     }
@@ -297,8 +300,12 @@ impl Metric {
             .expect("exact rational arithmetic overflowed 128 bits")
     }
 
-    /// Inner product of two vectors given by coordinates; `None` on overflow.
+    /// Inner product of two vectors given by coordinates; `None` on overflow, or when `u` or
+    /// `v` does not have one coordinate per basis vector.
     pub fn checked_inner(&self, u: &[Rational], v: &[Rational]) -> Option<Rational> {
+        if u.len() != self.dim() || v.len() != self.dim() {
+            return None;
+        }
         let mut s = Rational::ZERO;
         for i in 0..self.dim() {
             if u[i].is_zero() {

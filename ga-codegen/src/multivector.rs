@@ -82,6 +82,10 @@ impl Multivector {
     }
 
     /// A single blade `x * e_b`.
+    ///
+    /// # Panics
+    /// When `b` names a basis vector past the algebra's (as [`Multivector::get`] and
+    /// [`Multivector::set`]).
     pub fn blade(alg: &Arc<Algebra>, b: Bitmap, x: f64) -> Multivector {
         let mut m = Multivector::zero(alg);
         m.c[b as usize] = x;
@@ -123,6 +127,7 @@ impl Multivector {
     }
 
     fn product(&self, o: &Multivector, keep: Keep) -> Multivector {
+        self.same_algebra(o);
         let mut out = Multivector::zero(&self.alg);
         for (a, &x) in self.c.iter().enumerate() {
             if x == 0.0 {
@@ -143,7 +148,23 @@ impl Multivector {
         out
     }
 
+    /// Panics unless `o` is of this algebra (the same one, or one of the same metric): a
+    /// product, sum or difference across algebras has no meaning, and was read through one
+    /// operand's table (a wrong answer, or an index past it).
+    fn same_algebra(&self, o: &Multivector) {
+        assert!(
+            Arc::ptr_eq(&self.alg, &o.alg) || self.alg.metric() == o.alg.metric(),
+            "multivectors of two different algebras ({} and {} basis vectors, or other metrics)",
+            self.alg.metric().dim(),
+            o.alg.metric().dim()
+        );
+    }
+
     /// Geometric product.
+    ///
+    /// # Panics
+    /// When `o` is of another algebra (so do every product, `+`, `-` and
+    /// [`Multivector::max_diff`]).
     pub fn gp(&self, o: &Multivector) -> Multivector {
         self.product(o, Keep::All)
     }
@@ -259,8 +280,12 @@ impl Multivector {
     }
 
     /// The inverse `y` with `self * y = 1`, found by solving the linear system of left
-    /// multiplication; `None` when it is singular (relative pivot below 1e-13).
+    /// multiplication; `None` when it is singular (relative pivot below 1e-13), when a
+    /// coefficient is not finite, or when the inverse overflows.
     pub fn inverse(&self) -> Option<Multivector> {
+        if self.c.iter().any(|x| !x.is_finite()) {
+            return None;
+        }
         let n = self.alg.size();
         let mut m = self.left_matrix();
         let scale = m
@@ -297,6 +322,9 @@ impl Multivector {
             }
             x[r] = s / m[r][r];
         }
+        if x.iter().any(|v| !v.is_finite()) {
+            return None;
+        }
         Some(Multivector {
             alg: self.alg.clone(),
             c: x,
@@ -309,6 +337,10 @@ impl Multivector {
     }
 
     /// Exponential by scaling and squaring of the Taylor series (slow, general).
+    ///
+    /// Accuracy: each of the `k` squarings (about `log2` of the coefficients' sum) doubles the
+    /// rounding error, so the result is good to about `eps * norm`: an oracle for arguments
+    /// up to about 1e6, not for 1e18 (whose angle `f64` does not hold anyway).
     pub fn exp(&self) -> Multivector {
         let norm: f64 = self.c.iter().map(|x| x.abs()).sum();
         let mut k = 0;
@@ -333,6 +365,7 @@ impl Multivector {
 
     /// Largest absolute coefficient difference.
     pub fn max_diff(&self, o: &Multivector) -> f64 {
+        self.same_algebra(o);
         self.c
             .iter()
             .zip(&o.c)
@@ -343,6 +376,7 @@ impl Multivector {
 impl Add for &Multivector {
     type Output = Multivector;
     fn add(self, o: &Multivector) -> Multivector {
+        self.same_algebra(o);
         let mut out = self.clone();
         for (x, y) in out.c.iter_mut().zip(&o.c) {
             *x += y;
@@ -354,6 +388,7 @@ impl Add for &Multivector {
 impl Sub for &Multivector {
     type Output = Multivector;
     fn sub(self, o: &Multivector) -> Multivector {
+        self.same_algebra(o);
         let mut out = self.clone();
         for (x, y) in out.c.iter_mut().zip(&o.c) {
             *x -= y;

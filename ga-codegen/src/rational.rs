@@ -34,6 +34,41 @@ fn gcd(a: i128, b: i128) -> u128 {
     a
 }
 
+/// `n / d` correctly rounded to `f64`, for `n, d < 2^127`, `d > 0`: the quotient's leading 64
+/// bits `q` with `n / d = (q + f) 2^e`, `0 <= f < 1`; a non-zero `f` sets `q`'s lowest bit
+/// (below the 53 kept, so it only breaks what would read as a tie), and the conversion of `q`
+/// rounds to nearest even. The quotient lies in `[2^-127, 2^127]`, so scaling by `2^e` is exact.
+fn quotient_f64(n: u128, d: u128) -> f64 {
+    if n == 0 {
+        return 0.0;
+    }
+    let (mut q, mut r) = (n / d, n % d);
+    let mut e: i32 = 0;
+    let bits = 128 - q.leading_zeros();
+    if bits > 64 {
+        let shift = bits - 64;
+        let dropped = q & ((1u128 << shift) - 1);
+        q >>= shift;
+        e = shift as i32;
+        if dropped != 0 {
+            r = 1;
+        }
+    } else {
+        // The next bits of the fraction, one at a time (r < d < 2^127, so 2r fits).
+        while q < (1u128 << 63) {
+            r <<= 1;
+            q <<= 1;
+            if r >= d {
+                r -= d;
+                q |= 1;
+            }
+            e -= 1;
+        }
+    }
+    let sticky = u64::from(r != 0);
+    (q as u64 | sticky) as f64 * 2f64.powi(e)
+}
+
 /// `a / b` compared with `c / d` for positive denominators, by continued fractions (no
 /// product can overflow).
 fn cmp_fractions(mut a: u128, mut b: u128, mut c: u128, mut d: u128) -> Ordering {
@@ -177,10 +212,23 @@ impl Rational {
         self.num == 0
     }
 
-    /// Nearest `f64` (exact when numerator and denominator are at most 2^53, as for every
-    /// decimal with up to 15 significant digits and a small exponent).
+    /// The nearest `f64` (correctly rounded, ties to even). Where numerator and denominator
+    /// are both at most 2^53 this is one division; beyond, the quotient's leading 64 bits
+    /// come from a long division, so the numerator and the denominator are not rounded first
+    /// (which could land one unit in the last place off).
     pub fn to_f64(self) -> f64 {
-        self.num as f64 / self.den as f64
+        const EXACT: u128 = 1 << 53;
+        let (n, d) = (self.num.unsigned_abs(), self.den.unsigned_abs());
+        let magnitude = if n <= EXACT && d <= EXACT {
+            n as f64 / d as f64
+        } else {
+            quotient_f64(n, d)
+        };
+        if self.num < 0 {
+            -magnitude
+        } else {
+            magnitude
+        }
     }
 
     /// `1 / self`; `None` for zero.
@@ -329,6 +377,32 @@ mod tests {
         assert_eq!(a * b, Rational::new(1, 18));
         assert_eq!(a / b, Rational::int(2));
         assert_eq!(Rational::new(2, -4), Rational::new(-1, 2));
+    }
+
+    #[test]
+    fn to_f64_rounds_once() {
+        // Expected values from Python's `float(Fraction(n, d))` (correctly rounded). Rounding
+        // the numerator and the denominator before dividing is one unit off on two of them.
+        let cases: [(i128, i128, f64); 10] = [
+            ((1 << 53) + 1, 1, 9007199254740992.0),
+            ((1 << 54) + 3, 2, 9007199254740994.0),
+            (-((1 << 53) + 1), 3, -3002399751580331.0),
+            ((1 << 53) + 3, (1 << 53) + 1, 1.0000000000000002),
+            ((1 << 60) + 1, (1 << 58) + 3, 4.0),
+            (i128::MAX, 3, 5.671372782015641e37),
+            (1, i128::MAX, 5.877471754111438e-39),
+            (-7, (1 << 100) + 1, -5.5220263365470826e-30),
+            (1, 3, 0.3333333333333333),
+            (-2, 7, -0.2857142857142857),
+        ];
+        for (n, d, want) in cases {
+            let got = Rational::new(n, d).to_f64();
+            assert_eq!(
+                got.to_bits(),
+                want.to_bits(),
+                "{n} / {d}: {got:e} against {want:e}"
+            );
+        }
     }
 
     #[test]

@@ -160,6 +160,64 @@ fn malformed_toml_and_missing_file() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("no/such/spec.toml"));
 }
 
+/// Specs that are not small files: a device (read until memory ran out), a folder, a file
+/// past the size limit; a pipe still reads.
+#[test]
+fn devices_folders_and_huge_specs_are_refused() {
+    let dir = scratch("not-a-spec");
+    let huge = dir.join("huge.toml");
+    std::fs::write(
+        &huge,
+        "#".repeat(ga_codegen::spec::MAX_SPEC_BYTES as usize + 1),
+    )
+    .unwrap();
+    let huge = huge.to_string_lossy().into_owned();
+    let folder = dir.to_string_lossy().into_owned();
+    let mut cases = vec![
+        (folder.as_str(), "a folder, not a spec file"),
+        (huge.as_str(), "more than 4194304 bytes"),
+    ];
+    if cfg!(unix) {
+        cases.push(("/dev/zero", "a device, not a file"));
+    }
+    for (spec, needle) in cases {
+        let out = run(&[spec]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{spec}: {err}");
+        assert!(err.contains(needle), "{spec}: {err}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// A `--runtime` that is not a Rust path is named as such (it read "internal generator
+/// error: expected `,`").
+#[test]
+fn a_runtime_that_is_not_a_path_is_refused() {
+    let out = run(&["algebras/g3.toml", "--runtime", "\"; panic!(); \""]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("is not a Rust path"), "{err}");
+    // Generic arguments (they reached the formatter as a "generator bug"), and thousands of
+    // segments (the formatter's parser overflowed its stack and aborted).
+    let long = vec!["a"; 4000].join("::");
+    for (path, words) in [
+        ("a::<T>", "generic arguments"),
+        (long.as_str(), "4000 segments"),
+    ] {
+        let out = run(&["algebras/g3.toml", "--runtime", path]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{err}");
+        assert!(err.contains(words) && err.len() < 400, "{err}");
+    }
+    let out = run(&["algebras/g3.toml", "--runtime", "crate::ga_runtime"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(String::from_utf8_lossy(&out.stdout).contains("crate::ga_runtime::"));
+}
+
 #[test]
 fn bad_arguments() {
     for args in [

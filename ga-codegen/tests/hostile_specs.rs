@@ -343,3 +343,79 @@ fn names_and_docs_cannot_leave_their_comments() {
         .lines()
         .all(|l| l.is_empty() || l.starts_with("//") || !l.contains("evil")));
 }
+
+/// The generic multivector across algebras, and blades past an algebra: a panic with a
+/// message, not a wrong answer read from another row or another algebra's table.
+#[test]
+fn the_generic_multivector_refuses_other_algebras_and_blades() {
+    use ga_codegen::Multivector;
+    let g2 = std::sync::Arc::new(
+        Algebra::from_metric(&["e1", "e2"], &[vec![1.0, 0.0], vec![0.0, 1.0]]).unwrap(),
+    );
+    let g3 = std::sync::Arc::new(
+        Algebra::from_metric(
+            &["e1", "e2", "e3"],
+            &[
+                vec![1.0, 0.0, 0.0],
+                vec![0.0, 1.0, 0.0],
+                vec![0.0, 0.0, 1.0],
+            ],
+        )
+        .unwrap(),
+    );
+    let anti = std::sync::Arc::new(
+        Algebra::from_metric(&["e1", "e2"], &[vec![-1.0, 0.0], vec![0.0, -1.0]]).unwrap(),
+    );
+    let a = Multivector::blade(&g2, 1, 1.0);
+    let message = |f: &dyn Fn()| {
+        let e = catch_unwind(AssertUnwindSafe(f)).expect_err("a panic");
+        e.downcast_ref::<String>().cloned().unwrap_or_default()
+    };
+    for (what, other) in [
+        ("2-d by 3-d", Multivector::blade(&g3, 4, 1.0)),
+        ("other metric", Multivector::blade(&anti, 1, 1.0)),
+    ] {
+        let m = message(&|| {
+            let _ = a.gp(&other);
+        });
+        assert!(m.contains("two different algebras"), "{what}: {m}");
+        let m = message(&|| {
+            let _ = &a + &other;
+        });
+        assert!(m.contains("two different algebras"), "{what}: {m}");
+    }
+    // The same metric in another `Algebra` value is the same algebra.
+    let again = std::sync::Arc::new(
+        Algebra::from_metric(&["e1", "e2"], &[vec![1.0, 0.0], vec![0.0, 1.0]]).unwrap(),
+    );
+    assert_eq!(a.gp(&Multivector::blade(&again, 1, 1.0)).get(0), 1.0);
+    let m = message(&|| {
+        let _ = g3.gp_blades(0, 8);
+    });
+    assert!(m.contains("in an algebra of 8 blades"), "{m}");
+    let r = ga_codegen::Rational::from_f64(1.0).unwrap();
+    assert_eq!(g3.metric().checked_inner(&[r], &[r, r, r]), None);
+}
+
+/// The generic inverse of a multivector with a NaN or an infinite coefficient, or one whose
+/// inverse overflows, is `None` (a NaN coefficient gave `Some` of NaN).
+#[test]
+fn the_generic_inverse_refuses_what_it_cannot_invert() {
+    use ga_codegen::Multivector;
+    let g2 = Algebra::from_metric(&["e1", "e2"], &[vec![1.0, 0.0], vec![0.0, 1.0]]).unwrap();
+    let v = |s: f64, e1: f64| {
+        let mut m = Multivector::blade(&g2, 0, s);
+        m.set(1, e1);
+        m
+    };
+    let ok = v(2.0, 1.0).inverse().expect("2 + e1 is invertible");
+    assert!((v(2.0, 1.0).gp(&ok).get(0) - 1.0).abs() < 1e-15);
+    for (what, m) in [
+        ("NaN", v(f64::NAN, 1.0)),
+        ("NaN beside a dominant entry", v(1.0, f64::NAN)),
+        ("infinity", v(f64::INFINITY, 0.0)),
+        ("an inverse past f64", v(1e-310, 0.0)),
+    ] {
+        assert!(m.inverse().is_none(), "{what}: {:?}", m.inverse());
+    }
+}

@@ -65,7 +65,7 @@ pub(crate) fn gen_error(e: &GenError, raw: &RawSpec, spans: &Spans) -> Range {
             .zip(&spans.types)
             .find(|(t, _)| &t.name == ty)
             .map(|(_, r)| r.name),
-        GenError::Internal(_) => None,
+        GenError::RuntimePath { .. } | GenError::Internal(_) => None,
     }
     .unwrap_or_else(Range::call_site)
 }

@@ -51,7 +51,7 @@ pub use wgsl::generate_wgsl;
 use crate::spec::Spec;
 use crate::symbolic::BladeTable;
 use proc_macro2::TokenStream;
-use quote::quote;
+use quote::{quote, ToTokens};
 use render::{int, lit};
 use std::cell::OnceCell;
 use std::fmt;
@@ -153,6 +153,13 @@ pub enum GenError {
         /// Why (the span of its blades).
         reason: String,
     },
+    /// [`EmitOptions::runtime`] is not a Rust path.
+    RuntimePath {
+        /// The path as given.
+        path: String,
+        /// Why it does not parse.
+        reason: String,
+    },
     /// A name that cannot be written in Rust, or emitted code that does not parse (a
     /// generator bug).
     Internal(String),
@@ -170,6 +177,15 @@ impl fmt::Display for GenError {
             }
             GenError::NoClosedForm { file, ty, reason } => {
                 write!(f, "{file}: type `{ty}`: no closed-form exp/log: {reason}")
+            }
+            GenError::RuntimePath { path, reason } => {
+                let shown: String = path.chars().take(80).collect();
+                let more = if path.chars().nth(80).is_some() { "..." } else { "" };
+                write!(
+                    f,
+                    "runtime path {shown:?}{more} is not a Rust path (names joined by `::`, \
+                     such as `::ga_codegen` or `crate::ga_runtime`): {reason}"
+                )
             }
             GenError::Internal(m) => write!(f, "internal generator error: {m}"),
         }
@@ -375,12 +391,29 @@ fn check_names(spec: &Spec) -> Result<(), GenError> {
     Ok(())
 }
 
+/// The most segments a runtime path may have (`::ga_codegen` has one).
+const MAX_RUNTIME_SEGMENTS: usize = 64;
+
 /// The generator state for a checked spec.
 fn gen<'a>(spec: &'a Spec, opts: &EmitOptions) -> Result<Gen<'a>, GenError> {
-    let rt: TokenStream = opts
-        .runtime
-        .parse()
-        .map_err(|e| GenError::Internal(format!("runtime path `{}`: {e}", opts.runtime)))?;
+    let refuse = |reason: String| GenError::RuntimePath {
+        path: opts.runtime.clone(),
+        reason,
+    };
+    let path = syn::parse_str::<syn::Path>(&opts.runtime).map_err(|e| refuse(e.to_string()))?;
+    // A path of thousands of segments overflowed the stack of the formatter's parser.
+    if path.segments.len() > MAX_RUNTIME_SEGMENTS {
+        return Err(refuse(format!(
+            "{} segments, more than {MAX_RUNTIME_SEGMENTS}",
+            path.segments.len()
+        )));
+    }
+    if path.segments.iter().any(|s| !s.arguments.is_none()) {
+        return Err(refuse(
+            "generic arguments (a crate or module path has none)".into(),
+        ));
+    }
+    let rt = path.to_token_stream();
     let mut by_size: Vec<usize> = (0..spec.types.len()).collect();
     by_size.sort_by_key(|&i| spec.types[i].fields.len() + spec.types[i].constants.len());
     Ok(Gen {

@@ -181,6 +181,12 @@ pub struct SandwichDef {
 }
 
 /// A validated spec.
+///
+/// Its fields are public to be read. A spec edited after [`Spec::from_toml`] (or
+/// [`Spec::from_raw`]) must keep what they checked: blades within the metric's dimension,
+/// sandwich type indices in range, a metric whose exact products fit in 128 bits;
+/// [`crate::generate`] trusts them and panics otherwise. To change a spec, change its TOML (or
+/// `RawSpec`) and read it again.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Spec {
     /// Where it came from (file path or `algebra!`).
@@ -213,16 +219,33 @@ impl Spec {
         Spec::from_raw(raw, source)
     }
 
-    /// Read a TOML spec file.
+    /// Read a TOML spec file (a regular file or a pipe of at most [`MAX_SPEC_BYTES`]; a
+    /// device such as `/dev/zero` is refused before it is read).
     pub fn from_file(path: &std::path::Path) -> Result<Spec, SpecError> {
+        use std::io::Read;
         let source = path.display().to_string();
-        let text = std::fs::read_to_string(path).map_err(|e| {
-            SpecError::new(
-                &source,
-                SpecLocation::Spec,
-                SpecErrorKind::Parse(e.to_string()),
-            )
-        })?;
+        let fail = |m: String| SpecError::new(&source, SpecLocation::Spec, SpecErrorKind::Parse(m));
+        let file = std::fs::File::open(path).map_err(|e| fail(e.to_string()))?;
+        let kind = file
+            .metadata()
+            .map_err(|e| fail(e.to_string()))?
+            .file_type();
+        if kind.is_dir() {
+            return Err(fail("a folder, not a spec file".into()));
+        }
+        if is_device(&kind) {
+            return Err(fail("a device, not a file: refusing to read it".into()));
+        }
+        let mut bytes = Vec::new();
+        file.take(MAX_SPEC_BYTES + 1)
+            .read_to_end(&mut bytes)
+            .map_err(|e| fail(e.to_string()))?;
+        if bytes.len() as u64 > MAX_SPEC_BYTES {
+            return Err(fail(format!(
+                "more than {MAX_SPEC_BYTES} bytes, far more than any algebra's spec"
+            )));
+        }
+        let text = String::from_utf8(bytes).map_err(|e| fail(format!("not UTF-8 text: {e}")))?;
         Spec::from_toml(&text, &source)
     }
 
@@ -243,4 +266,20 @@ impl Spec {
             sandwiches,
         })
     }
+}
+
+/// The most bytes [`Spec::from_file`] reads (a spec is a few kilobytes).
+pub const MAX_SPEC_BYTES: u64 = 1 << 22;
+
+/// Whether a file type is a character or block device.
+#[cfg(unix)]
+fn is_device(kind: &std::fs::FileType) -> bool {
+    use std::os::unix::fs::FileTypeExt;
+    kind.is_char_device() || kind.is_block_device()
+}
+
+/// Whether a file type is a character or block device (never, off Unix).
+#[cfg(not(unix))]
+fn is_device(_: &std::fs::FileType) -> bool {
+    false
 }
