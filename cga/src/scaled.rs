@@ -133,12 +133,7 @@ impl ScaledMotor {
 
     /// See [`ScaledMotor::to_similarity`].
     pub(crate) fn similarity(self) -> Similarity {
-        let a2 = self.s * self.s + self.e12 * self.e12 + self.e13 * self.e13 + self.e23 * self.e23;
-        // k^2 cosh*sinh (g/2)
-        let p = self.s * self.eoi
-            + self.e12 * self.eo12i
-            + self.e13 * self.eo13i
-            + self.e23 * self.eo23i;
+        let (a2, p) = self.rotor_and_dilation();
         let th = p / a2; // tanh(g/2)
         let a = a2.sqrt();
         let rq = self.rotor_quat() * (1.0 / a);
@@ -153,6 +148,32 @@ impl ScaledMotor {
             rotation: rq,
             translation: 2.0 * V3::new(t.x, t.y, t.z),
         }
+    }
+
+    /// For `M = k T R D` (`D` of half log-scale `g/2`): the rotor part's squared norm
+    /// `a^2 = k^2 cosh^2(g/2)` and its product with the dilation part, `p = k^2 cosh(g/2)
+    /// sinh(g/2)`.
+    #[inline]
+    fn rotor_and_dilation(self) -> (S, S) {
+        let a2 = self.s * self.s + self.e12 * self.e12 + self.e13 * self.e13 + self.e23 * self.e23;
+        let p = self.s * self.eoi
+            + self.e12 * self.eo12i
+            + self.e13 * self.eo13i
+            + self.e23 * self.eo23i;
+        (a2, p)
+    }
+
+    /// The `eo` coefficient of `M up(x) ~M`, the same for every point `x`: `k^2 / d` for
+    /// `M = k T R D` of scale `d`, computed in factored form, `(a^2 - p)^2 / a^2` (see
+    /// [`ScaledMotor::point_matrix`] for the rest of the image). It keeps the precision of the
+    /// scale itself (about `eps d` relative); the expanded entry of the point matrix loses
+    /// about `eps d^2` (1e-6 at a scale of 1e5), which down-projection then divides by.
+    #[inline]
+    #[must_use]
+    pub fn origin_weight(self) -> S {
+        let (a2, p) = self.rotor_and_dilation();
+        let q = a2 - p;
+        q * q / a2
     }
 
     /// The rotation quaternion of the rotor part (not normalised here).

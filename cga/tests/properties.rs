@@ -614,3 +614,22 @@ fn blended_motors_have_a_defect() {
     let d = cheap.transform_point(x) - sum.normalize_rigid().transform_point(x);
     assert!(d.length() < 1e-14, "{d}");
 }
+
+proptest! {
+    /// `ScaledMotor::origin_weight` is the `eo` entry of the point matrix of a unit scaled
+    /// motor (`1/d` for a scale `d`), and `k^2` times that for `k` times it.
+    #[test]
+    fn origin_weight_is_the_point_matrix_eo_entry(
+        (q, t, _) in motor(),
+        log_scale in -3.0..3.0f64,
+        k in 0.2..5.0f64,
+    ) {
+        let d = log_scale.exp();
+        let m = ScaledMotor::from_scale_rotation_translation(d, q, t);
+        prop_assert!((m.origin_weight() * d - 1.0).abs() < 1e-13);
+        let expanded = m.point_matrix().m[0][4];
+        prop_assert!((m.origin_weight() - expanded).abs() < 1e-12 * expanded.abs());
+        let multiple = (m * k).origin_weight();
+        prop_assert!((multiple - k * k * m.origin_weight()).abs() < 1e-13 * multiple);
+    }
+}

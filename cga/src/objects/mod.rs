@@ -11,6 +11,14 @@
 //!
 //! Predicates are inner products with normalised points: `X.pi` is the signed distance to a
 //! plane, `X.sigma = 0.5 (r^2 - |x - c|^2)` is positive inside a sphere.
+//!
+//! **Precision.** The conformal model stores `0.5 |x|^2` beside `x`, so what is read back from
+//! an object (a radius, a centre, the points of a pair, a line's point nearest the origin)
+//! loses about `eps (d / s)^2` of relative precision for an object of size `s` at distance
+//! `d` from the origin: a sphere of radius 1 at 1e6 reads its radius to about 1e-4, at 1e8
+//! not at all. The constructors refuse only what overflows (`0.5 |x|^2` beyond the `f64`
+//! range, about `|x| > 1e154`) or is degenerate; translate such scenes towards the origin
+//! first (the predicates, which compare against points of the same size, fare better).
 
 use super::*;
 
