@@ -15,8 +15,13 @@
 //! with fused multiply-adds (the row sums of dual quaternions, matrix LBS and equation (17),
 //! and all of log blending: each agreeing with the per-vertex path to rounding, as its unfused
 //! form does).
+//!
+//! Every pose reports whether what it wrote is finite (a blend can leave the `f64` range): a
+//! kernel either adds each batch's lanes into a probe inside the loop or has its task's
+//! vertices scanned after it, whichever its code layout makes cheaper ([`Kernel::PROBE`]).
 
 use super::PARALLEL_MIN;
+use crate::blend::all_finite;
 use crate::blend::KeyWeights;
 use cga::wide::{F64x4, Lane};
 use glam::DVec3;
@@ -26,7 +31,7 @@ use rayon::prelude::*;
 pub(crate) const LANES: usize = 4;
 
 /// Vertices per parallel task (a multiple of [`LANES`]).
-const TASK: usize = 1024;
+pub(super) const TASK: usize = 1024;
 
 /// Four points, coordinate by coordinate.
 pub(crate) type Points4 = [F64x4; 3];
@@ -83,37 +88,41 @@ impl Batches {
 
     /// `out[i]` for every vertex: `kernel` on each batch, `single(i)` for the vertices of a
     /// batch the kernel declines (a degenerate blend it leaves to the per-vertex path).
-    /// Parallel over tasks of [`TASK`] vertices when there are enough of them.
+    /// Parallel over tasks of [`TASK`] vertices when there are enough of them. Whether every
+    /// vertex written is finite (each task checks its own while they are in cache).
     pub(crate) fn run<K: Kernel>(
         &self,
         kernel: &K,
         single: &(impl Fn(usize) -> DVec3 + Sync),
         out: &mut [DVec3],
-    ) {
+    ) -> bool {
         debug_assert_eq!(out.len().div_ceil(LANES), self.points.len());
         let task = |(t, o): (usize, &mut [DVec3])| self.dispatch(kernel, single, t * TASK, o);
         if out.len() < PARALLEL_MIN {
-            task((0, out));
+            task((0, out))
         } else {
-            out.par_chunks_mut(TASK).enumerate().for_each(task);
+            out.par_chunks_mut(TASK)
+                .enumerate()
+                .map(task)
+                .reduce(|| true, |a, b| a && b)
         }
     }
 
-    /// The batches of `out` (vertices from `first`), with the widest lanes the CPU has.
+    /// The batches of `out` (vertices from `first`), with the widest lanes the CPU has;
+    /// whether every vertex written is finite.
     fn dispatch<K: Kernel>(
         &self,
         kernel: &K,
         single: &(impl Fn(usize) -> DVec3 + Sync),
         first: usize,
         out: &mut [DVec3],
-    ) {
+    ) -> bool {
         #[cfg(target_arch = "x86_64")]
         if avx2() {
             // SAFETY: the CPU has AVX2 (checked at run time just above).
-            unsafe { self.range_avx2(kernel, single, first, out) };
-            return;
+            return unsafe { self.range_avx2(kernel, single, first, out) };
         }
-        self.range::<K, false>(kernel, single, first, out);
+        self.range::<K, false>(kernel, single, first, out)
     }
 
     /// [`Batches::range`] compiled for AVX2 and FMA, with the fused kernels.
@@ -128,12 +137,18 @@ impl Batches {
         single: &(impl Fn(usize) -> DVec3 + Sync),
         first: usize,
         out: &mut [DVec3],
-    ) {
-        self.range::<K, true>(kernel, single, first, out);
+    ) -> bool {
+        self.range::<K, true>(kernel, single, first, out)
     }
 
     /// The batch loop: `out` holds the vertices from `first` (a multiple of [`LANES`]);
     /// [`Kernel::batch_fused`] when `FMA` (only in a copy compiled with the `fma` feature).
+    /// Whether every vertex written is finite. With [`Kernel::PROBE`] full batches add their
+    /// lanes into one probe (not finite once a lane is not; three vector additions a batch,
+    /// and a check point by point when the sum overflows) and the rest are checked as
+    /// written; without, the task's vertices are checked once written, while in cache
+    /// ([`all_finite`], a vectorised scan). Which is faster depends on the kernel's code
+    /// layout, not on the work: each kernel says.
     #[inline(always)]
     fn range<K: Kernel, const FMA: bool>(
         &self,
@@ -141,7 +156,9 @@ impl Batches {
         single: &(impl Fn(usize) -> DVec3 + Sync),
         first: usize,
         out: &mut [DVec3],
-    ) {
+    ) -> bool {
+        let mut probe = F64x4::splat(0.0);
+        let mut finite = true;
         let w = self.width;
         let b0 = first / LANES;
         let keys = &self.keys[b0 * w..];
@@ -163,15 +180,31 @@ impl Batches {
                     for (l, o) in o.iter_mut().enumerate() {
                         *o = DVec3::new(q[0].lane(l), q[1].lane(l), q[2].lane(l));
                     }
+                    if K::PROBE {
+                        if o.len() == LANES {
+                            probe += q[0] + q[1] + q[2];
+                        } else {
+                            // The last, partial batch: its padding lanes are not vertices.
+                            finite &= all_finite(o);
+                        }
+                    }
                 }
                 None => {
                     let v0 = first + i * LANES;
                     for (l, o) in o.iter_mut().enumerate() {
                         *o = single(v0 + l);
                     }
+                    if K::PROBE {
+                        finite &= all_finite(o);
+                    }
                 }
             }
         }
+        if !K::PROBE {
+            return all_finite(out);
+        }
+        // A sum that overflowed from finite points is checked point by point (rare).
+        finite && ((0..LANES).all(|l| probe.lane(l).is_finite()) || all_finite(out))
     }
 }
 
@@ -200,6 +233,10 @@ pub fn simd_level() -> &'static str {
 
 /// The blend of one method over a batch of four vertices.
 pub(crate) trait Kernel: Sync {
+    /// Whether the batch loop checks the written vertices by a probe inside the loop (true)
+    /// or by a scan after it (false); see `Batches::range`.
+    const PROBE: bool = true;
+
     /// The four posed points from the slots' `keys` and `weights` and the rest `points`;
     /// `None` declines the batch (the caller poses its vertices one by one).
     fn batch(&self, keys: &[[u32; LANES]], weights: &[F64x4], points: &Points4) -> Option<Points4>;
@@ -214,5 +251,40 @@ pub(crate) trait Kernel: Sync {
         points: &Points4,
     ) -> Option<Points4> {
         self.batch(keys, weights, points)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::blend::all_finite;
+    use glam::DVec3;
+
+    /// Every kind of non-finite coordinate, in every position, is seen; finite extremes are not.
+    #[test]
+    fn all_finite_sees_every_non_finite_coordinate() {
+        let finite = [
+            f64::MAX,
+            -f64::MAX,
+            f64::MIN_POSITIVE,
+            5e-324,
+            -0.0,
+            0.0,
+            1.0,
+        ];
+        let mut points: Vec<DVec3> = (0..7)
+            .map(|i| DVec3::new(finite[i], finite[(i + 1) % 7], finite[(i + 2) % 7]))
+            .collect();
+        assert!(all_finite(&points));
+        assert!(all_finite(&[]));
+        for bad in [f64::INFINITY, f64::NEG_INFINITY, f64::NAN, -f64::NAN] {
+            for v in 0..points.len() {
+                for c in 0..3 {
+                    let keep = points[v][c];
+                    points[v][c] = bad;
+                    assert!(!all_finite(&points), "{bad} at {v}.{c}");
+                    points[v][c] = keep;
+                }
+            }
+        }
     }
 }

@@ -128,7 +128,9 @@ impl ControlBinding {
     ///
     /// # Errors
     /// [`MeshError::DimensionMismatch`] for slices of the wrong length,
-    /// [`MeshError::InvalidArgument`] for a control point that is not finite.
+    /// [`MeshError::InvalidArgument`] for a control point that is not finite;
+    /// [`MeshError::Overflow`] for a posed vertex that is not (weights and points whose sum
+    /// leaves the `f64` range).
     pub fn pose_points(&self, control: &[DVec3], out: &mut [DVec3]) -> Result<()> {
         check_points(self.rest.len(), control)?;
         check_positions(self.vertices, out.len())?;
@@ -138,13 +140,13 @@ impl ControlBinding {
                 .row(i)
                 .fold(DVec3::ZERO, |a, k, w| a + w * control[k])
         };
-        match &self.inner {
+        let finite = match &self.inner {
             Inner::Positional { batches, .. } if !batches.is_empty() => {
                 kernels::run_positional(batches, control, &single, out)
             }
             _ => crate::blend::for_each_vertex(out, single),
-        }
-        Ok(())
+        };
+        crate::blend::finite_pose(finite, out)
     }
 }
 

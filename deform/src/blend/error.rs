@@ -29,8 +29,10 @@ pub enum KeyError {
         source: CgaError,
     },
     /// More keys than [`MAX_KEYS`].
-    #[error("{got} keys: at most {max} are supported")]
+    #[error("{got} {what}: at most {max} are supported")]
     TooMany {
+        /// What they are (`"keys"`, `"joints"`, `"handle sets"`).
+        what: &'static str,
         /// How many were given.
         got: usize,
         /// The limit.

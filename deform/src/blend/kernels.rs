@@ -52,7 +52,12 @@ macro_rules! each {
 /// with fused multiply-adds in the AVX2+FMA copy (`Kernel::batch_fused`).
 macro_rules! fused_kernel {
     ($t:ident) => {
+        fused_kernel!($t, true);
+    };
+    ($t:ident, $probe:expr) => {
         impl Kernel for $t<'_> {
+            const PROBE: bool = $probe;
+
             #[inline(always)]
             fn batch(
                 &self,
@@ -239,7 +244,10 @@ struct DualQuaternion<'a> {
     log_scales: Option<&'a [f64]>,
 }
 
-fused_kernel!(DualQuaternion);
+// The finite check after the loop, not in it: the probe's additions in the loop made this
+// kernel 28% slower on an EPYC host (0.46 -> 0.59 ms on the armadillo, one thread) where they
+// made the motor kernels 8-13% faster (deform/BENCH.md, thirteenth session).
+fused_kernel!(DualQuaternion, false);
 
 impl DualQuaternion<'_> {
     /// The batch; the row sums fused when `FMA`.
@@ -289,7 +297,9 @@ struct Affine<'a> {
     project: bool,
 }
 
-fused_kernel!(Affine);
+// The finite check after the loop, as for dual quaternions: 6-7% faster than the probe on the
+// armadillo (deform/BENCH.md, thirteenth session).
+fused_kernel!(Affine, false);
 
 impl Affine<'_> {
     /// The batch; the row sums fused when `FMA`.
@@ -319,6 +329,9 @@ struct AffineF32<'a> {
 }
 
 impl Kernel for AffineF32<'_> {
+    // The finite check after the loop (5% faster than the probe, as for `Affine`).
+    const PROBE: bool = false;
+
     #[inline(always)]
     fn batch(&self, keys: &[[u32; LANES]], weights: &[F64x4], p: &Points4) -> Option<Points4> {
         let q: [Vec3A; LANES] = each!(LANES, l => {
@@ -375,8 +388,8 @@ pub(super) fn run_positional(
     control: &[DVec3],
     single: &(impl Fn(usize) -> DVec3 + Sync),
     out: &mut [DVec3],
-) {
-    batches.run(&Positional { control }, single, out);
+) -> bool {
+    batches.run(&Positional { control }, single, out)
 }
 
 /// Equation (17), down-projecting each term first.
@@ -457,7 +470,7 @@ pub(super) fn run(
     batches: &Batches,
     single: &(impl Fn(usize) -> DVec3 + Sync),
     out: &mut [DVec3],
-) {
+) -> bool {
     let log_scales = prepared.scaled().then_some(&prepared.log_scales[..]);
     let rows = &prepared.rows[..];
     // At most 64 keys when aligned: the table index fits a u32.

@@ -56,14 +56,20 @@ pub struct ConformalKey {
 impl ConformalKey {
     /// From the generated point matrix of `m` (rows `eo, e1, e2, e3, ei`; columns
     /// `e1, e2, e3, ei, 1`). The `e1..e3` rows have no `ei` column and the `eo` row only a
-    /// constant: the sandwich of a similarity keeps points finite.
+    /// constant: the sandwich of a similarity keeps points finite. That constant is taken from
+    /// [`ScaledMotor::origin_weight`], its factored form. `m` may be any non-zero multiple of a
+    /// scaled motor (it is normalised first).
     pub fn new(m: &ScaledMotor) -> ConformalKey {
+        // The point matrix's formulas hold for `S ~S = 1`; a multiple (which every other
+        // method accepts as the same motion) is brought back to it first.
+        let m = m.normalize_similarity();
         let p = m.point_matrix().m;
         debug_assert!((1..4).all(|r| p[r][3] == 0.0) && p[0][..4].iter().all(|&x| x == 0.0));
         let row = |r: usize| [p[r][0], p[r][1], p[r][2], p[r][4]];
         ConformalKey {
             rows: [row(1), row(2), row(3)],
-            eo: p[0][4],
+            // `p[0][4]` in factored form: the expanded one loses eps * scale^2.
+            eo: m.origin_weight(),
         }
     }
 
@@ -128,6 +134,7 @@ impl PreparedKeys {
     pub fn prepare(&mut self, keys: &[ScaledMotor], method: BlendMethod) -> Result<()> {
         if keys.len() > MAX_KEYS {
             return Err(KeyError::TooMany {
+                what: "keys",
                 got: keys.len(),
                 max: MAX_KEYS,
             }

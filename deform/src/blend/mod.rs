@@ -36,6 +36,7 @@ mod keys;
 
 use crate::mesh::MeshError;
 pub use batch::simd_level;
+use batch::TASK;
 use cga::ScaledMotor;
 pub(crate) use error::{check_key_count, check_positions};
 pub use error::{BlendError, KeyError, Result, MAX_KEYS};
@@ -196,11 +197,14 @@ impl KeyWeights {
     /// [`MeshError::DimensionMismatch`] for inconsistent lengths, [`KeyError::TooMany`],
     /// [`MeshError::InvalidArgument`] for a run past the last key or a non-finite weight.
     pub fn new(key_count: usize, width: usize, first: Vec<u32>, weights: Vec<f64>) -> Result<Self> {
-        if let Some(v) = first.iter().position(|&f| f as usize + width > key_count) {
+        if let Some(v) = first
+            .iter()
+            .position(|&f| (f as usize).saturating_add(width) > key_count)
+        {
             return Err(MeshError::InvalidArgument(format!(
                 "vertex {v}: key run {}..{} past the {key_count} keys",
                 first[v],
-                first[v] as usize + width
+                (first[v] as usize).saturating_add(width)
             ))
             .into());
         }
@@ -254,6 +258,7 @@ impl KeyWeights {
     fn checked(w: KeyWeights) -> Result<Self> {
         if w.key_count > MAX_KEYS {
             return Err(KeyError::TooMany {
+                what: "keys",
                 got: w.key_count,
                 max: MAX_KEYS,
             }
@@ -341,18 +346,60 @@ impl KeyWeights {
 const PARALLEL_MIN: usize = 2048;
 
 /// `out[i] = f(i)` for every vertex, in parallel (rayon) when there are enough of them: the
-/// one per-vertex loop of every pose.
+/// one per-vertex loop of every pose, in tasks of the batch loop's size. Whether every vertex
+/// written is finite (each task checks its own while they are in cache).
 #[inline]
-pub(crate) fn for_each_vertex(out: &mut [DVec3], f: impl Fn(usize) -> DVec3 + Sync) {
-    let one = |(i, o): (usize, &mut DVec3)| *o = f(i);
+pub(crate) fn for_each_vertex(out: &mut [DVec3], f: impl Fn(usize) -> DVec3 + Sync) -> bool {
+    let chunk = |(c, o): (usize, &mut [DVec3])| {
+        for (k, p) in o.iter_mut().enumerate() {
+            *p = f(c * TASK + k);
+        }
+        all_finite(o)
+    };
     if out.len() < PARALLEL_MIN {
-        out.iter_mut().enumerate().for_each(one);
+        // Every chunk is written, whatever the earlier ones hold (no short circuit).
+        let mut finite = true;
+        for c in out.chunks_mut(TASK).enumerate() {
+            finite &= chunk(c);
+        }
+        finite
     } else {
-        out.par_iter_mut()
+        out.par_chunks_mut(TASK)
             .enumerate()
-            .with_min_len(1024)
-            .for_each(one);
+            .map(chunk)
+            .reduce(|| true, |a, b| a && b)
     }
+}
+
+/// Whether every coordinate of `points` is finite: a count of the coordinates whose exponent
+/// bits are all set (infinities and NaN), an integer sum with no early exit and no branch,
+/// which the compiler vectorises and unrolls (run on points still in cache).
+#[inline]
+pub(crate) fn all_finite(points: &[DVec3]) -> bool {
+    const EXPONENT: u64 = 0x7ff0_0000_0000_0000;
+    // SAFETY: `DVec3` is `#[repr(C)]` with three `f64` fields and no padding (24 bytes,
+    // alignment 8), so `points` is `3 * points.len()` contiguous `f64`.
+    let coords: &[f64] =
+        unsafe { std::slice::from_raw_parts(points.as_ptr().cast::<f64>(), points.len() * 3) };
+    let bad: u64 = coords
+        .iter()
+        .map(|x| u64::from(x.to_bits() & EXPONENT == EXPONENT))
+        .sum();
+    bad == 0
+}
+
+/// The result of a pose whose loop reported `finite`: [`MeshError::Overflow`] naming the
+/// first vertex that is not (keys, weights or rest positions too large for `f64`).
+pub(crate) fn finite_pose(finite: bool, out: &[DVec3]) -> Result<()> {
+    if finite {
+        return Ok(());
+    }
+    let index = out.iter().position(|p| !p.is_finite()).unwrap_or(0);
+    Err(MeshError::Overflow {
+        what: "posed vertex (keys, weights or rest positions too large for the method's floats)",
+        index,
+    }
+    .into())
 }
 
 /// A mesh bound to key weights: the rest points in the frame of their rest transform, ready to
@@ -451,7 +498,9 @@ impl BoundBlend {
     /// # Errors
     /// [`KeyError`] for a bad key or a key list of the wrong length,
     /// [`MeshError::DimensionMismatch`] for `out` of the wrong length; `out` is then
-    /// untouched.
+    /// untouched. [`MeshError::Overflow`] naming the first vertex whose pose is not finite
+    /// (keys, weights and rest positions whose blend leaves the `f64` range, such as weights
+    /// of 1100 and -1099 on a key of scale 2); `out` then holds that pose.
     pub fn pose_using(
         &self,
         keys: &[ScaledMotor],
@@ -460,12 +509,12 @@ impl BoundBlend {
     ) -> Result<()> {
         let prepared = self.checked_prepare(keys, prepared, out)?;
         let single = |i: usize| prepared.transform(self.weights.row(i), self.local[i]);
-        if self.batches.is_empty() {
-            for_each_vertex(out, single);
+        let finite = if self.batches.is_empty() {
+            for_each_vertex(out, single)
         } else {
-            kernels::run(prepared, &self.batches, &single, out);
-        }
-        Ok(())
+            kernels::run(prepared, &self.batches, &single, out)
+        };
+        finite_pose(finite, out)
     }
 
     /// The checks of a pose (key count, output length) and the keys prepared in `prepared`.
@@ -494,9 +543,9 @@ impl BoundBlend {
         out: &mut [DVec3],
     ) -> Result<()> {
         let prepared = self.checked_prepare(keys, prepared, out)?;
-        for_each_vertex(out, |i| {
+        let finite = for_each_vertex(out, |i| {
             prepared.transform(self.weights.row(i), self.local[i])
         });
-        Ok(())
+        finite_pose(finite, out)
     }
 }

@@ -477,7 +477,8 @@ impl GpuBlend {
     /// Copy the positions of the last [`GpuBlend::run`] into `out`.
     ///
     /// # Errors
-    /// [`GpuError::Blend`] for an `out` of the wrong length (untouched then),
+    /// [`GpuError::Blend`] for an `out` of the wrong length (untouched then), or for a posed
+    /// vertex that is not finite in single precision (as the CPU's poses, naming it);
     /// [`GpuError::Readback`] when the device fails.
     pub fn read_back(&self, ctx: &GpuContext, out: &mut [DVec3]) -> Result<(), GpuError> {
         crate::blend::check_positions(self.vertices, out.len())?;
@@ -495,7 +496,11 @@ impl GpuBlend {
                     |k: usize| f64::from(f32::from_le_bytes([c[k], c[k + 1], c[k + 2], c[k + 3]]));
                 *o = DVec3::new(f(0), f(4), f(8));
             }
-        })
+        })?;
+        Ok(crate::blend::finite_pose(
+            crate::blend::all_finite(out),
+            out,
+        )?)
     }
 
     /// Bytes one pose reads and writes in device memory, not counting the keys (which stay in

@@ -204,3 +204,112 @@ fn the_positional_batch_loop_sums_as_the_per_vertex_loop() {
         }
     }
 }
+
+/// A pose whose blend leaves the `f64` range is an error naming the vertex, with every
+/// method and on both the batch and the vertex-by-vertex paths (it was `Ok` with NaN or
+/// infinite positions).
+#[test]
+fn poses_beyond_the_f64_range_are_errors() {
+    let huge_key = ScaledMotor::from_scale_rotation_translation(1e10, DQuat::IDENTITY, DVec3::ZERO);
+    // 4100 vertices: enough for the parallel batch loop; the last one is out of range.
+    let mut rest = vec![DVec3::ONE; 4100];
+    rest[4099] = DVec3::splat(1e300);
+    let n = rest.len();
+    let weights = KeyWeights::new(1, 1, vec![0; n], vec![1.0; n]).unwrap();
+    for method in BlendMethod::ALL {
+        let b = BoundBlend::bind(&rest, weights.clone(), &[ScaledMotor::IDENTITY], method).unwrap();
+        let mut out = vec![DVec3::ZERO; n];
+        let mut prepared = Default::default();
+        for result in [
+            b.pose(&[huge_key], &mut out),
+            b.pose_vertex_by_vertex(&[huge_key], &mut prepared, &mut out),
+        ] {
+            let e = result.expect_err(method.name()).to_string();
+            assert!(
+                e.contains("posed vertex") && e.contains("index 4099"),
+                "{method:?}: {e}"
+            );
+        }
+        // The identity poses (not in single precision, which cannot hold 1e300).
+        if method != BlendMethod::MatrixF32 {
+            b.pose(&[ScaledMotor::IDENTITY], &mut out).unwrap();
+        }
+    }
+    // Weights that extrapolate far past their keys: a scale of 2^1100 in log blending.
+    let twice = ScaledMotor::from_scale_rotation_translation(2.0, DQuat::IDENTITY, DVec3::ZERO);
+    let w = KeyWeights::new(2, 2, vec![0], vec![1100.0, -1099.0]).unwrap();
+    for method in [
+        BlendMethod::MotorLog,
+        BlendMethod::MotorLinear,
+        BlendMethod::DualQuaternion,
+    ] {
+        let b = BoundBlend::bind(
+            &[DVec3::ONE],
+            w.clone(),
+            &[ScaledMotor::IDENTITY; 2],
+            method,
+        )
+        .unwrap();
+        let mut out = [DVec3::ZERO];
+        let r = b.pose(&[twice, ScaledMotor::IDENTITY], &mut out);
+        assert!(r.is_err(), "{method:?}: {out:?}");
+    }
+}
+
+/// Equation (17) keeps the precision of the other methods at large scales: its `eo` weight
+/// came from the expanded point matrix, which loses `eps * d^2` for a scale `d` (a point
+/// scaled by 1e7 was 0.6% off, by 1e9 98%).
+#[test]
+fn equation_17_is_as_precise_as_the_matrix_at_large_scales() {
+    let rest = [DVec3::new(1.0, -0.5, 0.25)];
+    let w = KeyWeights::new(1, 1, vec![0], vec![1.0]).unwrap();
+    let turn = DQuat::from_axis_angle(DVec3::new(1.0, 2.0, 2.0).normalize(), 0.7);
+    for d in [1e-9, 1e-6, 1e-3, 10.0, 1e3, 1e5, 1e7, 1e9] {
+        let key = ScaledMotor::from_scale_rotation_translation(d, turn, DVec3::new(0.3, 0.1, -2.0));
+        let want = d * (turn * rest[0]) + DVec3::new(0.3, 0.1, -2.0);
+        for method in [
+            BlendMethod::Conformal,
+            BlendMethod::ConformalProjected,
+            BlendMethod::Matrix,
+        ] {
+            let b = BoundBlend::bind(&rest, w.clone(), &[ScaledMotor::IDENTITY], method).unwrap();
+            let mut out = [DVec3::ZERO];
+            b.pose(&[key], &mut out).unwrap();
+            let err = (out[0] - want).length() / want.length();
+            // The scale's own representation holds about eps * max(d, 1/d).
+            assert!(
+                err < 1e-14 * d.max(1.0 / d).max(10.0),
+                "{method:?}, scale {d:e}: {err:e}"
+            );
+        }
+    }
+}
+
+/// A key given as a multiple of a scaled motor (the same motion) poses the same with every
+/// method: equation (17) read the point matrix of the multiple, whose formulas hold for unit
+/// versors only (0.2 times a key moved a point by 40 units).
+#[test]
+fn multiples_of_a_key_pose_the_same_with_every_method() {
+    let rest = [DVec3::new(1.0, -0.5, 0.25)];
+    let w = KeyWeights::new(1, 1, vec![0], vec![1.0]).unwrap();
+    let turn = DQuat::from_rotation_z(0.4);
+    let key = ScaledMotor::from_scale_rotation_translation(1.5, turn, DVec3::new(0.3, 0.1, -2.0));
+    let want = 1.5 * (turn * rest[0]) + DVec3::new(0.3, 0.1, -2.0);
+    for k in [1.0, 0.2, 3.0, -1.0] {
+        for method in BlendMethod::ALL {
+            let b = BoundBlend::bind(&rest, w.clone(), &[ScaledMotor::IDENTITY], method).unwrap();
+            let mut out = [DVec3::ZERO];
+            b.pose(&[key * k], &mut out).unwrap();
+            let tol = if method == BlendMethod::MatrixF32 {
+                1e-6
+            } else {
+                1e-13
+            };
+            assert!(
+                (out[0] - want).length() < tol,
+                "{method:?}, {k} times the key: {}",
+                out[0]
+            );
+        }
+    }
+}
