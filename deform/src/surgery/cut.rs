@@ -4,6 +4,7 @@ use super::cap::ear_clip;
 use super::split::{assemble, local_loops, new_vertex_data, Assembled, FaceFate, Splitter};
 use super::weld::{canonical_ids, share_copies};
 use super::{check_snap, Frame, SkinnedMesh, Surgery, SurgeryError, VertexOrigin};
+use crate::mesh::numbers::{short_number, short_point};
 use cga::Plane;
 use glam::DVec3;
 
@@ -347,14 +348,11 @@ fn plane_whereabouts(s: &[f64], positions: &[DVec3]) -> String {
         .min_by(|&a, &b| s[a].abs().total_cmp(&s[b].abs()));
     match nearest {
         Some(v) => {
-            let p = positions[v];
             format!(
-                "; every vertex is on one side of the plane (or on it), the nearest off it {:.4} \
-                 away at ({:.4}, {:.4}, {:.4})",
-                s[v].abs(),
-                p.x,
-                p.y,
-                p.z
+                "; every vertex is on one side of the plane (or on it), the nearest off it {} \
+                 away at {}",
+                short_number(s[v].abs()),
+                short_point(positions[v])
             )
         }
         None => "; every vertex is on the plane".into(),

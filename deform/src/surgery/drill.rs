@@ -16,6 +16,7 @@ use super::refine::Work;
 use super::split::{assemble, local_loops, new_vertex_data, FaceFate, Splitter};
 use super::weld::{canonical_ids, share_copies};
 use super::{check_snap, Frame, SkinnedMesh, Surgery, SurgeryError, VertexOrigin};
+use crate::mesh::numbers::{short_number, short_point};
 use crate::mesh::Mesh;
 use glam::DVec3;
 
@@ -167,7 +168,8 @@ impl Surgery {
     /// # Errors
     /// [`SurgeryError::BadTool`] for a non-finite drill, a zero radius or length, a snap
     /// fraction outside `[0, 0.5)`, posed positions of the wrong length, a drill that would
-    /// remove the whole mesh;
+    /// remove the whole mesh, a drill that meets the surface but is too thin to remove a
+    /// vertex after refinement;
     /// [`SurgeryError::Misses`] when the drill reaches no part of the surface (even after
     /// refinement); [`SurgeryError::BadMesh`] when a new vertex cannot be mapped back to the
     /// rest pose.
@@ -248,13 +250,25 @@ impl Surgery {
             }
             if plan.removed == 0 {
                 let axis = nearest_to_segment(tris, fpos, drill.tip, drill.end);
+                // An axis through the surface (not one that grazes it): the drill is too thin.
+                if let Some(n) = axis.filter(|n| n.distance < 0.5 * drill.radius) {
+                    return Err(SurgeryError::BadTool(format!(
+                        "the drill (radius {}) meets the surface near {} but removes no vertex, \
+                         even after {} rounds of refinement around it: it is too thin for the \
+                         mesh there; widen it (`DrillOptions::max_refinements` allows more \
+                         refinement)",
+                        short_number(drill.radius),
+                        short_point(n.surface),
+                        options.max_refinements,
+                    )));
+                }
                 // The model's own vertex count: `rest` may hold the vertices refinement added.
                 return Err(SurgeryError::Misses {
                     vertices: src.mesh.vertex_count(),
                     where_: axis.map_or(String::new(), |n| {
                         format!(
-                            "; the drill's axis (radius {:.4}): {}",
-                            drill.radius,
+                            "; the drill's axis (radius {}): {}",
+                            short_number(drill.radius),
                             n.describe()
                         )
                     }),

@@ -224,31 +224,17 @@ impl Surgery {
     /// Check the mesh and build its face index.
     ///
     /// # Errors
-    /// [`SurgeryError::BadMesh`] for an empty mesh, non-finite positions, indices out of range
-    /// or influences of another length; [`SurgeryError::NonManifold`].
+    /// [`SurgeryError::BadMesh`] for an empty mesh, the errors of
+    /// [`crate::mesh::check_elements`] (indices out of range, non-finite or huge coordinates),
+    /// or influences that [`Influences::check`] refuses (another length, joints and weights of
+    /// different lengths, a weight that is not finite); [`SurgeryError::NonManifold`].
     pub fn new(mesh: &Mesh, influences: &Influences) -> Result<Surgery, SurgeryError> {
         let n = mesh.vertex_count();
         if mesh.triangle_count() == 0 {
             return Err(SurgeryError::BadMesh("the mesh has no triangles".into()));
         }
-        if influences.vertex_count() != n || influences.width == 0 {
-            return Err(SurgeryError::BadMesh(format!(
-                "{} influence rows for {n} vertices",
-                influences.vertex_count()
-            )));
-        }
-        if let Some(i) = mesh.positions.iter().position(|p| !p.is_finite()) {
-            return Err(SurgeryError::BadMesh(format!("vertex {i} is not finite")));
-        }
-        if let Some(f) = mesh
-            .triangles
-            .iter()
-            .position(|t| t.iter().any(|&v| v as usize >= n))
-        {
-            return Err(SurgeryError::BadMesh(format!(
-                "triangle {f} refers to a vertex past {n}"
-            )));
-        }
+        influences.check(n).map_err(SurgeryError::BadMesh)?;
+        crate::mesh::check_elements(mesh).map_err(|e| SurgeryError::BadMesh(e.to_string()))?;
         let edges = crate::mesh::adjacency::edges(&mesh.triangles, n);
         let bad: Vec<usize> = edges.non_manifold().collect();
         if let Some(&e) = bad.first() {

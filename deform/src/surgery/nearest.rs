@@ -1,6 +1,8 @@
 //! Where a tool that misses the surface is: the surface point nearest to a segment (a blade,
 //! a drill's axis), for the error that says how far the tool is and where to aim.
 
+use super::ray::ray_triangle;
+use crate::mesh::numbers::{short_number, short_point};
 use glam::DVec3;
 
 /// The surface point nearest to a segment.
@@ -18,17 +20,18 @@ impl Nearest {
     /// "passes D from the surface (nearest surface point (x, y, z), from (x, y, z) on the
     /// tool)".
     pub fn describe(&self) -> String {
-        let p = |v: DVec3| format!("({:.4}, {:.4}, {:.4})", v.x, v.y, v.z);
         format!(
-            "it passes {:.4} from the surface (nearest surface point {}, from {} on the tool)",
-            self.distance,
-            p(self.surface),
-            p(self.tool)
+            "it passes {} from the surface (nearest surface point {}, from {} on the tool)",
+            short_number(self.distance),
+            short_point(self.surface),
+            short_point(self.tool)
         )
     }
 }
 
-/// The point of the triangles nearest to the segment `a b` (by brute force: an error path).
+/// The point of the triangles nearest to the segment `a b` (by brute force: an error path):
+/// the nearest of the ends to each face, of the face's edges to the segment, and where the
+/// segment crosses the face.
 /// `None` for a mesh without triangles or non-finite input.
 pub(crate) fn nearest_to_segment(
     triangles: &[[u32; 3]],
@@ -55,6 +58,11 @@ pub(crate) fn nearest_to_segment(
         for (s, e) in [(p, q), (q, r), (r, p)] {
             let (on_edge, on_tool) = closest_between_segments(s, e, a, b);
             offer(on_edge, on_tool);
+        }
+        // A segment through the face: the corners and edges are not the nearest then.
+        if let Some((t, _)) = ray_triangle(a, b - a, [p, q, r]).filter(|&(t, _)| t <= 1.0) {
+            let hit = a + t * (b - a);
+            offer(hit, hit);
         }
     }
     best
@@ -171,6 +179,16 @@ mod tests {
         let want = 3.0 / 5f64.sqrt();
         assert!((n.distance - want).abs() < 1e-12, "{n:?} vs {want}");
         assert!((n.surface - DVec3::new(1.0, 0.5, 0.0)).length() < 1e-12);
+        // Through the square's interior, far from its corners and edges: where it crosses.
+        let n = nearest_to_segment(
+            &tris,
+            &positions,
+            DVec3::new(0.3, 0.6, -1.0),
+            DVec3::new(0.3, 0.6, 1.0),
+        )
+        .expect("a point");
+        assert_eq!(n.distance, 0.0, "{n:?}");
+        assert!((n.surface - DVec3::new(0.3, 0.6, 0.0)).length() < 1e-12);
         assert_eq!(
             nearest_to_segment(&[], &positions, DVec3::ZERO, DVec3::X),
             None

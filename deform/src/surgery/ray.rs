@@ -45,7 +45,11 @@ fn ray_meets_box(b: &Aabb, origin: DVec3, inv: DVec3, t_max: f64) -> bool {
 
 /// Möller-Trumbore: the ray parameter and barycentrics of the hit with triangle `abc`, both
 /// sides counted; `None` for a miss, a parallel ray or a degenerate triangle.
-fn ray_triangle(origin: DVec3, d: DVec3, [a, b, c]: [DVec3; 3]) -> Option<(f64, [f64; 3])> {
+pub(crate) fn ray_triangle(
+    origin: DVec3,
+    d: DVec3,
+    [a, b, c]: [DVec3; 3],
+) -> Option<(f64, [f64; 3])> {
     let (e1, e2) = (b - a, c - a);
     let p = d.cross(e2);
     let det = e1.dot(p);

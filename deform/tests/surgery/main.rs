@@ -389,4 +389,30 @@ fn bad_cuts_are_typed_errors() {
         Surgery::new(&rig.mesh, &inf),
         Err(SurgeryError::BadMesh(_))
     ));
+    // Influences whose joints and weights differ in length (a cut then panicked), a weight
+    // that is not finite (a cut gave pieces of NaN weights), a coordinate beyond 1e300.
+    let mut short = rig.influences.clone();
+    short.joints.truncate(short.joints.len() - 9);
+    let mut nan = rig.influences.clone();
+    nan.weights[5] = f64::NAN;
+    let mut far = rig.mesh.clone();
+    far.positions[3].z = 1e301;
+    for (mesh, inf, words) in [
+        (&rig.mesh, &short, "influence joints for"),
+        (
+            &rig.mesh,
+            &nan,
+            "vertex 1: influence weight NaN is not finite",
+        ),
+        (
+            &far,
+            &rig.influences,
+            "vertices [3] have coordinates beyond",
+        ),
+    ] {
+        match Surgery::new(mesh, inf) {
+            Err(SurgeryError::BadMesh(m)) => assert!(m.contains(words), "{m}"),
+            other => panic!("{words}: {:?}", other.map(|_| ())),
+        }
+    }
 }

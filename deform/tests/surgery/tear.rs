@@ -137,6 +137,12 @@ fn bad_tears() {
         s.tear(&air, Frame::Rest, &o),
         Err(SurgeryError::BadTool(_))
     ));
+    // The same position twice (or blades entering at one point): nothing to tear.
+    let still = [one[0], one[0], one[0]];
+    match s.tear(&still, Frame::Rest, &o) {
+        Err(SurgeryError::BadTool(text)) => assert!(text.contains("at one point"), "{text}"),
+        other => panic!("a scalpel that does not move: {other:?}"),
+    }
     let nan = [
         Scalpel {
             a: DVec3::NAN,
@@ -247,12 +253,61 @@ fn a_scalpel_that_misses_says_where_the_surface_is() {
     match s.tear(&high, Frame::Rest, &TearOptions::default()) {
         Err(SurgeryError::BadTool(text)) => {
             assert!(
-                text.contains("scalpel 0, the blade from (2.0000, 3.0000, 0.0000)"),
+                text.contains("scalpel 0, the blade from (2, 3, 0)"),
                 "{text}"
             );
-            let gap = format!("it passes {:.4} from the surface", 3.0 - top);
+            let gap = format!(
+                "it passes {} from the surface",
+                deform::render::short_number(3.0 - top)
+            );
             assert!(text.contains(&gap), "{text} (expected {gap:?})");
         }
         other => panic!("expected a refusal, got {:?}", other.map(|_| ())),
+    }
+}
+
+/// A scalpel that goes back along its incision (there and back, and twice over) tears and
+/// opens the same slit as one pass: the same triangles and positions, each point split once.
+/// Before, the points passed twice were split twice in the count and their lips pulled apart
+/// twice, by a taper that peaked at the slit's tip.
+#[test]
+fn a_scalpel_that_retraces_its_incision_opens_the_slit_once() {
+    let rig = procedural_arm(24, 81);
+    let s = Surgery::new(&rig.mesh, &rig.influences).unwrap();
+    let at = |x: f64, y: f64| deform::surgery::Scalpel {
+        a: DVec3::new(x, y, 1.2),
+        b: DVec3::new(x, y, 0.2),
+    };
+    let (a, b) = (at(4.6, 0.05), at(6.3, 0.0));
+    let options = deform::surgery::TearOptions {
+        open: 0.25,
+        ..Default::default()
+    };
+    let once = s.tear(&[a, b], Frame::Rest, &options).unwrap();
+    check_tear(&rig, &once, true);
+    assert!(once.duplicated > 10, "{}", once.duplicated);
+    let diag = rig.mesh.bounding_box().unwrap().diagonal();
+    for blades in [vec![a, b, a], vec![a, b, a, b]] {
+        let again = s.tear(&blades, Frame::Rest, &options).unwrap();
+        check_tear(&rig, &again, true);
+        assert!(again.incision.len() > once.incision.len());
+        assert_eq!(again.incision_vertex_count(), once.incision_vertex_count());
+        assert_eq!(again.duplicated, once.duplicated, "points split");
+        assert_eq!(again.new_vertices, once.new_vertices);
+        assert_eq!(again.boundary_loops, once.boundary_loops);
+        assert_eq!(again.mesh.mesh.triangles, once.mesh.mesh.triangles);
+        let worst = again
+            .mesh
+            .mesh
+            .positions
+            .iter()
+            .zip(&once.mesh.mesh.positions)
+            .map(|(p, q)| p.distance(*q))
+            .fold(0.0, f64::max);
+        assert!(
+            worst < 1e-12 * diag,
+            "{} steps: lips {worst:e} apart",
+            blades.len()
+        );
     }
 }

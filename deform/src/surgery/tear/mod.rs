@@ -14,7 +14,8 @@
 //! of steps makes one longer incision. Every incision point but the two ends is then split in
 //! two lips: the faces on one side of the incision keep it, those on the other side get a
 //! copy, so the surface opens (`open.rs`); [`TearOptions::open`] moves the two lips apart
-//! along the planes' normals (tapered to zero at the ends). New vertices get interpolated
+//! along the planes' normals (tapered to zero at the tips). A scalpel that goes back along
+//! its incision splits and moves each point once: the slit opens as if traced once. New vertices get interpolated
 //! weights (4 largest, renormalised).
 //!
 //! glTF models split vertices along UV seams. The tear sees through them (`seams.rs`): the
@@ -32,6 +33,7 @@ use super::nearest::nearest_to_segment;
 use super::soup::Soup;
 use super::split::{local_loops, FaceFate};
 use super::{check_snap, Frame, SkinnedMesh, Surgery, SurgeryError, VertexOrigin};
+use crate::mesh::numbers::short_point;
 use crate::mesh::Mesh;
 use entry::{first_hit, insert_point};
 use glam::DVec3;
@@ -75,19 +77,31 @@ pub struct TearResult {
     pub origin: Vec<VertexOrigin>,
     /// The incision: its vertices from the first scalpel point to the last (the left lip).
     /// Consecutive vertices share an edge of the welded surface (where the incision crosses
-    /// a UV seam, a vertex may stand for its coincident copy).
+    /// a UV seam, a vertex may stand for its coincident copy). A scalpel that goes back along
+    /// the incision lists its points again.
     pub incision: Vec<u32>,
     /// Each step's plane, as `(unit normal, point on it)`.
     pub planes: Vec<(DVec3, DVec3)>,
     /// Vertices added (incision points, their copies across UV seams, and the lips' copies).
     pub new_vertices: usize,
-    /// Inner incision points split into two lips.
+    /// Inner incision points split into two lips (each once, however often the scalpel passed).
     pub duplicated: usize,
     /// Input faces re-triangulated.
     pub changed_faces: usize,
     /// Boundary loops of the result, over the welded surface when the input has coincident
     /// vertices (UV seams): a slit through a closed surface is one loop.
     pub boundary_loops: usize,
+}
+
+impl TearResult {
+    /// How many vertices the incision has: those of [`TearResult::incision`], each counted
+    /// once (a scalpel that goes back along its incision lists points twice).
+    pub fn incision_vertex_count(&self) -> usize {
+        let mut v = self.incision.clone();
+        v.sort_unstable();
+        v.dedup();
+        v.len()
+    }
 }
 
 /// The largest opening of a tear, in bounding-box diagonals of the model.
@@ -97,8 +111,8 @@ impl Surgery {
     /// Tear along the scalpel positions (at least two); see the module documentation.
     ///
     /// # Errors
-    /// [`SurgeryError::BadTool`] for fewer than two positions, a non-finite or zero-length
-    /// blade, a blade that does not touch the surface (with how far it passes and the nearest
+    /// [`SurgeryError::BadTool`] for fewer than two positions, positions that all enter the
+    /// surface at one point (nothing to tear), a non-finite or zero-length blade, a blade that does not touch the surface (with how far it passes and the nearest
     /// surface point), a plane that is not defined (the blade moved along itself), two
     /// scalpel points that the plane's curve over the surface does not join (with where the
     /// curve goes and how near it comes), an opening over [`MAX_OPEN_PER_DIAGONAL`]
@@ -146,13 +160,12 @@ impl Surgery {
         let mut hits = Vec::with_capacity(scalpel.len());
         for (i, s) in scalpel.iter().enumerate() {
             let Some(hit) = first_hit(bvh, &src.mesh.triangles, positions, s.a, s.b) else {
-                let p = |v: DVec3| format!("({:.4}, {:.4}, {:.4})", v.x, v.y, v.z);
                 let whereabouts = nearest_to_segment(&src.mesh.triangles, positions, s.a, s.b)
                     .map_or(String::new(), |n| format!(": {}", n.describe()));
                 return Err(SurgeryError::BadTool(format!(
                     "scalpel {i}, the blade from {} to {}, does not touch the surface{whereabouts}",
-                    p(s.a),
-                    p(s.b)
+                    short_point(s.a),
+                    short_point(s.b)
                 )));
             };
             hits.push(hit);
@@ -173,6 +186,19 @@ impl Surgery {
             .iter()
             .map(|&(f, p)| insert_point(&mut soup, &mut seams, f, p, options.snap))
             .collect::<Result<_, _>>()?;
+        // Every blade entered at one point: there is no incision to open (it would only add
+        // that point as a vertex).
+        if points
+            .iter()
+            .all(|&p| seams.label(p) == seams.label(points[0]))
+        {
+            return Err(SurgeryError::BadTool(format!(
+                "the {} scalpel positions all enter the surface at one point, {}: the scalpel \
+                 has to move across the surface to tear it",
+                scalpel.len(),
+                short_point(soup.at(points[0]))
+            )));
+        }
         let planes: Vec<(DVec3, DVec3)> = (0..points.len() - 1)
             .map(|i| {
                 let ends = [points[i], points[i + 1]].map(|v| soup.at(v));

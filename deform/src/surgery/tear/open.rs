@@ -9,14 +9,20 @@ use super::super::soup::Soup;
 use super::super::SurgeryError;
 use super::seams::{Seams, LIP};
 use glam::DVec3;
-use std::collections::HashSet;
+use std::cmp::Reverse;
+use std::collections::{BinaryHeap, HashMap, HashSet};
+use std::f64::consts::PI;
 
 /// The faces around an incision point on its left and on its right.
 type Sides = (Vec<u32>, Vec<u32>);
 
 /// Open the incision (soup vertices, first scalpel point to last): its inner points get a
 /// right lip, and with `open` the lips move apart by up to `open` (a sine taper, zero at the
-/// ends). The incision is left listing the left lip. Returns how many points were split.
+/// tips). The incision is left listing the left lip. Returns how many points were split.
+///
+/// A scalpel that goes back along its own incision visits points twice: each is split and
+/// moved once, at its first visit, and the taper follows the incision's distinct edges (the
+/// distance to its nearest tip), so a slit traced there and back opens as the slit traced once.
 ///
 /// # Errors
 /// [`SurgeryError::Broken`] on inconsistent bookkeeping; [`SurgeryError::BadMesh`] when a
@@ -37,35 +43,35 @@ pub(super) fn open_incision(
         .windows(2)
         .map(|w| (w[0].min(w[1]), w[0].max(w[1])))
         .collect();
-    // Arc length along the incision, before anything moves.
-    let mut along = vec![0.0; m];
-    for j in 1..m {
-        along[j] = along[j - 1] + soup.at(incision[j - 1]).distance(soup.at(incision[j]));
-    }
-    let total = along[m - 1];
+    // How far each point opens, before anything moves.
+    let taper = taper(soup, incision, &labels);
     // The sides around every point, found before any is split: splitting one unlinks the
     // faces along its incision edges, which breaks the fans of its neighbours on the path.
     let sided: Vec<Option<Sides>> = (1..m - 1)
         .map(|j| sides(soup, seams, labels[j], labels[j + 1], &path))
         .collect::<Result<_, _>>()?;
-    let mut split = 0;
+    // The left lip each point split so far is listed as.
+    let mut opened: HashMap<u32, u32> = HashMap::new();
     for (j, sided) in (1..m - 1).zip(sided) {
-        let arc = along[j];
         let l = labels[j];
+        if let Some(&v) = opened.get(&l) {
+            incision[j] = v;
+            continue;
+        }
         let Some((left, right)) = sided else {
             continue;
         };
         let lip = LIP + j as u32;
         let (near, far) = divide(soup, seams, l, &left, &right, lip)?;
-        split += 1;
         // A seam copy whose faces all lie on the right is the right lip now.
         if far.contains(&incision[j]) {
             if let Some(&v) = near.first() {
                 incision[j] = v;
             }
         }
+        opened.insert(l, incision[j]);
         if open != 0.0 {
-            let w = 0.5 * open * (std::f64::consts::PI * arc / total).sin();
+            let w = 0.5 * open * taper[j];
             let n = opening_direction(soup, planes, incision[j], left[0]);
             let base = soup.at(incision[j]);
             for (group, sign) in [(&near, 1.0), (&far, -1.0)] {
@@ -75,7 +81,81 @@ pub(super) fn open_incision(
             }
         }
     }
-    Ok(split)
+    Ok(opened.len())
+}
+
+/// The opening of each point of the incision as a fraction of the largest, `sin(pi d / T)`:
+/// `d` is the point's distance along the incision's distinct edges to its nearest tip (a
+/// point on one edge only) and `T` the length of those edges, so a simple incision tapers
+/// by its arc length (`sin(pi s / T)`) and one traced there and back as if traced once. An
+/// incision without tips (a closed loop) tapers by its arc length along the path.
+fn taper(soup: &Soup, incision: &[u32], labels: &[u32]) -> Vec<f64> {
+    let m = incision.len();
+    let length = |j: usize| soup.at(incision[j - 1]).distance(soup.at(incision[j]));
+    // The points in order of first visit, and the distinct edges between them in order of
+    // first crossing (so every sum below runs in one order: the result is reproducible).
+    let mut index: HashMap<u32, usize> = HashMap::new();
+    let node: Vec<usize> = labels
+        .iter()
+        .map(|&l| {
+            let k = index.len();
+            *index.entry(l).or_insert(k)
+        })
+        .collect();
+    let mut next: Vec<Vec<(usize, f64)>> = vec![Vec::new(); index.len()];
+    let mut seen: HashSet<(usize, usize)> = HashSet::new();
+    let mut total = 0.0;
+    for j in 1..m {
+        let (a, b) = (node[j - 1], node[j]);
+        if a != b && seen.insert((a.min(b), a.max(b))) {
+            let len = length(j);
+            next[a].push((b, len));
+            next[b].push((a, len));
+            total += len;
+        }
+    }
+    let tips: Vec<usize> = (0..next.len()).filter(|&k| next[k].len() == 1).collect();
+    if tips.is_empty() || total <= 0.0 || total.is_nan() {
+        let mut along = vec![0.0; m];
+        for j in 1..m {
+            along[j] = along[j - 1] + length(j);
+        }
+        let total = along[m - 1];
+        return along
+            .iter()
+            .map(|&s| {
+                if total > 0.0 {
+                    (PI * s / total).sin()
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+    }
+    // Dijkstra from every tip at once over the distinct edges (a few hundred points). The
+    // distances are finite and not negative, so their bits order as they do.
+    let mut dist = vec![f64::INFINITY; next.len()];
+    let mut queue = BinaryHeap::new();
+    for &t in &tips {
+        dist[t] = 0.0;
+        queue.push(Reverse((0.0f64.to_bits(), t)));
+    }
+    while let Some(Reverse((bits, k))) = queue.pop() {
+        let d = f64::from_bits(bits);
+        if d > dist[k] {
+            continue;
+        }
+        for &(to, len) in &next[k] {
+            if d + len < dist[to] {
+                dist[to] = d + len;
+                queue.push(Reverse(((d + len).to_bits(), to)));
+            }
+        }
+    }
+    // (The path is connected, so every point is reached; an unreached one would not open.)
+    node.iter()
+        .map(|&k| (PI * dist[k].min(0.5 * total) / total).sin())
+        .collect()
 }
 
 /// The faces around label `l` on the left of the incision (the one holding the edge `l ->

@@ -16,6 +16,7 @@ use super::super::soup::Soup;
 use super::super::SurgeryError;
 use super::seams::Seams;
 use super::Scalpel;
+use crate::mesh::numbers::{short_number, short_point};
 use glam::DVec3;
 use std::collections::HashMap;
 
@@ -354,7 +355,6 @@ fn apply(soup: &mut Soup, seams: &mut Seams, tr: &Trace) -> Result<Vec<u32>, Sur
 /// The error for a step whose scalpel points the curve does not join: where each way from
 /// the first point went, and how near the curve comes to the second.
 fn not_joined(soup: &Soup, step: &Step, failed: &[Trace]) -> SurgeryError {
-    let p = |v: DVec3| format!("({:.4}, {:.4}, {:.4})", v.x, v.y, v.z);
     let (i, s, t) = (step.index, soup.at(step.from), soup.at(step.to));
     let blade = step.blades[1];
     let ways: Vec<String> = failed
@@ -363,10 +363,10 @@ fn not_joined(soup: &Soup, step: &Step, failed: &[Trace]) -> SurgeryError {
             let last = tr.points[tr.points.len() - 1];
             match tr.end {
                 End::Closed => format!("closes on itself after {} points", tr.points.len() - 1),
-                End::Boundary => format!("reaches the surface's boundary at {}", p(last)),
+                End::Boundary => format!("reaches the surface's boundary at {}", short_point(last)),
                 End::Stuck => format!(
                     "ends at {}, where the plane only touches the surface",
-                    p(last)
+                    short_point(last)
                 ),
                 End::TooLong | End::Reached => format!("runs on for {} points", tr.points.len()),
             }
@@ -386,22 +386,22 @@ fn not_joined(soup: &Soup, step: &Step, failed: &[Trace]) -> SurgeryError {
         .min_by(|x, y| x.distance(t).total_cmp(&y.distance(t)));
     let gap = nearest.map_or(String::new(), |q| {
         format!(
-            "; it passes {:.4} from scalpel point {} at best (nearest curve point {})",
-            q.distance(t),
+            "; it passes {} from scalpel point {} at best (nearest curve point {})",
+            short_number(q.distance(t)),
             i + 1,
-            p(q)
+            short_point(q)
         )
     });
     SurgeryError::BadTool(format!(
         "step {i}: the plane through scalpel point {i} at {} and blade {} (from {} to {}) meets \
          the surface in a curve that does not join scalpel point {i} to scalpel point {} at {}: \
          {ways}{gap}; move blade {} or add a scalpel position between",
-        p(s),
+        short_point(s),
         i + 1,
-        p(blade.a),
-        p(blade.b),
+        short_point(blade.a),
+        short_point(blade.b),
         i + 1,
-        p(t),
+        short_point(t),
         i + 1,
     ))
 }

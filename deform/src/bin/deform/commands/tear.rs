@@ -58,7 +58,7 @@ pub fn run(a: &TearArgs) -> Result<()> {
     report.add("index_ms", index_ms);
     report.add("tear_ms", tear_ms);
     report.add("steps", blades.len() - 1);
-    report.add("incision_vertices", r.incision.len());
+    report.add("incision_vertices", r.incision_vertex_count());
     report.add("new_vertices", r.new_vertices);
     report.add("duplicated", r.duplicated);
     report.add("changed_faces", r.changed_faces);

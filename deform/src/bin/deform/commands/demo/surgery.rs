@@ -129,7 +129,7 @@ pub fn scenes(out: &Path) -> Result<Vec<DemoScene>> {
         name: "tear-arm",
         method: format!(
             "tear, 2 steps, opened ({} incision vertices) / re-animated",
-            tear.incision.len()
+            tear.incision_vertex_count()
         ),
         rest: torn.mesh.clone(),
         posed,
