@@ -90,4 +90,4 @@ pub use solve::{
     DirichletSolver, Factorization, Parallelism, SolveScratch, SolverOptions, SystemAnalysis,
 };
 pub use spline::{SplineDeformer, SplineOptions, WeightScheme};
-pub use validate::{check_solvable, clean, Cleaned, ValidationReport};
+pub use validate::{check_elements, check_solvable, clean, Cleaned, ValidationReport};

@@ -1,6 +1,6 @@
 //! Clamped uniform B-splines over motor logarithms: the basis (Cox-de Boor) and the
 //! least-squares fit of control motors to key motors (first paper, section III.C, equations
-//! (3)-(5)).
+//! (3)-(5)); and the Bernstein basis that Bezier keys and lattices share.
 //!
 //! A clamped uniform B-spline of degree `p` over `n` control points has knots `0` (`p + 1`
 //! times), `k / (n - p)` for `k = 1 .. n - p - 1`, and `1` (`p + 1` times), so it starts at the
@@ -10,6 +10,22 @@ use crate::blend::KeyError;
 use crate::deformers::Result;
 use cga::{Bivector, ScaledMotor};
 use nalgebra::{DMatrix, DVector};
+
+/// The Bernstein polynomials `C(n, k) t^k (1 - t)^(n - k)`, `k = 0 ..= n`, by de Casteljau's
+/// recurrence (non-negative, summing to one): `(n + 1)^2 / 2` steps.
+///
+/// # Panics
+/// When `out` holds fewer than `n + 1` values.
+pub fn bernstein(n: usize, t: f64, out: &mut [f64]) {
+    out[..=n].fill(0.0);
+    out[0] = 1.0;
+    for j in 1..=n {
+        for k in (0..=j).rev() {
+            let prev = if k > 0 { out[k - 1] } else { 0.0 };
+            out[k] = (1.0 - t) * out[k] + t * prev;
+        }
+    }
+}
 
 /// The degree used for `n` control points: cubic, lowered when there are too few points.
 pub fn bspline_degree(n: usize) -> usize {
@@ -37,8 +53,17 @@ pub(crate) fn knot(k: usize, n: usize, p: usize) -> f64 {
 /// let first = deform::bspline_basis(6, 3, 1.0, &mut w);
 /// assert_eq!((first, w), (2, [0.0, 0.0, 0.0, 1.0]));
 /// ```
+///
+/// # Panics
+/// Unless `p <= 3`, `n > p` and `out` holds `p + 1` weights (what [`bspline_degree`] gives
+/// satisfies the first two).
 pub fn bspline_basis(n: usize, p: usize, t: f64, out: &mut [f64]) -> usize {
-    debug_assert!(n > p && out.len() > p);
+    assert!(
+        p <= 3 && n > p && out.len() > p,
+        "bspline_basis: degree {p} over {n} control points into {} weights (needs p <= 3, \
+         n > p, p + 1 weights)",
+        out.len()
+    );
     let t = t.clamp(0.0, 1.0);
     // The span s with knot(s) <= t < knot(s + 1), in p ..= n - 1.
     let segments = n - p;

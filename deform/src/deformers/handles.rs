@@ -122,6 +122,7 @@ impl MotorHandles {
         }
         if sets.len() > MAX_KEYS {
             return Err(KeyError::TooMany {
+                what: "handle sets",
                 got: sets.len(),
                 max: MAX_KEYS,
             }

@@ -31,6 +31,8 @@ pub enum WeightScheme {
     /// `w_1 = 2l^2 - 3l + 1`, `w_2 = -4l^2 + 4l`, `w_3 = 2l^2 - l` (exactly 3 keys).
     Quadratic,
     /// Bernstein polynomials of degree `n - 1` over `n >= 2` keys; 4 keys make the cubic Bezier.
+    /// Every key weighs every vertex (`n` weights a vertex, `n^2 / 2` steps to compute them):
+    /// meant for a few keys, not thousands.
     Bezier,
     /// Clamped uniform cubic B-spline over `n >= 2` keys (degree lowered to `n - 1` below
     /// four keys), the default (Fig. 4).
@@ -76,6 +78,7 @@ impl WeightScheme {
         }
         if n > MAX_KEYS {
             return Err(KeyError::TooMany {
+                what: "keys",
                 got: n,
                 max: MAX_KEYS,
             }
@@ -96,7 +99,11 @@ impl WeightScheme {
 
     /// The weights at `lambda` (clamped to `[0, 1]`) over `n` keys: writes
     /// [`WeightScheme::width`] weights into `out` and returns the index of the first key they
-    /// apply to. `n` must be valid for the scheme ([`WeightScheme::check_key_count`]).
+    /// apply to.
+    ///
+    /// # Panics
+    /// When `n` is not valid for the scheme ([`WeightScheme::check_key_count`] says why) or
+    /// `out` is shorter than [`WeightScheme::width`].
     pub fn weights(self, n: usize, lambda: f64, out: &mut [f64]) -> usize {
         let l = lambda.clamp(0.0, 1.0);
         match self {
@@ -115,17 +122,7 @@ impl WeightScheme {
                 0
             }
             WeightScheme::Bezier => {
-                // Bernstein b_{j,d}(l) = C(d, j) l^j (1 - l)^(d - j), by de Casteljau's
-                // triangle (stable, exact at the ends).
-                let d = n - 1;
-                out[..n].fill(0.0);
-                out[0] = 1.0;
-                for k in 1..=d {
-                    for j in (0..=k).rev() {
-                        let from_left = if j > 0 { l * out[j - 1] } else { 0.0 };
-                        out[j] = (1.0 - l) * out[j] + from_left;
-                    }
-                }
+                super::bspline::bernstein(n - 1, l, out);
                 0
             }
             WeightScheme::BSpline => bspline_basis(n, bspline_degree(n), l, out),

@@ -151,7 +151,15 @@ pub fn parse_group_motors(
         Some(m) => motor_of(m, name, "group \"*\"".into())?,
         None => ScaledMotor::IDENTITY,
     };
-    let mut out = vec![default; groups];
+    let mut out = Vec::new();
+    out.try_reserve_exact(groups).map_err(|_| {
+        InputError::new(
+            name,
+            "JSON",
+            format!("{groups} groups: more motors than memory holds"),
+        )
+    })?;
+    out.resize(groups, default);
     for (key, m) in &object {
         if key == "*" {
             continue;

@@ -5,7 +5,8 @@
 //! * [`validate()`](validate::validate) and [`clean()`](validate::clean) with the offending
 //!   indices;
 //! * [`shapes`]: procedural meshes (tube, sphere) for demos, tests and benches;
-//! * [`io`]: OBJ, OFF, MEDIT, libigl DMAT and TGF files.
+//! * [`io`]: OBJ, OFF, MEDIT, libigl DMAT and TGF files;
+//! * `numbers`: numbers and points printed short, for every layer's messages and labels.
 //!
 //! **May use**: `glam`, `cga` (nothing else of this crate). **Must not use**: any other layer
 //! (operators, blend, deformers, skinning, surgery, render, input) or the crate-level
@@ -14,6 +15,7 @@
 pub mod adjacency;
 mod error;
 pub mod io;
+pub(crate) mod numbers;
 pub mod shapes;
 pub(crate) mod triangle;
 pub mod triangle_mesh;
@@ -24,4 +26,4 @@ pub use error::{IndexList, MeshError, Result};
 pub use triangle::is_degenerate_triangle;
 pub use triangle_mesh::{Aabb, Mesh};
 pub use union_find::Components;
-pub use validate::{clean, validate, Cleaned, ValidationReport};
+pub use validate::{check_elements, clean, validate, Cleaned, ValidationReport};

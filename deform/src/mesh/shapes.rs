@@ -17,8 +17,18 @@ use std::f64::consts::TAU;
 /// let area = 8.0 * (std::f64::consts::TAU / 16.0).sin();
 /// assert!((bar.volume() - 10.0 * area).abs() < 1e-9);
 /// ```
+///
+/// # Panics
+/// When the tube would have more vertices than 32-bit indices hold.
 pub fn tube(radius: f64, length: f64, sides: usize, rings: usize) -> Mesh {
     let (sides, rings) = (sides.max(3), rings.max(2));
+    assert!(
+        sides
+            .checked_mul(rings)
+            .and_then(|v| v.checked_add(2))
+            .is_some_and(|v| v <= u32::MAX as usize),
+        "a tube of {sides} sides and {rings} rings has more vertices than 32-bit indices hold"
+    );
     let mut positions = Vec::with_capacity(sides * rings + 2);
     for r in 0..rings {
         let x = length * r as f64 / (rings - 1) as f64;
@@ -46,7 +56,16 @@ pub fn tube(radius: f64, length: f64, sides: usize, rings: usize) -> Mesh {
 }
 
 /// The vertices of ring `r` of a [`tube`] with `sides` sides.
+///
+/// # Panics
+/// When ring `r` lies past the 32-bit indices (no [`tube`] has it).
 pub fn tube_ring(sides: usize, r: usize) -> Vec<u32> {
+    assert!(
+        (r + 1)
+            .checked_mul(sides)
+            .is_some_and(|e| e <= u32::MAX as usize),
+        "ring {r} of {sides} sides lies past the 32-bit indices"
+    );
     (r * sides..(r + 1) * sides).map(|i| i as u32).collect()
 }
 
@@ -57,7 +76,14 @@ pub fn tube_ring(sides: usize, r: usize) -> Vec<u32> {
 /// let s = deform::shapes::icosphere(1.0, 2);
 /// assert_eq!((s.vertex_count(), s.triangle_count()), (162, 320));
 /// ```
+///
+/// # Panics
+/// For more than 14 levels (`10 * 4^levels + 2` vertices pass the 32-bit indices there).
 pub fn icosphere(radius: f64, levels: usize) -> Mesh {
+    assert!(
+        levels <= 14,
+        "an icosphere of {levels} levels has more vertices than 32-bit indices hold (at most 14)"
+    );
     let t = (1.0 + 5f64.sqrt()) / 2.0;
     let positions = [
         (-1.0, t, 0.0),

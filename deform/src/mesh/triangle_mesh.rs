@@ -7,6 +7,12 @@ use glam::DVec3;
 /// Nothing is cached: adjacency ([`Mesh::edges`], [`Mesh::one_rings`],
 /// [`Mesh::boundary_loops`], ...) is built on demand, so the public fields can be edited freely.
 ///
+/// Nothing is checked either: [`Mesh::new`] takes any triangles, and the methods that read
+/// them (areas, normals, volume, subdivision, adjacency, components) index the positions
+/// directly and panic on a triangle index past the last vertex. Check a mesh from outside
+/// with [`crate::mesh::check_elements`] or [`crate::mesh::validate()`] first; every
+/// operator, deformer and reader of this crate does.
+///
 /// ```
 /// use deform::Mesh;
 /// use glam::DVec3;

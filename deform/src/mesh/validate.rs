@@ -69,6 +69,24 @@ impl ValidationReport {
                 triangles: self.triangle_count,
             });
         }
+        self.check_elements()?;
+        if !self.non_manifold_edges.is_empty() || !self.non_manifold_vertices.is_empty() {
+            let mut ev: Vec<u32> = self.non_manifold_edges.iter().flatten().copied().collect();
+            ev.sort_unstable();
+            ev.dedup();
+            return Err(MeshError::NonManifold {
+                vertices: IndexList(self.non_manifold_vertices.clone()),
+                edge_vertices: IndexList(ev),
+            });
+        }
+        Ok(())
+    }
+}
+
+impl ValidationReport {
+    /// The errors of [`check_elements`]: out-of-range indices, non-finite coordinates,
+    /// coordinates beyond [`MAX_COORDINATE`].
+    fn check_elements(&self) -> Result<()> {
         if !self.out_of_range_faces.is_empty() {
             return Err(MeshError::FaceIndexOutOfRange {
                 faces: IndexList(self.out_of_range_faces.clone()),
@@ -86,17 +104,46 @@ impl ValidationReport {
                 limit: MAX_COORDINATE,
             });
         }
-        if !self.non_manifold_edges.is_empty() || !self.non_manifold_vertices.is_empty() {
-            let mut ev: Vec<u32> = self.non_manifold_edges.iter().flatten().copied().collect();
-            ev.sort_unstable();
-            ev.dedup();
-            return Err(MeshError::NonManifold {
-                vertices: IndexList(self.non_manifold_vertices.clone()),
-                edge_vertices: IndexList(ev),
-            });
-        }
         Ok(())
     }
+}
+
+/// The checks every function that reads a mesh's triangles makes first (the Laplacians, the
+/// mass matrices, mean-value coordinates): each triangle index in range, each coordinate
+/// finite and within [`MAX_COORDINATE`]. Linear and allocation-free on a good mesh; empty,
+/// degenerate and non-manifold meshes pass (see [`check_solvable`] for those).
+///
+/// ```
+/// use deform::{check_elements, Mesh};
+/// use glam::DVec3;
+/// let m = Mesh::new(vec![DVec3::ZERO, DVec3::X, DVec3::Y], vec![[0, 1, 7]]);
+/// assert!(check_elements(&m).is_err());
+/// ```
+pub fn check_elements(mesh: &Mesh) -> Result<()> {
+    let n = mesh.positions.len();
+    let mut r = positions_report(mesh);
+    r.out_of_range_faces = (0..mesh.triangles.len() as u32)
+        .filter(|&f| mesh.triangles[f as usize].iter().any(|&v| v as usize >= n))
+        .collect();
+    r.check_elements()
+}
+
+/// A report of `mesh`'s counts and of its vertices that are not finite or beyond
+/// [`MAX_COORDINATE`], the rest to be filled in.
+fn positions_report(mesh: &Mesh) -> ValidationReport {
+    let mut r = ValidationReport {
+        vertex_count: mesh.positions.len(),
+        triangle_count: mesh.triangles.len(),
+        ..Default::default()
+    };
+    for (v, p) in mesh.positions.iter().enumerate() {
+        if !p.is_finite() {
+            r.non_finite_vertices.push(v as u32);
+        } else if p.abs().max_element() > MAX_COORDINATE {
+            r.huge_vertices.push(v as u32);
+        }
+    }
+    r
 }
 
 /// Checks a mesh and reports every problem with its indices. Never panics.
@@ -143,18 +190,7 @@ impl Scan {
     /// triangles.
     pub(crate) fn new(mesh: &Mesh, full: bool) -> Scan {
         let n = mesh.positions.len();
-        let mut r = ValidationReport {
-            vertex_count: n,
-            triangle_count: mesh.triangles.len(),
-            ..Default::default()
-        };
-        for (v, p) in mesh.positions.iter().enumerate() {
-            if !p.is_finite() {
-                r.non_finite_vertices.push(v as u32);
-            } else if p.abs().max_element() > MAX_COORDINATE {
-                r.huge_vertices.push(v as u32);
-            }
-        }
+        let mut r = positions_report(mesh);
         // Triangles usable for topology: in range and with three distinct indices.
         let mut good = Vec::with_capacity(mesh.triangles.len());
         let mut good_ids = Vec::with_capacity(mesh.triangles.len());

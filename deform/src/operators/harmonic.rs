@@ -242,10 +242,14 @@ impl Harmonic {
     /// `set_count() x ncols`, column-major) expanded to one value per constrained vertex.
     fn expand(&self, values: &[f64], ncols: usize) -> Result<Vec<f64>> {
         let m = self.set_count();
-        if values.len() != m * ncols {
+        let expected = m.checked_mul(ncols).ok_or(MeshError::Overflow {
+            what: "values per set (sets times columns)",
+            index: ncols,
+        })?;
+        if values.len() != expected {
             return Err(MeshError::DimensionMismatch {
                 what: "values per set",
-                expected: m * ncols,
+                expected,
                 got: values.len(),
             }
             .into());

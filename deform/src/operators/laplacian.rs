@@ -11,8 +11,10 @@
 //! mean-value weights have units of 1/length and are checked after assembly; a matrix with a
 //! non-finite entry is [`MeshError::Overflow`], never `Ok`.
 //!
-//! Triangle indices must be in range (see [`crate::mesh::validate()`]).
+//! Out-of-range triangle indices and non-finite coordinates, or coordinates beyond
+//! [`MAX_COORDINATE`](crate::mesh::validate::MAX_COORDINATE), are refused first ([`check_elements`]).
 
+use crate::mesh::check_elements;
 use crate::mesh::triangle::Frame;
 use crate::mesh::IndexList;
 use crate::mesh::Mesh;
@@ -62,6 +64,7 @@ pub enum LaplacianKind {
 
 /// Builds the Laplacian of the given kind.
 pub fn laplacian(mesh: &Mesh, kind: LaplacianKind) -> Result<CsMat<f64>> {
+    check_elements(mesh)?;
     laplacian_on(mesh, kind, &pattern_of(mesh))
 }
 
@@ -101,6 +104,7 @@ pub(crate) fn laplacian_on(
 /// assert!((l.get(0, 0).unwrap() + 1.0).abs() < 1e-15);
 /// ```
 pub fn cotangent_laplacian(mesh: &Mesh, options: CotangentOptions) -> Result<CsMat<f64>> {
+    check_elements(mesh)?;
     cotangent(mesh, options, &pattern_of(mesh))
 }
 
@@ -155,6 +159,7 @@ fn cotangent(
 /// assert!((l.get(0, 1).unwrap() - expect).abs() < 1e-15);
 /// ```
 pub fn mean_value_laplacian(mesh: &Mesh) -> Result<CsMat<f64>> {
+    check_elements(mesh)?;
     mean_value(mesh, true, &pattern_of(mesh))
 }
 
@@ -163,6 +168,7 @@ pub fn mean_value_laplacian(mesh: &Mesh) -> Result<CsMat<f64>> {
 /// by `sum_j w_ij` gives the mean-value coordinates, which reproduce linear functions on a
 /// planar mesh (the symmetrised matrix does not).
 pub fn mean_value_weights(mesh: &Mesh) -> Result<CsMat<f64>> {
+    check_elements(mesh)?;
     mean_value(mesh, false, &pattern_of(mesh))
 }
 
@@ -210,12 +216,13 @@ pub(crate) fn ensure_finite(m: &CsMat<f64>, what: &'static str) -> Result<()> {
 /// use deform::{uniform_laplacian, Mesh};
 /// use glam::DVec3;
 /// let m = Mesh::new(vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::ONE], vec![[0, 1, 2], [1, 3, 2]]);
-/// let l = uniform_laplacian(&m);
+/// let l = uniform_laplacian(&m).unwrap();
 /// assert_eq!(l.get(1, 1), Some(&-3.0));
 /// assert_eq!(l.get(1, 2), Some(&1.0));
 /// ```
-pub fn uniform_laplacian(mesh: &Mesh) -> CsMat<f64> {
-    uniform(mesh, &pattern_of(mesh))
+pub fn uniform_laplacian(mesh: &Mesh) -> Result<CsMat<f64>> {
+    check_elements(mesh)?;
+    Ok(uniform(mesh, &pattern_of(mesh)))
 }
 
 fn uniform(mesh: &Mesh, pattern: &LaplacianPattern) -> CsMat<f64> {

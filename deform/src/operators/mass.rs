@@ -1,5 +1,6 @@
 //! Lumped (diagonal) mass matrices.
 
+use crate::mesh::check_elements;
 use crate::mesh::triangle::Frame;
 use crate::mesh::Mesh;
 use crate::mesh::MeshError;
@@ -19,7 +20,8 @@ pub enum MassKind {
 }
 
 /// The lumped mass of every vertex (sum over incident triangles). Zero-area triangles add
-/// nothing; unreferenced vertices get zero. Triangle indices must be in range.
+/// nothing; unreferenced vertices get zero. Out-of-range indices and non-finite or huge
+/// coordinates are the errors of [`check_elements`].
 ///
 /// Shares are computed in each triangle's normalised frame (see
 /// [`crate::mesh::is_degenerate_triangle`]) and scaled back to real units; masses are areas,
@@ -36,6 +38,7 @@ pub enum MassKind {
 /// assert_eq!(v, vec![0.25, 0.125, 0.125]);
 /// ```
 pub fn mass_diagonal(mesh: &Mesh, kind: MassKind) -> Result<Vec<f64>> {
+    check_elements(mesh)?;
     let mut m = vec![0.0; mesh.positions.len()];
     for (f, t) in mesh.triangles.iter().enumerate() {
         let Some(frame) = Frame::new(t.map(|v| mesh.positions[v as usize])) else {

@@ -3,6 +3,7 @@
 
 use super::font::{text_width, ADVANCE, GLYPH_HEIGHT, LINE_HEIGHT};
 use super::{viridis, Image};
+use crate::mesh::numbers::short_number;
 
 /// The colour of caption text.
 pub const TEXT_COLOR: [u8; 3] = [25, 25, 25];
@@ -42,25 +43,6 @@ pub fn text_scale(width: u32) -> u32 {
         2
     } else {
         1
-    }
-}
-
-/// A number in at most about four significant digits (scientific beyond `1e-3..1e5`).
-#[must_use]
-pub fn short_number(v: f64) -> String {
-    if v == 0.0 || !v.is_finite() {
-        return format!("{v}");
-    }
-    let magnitude = v.abs().log10().floor();
-    if !(-3.0..5.0).contains(&magnitude) {
-        return format!("{v:.2e}");
-    }
-    let decimals = (3.0 - magnitude).clamp(0.0, 6.0) as usize;
-    let s = format!("{v:.decimals$}");
-    if s.contains('.') {
-        s.trim_end_matches('0').trim_end_matches('.').to_string()
-    } else {
-        s
     }
 }
 
@@ -150,17 +132,6 @@ fn draw_legend(out: &mut Image, legend: &Legend, y0: u32, s: u32) {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn numbers_are_short() {
-        assert_eq!(short_number(0.0), "0");
-        assert_eq!(short_number(1.0), "1");
-        assert_eq!(short_number(4.123_456), "4.123");
-        assert_eq!(short_number(-12.5), "-12.5");
-        assert_eq!(short_number(0.012_345_6), "0.01235");
-        assert_eq!(short_number(123_456.0), "1.23e5");
-        assert_eq!(short_number(2e-7), "2.00e-7");
-    }
 
     #[test]
     fn titles_wrap_at_spaces() {

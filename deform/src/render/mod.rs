@@ -53,7 +53,8 @@ mod image;
 mod overlay;
 mod raster;
 
-pub use annotate::{annotate, short_number, text_scale, wrap, Legend, TEXT_COLOR};
+pub use crate::mesh::numbers::short_number;
+pub use annotate::{annotate, text_scale, wrap, Legend, TEXT_COLOR};
 pub use camera::{Camera, Projection, FRAME_MARGIN};
 pub use colormap::viridis;
 pub use image::{Image, CONTACT_SHEET_GAP, MAX_IMAGE_SIDE};

@@ -10,6 +10,8 @@ use std::path::Path;
 /// The bytes of every buffer of a document.
 pub(crate) struct Buffers {
     data: Vec<Vec<u8>>,
+    /// [`GltfReadOptions::max_buffer_bytes`], which also bounds accessors without a view.
+    max_bytes: usize,
 }
 
 impl Buffers {
@@ -71,7 +73,10 @@ impl Buffers {
             }
             data.push(bytes);
         }
-        Ok(Buffers { data })
+        Ok(Buffers {
+            data,
+            max_bytes: options.max_buffer_bytes,
+        })
     }
 
     /// The accessor's elements as `f64`, `dimension` components each (normalised integers
@@ -101,8 +106,19 @@ impl Buffers {
         }
         let count = a.count();
         let Some(view) = a.view() else {
-            // No buffer view: all zeros (glTF 2.0, 3.6.2.3).
-            return Ok((vec![0.0; count * dim], dim));
+            // No buffer view: all zeros (glTF 2.0, 3.6.2.3). The `gltf` crate's validation
+            // refuses one today; the count is still bounded like a buffer's bytes.
+            let values = count
+                .checked_mul(dim)
+                .filter(|n| n.saturating_mul(8) <= self.max_bytes)
+                .ok_or_else(|| {
+                    err(format!(
+                        "{count} elements without a buffer view, over the limit of {} bytes \
+                         (GltfReadOptions::max_buffer_bytes)",
+                        self.max_bytes
+                    ))
+                })?;
+            return Ok((vec![0.0; values], dim));
         };
         let size = a.data_type().size();
         let elem = size * dim;
@@ -121,7 +137,10 @@ impl Buffers {
             .checked_add(view.length())
             .filter(|&e| e <= buffer.len())
             .ok_or_else(|| err("buffer view past the end of its buffer".into()))?;
-        let start = view.offset() + a.offset();
+        let start = view
+            .offset()
+            .checked_add(a.offset())
+            .ok_or_else(|| err("size overflows".into()))?;
         if count > 0 {
             let last = (count - 1)
                 .checked_mul(stride)

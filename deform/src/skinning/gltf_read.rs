@@ -41,15 +41,15 @@ pub fn read_gltf_with(path: impl AsRef<Path>, options: &GltfReadOptions) -> Resu
 
 /// The external files a glTF model (`.gltf` or `.glb`) names: its buffers and images whose
 /// URI is not a `data:` URI, resolved against the model's folder as [`read_gltf`] resolves
-/// them (percent-decoded). Empty for a file that is not a glTF document (reading it fails
+/// them (percent-decoded); of a `.glb` only the JSON chunk is read. Empty for a file that is not a glTF document (reading it fails
 /// later, with the reason). A program that writes files checks its outputs against these too,
 /// so that no output replaces a file the model is made of.
 pub fn gltf_external_files(path: impl AsRef<Path>) -> Vec<PathBuf> {
     let path = path.as_ref();
-    let Ok(bytes) = std::fs::read(path) else {
+    let Some(json) = super::glb_container::read_json_only(path) else {
         return Vec::new();
     };
-    let Ok(raw) = gltf::Gltf::from_slice_without_validation(&bytes) else {
+    let Ok(raw) = gltf::Gltf::from_slice_without_validation(&json) else {
         return Vec::new();
     };
     let json = raw.document.as_json();
@@ -108,6 +108,7 @@ pub fn parse_gltf_with(
         name: name.to_string(),
         message,
     };
+    super::glb_container::check_glb_header(bytes).map_err(gltf_error)?;
     // Every index is checked before the `gltf` crate follows one: its own validation indexes
     // the POSITION accessor unchecked (gltf-json 1.4, `mesh.rs`) and panics on a missing one.
     let raw =

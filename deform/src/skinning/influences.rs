@@ -39,7 +39,40 @@ impl Influences {
         changed
     }
 
+    /// Checks the layout for `vertex_count` vertices: a width of at least 1, one joint per
+    /// weight, `vertex_count * width` of each, every weight finite. The reason, in words.
+    pub fn check(&self, vertex_count: usize) -> Result<(), String> {
+        if self.width == 0 {
+            return Err("influences of width 0".into());
+        }
+        if self.joints.len() != self.weights.len() {
+            return Err(format!(
+                "{} influence joints for {} weights",
+                self.joints.len(),
+                self.weights.len()
+            ));
+        }
+        if self.weights.len() != vertex_count.saturating_mul(self.width) {
+            return Err(format!(
+                "{} influence rows of width {} for {vertex_count} vertices",
+                self.weights.len() / self.width,
+                self.width
+            ));
+        }
+        if let Some(i) = self.weights.iter().position(|w| !w.is_finite()) {
+            return Err(format!(
+                "vertex {}: influence weight {} is not finite",
+                i / self.width,
+                self.weights[i]
+            ));
+        }
+        Ok(())
+    }
+
     /// The `(joint, weight)` pairs of vertex `v`.
+    ///
+    /// # Panics
+    /// When `v` is past the last vertex or the layout is not as [`Influences::check`] wants.
     pub fn row(&self, v: usize) -> impl Iterator<Item = (u32, f64)> + '_ {
         let r = v * self.width..(v + 1) * self.width;
         self.joints[r.clone()]

@@ -18,11 +18,22 @@ use glam::{DAffine3, DMat3, DMat4, DVec3};
 ///
 /// # Errors
 /// [`SkinError::NoSkin`] when the weights do not have one row per vertex and one column per
-/// bone, or there are no bones; the checks of [`Rig::new`].
+/// bone, there are no bones, or a bone names a joint the skeleton does not have; the checks
+/// of [`Rig::new`].
 pub fn libigl_rig(mesh: Mesh, skeleton: &Skeleton, weights: &Dmat) -> Result<Rig, SkinError> {
     let bones = &skeleton.bones;
     if bones.is_empty() {
         return Err(SkinError::NoSkin("the skeleton has no bones".into()));
+    }
+    let joints = skeleton.joints.len();
+    if let Some(b) = bones
+        .iter()
+        .position(|e| e.iter().any(|&j| j as usize >= joints))
+    {
+        return Err(SkinError::NoSkin(format!(
+            "bone {b} joins joints {} and {}, past the skeleton's {joints}",
+            bones[b][0], bones[b][1]
+        )));
     }
     if weights.rows != mesh.vertex_count() || weights.cols != bones.len() {
         return Err(SkinError::NoSkin(format!(
@@ -113,13 +124,13 @@ impl LibiglAnimation {
 /// [`SkinError::Data`] when the row count is not `12 * bones`;
 /// [`SkinError::BadTransform`] for a non-finite entry.
 pub fn read_libigl_animation(m: &Dmat, bones: usize) -> Result<LibiglAnimation, SkinError> {
-    if bones == 0 || m.rows != 12 * bones {
+    if bones == 0 || Some(m.rows) != bones.checked_mul(12) {
         return Err(SkinError::Data {
             name: "libigl animation".into(),
             message: format!(
                 "{} rows for {bones} bones (expected 12 a bone, {})",
                 m.rows,
-                12 * bones
+                bones.saturating_mul(12)
             ),
         });
     }

@@ -31,6 +31,7 @@ mod accessor;
 mod animation;
 mod bake;
 mod edit;
+mod glb_container;
 mod glb_write;
 mod gltf_read;
 mod influences;

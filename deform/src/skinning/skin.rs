@@ -2,7 +2,7 @@
 //! motors of any frame with any backend.
 
 use super::{Influences, Rig};
-use crate::blend::{BlendMethod, BoundBlend, KeyWeights};
+use crate::blend::{BlendMethod, BoundBlend, KeyError, KeyWeights, MAX_KEYS};
 use crate::deformers::deformer::deformer_via_blend;
 use crate::deformers::Result;
 use cga::ScaledMotor;
@@ -54,6 +54,14 @@ impl Skinning {
         joint_count: usize,
         method: BlendMethod,
     ) -> Result<Self> {
+        if joint_count > MAX_KEYS {
+            return Err(KeyError::TooMany {
+                what: "joints",
+                got: joint_count,
+                max: MAX_KEYS,
+            }
+            .into());
+        }
         let weights = KeyWeights::gathered(
             joint_count,
             influences.width,
@@ -73,3 +81,28 @@ impl Skinning {
 }
 
 deformer_via_blend!(Skinning, blend);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn too_many_joints_are_named_as_joints() {
+        let influences = Influences {
+            width: 4,
+            joints: vec![0, 1, 2, 3],
+            weights: vec![1.0, 0.0, 0.0, 0.0],
+        };
+        let e = Skinning::bind_influences(
+            &[DVec3::ZERO],
+            &influences,
+            MAX_KEYS + 2,
+            BlendMethod::MotorLinear,
+        )
+        .expect_err("too many joints");
+        assert_eq!(
+            e.to_string(),
+            format!("{} joints: at most {MAX_KEYS} are supported", MAX_KEYS + 2)
+        );
+    }
+}

@@ -88,6 +88,28 @@ fn identity_motors_leave_the_model_unchanged() {
     }
 }
 
+/// Mean value coordinates read the cage's faces only after checking them: an index past the
+/// cage panicked, an empty cage gave `Ok` with no weights.
+#[test]
+fn mvc_of_a_cage_that_cannot_be_read_are_refused() {
+    let points = [DVec3::splat(0.1)];
+    let mut past = dented_cage();
+    past.triangles[0] = [0, 2, 99];
+    let mut nan = dented_cage();
+    nan.positions[1].x = f64::NAN;
+    let empty = deform::Mesh::new(Vec::new(), Vec::new());
+    for (cage, what) in [
+        (past, "faces [0] have out-of-range"),
+        (nan, "[1]"),
+        (empty, "0 vertices"),
+    ] {
+        let e = mean_value_coordinates(&cage, &points)
+            .expect_err(what)
+            .to_string();
+        assert!(e.contains(what), "{e}");
+    }
+}
+
 #[test]
 fn mvc_are_a_partition_of_unity_with_linear_precision() {
     let cage = dented_cage();

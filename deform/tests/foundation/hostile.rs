@@ -289,3 +289,33 @@ fn a_non_finite_system_matrix_is_refused() {
         ),
     }
 }
+
+/// Counts near `usize::MAX` given to the library: typed errors (each overflowed a
+/// multiplication or an allocation and panicked).
+#[test]
+fn huge_counts_are_errors_not_overflows() {
+    use deform::blend::KeyWeights;
+    use deform::input::parse_group_motors;
+    use deform::io::Dmat;
+    use deform::skinning::read_libigl_animation;
+    use deform::{DirichletSolver, Harmonic, SolverOptions};
+    let m = tet(1.0);
+    let h = Harmonic::new(&m, &[&[0], &[3]], HarmonicOptions::default()).unwrap();
+    assert!(h.fields(&[0.0, 1.0], usize::MAX).is_err());
+    assert!(h.fields(&[0.0, 1.0], usize::MAX / 2 + 1).is_err());
+    let q = cotangent_laplacian(&m, Default::default())
+        .unwrap()
+        .map(|x| -x);
+    let solver = DirichletSolver::new(&q, &[0, 3], SolverOptions::default()).unwrap();
+    assert!(solver.solve(&[0.0, 1.0], usize::MAX).is_err());
+    assert!(KeyWeights::new(10, usize::MAX, vec![1], vec![]).is_err());
+    let dmat = Dmat {
+        rows: 12,
+        cols: 1,
+        data: vec![0.0; 12],
+    };
+    assert!(read_libigl_animation(&dmat, usize::MAX).is_err());
+    for groups in [usize::MAX, 1 << 40] {
+        assert!(parse_group_motors("{}", "g", groups).is_err(), "{groups}");
+    }
+}

@@ -130,11 +130,46 @@ fn mean_value_directed_weights_reproduce_linear_functions() {
     }
 }
 
+/// Every Laplacian and mass matrix refuses out-of-range indices (they panicked) and
+/// non-finite or huge coordinates (they skipped the NaN triangles and returned `Ok`).
+#[test]
+fn laplacians_and_masses_refuse_bad_elements() {
+    use deform::{
+        laplacian, mass_diagonal, mass_matrix, mean_value_weights, LaplacianKind, MassKind,
+    };
+    let good = || Mesh::new(vec![DVec3::ZERO, DVec3::X, DVec3::Y], vec![[0, 1, 2]]);
+    let mut out_of_range = good();
+    out_of_range.triangles[0] = [0, 1, 7];
+    let mut nan = good();
+    nan.positions[2].y = f64::NAN;
+    let mut huge = good();
+    huge.positions[1].x = 1e301;
+    for (m, what) in [
+        (out_of_range, "triangles [0] refer to vertices outside 0..3"),
+        (nan, "vertices [2] have non-finite coordinates"),
+        (huge, "vertices [1] have coordinates beyond"),
+    ] {
+        let results = [
+            cotangent_laplacian(&m, Default::default()).map(|_| ()),
+            mean_value_laplacian(&m).map(|_| ()),
+            mean_value_weights(&m).map(|_| ()),
+            uniform_laplacian(&m).map(|_| ()),
+            laplacian(&m, LaplacianKind::Uniform).map(|_| ()),
+            mass_diagonal(&m, MassKind::Voronoi).map(|_| ()),
+            mass_matrix(&m, MassKind::Barycentric).map(|_| ()),
+        ];
+        for (k, r) in results.into_iter().enumerate() {
+            let e = r.expect_err(what).to_string();
+            assert!(e.contains(what), "function {k}: {e}");
+        }
+    }
+}
+
 #[test]
 fn uniform_is_the_graph_laplacian() {
     let (nx, ny) = (4, 4);
     let m = grid(nx, ny, true);
-    let l = uniform_laplacian(&m);
+    let l = uniform_laplacian(&m).unwrap();
     let rings = m.one_rings();
     for i in 0..m.vertex_count() {
         assert_eq!(l.get(i, i).copied(), Some(-(rings.row(i).len() as f64)));
@@ -259,7 +294,7 @@ proptest! {
         for l in [
             cotangent_laplacian(&m, Default::default()).unwrap(),
             mean_value_laplacian(&m).expect("mean-value L"),
-            uniform_laplacian(&m),
+            uniform_laplacian(&m).unwrap(),
         ] {
             prop_assert!(max_asymmetry(&l) < 1e-13);
             prop_assert!(max_row_sum(&l) < 1e-12);

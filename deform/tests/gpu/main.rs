@@ -347,6 +347,13 @@ fn positional_lattices_and_cages_on_the_gpu() {
             Err(GpuError::Blend(_))
         ));
         assert_eq!(got, before);
+        // Points beyond single precision: the read-back names the vertex (it was `Ok` with
+        // infinite positions).
+        let far: Vec<DVec3> = points.iter().map(|p| *p * 1e39).collect();
+        match gpu.pose_points(&ctx, &far, &mut got) {
+            Err(GpuError::Blend(e)) => assert!(e.to_string().contains("posed vertex"), "{e}"),
+            other => panic!("{what}: {other:?}"),
+        }
     }
     // Control points to a motor form: refused.
     let motor = Ffd::bind(&mesh, [2, 2, 2], None, FfdOptions::default()).unwrap();

@@ -90,6 +90,39 @@ fn skin_cli() {
     ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert_eq!(deform::io::read_obj(&ele).unwrap().vertex_count(), 6034);
+    // A frame past the animation's 457 (1e300 read "no animation frame 18446744073709551615"),
+    // and a --range whose frames are not indices: the flag and the frames there are.
+    for (when, flag, frame) in [
+        (["--time", "1e300"], "--time", "frame 1.00e300"),
+        (["--range", "0:5:3"], "--range", "frame 2.5"),
+    ] {
+        let files = [
+            "elephant.obj",
+            "elephant.tgf",
+            "elephant-weights.dmat",
+            "elephant-anim.dmat",
+        ]
+        .map(|f| lib.join(f).to_string_lossy().into_owned());
+        let mut args = vec![
+            "skin",
+            &files[0],
+            "--skeleton",
+            &files[1],
+            "--weights",
+            &files[2],
+            "--dmat-animation",
+            &files[3],
+            "-o",
+            "/tmp/never.obj",
+        ];
+        args.extend(when);
+        let o = run(&args);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{err}");
+        let want =
+            format!("{flag}: {frame}: with --dmat-animation times are frame indices, 0 to 456");
+        assert!(err.contains(&want), "{err}");
+    }
     // Bad input: exit code 2 with a message.
     let trunc = out.join("truncated.bin");
     std::fs::write(&trunc, &std::fs::read(&man).unwrap()[..500]).unwrap();

@@ -96,6 +96,13 @@ fn simple_skin_edited(
     ))
 }
 
+/// `glb` with its header's length field set to `stated`.
+fn with_stated_length(glb: &[u8], stated: u32) -> Vec<u8> {
+    let mut out = glb.to_vec();
+    out[8..12].copy_from_slice(&stated.to_le_bytes());
+    out
+}
+
 /// Bad input: typed errors or documented handling, never a panic.
 #[test]
 fn bad_gltf_input() {
@@ -114,6 +121,35 @@ fn bad_gltf_input() {
         for k in (0..flipped.len()).step_by(131) {
             flipped[k] ^= 0x5a;
             let _ = parse_gltf(&flipped, name, None); // any result, no panic
+        }
+    }
+    // A binary header whose stated length is below its own size (the `gltf` crate's
+    // subtraction overflowed: a panic in a debug build), or not the file's.
+    let fox = std::fs::read(dir.join("gltf/Fox.glb")).unwrap();
+    let mut trailing = fox.clone();
+    trailing.extend_from_slice(&[0; 8]);
+    for (bytes, words) in [
+        (with_stated_length(&fox, 0), "as 0 bytes"),
+        (with_stated_length(&fox, 11), "as 11 bytes"),
+        (
+            with_stated_length(&fox, fox.len() as u32 - 4),
+            "follow its stated end",
+        ),
+        (trailing, "follow its stated end"),
+    ] {
+        match parse_gltf(&bytes, "Fox.glb", None) {
+            Err(SkinError::Gltf { message, .. }) => assert!(message.contains(words), "{message}"),
+            other => panic!("{words}: {other:?}"),
+        }
+    }
+    // An accessor offset that overflows with its view's (the view of POSITION starts at 48):
+    // it panicked in a debug build and wrapped to the buffer's start in a release build.
+    for offset in [u64::MAX - 47, u64::MAX] {
+        match simple_skin_edited(|d| d["accessors"][1]["byteOffset"] = offset.into()).unwrap() {
+            Err(SkinError::Data { message, .. }) => {
+                assert!(message.contains("accessor 1: size overflows"), "{message}")
+            }
+            other => panic!("offset {offset}: {:?}", other.map(|_| ())),
         }
     }
     // Missing inverse bind matrices: identity, as the specification says.

@@ -339,6 +339,13 @@ fn elephant_animation() {
     let skeleton = deform::io::read_tgf(lib.join("elephant.tgf")).unwrap();
     let weights = deform::io::read_dmat(lib.join("elephant-weights.dmat")).unwrap();
     let anim = deform::io::read_dmat(lib.join("elephant-anim.dmat")).unwrap();
+    // A bone naming a joint past the skeleton (it was accepted, the dangling end ignored).
+    let mut dangling = skeleton.clone();
+    dangling.bones[3][1] = skeleton.joints.len() as u32;
+    let e = libigl_rig(mesh.clone(), &dangling, &weights)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("bone 3 joins joints"), "{e}");
     let rig = libigl_rig(mesh, &skeleton, &weights).unwrap();
     // A matrix of the wrong height is named as such (it read "no animation 47 rows ... in this
     // rig").

@@ -16,7 +16,12 @@ pub struct Cli {
     pub command: Command,
     /// The work budget: the most elements (f64s of a buffer, grid nodes, vertices times frames
     /// or iterations) any size asked for may come to; larger requests are refused up front.
-    #[arg(long, global = true, default_value_t = crate::budget::DEFAULT_MAX_WORK)]
+    #[arg(
+        long,
+        global = true,
+        default_value_t = crate::budget::DEFAULT_MAX_WORK,
+        value_parser = clap::value_parser!(u64).range(1..)
+    )]
     pub max_work: u64,
 }
 
@@ -106,9 +111,10 @@ limb reports 1 per piece and a capped one 0.";
 
 /// What `tear --json` reports.
 const TEAR_COUNTS: &str = "Reported counts (--json): steps: scalpel positions minus one; \
-incision_vertices: points of the incision, from the first scalpel point to the last; \
-new_vertices: vertices added (incision points, their copies on the far side of UV seams, and \
-the lips' copies); duplicated: inner incision points split into two lips; changed_faces: \
+incision_vertices: points of the incision, from the first scalpel point to the last, each \
+counted once (a scalpel that goes back along its incision passes points twice and opens them \
+once); new_vertices: vertices added (incision points, their copies on the far side of UV \
+seams, and the lips' copies); duplicated: inner incision points split into two lips; changed_faces: \
 input triangles re-triangulated; boundary_loops: closed chains of boundary edges through the \
 changed region, counted over the welded surface as for cut (glTF's seam copies are one \
 vertex), so a slit through a closed surface is 1, on the rest pose and on a posed frame \

@@ -27,32 +27,7 @@ pub fn check_cage(cage: &Mesh) -> Result<()> {
 /// # Errors
 /// As [`check_cage`].
 pub fn check_cage_with(cage: &Mesh, allow_self_intersecting: bool) -> Result<()> {
-    let n = cage.vertex_count();
-    if n < 4 || cage.triangle_count() < 4 {
-        return Err(CageError::TooSmall {
-            vertices: n,
-            faces: cage.triangle_count(),
-        }
-        .into());
-    }
-    let bad: Vec<u32> = (0..n as u32)
-        .filter(|&i| !cage.positions[i as usize].is_finite())
-        .collect();
-    if !bad.is_empty() {
-        return Err(CageError::NonFinite {
-            vertices: bad.into(),
-        }
-        .into());
-    }
-    let bad: Vec<u32> = (0..cage.triangle_count() as u32)
-        .filter(|&f| {
-            let t = cage.triangles[f as usize];
-            t.iter().any(|&v| v as usize >= n) || t[0] == t[1] || t[1] == t[2] || t[0] == t[2]
-        })
-        .collect();
-    if !bad.is_empty() {
-        return Err(CageError::BadFaces { faces: bad.into() }.into());
-    }
+    check_cage_elements(cage)?;
     let mut edges: HashMap<(u32, u32), u32> = HashMap::new();
     for t in &cage.triangles {
         for k in 0..3 {
@@ -101,6 +76,39 @@ pub fn check_cage_with(cage: &Mesh, allow_self_intersecting: bool) -> Result<()>
             first,
         }
         .into());
+    }
+    Ok(())
+}
+
+/// The part of [`check_cage`] that every reader of a cage's faces needs first (mean value
+/// coordinates too): at least 4 vertices and 4 faces, finite vertices, faces in range with
+/// three distinct corners.
+pub(crate) fn check_cage_elements(cage: &Mesh) -> Result<()> {
+    let n = cage.vertex_count();
+    if n < 4 || cage.triangle_count() < 4 {
+        return Err(CageError::TooSmall {
+            vertices: n,
+            faces: cage.triangle_count(),
+        }
+        .into());
+    }
+    let bad: Vec<u32> = (0..n as u32)
+        .filter(|&i| !cage.positions[i as usize].is_finite())
+        .collect();
+    if !bad.is_empty() {
+        return Err(CageError::NonFinite {
+            vertices: bad.into(),
+        }
+        .into());
+    }
+    let bad: Vec<u32> = (0..cage.triangle_count() as u32)
+        .filter(|&f| {
+            let t = cage.triangles[f as usize];
+            t.iter().any(|&v| v as usize >= n) || t[0] == t[1] || t[1] == t[2] || t[0] == t[2]
+        })
+        .collect();
+    if !bad.is_empty() {
+        return Err(CageError::BadFaces { faces: bad.into() }.into());
     }
     Ok(())
 }

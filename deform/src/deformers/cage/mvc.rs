@@ -34,8 +34,10 @@ const COPLANAR: f64 = 1e-14;
 /// checked by [`super::check_cage`]): vertex-major, `cage.vertex_count()` per point.
 ///
 /// # Errors
-/// [`CageError::Coordinates`] naming a point whose weights do not normalise (the weights sum
-/// to zero or overflow: a point far outside a degenerate cage).
+/// [`CageError::TooSmall`], [`CageError::NonFinite`] or [`CageError::BadFaces`] for a cage
+/// whose faces cannot be read (the first checks of [`super::check_cage`]; closedness is the
+/// caller's); [`CageError::Coordinates`] naming a point whose weights do not normalise (the
+/// weights sum to zero or overflow: a point far outside a degenerate cage).
 pub fn mean_value_coordinates(cage: &Mesh, points: &[DVec3]) -> Result<Vec<f64>> {
     Ok(coordinates_and_winding(cage, points)?.0)
 }
@@ -47,6 +49,7 @@ pub fn mean_value_coordinates(cage: &Mesh, points: &[DVec3]) -> Result<Vec<f64>>
 /// # Errors
 /// As [`mean_value_coordinates`].
 pub fn coordinates_and_winding(cage: &Mesh, points: &[DVec3]) -> Result<(Vec<f64>, Vec<f64>)> {
+    super::check::check_cage_elements(cage)?;
     let m = cage.vertex_count();
     let scale = cage.bounding_box().map_or(1.0, |b| b.diagonal());
     let mut out = vec![0.0; points.len() * m];

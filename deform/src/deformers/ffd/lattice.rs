@@ -6,7 +6,7 @@
 use super::FfdError;
 use crate::blend::KeyWeights;
 use crate::blend::MAX_KEYS;
-use crate::deformers::bspline::bspline_basis;
+use crate::deformers::bspline::{bernstein, bspline_basis};
 use crate::deformers::Result;
 use glam::DVec3;
 
@@ -212,19 +212,6 @@ impl Lattice {
             }
         }
         Ok(KeyWeights::gathered(self.len(), width, keys, weights)?)
-    }
-}
-
-/// The Bernstein polynomials `C(n, k) t^k (1 - t)^(n - k)`, `k = 0 ..= n`, by de Casteljau's
-/// recurrence (non-negative, summing to one).
-pub fn bernstein(n: usize, t: f64, out: &mut [f64]) {
-    out[..=n].fill(0.0);
-    out[0] = 1.0;
-    for j in 1..=n {
-        for k in (0..=j).rev() {
-            let prev = if k > 0 { out[k - 1] } else { 0.0 };
-            out[k] = (1.0 - t) * out[k] + t * prev;
-        }
     }
 }
 

@@ -20,7 +20,8 @@
 
 mod lattice;
 
-pub use lattice::{bernstein, Lattice, LatticeBasis, OUTSIDE_TOLERANCE};
+pub use crate::deformers::bspline::bernstein;
+pub use lattice::{Lattice, LatticeBasis, OUTSIDE_TOLERANCE};
 
 use crate::blend::control::{ControlBinding, ControlForm};
 pub use crate::deformers::error::FfdError;

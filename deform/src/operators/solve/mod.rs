@@ -365,8 +365,12 @@ impl DirichletSolver {
     /// column-major, equal to `boundary` on the constrained rows. Allocates the result and a
     /// [`SolveScratch`]; per-frame callers use [`Self::solve_into`].
     pub fn solve(&self, boundary: &[f64], ncols: usize) -> Result<Vec<f64>> {
-        let mut out = vec![0.0; self.n * ncols];
         let mut scratch = self.scratch(ncols)?;
+        let len = self.n.checked_mul(ncols).ok_or(MeshError::Overflow {
+            what: "solution size",
+            index: ncols,
+        })?;
+        let mut out = vec![0.0; len];
         self.solve_into(None, boundary, ncols, &mut out, &mut scratch)?;
         Ok(out)
     }

@@ -44,6 +44,9 @@ fn huge_counts_and_non_finite_numbers_are_refused_before_any_work() {
     refused_fabrik(&["--joints=18446744073709551615"], "--max-work");
     refused_fabrik(&["--joints=1000000000"], "--max-work");
     refused_fabrik(&["--joints=1000", "--max-work=100"], "--joints");
+    // The fit of 5000 controls to 5000 joints ran for minutes (dense, joints x controls^2).
+    refused_fabrik(&["--joints=5000", "--controls=5000"], "--controls");
+    refused_fabrik(&["--max-work=0"], "invalid value '0' for '--max-work");
     refused_fabrik(&["--tolerance=nan"], "--tolerance");
     refused_fabrik(&["--tolerance=-1"], "--tolerance");
     // Within the budget the same flags work.
@@ -52,6 +55,13 @@ fn huge_counts_and_non_finite_numbers_are_refused_before_any_work() {
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     std::fs::remove_file(&out).unwrap();
 
+    // 65,536 Bezier keys: every vertex weighed by all of them, de Casteljau's 2^32 steps each.
+    let keys = s.p("many-keys.json");
+    std::fs::write(&keys, format!("[{}{{}}]", "{},".repeat(65_535))).unwrap();
+    let args = [
+        "spline", &mesh, "--select", &sel, "--keys", &keys, "--scheme", "bezier", "-o", &out,
+    ];
+    refused(&args, "--keys", &out);
     for lattice in ["18446744073709551615x2x2", "1000x1000x1000", "2x2x16384"] {
         let flag = format!("--lattice={lattice}");
         let args = ["ffd", &mesh, &flag, "--motors", &motors, "-o", &out];
@@ -447,10 +457,11 @@ fn a_huge_plane_normal_is_the_same_plane() {
     assert_eq!(std::fs::read(&unit).unwrap(), std::fs::read(&huge).unwrap());
 }
 
-/// A drill too thin to remove a vertex names the model's vertex count (it named the count after
-/// its own refinement: 3381 for CesiumMan's 3273).
+/// A drill through the surface but too thin to remove a vertex says so (it said the tool does
+/// not reach the mesh); one that misses names the model's vertex count (it named the count
+/// after its own refinement: 3381 for CesiumMan's 3273).
 #[test]
-fn a_drill_that_removes_nothing_names_the_models_vertex_count() {
+fn a_drill_that_removes_nothing_says_why() {
     let Some((_, man)) = cesium_man() else {
         return;
     };
@@ -458,6 +469,11 @@ fn a_drill_that_removes_nothing_names_the_models_vertex_count() {
     let out = s.p("o.obj");
     let args = [
         "drill", &man, "--tip", "0,-1,0.9", "--end", "0,1,0.9", "--radius", "1e-6", "-o", &out,
+    ];
+    // Through the surface but far thinner than its faces, even refined: said so.
+    refused(&args, "too thin for the mesh there", &out);
+    let args = [
+        "drill", &man, "--tip", "5,5,5", "--end", "6,5,5", "--radius", "0.1", "-o", &out,
     ];
     refused(&args, "(3273 vertices)", &out);
 }

@@ -79,6 +79,17 @@ pub fn run(a: &FabrikArgs) -> Result<()> {
         &what,
         &[a.iterations as u64, joints.len() as u64],
     )?;
+    // Each pose fits the controls to the joints by dense least squares: joints x controls^2.
+    let what = format!(
+        "a fit of {} control motors to {} joints",
+        a.controls,
+        joints.len()
+    );
+    crate::budget::check(
+        "--controls",
+        &what,
+        &[joints.len() as u64, a.controls as u64, a.controls as u64],
+    )?;
     let t = Instant::now();
     let d = with_progress(
         "binding (harmonic field)",
@@ -119,8 +130,8 @@ pub fn run(a: &FabrikArgs) -> Result<()> {
     report.add("pose_ms", pose_ms);
     if result.solution.status == deform::FabrikStatus::Unreachable && !a.out.quiet && !a.out.json {
         eprintln!(
-            "note: the target is out of reach; the chain is stretched towards it ({:.4} short)",
-            result.solution.distance
+            "note: the target is out of reach; the chain is stretched towards it ({} short)",
+            deform::render::short_number(result.solution.distance)
         );
     }
     let lambda = d.spline().lambda().to_vec();

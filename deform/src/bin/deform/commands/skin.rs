@@ -323,8 +323,20 @@ pub fn run(a: &SkinArgs) -> Result<()> {
         let frame_motors;
         let motors = match &dmat {
             Some(anim) => {
-                if *time < 0.0 || time.fract() != 0.0 {
-                    bail!("--time {time}: with --dmat-animation it is a frame index (0, 1, ...)");
+                let flag = if a.range.is_some() {
+                    "--range"
+                } else {
+                    "--time"
+                };
+                let count = anim.frames.len();
+                if !(*time >= 0.0 && time.fract() == 0.0 && *time < count as f64) {
+                    bail!(
+                        "{flag}: frame {}: with --dmat-animation times are frame indices, \
+                         0 to {} for this animation of {count} frame{}",
+                        deform::render::short_number(*time),
+                        count.saturating_sub(1),
+                        if count == 1 { "" } else { "s" }
+                    );
                 }
                 frame_motors = anim.skin_motors(*time as usize)?;
                 &frame_motors[..]

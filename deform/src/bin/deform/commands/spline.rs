@@ -77,6 +77,19 @@ pub fn run(a: &SplineArgs) -> Result<()> {
         harmonic: a.blending.harmonic(),
         method: a.blending.blend,
     };
+    // Bezier keys weigh every vertex by all n keys, by de Casteljau's n^2 steps.
+    let n = keys.len() as u64;
+    let per_vertex = match options.scheme {
+        WeightScheme::Bezier => n.saturating_mul(n),
+        scheme => scheme.width(keys.len()) as u64,
+    };
+    let what = format!(
+        "{} {} keys over {} vertices",
+        keys.len(),
+        options.scheme.name(),
+        mesh.vertex_count()
+    );
+    crate::budget::check("--keys", &what, &[mesh.vertex_count() as u64, per_vertex])?;
     let t = Instant::now();
     let d = with_progress(
         "binding (harmonic field)",
