@@ -311,3 +311,37 @@ fn a_scalpel_that_retraces_its_incision_opens_the_slit_once() {
         );
     }
 }
+
+/// A scalpel position given twice in a row (a drag sampled while the hand rests) cuts nothing
+/// more: the tear is the one without the repeat. Before, the repeated step had no plane (the
+/// next blade enters at its own point) and the whole tear was refused.
+#[test]
+fn a_scalpel_position_held_for_a_sample_tears_as_without_it() {
+    let rig = procedural_arm(24, 81);
+    let s = Surgery::new(&rig.mesh, &rig.influences).unwrap();
+    let at = |x: f64, y: f64| deform::surgery::Scalpel {
+        a: DVec3::new(x, y, 1.2),
+        b: DVec3::new(x, y, 0.2),
+    };
+    let (a, b, c) = (at(4.6, 0.05), at(5.4, 0.1), at(6.3, 0.0));
+    let options = deform::surgery::TearOptions {
+        open: 0.25,
+        ..Default::default()
+    };
+    let plain = s.tear(&[a, b, c], Frame::Rest, &options).unwrap();
+    check_tear(&rig, &plain, true);
+    for blades in [
+        vec![a, a, b, c],
+        vec![a, b, b, c],
+        vec![a, b, c, c],
+        vec![a, b, b, b, c],
+    ] {
+        let held = s.tear(&blades, Frame::Rest, &options).unwrap();
+        check_tear(&rig, &held, true);
+        assert_eq!(held.planes.len(), blades.len() - 1);
+        assert_eq!(held.incision, plain.incision, "{} positions", blades.len());
+        assert_eq!(held.duplicated, plain.duplicated);
+        assert_eq!(held.mesh.mesh.triangles, plain.mesh.mesh.triangles);
+        assert_eq!(held.mesh.mesh.positions, plain.mesh.mesh.positions);
+    }
+}

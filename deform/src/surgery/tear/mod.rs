@@ -80,7 +80,9 @@ pub struct TearResult {
     /// a UV seam, a vertex may stand for its coincident copy). A scalpel that goes back along
     /// the incision lists its points again.
     pub incision: Vec<u32>,
-    /// Each step's plane, as `(unit normal, point on it)`.
+    /// Each step's plane, as `(unit normal, point on it)`. A step whose scalpel stays at one
+    /// point of the surface (a position repeated, as a drag sampled twice gives) cuts nothing
+    /// and takes the plane of the step before it (of the one after it for the first).
     pub planes: Vec<(DVec3, DVec3)>,
     /// Vertices added (incision points, their copies across UV seams, and the lips' copies).
     pub new_vertices: usize,
@@ -113,7 +115,8 @@ impl Surgery {
     /// # Errors
     /// [`SurgeryError::BadTool`] for fewer than two positions, positions that all enter the
     /// surface at one point (nothing to tear), a non-finite or zero-length blade, a blade that does not touch the surface (with how far it passes and the nearest
-    /// surface point), a plane that is not defined (the blade moved along itself), two
+    /// surface point), a plane that is not defined (the blade moved along itself between two different entry
+    /// points; a position repeated is a step that cuts nothing), two
     /// scalpel points that the plane's curve over the surface does not join (with where the
     /// curve goes and how near it comes), an opening over [`MAX_OPEN_PER_DIAGONAL`]
     /// bounding-box diagonals, posed positions of the wrong length;
@@ -199,12 +202,20 @@ impl Surgery {
                 short_point(soup.at(points[0]))
             )));
         }
-        let planes: Vec<(DVec3, DVec3)> = (0..points.len() - 1)
+        // A step whose scalpel stays at one point of the surface (a position held for a
+        // sample, as a drag gives) cuts nothing; its plane is only needed where it is defined.
+        let still = |i: usize| seams.label(points[i]) == seams.label(points[i + 1]);
+        let own: Vec<Option<(DVec3, DVec3)>> = (0..points.len() - 1)
             .map(|i| {
                 let ends = [points[i], points[i + 1]].map(|v| soup.at(v));
-                step_plane(i, ends, &scalpel[i + 1])
+                match step_plane(i, ends, &scalpel[i + 1]) {
+                    Ok(plane) => Ok(Some(plane)),
+                    Err(_) if still(i) => Ok(None),
+                    Err(e) => Err(e),
+                }
             })
             .collect::<Result<_, _>>()?;
+        let planes = fill_still_planes(&own);
         // Follow each step's plane from one scalpel point to the next.
         let mut incision = vec![points[0]];
         for i in 0..points.len() - 1 {
@@ -272,6 +283,26 @@ impl Surgery {
         };
         local_loops(topology, triangles, fate, changed, &[], &produced, 0).len()
     }
+}
+
+/// Every step's plane: its own where it has one, else (a step that stays at one point and
+/// whose next blade enters there too) the previous step's, else the next one's. Some step
+/// moves (the caller refused scalpels that all enter at one point), and a moving step always
+/// has its plane, so each step gets one.
+fn fill_still_planes(own: &[Option<(DVec3, DVec3)>]) -> Vec<(DVec3, DVec3)> {
+    let mut last = None;
+    let forward: Vec<Option<(DVec3, DVec3)>> = own
+        .iter()
+        .map(|p| {
+            last = p.or(last);
+            last
+        })
+        .collect();
+    let first = own.iter().flatten().next().copied();
+    forward
+        .into_iter()
+        .map(|p| p.or(first).unwrap_or((DVec3::Z, DVec3::ZERO)))
+        .collect()
 }
 
 /// The plane of step `i` (Algorithm 2, step 5), as `(unit normal, first point)`: through its
