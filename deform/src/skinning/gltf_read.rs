@@ -14,7 +14,8 @@ use std::path::{Path, PathBuf};
 /// Read a glTF 2.0 rig (`.gltf` or `.glb`); see [`parse_gltf`].
 ///
 /// # Errors
-/// [`SkinError::Io`] when the file cannot be read, and the errors of [`parse_gltf`].
+/// [`SkinError::Io`] when the file cannot be read or holds more than
+/// [`crate::io::MAX_FILE_BYTES`], and the errors of [`parse_gltf`].
 pub fn read_gltf(path: impl AsRef<Path>) -> Result<Rig, SkinError> {
     read_gltf_with(path, &GltfReadOptions::default())
 }
@@ -25,9 +26,11 @@ pub fn read_gltf(path: impl AsRef<Path>) -> Result<Rig, SkinError> {
 /// As [`read_gltf`].
 pub fn read_gltf_with(path: impl AsRef<Path>, options: &GltfReadOptions) -> Result<Rig, SkinError> {
     let path = path.as_ref();
-    let bytes = std::fs::read(path).map_err(|source| SkinError::Io {
-        path: path.to_path_buf(),
-        message: source.to_string(),
+    let bytes = crate::io::read_limited(path, crate::io::MAX_FILE_BYTES).map_err(|source| {
+        SkinError::Io {
+            path: path.to_path_buf(),
+            message: source.to_string(),
+        }
     })?;
     let base = path.parent().map(|p| {
         if p.as_os_str().is_empty() {

@@ -32,8 +32,7 @@ pub fn read_selection(path: &Path, vertex_count: usize) -> Result<Selection> {
             selection_from_dmat(&m, vertex_count, &name)?
         }
         Some("json") => {
-            let text =
-                std::fs::read_to_string(path).with_context(|| format!("{name}: cannot read"))?;
+            let text = read_text(path)?;
             parse_selection_json(&text, vertex_count, &name)?
         }
         _ => bail!("{name}: a selection is a .dmat (libigl) or .json file"),
@@ -41,9 +40,17 @@ pub fn read_selection(path: &Path, vertex_count: usize) -> Result<Selection> {
     Ok(sel)
 }
 
-/// Read a text file.
+/// The largest JSON document (motors, keys, selections, animations) a command reads: 1 GiB,
+/// room for a selection of every vertex of a 50-million-vertex mesh. A file or pipe that
+/// gives more is refused before it fills memory.
+pub const MAX_DOCUMENT_BYTES: u64 = 1 << 30;
+
+/// Read a text file (or pipe) of at most [`MAX_DOCUMENT_BYTES`].
 pub fn read_text(path: &Path) -> Result<String> {
-    std::fs::read_to_string(path).with_context(|| format!("{}: cannot read", path.display()))
+    let shown = path.display();
+    let bytes = deform::io::read_limited(path, MAX_DOCUMENT_BYTES)
+        .with_context(|| format!("{shown}: cannot read"))?;
+    String::from_utf8(bytes).with_context(|| format!("{shown}: not UTF-8 text"))
 }
 
 /// Read the rig: glTF by extension, else a libigl mesh with skeleton and weights.

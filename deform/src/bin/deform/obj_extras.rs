@@ -18,7 +18,11 @@ impl ObjInputExtras {
         let obj = path
             .extension()
             .is_some_and(|e| e.eq_ignore_ascii_case("obj"));
-        let Some(text) = obj.then(|| std::fs::read_to_string(path).ok()).flatten() else {
+        let text = obj
+            .then(|| deform::io::read_limited(path, deform::io::MAX_FILE_BYTES).ok())
+            .flatten()
+            .and_then(|b| String::from_utf8(b).ok());
+        let Some(text) = text else {
             return ObjInputExtras::default();
         };
         let texture = deform::io::parse_obj_textured(&text, "")

@@ -1,6 +1,7 @@
 //! Mesh and matrix files: OBJ (read, write), PLY (write), OFF, MEDIT `.mesh`, libigl DMAT and
 //! TGF.
 
+mod bounded;
 mod dmat;
 mod medit;
 mod obj;
@@ -8,6 +9,7 @@ mod off;
 mod ply;
 mod tgf;
 
+pub use bounded::{read_limited, MAX_FILE_BYTES};
 pub use dmat::{parse_dmat, read_dmat, write_dmat, Dmat};
 pub use medit::{parse_medit, read_medit, MeditMesh};
 mod glb;
@@ -28,7 +30,9 @@ use std::path::Path;
 
 /// Reads a triangle mesh, choosing the format by extension (`obj`, `off`, `mesh`; any case).
 ///
-/// Polygons are fan-triangulated; for MEDIT files the `Triangles` section is returned.
+/// Polygons are fan-triangulated; for MEDIT files the `Triangles` section is returned. Every
+/// reader of this module takes files (and pipes) of at most [`MAX_FILE_BYTES`]; a larger one
+/// is [`MeshError::Io`] of kind [`std::io::ErrorKind::FileTooLarge`].
 pub fn read_mesh(path: impl AsRef<Path>) -> Result<Mesh> {
     let path = path.as_ref();
     let name = path.display().to_string();
@@ -73,7 +77,7 @@ fn extension(name: &str) -> String {
 }
 
 pub(crate) fn read_bytes(path: &Path) -> Result<Vec<u8>> {
-    std::fs::read(path).map_err(|source| MeshError::Io {
+    read_limited(path, MAX_FILE_BYTES).map_err(|source| MeshError::Io {
         path: path.to_path_buf(),
         source,
     })

@@ -506,3 +506,39 @@ fn devices_are_not_read_as_files() {
         stderr(&o)
     );
 }
+
+/// An input larger than its reader takes (a sparse file: no disk, no reading) is refused by
+/// its length with the limit named: 4 GiB for a mesh, 1 GiB for a JSON document. Before, it
+/// was read whole, as far as memory went.
+#[test]
+fn inputs_past_their_readers_limit_are_refused_unread() {
+    let s = Scene::new("huge");
+    let (bar, sel, motors, out) = (
+        s.p("bar.obj"),
+        s.p("sel.json"),
+        s.p("motors.json"),
+        s.p("o.obj"),
+    );
+    let sparse = |name: &str, len: u64| {
+        let path = s.p(name);
+        std::fs::File::create(&path).unwrap().set_len(len).unwrap();
+        path
+    };
+    let mesh = sparse("huge.obj", deform::io::MAX_FILE_BYTES + 1);
+    let args = [
+        "handles", &mesh, "--select", &sel, "--motors", &motors, "-o", &out,
+    ];
+    refused(&args, "huge.obj: more than 4294967296 bytes", &out);
+    let doc = sparse("huge.json", (1 << 30) + 1);
+    let args = [
+        "handles", &bar, "--select", &sel, "--motors", &doc, "-o", &out,
+    ];
+    refused(&args, "more than 1073741824 bytes", &out);
+    let args = [
+        "handles", &bar, "--select", &doc, "--motors", &motors, "-o", &out,
+    ];
+    refused(&args, "more than 1073741824 bytes", &out);
+    let model = sparse("huge.glb", deform::io::MAX_FILE_BYTES + 1);
+    let args = ["skin", &model, "-o", &out];
+    refused(&args, "more than 4294967296 bytes", &out);
+}
