@@ -319,3 +319,31 @@ fn huge_counts_are_errors_not_overflows() {
         assert!(parse_group_motors("{}", "g", groups).is_err(), "{groups}");
     }
 }
+
+/// A number too large for `f64` is named as such, not as "non-finite", and a token of
+/// hundreds of characters is cut in the message (it was printed whole).
+#[test]
+fn parse_errors_name_overflow_and_cut_long_tokens() {
+    let e = deform::io::parse_obj("v 1e400 0 0\n", "o.obj").unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "o.obj:1: x coordinate \"1e400\" overflows f64"
+    );
+    let e = deform::io::parse_obj("v 0 -inf 0\n", "o.obj").unwrap_err();
+    assert_eq!(e.to_string(), "o.obj:1: non-finite y coordinate \"-inf\"");
+    let digits = "9".repeat(500);
+    let e = deform::io::parse_obj(&format!("v 0 0 {digits}\n"), "o.obj").unwrap_err();
+    let text = e.to_string();
+    assert!(
+        text.contains("overflows f64") && text.contains("(500 bytes)"),
+        "{text}"
+    );
+    assert!(text.len() < 120, "{} characters: {text}", text.len());
+    let e = deform::io::parse_obj(&format!("v 0 0 0\nf 1 2 {digits}x\n"), "o.obj").unwrap_err();
+    let text = e.to_string();
+    assert!(
+        text.contains("bad face index") && text.contains("(501 bytes)"),
+        "{text}"
+    );
+    assert!(text.len() < 120, "{text}");
+}

@@ -113,9 +113,12 @@ impl Ctx<'_> {
         let tok = tok.ok_or_else(|| self.err(format!("missing {what}")))?;
         let x = tok
             .parse::<f64>()
-            .map_err(|_| self.err(format!("bad {what} {tok:?}")))?;
-        if !x.is_finite() {
-            return Err(self.err(format!("non-finite {what} {tok:?}")));
+            .map_err(|_| self.err(format!("bad {what} {}", shown(tok))))?;
+        if x.is_nan() || tok.to_ascii_lowercase().contains("inf") {
+            return Err(self.err(format!("non-finite {what} {}", shown(tok))));
+        }
+        if x.is_infinite() {
+            return Err(self.err(format!("{what} {} overflows f64", shown(tok))));
         }
         Ok(x)
     }
@@ -123,7 +126,7 @@ impl Ctx<'_> {
     pub(crate) fn usize(&self, tok: Option<&str>, what: &str) -> Result<usize> {
         let tok = tok.ok_or_else(|| self.err(format!("missing {what}")))?;
         tok.parse::<usize>()
-            .map_err(|_| self.err(format!("bad {what} {tok:?}")))
+            .map_err(|_| self.err(format!("bad {what} {}", shown(tok))))
     }
 
     /// A 1-based index converted to 0-based `u32`.
@@ -139,6 +142,16 @@ impl Ctx<'_> {
     pub(crate) fn index0(&self, tok: Option<&str>, what: &str) -> Result<u32> {
         let i = self.usize(tok, what)?;
         u32::try_from(i).map_err(|_| self.err(format!("{what} {i} is too large")))
+    }
+}
+
+/// A token as an error message shows it: quoted, and cut after 40 characters (a line of a
+/// hundred thousand digits is named, not printed).
+pub(crate) fn shown(tok: &str) -> String {
+    const MAX: usize = 40;
+    match tok.char_indices().nth(MAX) {
+        None => format!("{tok:?}"),
+        Some((cut, _)) => format!("{:?}... ({} bytes)", &tok[..cut], tok.len()),
     }
 }
 

@@ -79,7 +79,7 @@ pub fn parse_obj_textured(text: &str, name: &str) -> Result<(Mesh, Option<ObjTex
                     let v = parts.next().unwrap_or("");
                     let i: i64 = v
                         .parse()
-                        .map_err(|_| ctx.err(format!("bad face index {tok:?}")))?;
+                        .map_err(|_| ctx.err(format!("bad face index {}", super::shown(tok))))?;
                     let idx = if i > 0 {
                         i - 1
                     } else if i < 0 {
