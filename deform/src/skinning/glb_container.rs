@@ -69,7 +69,7 @@ pub(crate) fn read_json_only(path: &Path) -> Option<Vec<u8>> {
     }
     if !head[..got].starts_with(MAGIC) {
         let mut bytes = head[..got].to_vec();
-        let limit = crate::io::MAX_FILE_BYTES;
+        let limit = crate::mesh::io::MAX_FILE_BYTES;
         file.take(limit + 1).read_to_end(&mut bytes).ok()?;
         return (bytes.len() as u64 <= limit).then_some(bytes);
     }

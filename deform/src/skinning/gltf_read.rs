@@ -15,7 +15,7 @@ use std::path::{Path, PathBuf};
 ///
 /// # Errors
 /// [`SkinError::Io`] when the file cannot be read or holds more than
-/// [`crate::io::MAX_FILE_BYTES`], and the errors of [`parse_gltf`].
+/// [`crate::mesh::io::MAX_FILE_BYTES`], and the errors of [`parse_gltf`].
 pub fn read_gltf(path: impl AsRef<Path>) -> Result<Rig, SkinError> {
     read_gltf_with(path, &GltfReadOptions::default())
 }
@@ -26,12 +26,13 @@ pub fn read_gltf(path: impl AsRef<Path>) -> Result<Rig, SkinError> {
 /// As [`read_gltf`].
 pub fn read_gltf_with(path: impl AsRef<Path>, options: &GltfReadOptions) -> Result<Rig, SkinError> {
     let path = path.as_ref();
-    let bytes = crate::io::read_limited(path, crate::io::MAX_FILE_BYTES).map_err(|source| {
-        SkinError::Io {
-            path: path.to_path_buf(),
-            message: source.to_string(),
-        }
-    })?;
+    let bytes =
+        crate::mesh::io::read_limited(path, crate::mesh::io::MAX_FILE_BYTES).map_err(|source| {
+            SkinError::Io {
+                path: path.to_path_buf(),
+                message: source.to_string(),
+            }
+        })?;
     let base = path.parent().map(|p| {
         if p.as_os_str().is_empty() {
             Path::new(".")

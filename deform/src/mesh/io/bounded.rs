@@ -75,7 +75,7 @@ mod tests {
         file.set_len(MAX_FILE_BYTES + 1).unwrap();
         let e = read_limited(&path, MAX_FILE_BYTES).unwrap_err();
         assert_eq!(e.kind(), ErrorKind::FileTooLarge);
-        let m = crate::io::read_mesh(&path).unwrap_err();
+        let m = crate::mesh::io::read_mesh(&path).unwrap_err();
         assert!(
             m.to_string()
                 .contains("huge.obj: more than 4294967296 bytes"),
