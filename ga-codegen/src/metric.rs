@@ -293,9 +293,19 @@ impl Metric {
             .collect()
     }
 
-    /// Inner product of two vectors given by coordinates. Panics on overflow (see
+    /// Inner product of two vectors given by coordinates.
+    ///
+    /// # Panics
+    /// When `u` or `v` does not have one coordinate per basis vector, or on overflow (see
     /// [`Metric::checked_inner`]).
     pub fn inner(&self, u: &[Rational], v: &[Rational]) -> Rational {
+        assert!(
+            u.len() == self.dim() && v.len() == self.dim(),
+            "inner product of vectors of {} and {} coordinates in a {}-dimensional metric",
+            u.len(),
+            v.len(),
+            self.dim()
+        );
         self.checked_inner(u, v)
             .expect("exact rational arithmetic overflowed 128 bits")
     }

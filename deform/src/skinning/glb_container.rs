@@ -53,8 +53,9 @@ pub(crate) fn check_glb_header(bytes: &[u8]) -> Result<(), String> {
 
 /// The JSON of a glTF model at `path` without its binary chunk: the whole file for a `.gltf`
 /// document, the header and the JSON chunk of a `.glb` (so that a large model's buffer is
-/// not read for it). `None` when the file cannot be read or its container is malformed (the
-/// full read reports why).
+/// not read for it). `None` when the file cannot be read, holds more than
+/// [`crate::mesh::io::MAX_FILE_BYTES`], or its JSON chunk's header is missing or cut short
+/// (the full read reports why; the version and stated length are its to check).
 pub(crate) fn read_json_only(path: &Path) -> Option<Vec<u8>> {
     let mut file = std::fs::File::open(path).ok()?;
     let mut head = [0u8; HEADER + CHUNK_HEADER];

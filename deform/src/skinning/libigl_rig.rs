@@ -100,7 +100,8 @@ impl LibiglAnimation {
     ///
     /// # Errors
     /// [`SkinError::NoAnimation`] for a frame past the last; [`SkinError::NotSimilarity`]
-    /// for a transform that is not a similarity.
+    /// for a transform that is not a similarity; [`SkinError::BadTransform`] for one beyond a
+    /// scaled motor's range.
     pub fn skin_motors(&self, f: usize) -> Result<Vec<ScaledMotor>, SkinError> {
         let frame = self
             .frames

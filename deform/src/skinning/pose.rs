@@ -31,7 +31,9 @@ impl RigPose {
     ///
     /// # Errors
     /// [`SkinError::NotSimilarity`] when a joint, one of its ancestors or an inverse bind
-    /// matrix has a non-uniform scale or shear (motors cannot carry it; the matrices can).
+    /// matrix has a non-uniform scale or shear (motors cannot carry it; the matrices can);
+    /// [`SkinError::BadTransform`] for a similarity beyond a scaled motor's range (a scale
+    /// past about `1e10` or under `1e-10`).
     pub fn skin_motors(&self) -> Result<&[ScaledMotor], SkinError> {
         match &self.motor_error {
             Some(e) => Err(e.clone()),

@@ -123,6 +123,9 @@ fn scale_rotation_translation(m: &DMat4) -> (DVec3, DQuat, DVec3) {
     ];
     let unit = axes.map(|a| {
         let big = a.abs().max_element();
+        if big == 0.0 {
+            return (DVec3::NAN, 0.0);
+        }
         let a = a / big;
         (a.normalize(), big * a.length())
     });

@@ -29,7 +29,7 @@ fn canonical(p: &Path) -> PathBuf {
 pub fn check_outputs(inputs: &[&Path], outputs: &[&Path]) -> Result<()> {
     for i in inputs {
         if let Ok(m) = std::fs::metadata(i) {
-            if is_device(&m.file_type()) {
+            if deform::io::is_device(&m.file_type()) {
                 bail!("{}: a device, not a file: refusing to read it", i.display());
             }
         }
@@ -47,20 +47,6 @@ pub fn check_outputs(inputs: &[&Path], outputs: &[&Path]) -> Result<()> {
         seen.push(c);
     }
     Ok(())
-}
-
-/// A character or block device, or a socket (Unix; nothing elsewhere).
-fn is_device(t: &std::fs::FileType) -> bool {
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::FileTypeExt;
-        t.is_char_device() || t.is_block_device() || t.is_socket()
-    }
-    #[cfg(not(unix))]
-    {
-        let _ = t;
-        false
-    }
 }
 
 /// Refuses an output whose extension names a format this command does not write (it would

@@ -11,7 +11,8 @@ pub const MAX_FILE_BYTES: u64 = 1 << 32;
 
 /// The bytes of `path`, a file or a pipe, when there are at most `limit` of them; more is an
 /// error of kind [`ErrorKind::FileTooLarge`] that names the limit. A regular file is refused
-/// by its length before it is read; a pipe is read until it passes the limit.
+/// by its length before it is read; a pipe is read until it passes the limit; a device
+/// ([`is_device`]: `/dev/zero`, a disk) is refused unread ([`ErrorKind::InvalidInput`]).
 ///
 /// ```
 /// let dir = std::env::temp_dir().join(format!("read-limited-doc-{}", std::process::id()));
@@ -27,6 +28,12 @@ pub fn read_limited(path: &Path, limit: u64) -> std::io::Result<Vec<u8>> {
     let file = std::fs::File::open(path)?;
     let mut bytes = Vec::new();
     let meta = file.metadata()?;
+    if is_device(&meta.file_type()) {
+        return Err(Error::new(
+            ErrorKind::InvalidInput,
+            "a device, not a file: refusing to read it",
+        ));
+    }
     if meta.is_file() {
         if meta.len() > limit {
             return Err(too_large(limit));
@@ -39,6 +46,21 @@ pub fn read_limited(path: &Path, limit: u64) -> std::io::Result<Vec<u8>> {
         return Err(too_large(limit));
     }
     Ok(bytes)
+}
+
+/// A character or block device, or a socket (Unix; nothing elsewhere): not an input file,
+/// whatever its name says (a link to `/dev/zero` named `x.obj` never ends).
+pub fn is_device(t: &std::fs::FileType) -> bool {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        t.is_char_device() || t.is_block_device() || t.is_socket()
+    }
+    #[cfg(not(unix))]
+    {
+        let _ = t;
+        false
+    }
 }
 
 fn too_large(limit: u64) -> Error {
@@ -63,6 +85,15 @@ mod tests {
         let e = read_limited(status, 64).unwrap_err();
         assert_eq!(e.kind(), ErrorKind::FileTooLarge);
         assert!(e.to_string().contains("more than 64 bytes"), "{e}");
+    }
+
+    /// A device is refused before anything is read from it.
+    #[cfg(unix)]
+    #[test]
+    fn a_device_is_refused_unread() {
+        let e = read_limited(Path::new("/dev/zero"), MAX_FILE_BYTES).unwrap_err();
+        assert_eq!(e.kind(), ErrorKind::InvalidInput);
+        assert!(e.to_string().contains("a device"), "{e}");
     }
 
     /// A sparse file one byte past the limit is refused by its length, unread.

@@ -9,7 +9,7 @@ mod off;
 mod ply;
 mod tgf;
 
-pub use bounded::{read_limited, MAX_FILE_BYTES};
+pub use bounded::{is_device, read_limited, MAX_FILE_BYTES};
 pub use dmat::{parse_dmat, read_dmat, write_dmat, Dmat};
 pub use medit::{parse_medit, read_medit, MeditMesh};
 mod glb;
@@ -114,13 +114,15 @@ impl Ctx<'_> {
         let x = tok
             .parse::<f64>()
             .map_err(|_| self.err(format!("bad {what} {}", shown(tok))))?;
-        if x.is_nan() || tok.to_ascii_lowercase().contains("inf") {
-            return Err(self.err(format!("non-finite {what} {}", shown(tok))));
+        if x.is_finite() {
+            return Ok(x);
         }
-        if x.is_infinite() {
-            return Err(self.err(format!("{what} {} overflows f64", shown(tok))));
+        // Written as an infinity (or NaN), or a number past the range ("1e400").
+        if x.is_nan() || tok.bytes().any(|b| b.eq_ignore_ascii_case(&b'i')) {
+            Err(self.err(format!("non-finite {what} {}", shown(tok))))
+        } else {
+            Err(self.err(format!("{what} {} overflows f64", shown(tok))))
         }
-        Ok(x)
     }
 
     pub(crate) fn usize(&self, tok: Option<&str>, what: &str) -> Result<usize> {

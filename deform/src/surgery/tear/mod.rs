@@ -38,6 +38,7 @@ use crate::mesh::Mesh;
 use entry::{first_hit, insert_point};
 use glam::DVec3;
 use seams::Seams;
+use std::collections::hash_map::{Entry, HashMap};
 use walk::Step;
 
 /// The blade at one time step: the segment from `a` to `b`.
@@ -185,10 +186,20 @@ impl Surgery {
         );
         let canon = self.weld.as_ref().map(|w| &w.canon[..]);
         let mut seams = Seams::new(canon, n0, &src.mesh.triangles);
-        let points: Vec<u32> = hits
-            .iter()
-            .map(|&(f, p)| insert_point(&mut soup, &mut seams, f, p, options.snap))
-            .collect::<Result<_, _>>()?;
+        // A blade that enters exactly where an earlier one did (a position given again) is
+        // that point: inserting it twice would put a second vertex beside the first when the
+        // point is not snapped.
+        let mut points: Vec<u32> = Vec::with_capacity(hits.len());
+        let mut entered: HashMap<(u32, [u64; 3]), u32> = HashMap::with_capacity(hits.len());
+        for &(f, p) in &hits {
+            let point = match entered.entry((f, p.to_array().map(f64::to_bits))) {
+                Entry::Occupied(e) => *e.get(),
+                Entry::Vacant(e) => {
+                    *e.insert(insert_point(&mut soup, &mut seams, f, p, options.snap)?)
+                }
+            };
+            points.push(point);
+        }
         // Every blade entered at one point: there is no incision to open (it would only add
         // that point as a vertex).
         if points
@@ -207,12 +218,11 @@ impl Surgery {
         let still = |i: usize| seams.label(points[i]) == seams.label(points[i + 1]);
         let own: Vec<Option<(DVec3, DVec3)>> = (0..points.len() - 1)
             .map(|i| {
-                let ends = [points[i], points[i + 1]].map(|v| soup.at(v));
-                match step_plane(i, ends, &scalpel[i + 1]) {
-                    Ok(plane) => Ok(Some(plane)),
-                    Err(_) if still(i) => Ok(None),
-                    Err(e) => Err(e),
+                if still(i) {
+                    return Ok(None);
                 }
+                let ends = [points[i], points[i + 1]].map(|v| soup.at(v));
+                step_plane(i, ends, &scalpel[i + 1]).map(Some)
             })
             .collect::<Result<_, _>>()?;
         let planes = fill_still_planes(&own);
@@ -285,10 +295,10 @@ impl Surgery {
     }
 }
 
-/// Every step's plane: its own where it has one, else (a step that stays at one point and
-/// whose next blade enters there too) the previous step's, else the next one's. Some step
-/// moves (the caller refused scalpels that all enter at one point), and a moving step always
-/// has its plane, so each step gets one.
+/// Every step's plane: its own for a step that moves, else (a step that stays at one point)
+/// the previous step's, else the next one's. Some step moves (the caller refused scalpels
+/// that all enter at one point) and has its plane (or the tear was refused), so each step
+/// gets one.
 fn fill_still_planes(own: &[Option<(DVec3, DVec3)>]) -> Vec<(DVec3, DVec3)> {
     let mut last = None;
     let forward: Vec<Option<(DVec3, DVec3)>> = own

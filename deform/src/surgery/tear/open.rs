@@ -152,9 +152,12 @@ fn taper(soup: &Soup, incision: &[u32], labels: &[u32]) -> Vec<f64> {
             }
         }
     }
-    // (The path is connected, so every point is reached; an unreached one would not open.)
+    // The path is connected, so every point is reached; were one not, it would stay shut.
     node.iter()
-        .map(|&k| (PI * dist[k].min(0.5 * total) / total).sin())
+        .map(|&k| match dist[k] {
+            d if d.is_finite() => (PI * d.min(0.5 * total) / total).sin(),
+            _ => 0.0,
+        })
         .collect()
 }
 
