@@ -266,6 +266,14 @@ fn a_scalpel_that_misses_says_where_the_surface_is() {
     }
 }
 
+/// A blade through `(x, y)` down across the procedural arm (from z = 1.2 to 0.2).
+fn across_the_arm(x: f64, y: f64) -> deform::surgery::Scalpel {
+    deform::surgery::Scalpel {
+        a: DVec3::new(x, y, 1.2),
+        b: DVec3::new(x, y, 0.2),
+    }
+}
+
 /// A scalpel that goes back along its incision (there and back, and twice over) tears and
 /// opens the same slit as one pass: the same triangles and positions, each point split once.
 /// Before, the points passed twice were split twice in the count and their lips pulled apart
@@ -274,10 +282,7 @@ fn a_scalpel_that_misses_says_where_the_surface_is() {
 fn a_scalpel_that_retraces_its_incision_opens_the_slit_once() {
     let rig = procedural_arm(24, 81);
     let s = Surgery::new(&rig.mesh, &rig.influences).unwrap();
-    let at = |x: f64, y: f64| deform::surgery::Scalpel {
-        a: DVec3::new(x, y, 1.2),
-        b: DVec3::new(x, y, 0.2),
-    };
+    let at = across_the_arm;
     // (Only with snapping: without it, the second pass meets the first one's vertices at
     // 1e-17 and cannot follow them; it is refused with that, which is what the snap is for.)
     let (a, b) = (at(4.6, 0.05), at(6.3, 0.0));
@@ -328,10 +333,7 @@ fn retrace_with_snap(
 fn a_scalpel_position_held_for_a_sample_tears_as_without_it() {
     let rig = procedural_arm(24, 81);
     let s = Surgery::new(&rig.mesh, &rig.influences).unwrap();
-    let at = |x: f64, y: f64| deform::surgery::Scalpel {
-        a: DVec3::new(x, y, 1.2),
-        b: DVec3::new(x, y, 0.2),
-    };
+    let at = across_the_arm;
     let (a, b, c) = (at(4.6, 0.05), at(5.4, 0.1), at(6.27, 0.043));
     // With the default snap and with none (where a repeated hit lands exactly on the vertex
     // the first one inserted, and must be that vertex, not a second one beside it); the blades
