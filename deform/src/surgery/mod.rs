@@ -56,7 +56,7 @@ pub use cut::{CutOptions, CutPiece, CutResult};
 pub use drill::{Drill, DrillOptions, DrillResult};
 pub use ray::RayHit;
 pub use split::VertexOrigin;
-pub use tear::{Scalpel, TearOptions, TearResult, MAX_OPEN_PER_DIAGONAL};
+pub use tear::{Scalpel, TearOptions, TearResult, MAX_OPEN_PER_DIAGONAL, ROUNDING_SNAP};
 pub use weights::{identity_sources, push_interpolated, NEW_VERTEX_INFLUENCES};
 
 use crate::blend::{PreparedKeys, Row};

@@ -50,11 +50,18 @@ pub struct Scalpel {
     pub b: DVec3,
 }
 
+/// The snap fraction a tear uses at least, [`TearOptions::snap`] `0` included: a scalpel point
+/// or a crossing within this fraction of an edge of a corner is that corner. It is rounding,
+/// not geometry (a point 1e-17 from an edge made sliver faces that the next step's curve could
+/// not follow).
+pub const ROUNDING_SNAP: f64 = 1e-9;
+
 /// Options of [`Surgery::tear`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TearOptions {
     /// Corners closer to the incision than this fraction of an edge are taken as incision
-    /// vertices instead of splitting the edge (no slivers). In `[0, 0.5)`; default 0.02.
+    /// vertices instead of splitting the edge (no slivers). In `[0, 0.5)`; default 0.02; at
+    /// least [`ROUNDING_SNAP`] is used.
     pub snap: f64,
     /// How far the two lips are pulled apart at the incision's middle (0: a closed slit).
     pub open: f64,
@@ -144,6 +151,8 @@ impl Surgery {
             )));
         }
         check_snap(options.snap)?;
+        // Even without snapping, a point within rounding of a corner or an edge is on it.
+        let snap = options.snap.max(ROUNDING_SNAP);
         if !options.open.is_finite() {
             return Err(SurgeryError::BadTool("the opening is not finite".into()));
         }
@@ -194,9 +203,7 @@ impl Surgery {
         for &(f, p) in &hits {
             let point = match entered.entry((f, p.to_array().map(f64::to_bits))) {
                 Entry::Occupied(e) => *e.get(),
-                Entry::Vacant(e) => {
-                    *e.insert(insert_point(&mut soup, &mut seams, f, p, options.snap)?)
-                }
+                Entry::Vacant(e) => *e.insert(insert_point(&mut soup, &mut seams, f, p, snap)?),
             };
             points.push(point);
         }
@@ -239,7 +246,7 @@ impl Surgery {
                 normal: planes[i].0,
                 point: planes[i].1,
                 blades: [scalpel[i], scalpel[i + 1]],
-                snap: options.snap,
+                snap,
                 diagonal: self.diagonal,
             };
             let path = walk::follow(&mut soup, &mut seams, &step)?;
