@@ -57,6 +57,21 @@ pub enum KeyError {
     #[error("{0}")]
     BadSetup(String),
 }
+
+impl KeyError {
+    /// `Ok` for at most [`MAX_KEYS`] of `what` (`"keys"`, `"joints"`, `"handle sets"`), else
+    /// [`KeyError::TooMany`]: the one check of every key list, rig and handle selection.
+    pub fn check_count(what: &'static str, got: usize) -> Result<(), KeyError> {
+        if got > MAX_KEYS {
+            return Err(KeyError::TooMany {
+                what,
+                got,
+                max: MAX_KEYS,
+            });
+        }
+        Ok(())
+    }
+}
 /// What can go wrong binding or posing a [`BoundBlend`](crate::blend::BoundBlend) or a
 /// [`ControlBinding`](crate::blend::control::ControlBinding).
 #[derive(Debug, thiserror::Error)]

@@ -1,8 +1,8 @@
 //! The keys of one pose, prepared in the form a blend method needs.
 
 use super::{BlendMethod, Row};
+use crate::blend::KeyError;
 use crate::blend::Result;
-use crate::blend::{KeyError, MAX_KEYS};
 use cga::wide::{F64x4, Lane};
 use cga::{Bivector, Motor, ScaledMotor};
 use glam::{Affine3A, DAffine3, DMat3, DQuat, DVec3, Vec3A};
@@ -132,14 +132,7 @@ impl PreparedKeys {
     /// [`KeyError::TooMany`], or [`KeyError::Invalid`] naming the first key that is not a
     /// finite scaled motor.
     pub fn prepare(&mut self, keys: &[ScaledMotor], method: BlendMethod) -> Result<()> {
-        if keys.len() > MAX_KEYS {
-            return Err(KeyError::TooMany {
-                what: "keys",
-                got: keys.len(),
-                max: MAX_KEYS,
-            }
-            .into());
-        }
+        KeyError::check_count("keys", keys.len())?;
         self.method = method;
         self.count = 0;
         self.scaled = false;

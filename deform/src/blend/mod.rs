@@ -256,14 +256,7 @@ impl KeyWeights {
     }
 
     fn checked(w: KeyWeights) -> Result<Self> {
-        if w.key_count > MAX_KEYS {
-            return Err(KeyError::TooMany {
-                what: "keys",
-                got: w.key_count,
-                max: MAX_KEYS,
-            }
-            .into());
-        }
+        KeyError::check_count("keys", w.key_count)?;
         if w.weights.len() != w.first.len() * w.width {
             return Err(MeshError::DimensionMismatch {
                 what: "key weights",

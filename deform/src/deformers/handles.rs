@@ -3,8 +3,8 @@
 //! coordinates, a partition of unity), and `M_i = exp(sum_j lambda_j^i log R_j)`. Each handle
 //! can rotate, translate and scale; its vertices follow its motor exactly.
 
+use crate::blend::KeyError;
 use crate::blend::{BlendMethod, BoundBlend, KeyWeights};
-use crate::blend::{KeyError, MAX_KEYS};
 use crate::deformers::deformer::deformer_via_blend;
 use crate::deformers::Result;
 use crate::mesh::{Mesh, MeshError};
@@ -120,14 +120,7 @@ impl MotorHandles {
             }
             .into());
         }
-        if sets.len() > MAX_KEYS {
-            return Err(KeyError::TooMany {
-                what: "handle sets",
-                got: sets.len(),
-                max: MAX_KEYS,
-            }
-            .into());
-        }
+        KeyError::check_count("handle sets", sets.len())?;
         if let Some(set) = sets.iter().position(|s| s.is_empty()) {
             return Err(KeyError::EmptyHandle { set }.into());
         }

@@ -9,8 +9,8 @@
 //! are brought into one hemisphere, and what happens near a half-turn, is said in
 //! [`crate::blend`].
 
+use crate::blend::KeyError;
 use crate::blend::{BlendMethod, BoundBlend, KeyWeights};
-use crate::blend::{KeyError, MAX_KEYS};
 use crate::deformers::bspline::{bspline_basis, bspline_degree};
 use crate::deformers::deformer::deformer_via_blend;
 use crate::deformers::Result;
@@ -76,14 +76,7 @@ impl WeightScheme {
             }
             .into());
         }
-        if n > MAX_KEYS {
-            return Err(KeyError::TooMany {
-                what: "keys",
-                got: n,
-                max: MAX_KEYS,
-            }
-            .into());
-        }
+        KeyError::check_count("keys", n)?;
         Ok(())
     }
 

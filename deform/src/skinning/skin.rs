@@ -2,7 +2,7 @@
 //! motors of any frame with any backend.
 
 use super::{Influences, Rig};
-use crate::blend::{BlendMethod, BoundBlend, KeyError, KeyWeights, MAX_KEYS};
+use crate::blend::{BlendMethod, BoundBlend, KeyError, KeyWeights};
 use crate::deformers::deformer::deformer_via_blend;
 use crate::deformers::Result;
 use cga::ScaledMotor;
@@ -54,14 +54,7 @@ impl Skinning {
         joint_count: usize,
         method: BlendMethod,
     ) -> Result<Self> {
-        if joint_count > MAX_KEYS {
-            return Err(KeyError::TooMany {
-                what: "joints",
-                got: joint_count,
-                max: MAX_KEYS,
-            }
-            .into());
-        }
+        KeyError::check_count("joints", joint_count)?;
         let weights = KeyWeights::gathered(
             joint_count,
             influences.width,
@@ -85,6 +78,7 @@ deformer_via_blend!(Skinning, blend);
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::blend::MAX_KEYS;
 
     #[test]
     fn too_many_joints_are_named_as_joints() {

@@ -70,9 +70,7 @@ pub(super) fn insert_point(
     }
     let (_, f, bary) = best;
     let t = soup.tris[f as usize];
-    // `>=`: with no snap, a point exactly on a corner (a scalpel position given again, whose
-    // hit is the vertex the first one inserted) is that corner, not a new vertex beside it.
-    if let Some(k) = (0..3).find(|&k| bary[k] >= 1.0 - snap) {
+    if let Some(k) = (0..3).find(|&k| bary[k] > 1.0 - snap) {
         return Ok(t[k]);
     }
     if let Some(k) = (0..3).find(|&k| bary[k] < snap) {

@@ -38,7 +38,6 @@ use crate::mesh::Mesh;
 use entry::{first_hit, insert_point};
 use glam::DVec3;
 use seams::Seams;
-use std::collections::hash_map::{Entry, HashMap};
 use walk::Step;
 
 /// The blade at one time step: the segment from `a` to `b`.
@@ -195,18 +194,12 @@ impl Surgery {
         );
         let canon = self.weld.as_ref().map(|w| &w.canon[..]);
         let mut seams = Seams::new(canon, n0, &src.mesh.triangles);
-        // A blade that enters exactly where an earlier one did (a position given again) is
-        // that point: inserting it twice would put a second vertex beside the first when the
-        // point is not snapped.
-        let mut points: Vec<u32> = Vec::with_capacity(hits.len());
-        let mut entered: HashMap<(u32, [u64; 3]), u32> = HashMap::with_capacity(hits.len());
-        for &(f, p) in &hits {
-            let point = match entered.entry((f, p.to_array().map(f64::to_bits))) {
-                Entry::Occupied(e) => *e.get(),
-                Entry::Vacant(e) => *e.insert(insert_point(&mut soup, &mut seams, f, p, snap)?),
-            };
-            points.push(point);
-        }
+        // A blade that enters where an earlier one did (a position given again) lands on the
+        // point that one inserted, within the snap (at least ROUNDING_SNAP): the same vertex.
+        let points: Vec<u32> = hits
+            .iter()
+            .map(|&(f, p)| insert_point(&mut soup, &mut seams, f, p, snap))
+            .collect::<Result<_, _>>()?;
         // Every blade entered at one point: there is no incision to open (it would only add
         // that point as a vertex).
         if points
@@ -232,7 +225,7 @@ impl Surgery {
                 step_plane(i, ends, &scalpel[i + 1]).map(Some)
             })
             .collect::<Result<_, _>>()?;
-        let planes = fill_still_planes(&own);
+        let planes = fill_still_planes(&own)?;
         // Follow each step's plane from one scalpel point to the next.
         let mut incision = vec![points[0]];
         for i in 0..points.len() - 1 {
@@ -303,22 +296,15 @@ impl Surgery {
 }
 
 /// Every step's plane: its own for a step that moves, else (a step that stays at one point)
-/// the previous step's, else the next one's. Some step moves (the caller refused scalpels
-/// that all enter at one point) and has its plane (or the tear was refused), so each step
-/// gets one.
-fn fill_still_planes(own: &[Option<(DVec3, DVec3)>]) -> Vec<(DVec3, DVec3)> {
-    let mut last = None;
-    let forward: Vec<Option<(DVec3, DVec3)>> = own
-        .iter()
+/// the previous step's, else the first moving step's. Some step moves (the caller refused
+/// scalpels that all enter at one point) and has its plane (or the tear was refused).
+fn fill_still_planes(own: &[Option<(DVec3, DVec3)>]) -> Result<Vec<(DVec3, DVec3)>, SurgeryError> {
+    let mut last = own.iter().flatten().next().copied();
+    own.iter()
         .map(|p| {
             last = p.or(last);
-            last
+            last.ok_or_else(|| SurgeryError::Broken("a tear with no moving step".into()))
         })
-        .collect();
-    let first = own.iter().flatten().next().copied();
-    forward
-        .into_iter()
-        .map(|p| p.or(first).unwrap_or((DVec3::Z, DVec3::ZERO)))
         .collect()
 }
 
