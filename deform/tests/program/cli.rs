@@ -402,6 +402,37 @@ fn ctrl_c_stops_a_sequence_and_leaves_no_partial_output() {
     assert!(left.is_empty(), "left behind: {left:?}");
 }
 
+/// A mesh input that is not text is refused by name, with exit code 2 and no output (the
+/// program reads an OBJ once, for its mesh and its texture coordinates together).
+#[test]
+fn obj_input_that_is_not_text_is_refused() {
+    let s = Scene::new("binary-obj");
+    std::fs::write(
+        s.p("bad.obj"),
+        b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n\xff\xfe\n",
+    )
+    .unwrap();
+    std::fs::write(s.p("id.json"), r#"{"*": {}}"#).unwrap();
+    let out = s.p("out.obj");
+    let o = run(&[
+        "ffd",
+        &s.p("bad.obj"),
+        "--lattice",
+        "2x2x2",
+        "--motors",
+        &s.p("id.json"),
+        "-o",
+        &out,
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let err = stderr(&o);
+    assert!(
+        err.contains("bad.obj") && err.contains("not UTF-8"),
+        "{err}"
+    );
+    assert!(!std::path::Path::new(&out).exists(), "nothing written");
+}
+
 /// A deformed OBJ keeps the input's texture coordinates, corner by corner, and gets normals
 /// where the input had them (issue 21).
 #[test]

@@ -13,7 +13,11 @@ use std::path::Path;
 
 /// Read a mesh, validated for deformation.
 pub fn read_mesh(path: &Path) -> Result<Mesh> {
-    let mesh = deform::io::read_mesh(path)?;
+    usable(path, deform::io::read_mesh(path)?)
+}
+
+/// `mesh`, read from `path`, if it passes the checks for deformation.
+fn usable(path: &Path, mesh: Mesh) -> Result<Mesh> {
     deform::check_solvable(&mesh)
         .with_context(|| format!("{}: not a usable mesh", path.display()))?;
     Ok(mesh)
@@ -88,8 +92,9 @@ pub fn read_mesh_checked(mesh: &Path, extra: &[&Path], out: &OutputArgs) -> Resu
     inputs.extend_from_slice(extra);
     check_outputs(&inputs, &out.paths())?;
     check_formats(out, &MESH_FORMATS)?;
-    let read = read_mesh(mesh)?;
-    let _ = out.input_extras.set(ObjInputExtras::read(mesh));
+    let (read, extras) = ObjInputExtras::read_with_mesh(mesh)?;
+    let read = usable(mesh, read)?;
+    let _ = out.input_extras.set(extras);
     Ok(read)
 }
 

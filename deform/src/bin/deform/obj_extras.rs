@@ -1,5 +1,6 @@
 //! What an OBJ input had beside positions and faces, kept for a deformed OBJ output.
 
+use deform::Mesh;
 use std::path::Path;
 
 /// What an OBJ input had beside positions and faces: its texture coordinates by face corner,
@@ -12,23 +13,30 @@ pub struct ObjInputExtras {
 }
 
 impl ObjInputExtras {
-    /// Read them from an OBJ file (none for other formats or unreadable files: the mesh
-    /// itself was read and checked before).
-    pub fn read(path: &Path) -> ObjInputExtras {
+    /// The mesh of `path`, as `deform::io::read_mesh` reads it (same formats and errors), with
+    /// the extras of an OBJ file (none for the other formats), from one read of the file.
+    pub fn read_with_mesh(path: &Path) -> deform::mesh::Result<(Mesh, ObjInputExtras)> {
         let obj = path
             .extension()
             .is_some_and(|e| e.eq_ignore_ascii_case("obj"));
-        let text = obj
-            .then(|| deform::io::read_limited(path, deform::io::MAX_FILE_BYTES).ok())
-            .flatten()
-            .and_then(|b| String::from_utf8(b).ok());
-        let Some(text) = text else {
-            return ObjInputExtras::default();
+        if !obj {
+            return Ok((deform::io::read_mesh(path)?, ObjInputExtras::default()));
+        }
+        let name = path.display().to_string();
+        let bytes =
+            deform::io::read_limited(path, deform::io::MAX_FILE_BYTES).map_err(|source| {
+                deform::MeshError::Io {
+                    path: path.to_path_buf(),
+                    source,
+                }
+            })?;
+        let Ok(text) = std::str::from_utf8(&bytes) else {
+            // The library's own message for bytes that are not text.
+            let mesh = deform::io::parse_mesh(&bytes, &name)?;
+            return Ok((mesh, ObjInputExtras::default()));
         };
-        let texture = deform::io::parse_obj_textured(&text, "")
-            .ok()
-            .and_then(|(_, t)| t);
+        let (mesh, texture) = deform::io::parse_obj_textured(text, &name)?;
         let normals = text.lines().any(|l| l.starts_with("vn "));
-        ObjInputExtras { texture, normals }
+        Ok((mesh, ObjInputExtras { texture, normals }))
     }
 }
