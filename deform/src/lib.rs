@@ -35,6 +35,8 @@
 //! assert!(x[1] > 0.0 && x[1] < 1.0);
 //! ```
 
+#![warn(missing_docs)]
+
 pub mod blend;
 pub mod deformers;
 mod error;

@@ -5,6 +5,8 @@
 //! - [`measure`]: wall-clock timings with their spread;
 //! - [`grade`]: targets that grade those figures (`met` / `MISSED`) and the closing tally.
 
+#![warn(missing_docs)]
+
 pub mod grade;
 pub mod measure;
 pub mod shared;

@@ -9,6 +9,7 @@
 //! against. The runtime part ([`Algebra`], [`Multivector`]) is always built; the generator
 //! itself is behind the default `codegen` feature.
 
+#![warn(missing_docs)]
 // Matrices and blade tables are indexed by position on purpose: the index loops read like the
 // formulas they implement.
 #![allow(clippy::needless_range_loop)]

@@ -114,6 +114,8 @@
 //!
 //! For the file form, errors point at the path literal and name the file.
 
+#![warn(missing_docs)]
+
 mod expand;
 mod grammar;
 mod locate;

@@ -229,6 +229,7 @@ impl Harmonic {
         Harmonic { solver, starts }
     }
 
+    /// How many constrained sets there are (the values per field).
     pub fn set_count(&self) -> usize {
         self.starts.len() - 1
     }

@@ -33,7 +33,12 @@ impl Report {
             println!("{}", serde_json::Value::Object(map));
         } else if !out.quiet {
             // Values in one column; a key longer than 22 characters pushes its own value out.
-            let width = self.fields.iter().map(|(k, _)| k.len() + 1).max().unwrap_or(0);
+            let width = self
+                .fields
+                .iter()
+                .map(|(k, _)| k.len() + 1)
+                .max()
+                .unwrap_or(0);
             let width = width.min(23);
             for (k, v) in &self.fields {
                 println!("{:<width$} {}", format!("{k}:"), human(v));
