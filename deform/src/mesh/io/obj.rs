@@ -197,17 +197,20 @@ pub fn write_obj_with_to(mesh: &Mesh, extras: ObjExtras, mut w: impl Write) -> s
         }
     }
     let textured = extras.uvs.is_some() || extras.texture.is_some();
-    let corner = |v: u32, t: u32| match (textured, extras.normals.is_some()) {
-        (false, false) => format!("{}", v + 1),
-        (true, false) => format!("{}/{}", v + 1, t + 1),
-        (false, true) => format!("{0}//{0}", v + 1),
-        (true, true) => format!("{0}/{1}/{0}", v + 1, t + 1),
-    };
+    let normals = extras.normals.is_some();
     for (f, t) in mesh.triangles.iter().enumerate() {
         // The texture index of a corner: its own (OBJ input) or the vertex's.
         let c = extras.texture.map_or(*t, |x| x.corners[f]);
-        let [a, b, d] = [0, 1, 2].map(|k| corner(t[k], c[k]));
-        writeln!(buf, "f {a} {b} {d}")?;
+        buf.write_all(b"f")?;
+        for (v, t) in t.iter().zip(c).map(|(v, t)| (v + 1, t + 1)) {
+            match (textured, normals) {
+                (false, false) => write!(buf, " {v}")?,
+                (true, false) => write!(buf, " {v}/{t}")?,
+                (false, true) => write!(buf, " {v}//{v}")?,
+                (true, true) => write!(buf, " {v}/{t}/{v}")?,
+            }
+        }
+        buf.write_all(b"\n")?;
     }
     buf.flush()
 }
