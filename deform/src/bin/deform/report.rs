@@ -48,7 +48,8 @@ impl Report {
 }
 
 /// A value as the aligned lines show it: numbers in about four significant digits
-/// (`deform::render::short_number`; integers whole), strings without quotes, lists and
+/// (`deform::render::short_number`; integers whole), strings without quotes (unless they hold
+/// a control character), lists and
 /// objects with their items shown the same way.
 fn human(v: &serde_json::Value) -> String {
     use serde_json::Value;
@@ -56,6 +57,9 @@ fn human(v: &serde_json::Value) -> String {
         Value::Number(n) if n.is_f64() => n
             .as_f64()
             .map_or_else(|| n.to_string(), deform::render::short_number),
+        // Quoted and escaped when it holds a control character (a file name with a newline or
+        // a terminal escape), bare otherwise.
+        Value::String(s) if s.chars().any(char::is_control) => v.to_string(),
         Value::String(s) => s.clone(),
         Value::Array(items) => {
             let items: Vec<String> = items.iter().map(human).collect();
@@ -89,5 +93,6 @@ mod tests {
             "{loops: [1, 2.5], path: a b.obj}"
         );
         assert_eq!(human(&json!(null)), "null");
+        assert_eq!(human(&json!("a\nb\u{1b}[2J")), "\"a\\nb\\u001b[2J\"");
     }
 }
