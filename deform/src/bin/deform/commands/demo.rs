@@ -376,13 +376,21 @@ fn print_table(rows: &[Row], a: &DemoArgs, sheet: &std::path::Path) {
     if a.quiet {
         return;
     }
+    // Columns as wide as their longest entry.
+    let scene = rows.iter().map(|r| r.name.len()).max().unwrap_or(0).max(5);
+    let method = rows
+        .iter()
+        .map(|r| r.method.len())
+        .max()
+        .unwrap_or(0)
+        .max(6);
     println!(
-        "{:<18} {:<52} {:>8} {:>9} {:>9}",
+        "{:<scene$} {:<method$} {:>8} {:>9} {:>9}",
         "scene", "method", "vertices", "bind ms", "pose ms"
     );
     for r in rows {
         println!(
-            "{:<18} {:<52} {:>8} {:>9.2} {:>9.3}",
+            "{:<scene$} {:<method$} {:>8} {:>9.2} {:>9.3}",
             r.name, r.method, r.vertices, r.bind_ms, r.pose_ms
         );
     }
