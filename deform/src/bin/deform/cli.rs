@@ -27,9 +27,11 @@ pub struct Cli {
 
 #[derive(Subcommand, Debug)]
 pub enum Command {
-    /// Bend, twist and stretch procedural meshes with every scheme, fit a spline to a FABRIK
-    /// chain, move motor handles; write OBJ files, PNG previews and a contact sheet, and
-    /// print a table of bind and pose times.
+    /// Every method on procedural meshes (no downloads): bend, twist and stretch bars with
+    /// every spline scheme, fit a spline to a FABRIK chain, twist by FFD, bend by a cage, move
+    /// motor handles, pose an ARAP beam, animate a rigged arm and cut, tear and drill it; write
+    /// OBJ files, PNG previews, a .glb per rig and a contact sheet, and print a table of bind
+    /// (or tool) and pose times.
     Demo(demo::DemoArgs),
     /// Spline-aligned deformation: group 0 of the selection is H_1 (lambda = 0), the highest
     /// group H_n (lambda = 1); keys are posed relative to the rest pose (rest keys are the
