@@ -11,12 +11,15 @@ use std::path::{Path, PathBuf};
 /// Options every command that writes files shares.
 #[derive(Args, Debug, Clone)]
 pub struct OutputArgs {
-    /// The deformed mesh, by extension: `.obj` or `.ply` (binary); the input's vertex order
-    /// and count are kept.
+    /// The result, by extension: `.obj`, `.ply` (binary) or `.glb` (for `skin`, `cut`, `tear`
+    /// and `drill` the whole rig, for the deformers a static mesh with smooth normals); any
+    /// other extension is refused before any work. The deformers and `skin` keep the input's
+    /// vertex order and count; `cut`, `tear` and `drill` change them.
     #[arg(short = 'o', long = "output")]
     pub output: PathBuf,
     /// A PNG preview: the rest mesh beside the deformed one, titled, with the colour legend
-    /// and the tools (handles, cage, lattice, chain, target, plane) drawn over them.
+    /// and the tools (handles, cage, lattice, chain, target, plane, scalpel, drill) drawn over
+    /// them.
     #[arg(long)]
     pub png: Option<PathBuf>,
     /// The preview's view YAW,PITCH in degrees (yaw 0 looks along -Z, at the model's front
