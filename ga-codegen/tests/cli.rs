@@ -523,3 +523,25 @@ fn output_onto_the_spec_is_refused_and_the_spec_kept() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `--help` says what every option of the usage lines does, on a line of its own.
+#[test]
+fn help_explains_every_option() {
+    let out = run(&["--help"]);
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    let (usage, explained) = text.split_once("\n\n").expect("usage, then the options");
+    let options: std::collections::BTreeSet<&str> = usage
+        .split(|c: char| c.is_whitespace() || c == '[' || c == ']' || c == '|')
+        .filter(|w| w.starts_with('-'))
+        .collect();
+    assert!(options.len() >= 9, "{options:?}");
+    for o in options {
+        let line = explained
+            .lines()
+            .find(|l| l.trim_start().split([' ', ',']).next() == Some(o))
+            .or_else(|| explained.lines().find(|l| l.contains(&format!(", {o} "))));
+        let line = line.unwrap_or_else(|| panic!("{o} is not explained:\n{explained}"));
+        assert!(line.split_whitespace().count() > 2, "{line}");
+    }
+}

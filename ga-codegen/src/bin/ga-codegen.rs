@@ -28,6 +28,31 @@ const USAGE: &str =
        ga-codegen --signature P,Q,R [-o FILE] [--scalar f32|f64] [--summary] [--runtime PATH] [--library] [--exp-log] [--wide]
        ga-codegen SPEC.toml|--signature P,Q,R --wgsl [-o FILE]";
 
+/// `--help`: the usage, then what each argument does.
+const OPTIONS: &str = "
+Generate the Rust module (or WGSL) of a geometric algebra from a spec file (TOML: basis, metric,
+types, sandwiches; see algebras/*.toml) or from a signature, and print it or write it.
+
+  SPEC.toml            the algebra's spec
+  --signature P,Q,R    G(P,Q,R): P vectors squaring to +1, Q to -1, R to 0, with a type for every
+                       grade, the even part and the whole algebra (P,Q for R = 0)
+  -o, --output FILE    write the module to FILE (refused when FILE is the spec); default: print
+  --scalar f32|f64     the coefficient type (default f64)
+  --summary            print the types and the product table instead of the code (the time
+                       taken goes to stderr)
+  --runtime PATH       the path of the ga-codegen runtime crate in the module (default ::ga_codegen)
+  --library            add the serde/bytemuck impls behind cargo features and the `types` module,
+                       as the cga crate compiles it
+  --exp-log            refuse the spec when a bivector or even versor type gets no closed-form
+                       exp, log, sqrt and normalize (without it, such types are named in a note)
+  --wide               add `pub mod wide`: structure-of-arrays twins of the versor types over a
+                       lane type (F64x4, F32x8), for loops over many operands
+  --wgsl               write WGSL instead (f32 structs, products, reverses, fused sandwiches and
+                       their matrices); takes only -o
+  -h, --help           this text
+
+Errors name the file, the type and the blade, and exit with code 2.";
+
 struct Args {
     spec: Option<PathBuf>,
     signature: Option<(usize, usize, usize)>,
@@ -130,7 +155,7 @@ fn main() -> ExitCode {
         Ok(a) => a,
         Err(e) => {
             if e.is_empty() {
-                println!("{USAGE}");
+                println!("{USAGE}\n{OPTIONS}");
                 return ExitCode::SUCCESS;
             }
             eprintln!("error: {e}\n{USAGE}");
