@@ -402,6 +402,20 @@ fn ctrl_c_stops_a_sequence_and_leaves_no_partial_output() {
     assert!(left.is_empty(), "left behind: {left:?}");
 }
 
+/// `deform ffd MESH --lattice 2x2x2 --motors MOTORS -o OUT`.
+fn ffd_2x2x2(mesh: &str, motors: &str, out: &str) -> Output {
+    run(&[
+        "ffd",
+        mesh,
+        "--lattice",
+        "2x2x2",
+        "--motors",
+        motors,
+        "-o",
+        out,
+    ])
+}
+
 /// A mesh input that is not text is refused by name, with exit code 2 and no output (the
 /// program reads an OBJ once, for its mesh and its texture coordinates together).
 #[test]
@@ -414,16 +428,7 @@ fn obj_input_that_is_not_text_is_refused() {
     .unwrap();
     std::fs::write(s.p("id.json"), r#"{"*": {}}"#).unwrap();
     let out = s.p("out.obj");
-    let o = run(&[
-        "ffd",
-        &s.p("bad.obj"),
-        "--lattice",
-        "2x2x2",
-        "--motors",
-        &s.p("id.json"),
-        "-o",
-        &out,
-    ]);
+    let o = ffd_2x2x2(&s.p("bad.obj"), &s.p("id.json"), &out);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     let err = stderr(&o);
     assert!(
@@ -461,16 +466,7 @@ fn deformed_obj_keeps_texture_coordinates() {
     )
     .unwrap();
     let out = s.p("out.obj");
-    let o = run(&[
-        "ffd",
-        &s.p("textured.obj"),
-        "--lattice",
-        "2x2x2",
-        "--motors",
-        &s.p("twist.json"),
-        "-o",
-        &out,
-    ]);
+    let o = ffd_2x2x2(&s.p("textured.obj"), &s.p("twist.json"), &out);
     assert!(o.status.success(), "{}", stderr(&o));
     let written = std::fs::read_to_string(&out).unwrap();
     let (mesh, texture) = deform::io::parse_obj_textured(&written, "out").unwrap();
