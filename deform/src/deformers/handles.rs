@@ -59,7 +59,9 @@ impl MotorHandles {
         )
     }
 
-    /// Bind `mesh` to the handle `sets` with rest motors `rest` (one per set).
+    /// Bind `mesh` to the handle `sets` with rest motors `rest` (one per set). The harmonic
+    /// coordinates are dense: a weight per vertex and set, held several times over while
+    /// binding (about 4 `f64`s a pair; thousands of sets on a large mesh take gigabytes).
     ///
     /// # Errors
     /// [`KeyError::EmptyHandle`], [`KeyError::WrongCount`] (no sets, or `rest` of another

@@ -275,3 +275,32 @@ fn mutated_requests_never_stop_the_server() {
         "{closed} of {sent} closed: both kinds were sent"
     );
 }
+
+/// A loaded selection whose groups would need more than the run's budget (a weight per vertex
+/// and group) is refused before any work, and the session goes on with a smaller one.
+#[test]
+fn a_selection_with_too_many_groups_is_refused() {
+    // The sphere (2,562 vertices) starts with 3 groups: 3 * 2562 * 4 fits, 4 groups do not.
+    let server = Server::start(&["--max-work", "35000"]);
+    let mut c = server.connect(None).expect("connects");
+    c.state();
+    c.positions(0);
+    let groups = |n: u32| {
+        let sel: serde_json::Map<String, Value> =
+            (0..n).map(|k| (k.to_string(), json!([k * 10]))).collect();
+        json!({"op": "load", "what": "selection", "text": Value::Object(sel).to_string()})
+    };
+    c.send(groups(4));
+    let message = c.until(true, |f| match f {
+        Frame::Text(v) if v["type"] == "error" => Some(v["message"].as_str().unwrap().to_string()),
+        _ => None,
+    });
+    assert!(
+        message.contains("4 groups on 2562 vertices") && message.contains("--max-work"),
+        "{message}"
+    );
+    assert!(c.answers(), "the session goes on");
+    c.send(groups(2));
+    c.send(json!({"op": "motors", "seq": 5, "motors": [{}, {"translate": [0, 0.5, 0]}]}));
+    assert_eq!(c.positions(5).len(), 2562, "two groups bind and pose");
+}

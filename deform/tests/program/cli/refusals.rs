@@ -67,6 +67,21 @@ fn huge_counts_and_non_finite_numbers_are_refused_before_any_work() {
         let args = ["ffd", &mesh, &flag, "--motors", &motors, "-o", &out];
         refused(&args, "--lattice", &out);
     }
+    // Motor handles hold a weight per vertex and group (about 4 f64s each while binding): 20,000
+    // one-vertex groups on armadillo-50k asked for about 27 GB; here 2 groups on the bar's
+    // vertices against a budget of 500.
+    let args = [
+        "handles",
+        &mesh,
+        "--select",
+        &sel,
+        "--motors",
+        &motors,
+        "-o",
+        &out,
+        "--max-work=500",
+    ];
+    refused(&args, "--select: 2 groups on", &out);
     // 127 nodes a side passed the budget as 127^4 elements but took more than 6.7 GB.
     for grid in ["256", "127"] {
         let args = [

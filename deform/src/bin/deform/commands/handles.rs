@@ -34,6 +34,7 @@ pub fn run(a: &HandlesArgs) -> Result<()> {
     let (mesh, sel) = read_mesh_input(&a.input, &[a.motors.as_path()], &a.out)?;
     let name = a.motors.display().to_string();
     let motors = parse_group_motors(&read_text(&a.motors)?, &name, sel.groups.len())?;
+    crate::budget::check_groups("--select", sel.groups.len(), mesh.vertex_count())?;
     let options = HandleOptions {
         harmonic: a.blending.harmonic(),
         method: a.blending.blend,

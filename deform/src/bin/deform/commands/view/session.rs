@@ -399,6 +399,10 @@ impl Session {
 
     fn bind_method(&mut self) -> Result<Bound> {
         let sets: Vec<&[u32]> = self.groups.iter().map(Vec::as_slice).collect();
+        if matches!(self.method, Method::Handles | Method::Spline) {
+            // A weight per vertex and group: a loaded selection may have thousands of groups.
+            crate::budget::check_groups("the selection", sets.len(), self.mesh.vertex_count())?;
+        }
         Ok(match self.method {
             Method::Handles => {
                 let rest = vec![ScaledMotor::IDENTITY; sets.len()];
