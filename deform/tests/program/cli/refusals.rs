@@ -82,6 +82,21 @@ fn huge_counts_and_non_finite_numbers_are_refused_before_any_work() {
         "--max-work=500",
     ];
     refused(&args, "--select: 2 groups on", &out);
+    // Cage coordinates hold a weight per mesh vertex and cage vertex: a cage of 65,536
+    // vertices on armadillo-50k would ask for tens of gigabytes; here the bar as its own cage
+    // against a budget of 1,000.
+    let args = [
+        "cage",
+        &mesh,
+        "--cage",
+        &mesh,
+        "--motors",
+        &motors,
+        "-o",
+        &out,
+        "--max-work=1000",
+    ];
+    refused(&args, "--cage: ", &out);
     // 127 nodes a side passed the budget as 127^4 elements but took more than 6.7 GB.
     for grid in ["256", "127"] {
         let args = [

@@ -63,6 +63,11 @@ pub fn run(a: &CageArgs) -> Result<()> {
     }
     let mesh = read_mesh_checked(&a.mesh, &[a.cage.as_path(), a.motors.as_path()], &a.out)?;
     let cage = read_mesh(&a.cage)?;
+    // A coordinate per mesh vertex and cage vertex: a 2,562-vertex cage on armadillo-50k took
+    // 2.5 GB while binding, about 2.5 f64s a pair; the budget counts three.
+    let (n, m) = (mesh.vertex_count(), cage.vertex_count());
+    let what = format!("{n} mesh vertices by {m} cage vertices (a coordinate per pair)");
+    crate::budget::check("--cage", &what, &[n as u64, m as u64, 3])?;
     let name = a.motors.display().to_string();
     let motors = parse_group_motors(&read_text(&a.motors)?, &name, cage.vertex_count())?;
     let options = CageOptions {
