@@ -4,8 +4,8 @@
 //! around the loop from the last ear (skipping a vertex after each, which keeps the triangles
 //! from fanning out of one corner); and the test that no other vertex lies in a candidate ear
 //! looks only at the vertices in the grid cells the ear's box covers. A convex loop of 30,000
-//! vertices took 2.75 s when every ear was searched from the loop's start against every
-//! vertex (quadratic; cubic for a spiral, whose ears are few); it now takes milliseconds.
+//! vertices took 1.36 s when every ear was searched from the loop's start and tested against
+//! every vertex (quadratic); it now takes milliseconds.
 
 use glam::{DVec2, DVec3};
 
@@ -245,7 +245,7 @@ mod tests {
 
     #[test]
     fn large_loops_triangulate() {
-        // 30,000 corners took 2.75 s with the search from the start against every vertex.
+        // 30,000 corners took 1.36 s with the search from the start against every vertex.
         let p = circle(30_000);
         check(&p, &ear_clip(&p, DVec3::Z).expect("an ear"));
         let p = spiral(12.0, 5_000);
