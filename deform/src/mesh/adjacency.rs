@@ -175,17 +175,19 @@ pub fn boundary_loops(triangles: &[[u32; 3]], vertex_count: usize) -> Vec<Vec<u3
         })
         .collect();
     let next = Csr::from_pairs(vertex_count, pairs.iter().copied());
-    let mut used = vec![false; next.items.len()];
+    // Each vertex's half-edges are taken in order: `cursor[v]` is the first one not yet
+    // taken, so a vertex on many boundary edges is not scanned from its start at every visit.
+    let mut cursor: Vec<usize> = next.offsets[..vertex_count].to_vec();
     let mut loops = Vec::new();
     for &(start, _) in &pairs {
         let mut lp = Vec::new();
         let mut v = start;
         loop {
-            let (lo, hi) = (next.offsets[v as usize], next.offsets[v as usize + 1]);
-            let Some(slot) = (lo..hi).find(|&s| !used[s]) else {
+            let slot = cursor[v as usize];
+            if slot == next.offsets[v as usize + 1] {
                 break;
-            };
-            used[slot] = true;
+            }
+            cursor[v as usize] += 1;
             lp.push(v);
             v = next.items[slot];
             if v == start {

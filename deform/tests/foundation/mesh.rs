@@ -67,6 +67,34 @@ fn grid_boundary_loop_follows_orientation() {
     assert_eq!(m.edges().boundary().count(), 10);
 }
 
+/// A pinwheel of separate triangles around one vertex: every boundary edge is in exactly one
+/// loop, each loop a triangle through the centre. 60,000 blades: the centre's 60,000 outgoing
+/// boundary edges were scanned from the first at each of its visits (quadratic: 0.7 s here).
+#[test]
+fn boundary_loops_at_a_vertex_on_many_boundary_edges() {
+    let blades = 60_000u32;
+    let mut positions = vec![DVec3::ZERO];
+    let mut triangles = Vec::new();
+    for i in 0..blades {
+        let a = std::f64::consts::TAU * f64::from(i) / f64::from(blades);
+        positions.push(DVec3::new(a.cos(), a.sin(), 0.0));
+        positions.push(DVec3::new((a + 1e-5).cos(), (a + 1e-5).sin(), 0.0));
+        triangles.push([0, 2 * i + 1, 2 * i + 2]);
+    }
+    let m = Mesh::new(positions, triangles);
+    let loops = m.boundary_loops();
+    assert_eq!(loops.len(), blades as usize);
+    let mut seen = std::collections::HashSet::new();
+    for l in &loops {
+        assert_eq!(l.len(), 3, "{l:?}");
+        assert!(l.contains(&0));
+        for k in 0..3 {
+            assert!(seen.insert((l[k], l[(k + 1) % 3])), "edge used twice");
+        }
+    }
+    assert_eq!(seen.len(), 3 * blades as usize);
+}
+
 #[test]
 fn midpoint_subdivision() {
     let t = tetrahedron();
