@@ -50,9 +50,9 @@ pub fn check(flag: &str, what: &str, factors: &[u64]) -> Result<()> {
 /// armadillo-50k (100M vertex-group pairs) took 2.76 GB, about 3.5 `f64`s a pair.
 pub const PER_COORDINATE: u64 = 4;
 
-/// Refuses binding `groups` handle groups (one harmonic coordinate each, or one key each for
-/// the editor's spline) on `vertices` vertices when it would come to more than the budget:
-/// a selection file with thousands of groups asks for tens of gigabytes.
+/// Refuses binding `groups` motor handle groups (a harmonic coordinate each) on `vertices`
+/// vertices when it would come to more than the budget: a selection file with thousands of
+/// groups asks for tens of gigabytes.
 pub fn check_groups(flag: &str, groups: usize, vertices: usize) -> Result<()> {
     check(
         flag,

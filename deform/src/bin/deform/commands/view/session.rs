@@ -399,8 +399,9 @@ impl Session {
 
     fn bind_method(&mut self) -> Result<Bound> {
         let sets: Vec<&[u32]> = self.groups.iter().map(Vec::as_slice).collect();
-        if matches!(self.method, Method::Handles | Method::Spline) {
+        if self.method == Method::Handles {
             // A weight per vertex and group: a loaded selection may have thousands of groups.
+            // (The spline's B-spline keys weigh a vertex by at most four of them.)
             crate::budget::check_groups("the selection", sets.len(), self.mesh.vertex_count())?;
         }
         Ok(match self.method {
