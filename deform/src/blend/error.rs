@@ -56,6 +56,10 @@ pub enum KeyError {
     /// increasing, fewer samples than control keys).
     #[error("{0}")]
     BadSetup(String),
+    /// Affine maps given as the keys of a method that blends motors, or an affine key that is
+    /// not finite.
+    #[error("{0}")]
+    Affine(String),
 }
 
 impl KeyError {

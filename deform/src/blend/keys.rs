@@ -73,6 +73,19 @@ impl ConformalKey {
         }
     }
 
+    /// The same image as a normalised conformal point (`eo` coefficient 1): the form in which
+    /// equation (17) adds its terms. The sandwich of a dilator of scale `s` gives `up(s x) / s`;
+    /// summed unnormalised, each term would weigh `w / s` instead of `w` and the two evaluation
+    /// orders of the paper (add then down-project, down-project then add), which it calls two
+    /// ways of computing the same sum, would differ under dilation.
+    pub fn normalised(&self) -> ConformalKey {
+        let s = 1.0 / self.eo;
+        ConformalKey {
+            rows: self.rows.map(|r| r.map(|x| x * s)),
+            eo: 1.0,
+        }
+    }
+
     /// `w * self + acc`.
     #[inline(always)]
     fn mul_add(&self, w: f64, acc: ConformalKey) -> ConformalKey {
@@ -153,7 +166,7 @@ impl PreparedKeys {
             self.scaled |= log.eoi != 0.0;
             match method {
                 BlendMethod::Conformal | BlendMethod::ConformalProjected => {
-                    self.conformal.push(ConformalKey::new(k));
+                    self.conformal.push(ConformalKey::new(k).normalised());
                     continue;
                 }
                 BlendMethod::MatrixF32 => {
@@ -183,6 +196,49 @@ impl PreparedKeys {
         }
         self.fill_rows();
         self.count = keys.len();
+        Ok(())
+    }
+
+    /// Prepare any affine maps (not only similarities: glTF's skin matrices, `global * inverse
+    /// bind`, may scale non-uniformly or shear) as the keys of a matrix method,
+    /// [`BlendMethod::Matrix`] or [`BlendMethod::MatrixF32`], reusing this value's buffers.
+    ///
+    /// # Errors
+    /// [`KeyError::TooMany`]; [`KeyError::Affine`] for another method or a map that is not
+    /// finite.
+    pub fn prepare_affine(&mut self, maps: &[DAffine3], method: BlendMethod) -> Result<()> {
+        KeyError::check_count("keys", maps.len())?;
+        if !matches!(method, BlendMethod::Matrix | BlendMethod::MatrixF32) {
+            return Err(KeyError::Affine(format!(
+                "affine keys are blended by matrix skinning only, not by {}",
+                method.name()
+            ))
+            .into());
+        }
+        if let Some(j) = maps.iter().position(|m| !m.is_finite()) {
+            return Err(KeyError::Affine(format!("key {j}: the affine map is not finite")).into());
+        }
+        self.method = method;
+        self.count = 0;
+        self.scaled = true;
+        self.logs.clear();
+        self.log_scales.clear();
+        self.motors.clear();
+        self.quats.clear();
+        self.affines.clear();
+        self.affines_f32.clear();
+        self.conformal.clear();
+        self.rows.clear();
+        if method == BlendMethod::MatrixF32 {
+            self.affines_f32.extend(maps.iter().map(|m| Affine3A {
+                matrix3: m.matrix3.as_mat3().into(),
+                translation: m.translation.as_vec3a(),
+            }));
+        } else {
+            self.affines.extend_from_slice(maps);
+        }
+        self.fill_rows();
+        self.count = maps.len();
         Ok(())
     }
 

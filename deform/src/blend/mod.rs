@@ -23,7 +23,10 @@
 //!   skinning), the baseline that collapses under large rotations;
 //!   [`BlendMethod::MatrixF32`] the same in single precision (glam SIMD).
 //! * [`BlendMethod::Conformal`] and [`BlendMethod::ConformalProjected`]: the second paper's
-//!   equation (17), `sum_j w_ij R_j up(x) ~R_j` down-projected after or before the sum.
+//!   equation (17), `sum_j w_ij R_j up(x) ~R_j` down-projected after or before the sum, each
+//!   term a normalised conformal point (so that the two orders agree, as the paper says they
+//!   do, also when keys dilate: a dilated joint scales its subtree about the joint and blends
+//!   with the weight the file gives it, as matrix skinning does).
 //!
 //! The keys are prepared once per pose into buffers the bound deformer keeps
 //! ([`PreparedKeys`]), so posing does not allocate.
@@ -501,6 +504,31 @@ impl BoundBlend {
         out: &mut [DVec3],
     ) -> Result<()> {
         let prepared = self.checked_prepare(keys, prepared, out)?;
+        let single = |i: usize| prepared.transform(self.weights.row(i), self.local[i]);
+        let finite = if self.batches.is_empty() {
+            for_each_vertex(out, single)
+        } else {
+            kernels::run(prepared, &self.batches, &single, out)
+        };
+        finite_pose(finite, out)
+    }
+
+    /// [`BoundBlend::pose_using`] with affine maps for keys (any map, not only a
+    /// similarity), for the matrix methods ([`PreparedKeys::prepare_affine`]).
+    ///
+    /// # Errors
+    /// As [`BoundBlend::pose_using`], and [`KeyError::Affine`] for a method that blends
+    /// motors or a map that is not finite.
+    pub fn pose_affine_using(
+        &self,
+        maps: &[glam::DAffine3],
+        prepared: &mut PreparedKeys,
+        out: &mut [DVec3],
+    ) -> Result<()> {
+        check_key_count("this deformer", self.key_count(), maps.len())?;
+        check_positions(self.vertex_count(), out.len())?;
+        prepared.prepare_affine(maps, self.method)?;
+        let prepared = &*prepared;
         let single = |i: usize| prepared.transform(self.weights.row(i), self.local[i]);
         let finite = if self.batches.is_empty() {
             for_each_vertex(out, single)

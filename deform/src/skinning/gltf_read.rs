@@ -126,7 +126,7 @@ pub fn parse_gltf_with(
     let buffers = Buffers::load(&gltf.document, gltf.blob.as_deref(), base, name, options)?;
     let doc = &gltf.document;
     let mut report = LoadReport::default();
-    let nodes = read_nodes(doc)?;
+    let nodes = read_nodes(doc, &mut report.notes)?;
     let (skin, instances) = skinned_primitives(doc, &mut report, name)?;
     let joints: Vec<usize> = skin.joints().map(|n| n.index()).collect();
     let inverse_bind = match skin.inverse_bind_matrices() {
@@ -205,14 +205,24 @@ pub fn parse_gltf_with(
 }
 
 /// Every node with its parent and rest transform.
-fn read_nodes(doc: &gltf::Document) -> Result<Vec<RigNode>, SkinError> {
+/// A node matrix that is not `T R S` beyond rounding (glTF forbids it) is taken as its
+/// decomposition, as three.js takes it, with a note.
+fn read_nodes(doc: &gltf::Document, notes: &mut Vec<String>) -> Result<Vec<RigNode>, SkinError> {
     let mut nodes = Vec::new();
     for n in doc.nodes() {
         let what = format!("node {}", n.index());
         let rest = match n.transform() {
             gltf::scene::Transform::Matrix { matrix } => {
                 let m = DMat4::from_cols_array_2d(&matrix.map(|c| c.map(f64::from)));
-                Trs::from_matrix(&m, &what)?
+                let (trs, residual) = Trs::decompose(&m, &what)?;
+                if residual > super::trs::DECOMPOSITION_NOISE {
+                    notes.push(format!(
+                        "{what}: its matrix is not translation * rotation * scale (it differs \
+                         from its decomposition by {residual:.1e} of its largest entry); taken \
+                         as the decomposition, as three.js takes it"
+                    ));
+                }
+                trs
             }
             gltf::scene::Transform::Decomposed {
                 translation,

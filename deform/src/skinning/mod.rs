@@ -42,6 +42,7 @@ mod parts;
 mod pose;
 mod procedural;
 mod rig;
+mod similarity;
 mod skin;
 mod trs;
 
@@ -58,6 +59,7 @@ pub use parts::RigPart;
 pub use pose::RigPose;
 pub use procedural::procedural_arm;
 pub use rig::{LoadReport, PrimitiveInfo, Rig, RigNode};
+pub use similarity::{nearest_similarity, NearestSimilarity, SIMILARITY_NOISE};
 pub use skin::Skinning;
 pub use trs::Trs;
 
@@ -144,4 +146,7 @@ pub enum SkinError {
     /// A rig without a skin or a skinned triangle mesh.
     #[error("{0}")]
     NoSkin(String),
+    /// Skinning a pose failed (a pose of another rig, positions leaving the `f64` range).
+    #[error("skinning the pose: {0}")]
+    Pose(String),
 }

@@ -7,38 +7,66 @@ use super::rig::Rig;
 use super::SkinError;
 use super::Trs;
 use cga::ScaledMotor;
-use glam::{DAffine3, DMat4};
+use super::similarity::{nearest_similarity, SIMILARITY_NOISE};
+use glam::{DAffine3, DMat4, DVec3};
+use rayon::prelude::*;
 
 /// The transforms of a rig at one time. Reused from frame to frame by [`Rig::pose_into`].
 #[derive(Clone, Debug, Default)]
 pub struct RigPose {
-    /// Local transform per node.
+    /// Local transform per node (for an edited node whose product with its edit is not
+    /// `T R S`, the nearest decomposition; the matrices below carry the product exactly).
     pub locals: Vec<Trs>,
-    /// Global (world) matrix per node.
+    /// Global (world) matrix per node: the product of the local matrices from the root.
     pub globals: Vec<DMat4>,
-    /// Global motor per node (identity for nodes no joint depends on).
-    pub global_motors: Vec<ScaledMotor>,
-    /// Skin matrix per joint: `global(joint) * inverse_bind(joint)`.
+    /// Skin matrix per joint: `global(joint) * inverse_bind(joint)`, exactly as glTF defines
+    /// it (any affine map): what matrix skinning blends.
     pub skin_matrices: Vec<DAffine3>,
-    /// Skin motor per joint, `M_n B_n` (when every transform is a similarity).
+    /// The local matrices (edits applied), for the walk.
+    local_matrices: Vec<DMat4>,
+    /// Skin motor per joint: the similarity nearest to its skin matrix, `M_n B_n`.
     motors: Vec<ScaledMotor>,
+    /// The nearest similarities as affine maps (for measuring what they change).
+    similarities: Vec<DAffine3>,
+    /// Per joint, the relative deviation of its skin matrix from its motor.
+    deviations: Vec<f64>,
     /// Why the motors are missing, if they are.
     motor_error: Option<SkinError>,
 }
 
 impl RigPose {
-    /// The skin motors `M_n B_n`, one per joint: the keys of [`super::Skinning`].
+    /// The skin motors `M_n B_n`, one per joint: the keys of [`super::Skinning`]. Each is the
+    /// similarity nearest to the joint's skin matrix ([`nearest_similarity`]): the matrix
+    /// itself when it is a similarity, up to rounding; otherwise (non-uniform scale, shear,
+    /// a mirror) an approximation that [`RigPose::approximated_joints`] names and
+    /// [`Rig::similarity_shift`] measures.
     ///
     /// # Errors
-    /// [`SkinError::NotSimilarity`] when a joint, one of its ancestors or an inverse bind
-    /// matrix has a non-uniform scale or shear (motors cannot carry it; the matrices can);
-    /// [`SkinError::BadTransform`] for a similarity beyond a scaled motor's range (a scale
-    /// past about `1e10` or under `1e-10`).
+    /// [`SkinError::BadTransform`] naming the joint when its skin matrix is singular or not
+    /// finite, or a similarity beyond a scaled motor's range (a scale past about `1e10` or
+    /// under `1e-10`).
     pub fn skin_motors(&self) -> Result<&[ScaledMotor], SkinError> {
         match &self.motor_error {
             Some(e) => Err(e.clone()),
             None => Ok(&self.motors),
         }
+    }
+
+    /// Per joint, the relative deviation `||A - s R||_2 / s` of its skin matrix from the
+    /// similarity its motor holds (0 for an exact similarity, about 1e-7 for one rounded to
+    /// single precision; empty when [`RigPose::skin_motors`] fails).
+    pub fn similarity_deviations(&self) -> &[f64] {
+        &self.deviations
+    }
+
+    /// The joints whose skin matrix is further than [`SIMILARITY_NOISE`] from a similarity,
+    /// with their deviation: the motor backends approximate these.
+    pub fn approximated_joints(&self) -> impl Iterator<Item = (usize, f64)> + '_ {
+        self.deviations
+            .iter()
+            .copied()
+            .enumerate()
+            .filter(|&(_, d)| d > SIMILARITY_NOISE)
     }
 }
 
@@ -72,7 +100,7 @@ impl Rig {
     /// # Errors
     /// [`SkinError::NoAnimation`] for an index past the animations; [`SkinError::NoJoint`]
     /// for an edit of a joint past the skin; [`SkinError::BadTransform`] when an edit makes a
-    /// node transform that is not `T R S`. Motors that cannot be built are reported by
+    /// node transform singular or not finite. Motors that cannot be built are reported by
     /// [`RigPose::skin_motors`], not here.
     pub fn pose_into(
         &self,
@@ -92,32 +120,26 @@ impl Rig {
                 .ok_or_else(|| SkinError::NoAnimation(a.to_string()))?;
             anim.apply(t, blend, &mut pose.locals);
         }
+        pose.local_matrices.clear();
+        pose.local_matrices
+            .extend(pose.locals.iter().map(Trs::matrix));
         for e in edits {
             let node = *self
                 .joints
                 .get(e.joint)
                 .ok_or_else(|| SkinError::NoJoint(e.joint.to_string()))?;
-            let m = pose.locals[node].matrix() * e.motor.to_mat4();
-            pose.locals[node] = Trs::from_matrix(&m, &format!("joint {} after its edit", e.joint))?;
+            let m = pose.local_matrices[node] * e.motor.to_mat4();
+            let what = format!("joint {} after its edit", e.joint);
+            pose.locals[node] = Trs::decompose(&m, &what)?.0;
+            pose.local_matrices[node] = m;
         }
         pose.globals.clear();
         pose.globals.resize(n, DMat4::IDENTITY);
-        pose.global_motors.clear();
-        pose.global_motors.resize(n, ScaledMotor::IDENTITY);
-        pose.motor_error = None;
         for &i in &self.order {
-            let local = pose.locals[i].matrix();
-            let parent = self.nodes[i].parent;
-            pose.globals[i] = parent.map_or(local, |p| pose.globals[p] * local);
-            if !self.motor_nodes[i] || pose.motor_error.is_some() {
-                continue;
-            }
-            match pose.locals[i].motor(&format!("node {:?}", self.nodes[i].name)) {
-                Ok(m) => {
-                    pose.global_motors[i] = parent.map_or(m, |p| pose.global_motors[p] * m);
-                }
-                Err(e) => pose.motor_error = Some(e),
-            }
+            let local = pose.local_matrices[i];
+            pose.globals[i] = self.nodes[i]
+                .parent
+                .map_or(local, |p| pose.globals[p] * local);
         }
         pose.skin_matrices.clear();
         pose.skin_matrices.extend(
@@ -126,18 +148,86 @@ impl Rig {
                 .zip(&self.inverse_bind)
                 .map(|(&j, ibm)| DAffine3::from_mat4(pose.globals[j] * *ibm)),
         );
+        self.skin_motors_into(pose);
+        Ok(())
+    }
+
+    /// The motors of `pose.skin_matrices`: per joint its nearest similarity.
+    fn skin_motors_into(&self, pose: &mut RigPose) {
         pose.motors.clear();
-        if pose.motor_error.is_none() {
-            for (k, &j) in self.joints.iter().enumerate() {
-                match &self.inverse_bind_motors[k] {
-                    Ok(b) => pose.motors.push(pose.global_motors[j] * *b),
-                    Err(e) => {
-                        pose.motor_error = Some(e.clone());
-                        break;
-                    }
+        pose.similarities.clear();
+        pose.deviations.clear();
+        pose.motor_error = None;
+        for (k, m) in pose.skin_matrices.iter().enumerate() {
+            let name = &self.nodes[self.joints[k]].name;
+            let bad = |message: String| SkinError::BadTransform {
+                what: format!("joint {k} ({name})"),
+                message,
+            };
+            let Some(near) = nearest_similarity(m) else {
+                pose.motor_error = Some(bad(
+                    "its skin matrix (global * inverse bind) is singular or not finite".into(),
+                ));
+                break;
+            };
+            match ScaledMotor::try_from_scale_rotation_translation(
+                near.scale,
+                near.rotation,
+                near.translation,
+            ) {
+                Ok(motor) => pose.motors.push(motor),
+                Err(e) => {
+                    pose.motor_error = Some(bad(format!(
+                        "a similarity of scale {:e} that a scaled motor cannot hold: {e}",
+                        near.scale
+                    )));
+                    break;
                 }
             }
+            pose.similarities.push(near.affine());
+            pose.deviations.push(near.deviation);
         }
-        Ok(())
+        if pose.motor_error.is_some() {
+            pose.motors.clear();
+            pose.similarities.clear();
+            pose.deviations.clear();
+        }
+    }
+
+    /// How far the mesh moves, at `pose`, because the motor backends take each joint's nearest
+    /// similarity for its skin matrix: the largest `|sum_n w_n (S_n - M_n) p|` over the
+    /// vertices (matrix skinning with the exact matrices against matrix skinning with the
+    /// similarities), counting only joints past [`SIMILARITY_NOISE`]; 0 when there are none,
+    /// NaN when the motors could not be built.
+    pub fn similarity_shift(&self, pose: &RigPose) -> f64 {
+        if pose.motor_error.is_some() || pose.deviations.len() != self.joints.len() {
+            return f64::NAN;
+        }
+        let far: Vec<bool> = pose
+            .deviations
+            .iter()
+            .map(|&d| d > SIMILARITY_NOISE)
+            .collect();
+        if !far.contains(&true) {
+            return 0.0;
+        }
+        let inf = &self.influences;
+        let width = inf.width.max(1);
+        (0..self.mesh.vertex_count())
+            .into_par_iter()
+            .map(|v| {
+                let p = self.mesh.positions[v];
+                let mut shift = DVec3::ZERO;
+                for k in v * width..(v + 1) * width {
+                    let (j, w) = (inf.joints[k] as usize, inf.weights[k]);
+                    if w != 0.0 && far[j] {
+                        shift += w
+                            * (pose.skin_matrices[j].transform_point3(p)
+                                - pose.similarities[j].transform_point3(p));
+                    }
+                }
+                shift.length()
+            })
+            .reduce(|| 0.0, f64::max)
     }
 }

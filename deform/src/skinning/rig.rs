@@ -2,7 +2,6 @@
 
 use super::{Animation, Influences, Look, SkinError, Trs};
 use crate::mesh::Mesh;
-use cga::ScaledMotor;
 use glam::DMat4;
 
 /// Weights down to this (negative) value are rounding noise of a weight solver and read as 0.
@@ -69,10 +68,6 @@ pub struct Rig {
     pub nodes: Vec<RigNode>,
     /// Nodes ordered parents first.
     pub(crate) order: Vec<usize>,
-    /// Nodes some joint depends on (the joints and their ancestors): those need motors.
-    pub(crate) motor_nodes: Vec<bool>,
-    /// The inverse bind matrices as motors `B_n`, or why one is not a similarity.
-    pub(crate) inverse_bind_motors: Vec<Result<ScaledMotor, SkinError>>,
     /// The skin's joints, as node indices; influences index this list.
     pub joints: Vec<usize>,
     /// One inverse bind matrix per joint (identity where the file gives none).
@@ -165,27 +160,9 @@ impl Rig {
                 });
             }
         }
-        let mut motor_nodes = vec![false; nodes.len()];
-        for &j in &joints {
-            let mut at = Some(j);
-            while let Some(i) = at.filter(|&i| !motor_nodes[i]) {
-                motor_nodes[i] = true;
-                at = nodes[i].parent;
-            }
-        }
-        let inverse_bind_motors = inverse_bind
-            .iter()
-            .enumerate()
-            .map(|(k, m)| {
-                let what = format!("inverse bind matrix of joint {k}");
-                Trs::from_matrix(m, &what)?.motor(&what)
-            })
-            .collect();
         Ok(Rig {
             nodes,
             order,
-            motor_nodes,
-            inverse_bind_motors,
             joints,
             inverse_bind,
             mesh,

@@ -1,8 +1,8 @@
 //! The skinning deformer: a rig's rest mesh and influences bound once, posed by the skin
 //! motors of any frame with any backend.
 
-use super::{Influences, Rig};
-use crate::blend::{BlendMethod, BoundBlend, KeyError, KeyWeights};
+use super::{Influences, Rig, RigPose, SkinError};
+use crate::blend::{BlendMethod, BoundBlend, KeyError, KeyWeights, PreparedKeys};
 use crate::deformers::deformer::deformer_via_blend;
 use crate::deformers::Result;
 use cga::ScaledMotor;
@@ -70,6 +70,40 @@ impl Skinning {
     /// The bound blend (weights, method).
     pub fn blend(&self) -> &BoundBlend {
         &self.blend
+    }
+
+    /// Whether this backend blends the skin matrices themselves (matrix LBS, f64 or f32),
+    /// so that any affine joint transform is skinned exactly; the others blend the skin
+    /// motors, each joint's nearest similarity.
+    pub fn blends_matrices(&self) -> bool {
+        matches!(
+            self.blend.method(),
+            BlendMethod::Matrix | BlendMethod::MatrixF32
+        )
+    }
+
+    /// Skin a posed rig: the matrix backends by the skin matrices exactly as glTF defines them
+    /// (any affine map), the others by the skin motors ([`RigPose::skin_motors`]: each
+    /// joint's nearest similarity). The scratch is the caller's, as for
+    /// [`crate::Deformer::pose_using`].
+    ///
+    /// # Errors
+    /// The motors' error ([`RigPose::skin_motors`]) for a motor backend;
+    /// [`SkinError::Pose`] with the blend's (a pose of another rig, a position leaving the
+    /// `f64` range).
+    pub fn pose_rig(
+        &self,
+        pose: &RigPose,
+        scratch: &mut PreparedKeys,
+        out: &mut [DVec3],
+    ) -> std::result::Result<(), SkinError> {
+        let posed = if self.blends_matrices() {
+            self.blend
+                .pose_affine_using(&pose.skin_matrices, scratch, out)
+        } else {
+            self.blend.pose_using(pose.skin_motors()?, scratch, out)
+        };
+        posed.map_err(|e| SkinError::Pose(e.to_string()))
     }
 }
 

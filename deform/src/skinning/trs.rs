@@ -7,6 +7,10 @@ use glam::{DMat4, DQuat, DVec3};
 /// Relative tolerance within which a scale counts as uniform (a similarity).
 pub(crate) const UNIFORM_SCALE_TOLERANCE: f64 = 1e-4;
 
+/// Relative difference between a matrix and its `T R S` decomposition up to which the matrix
+/// counts as decomposable: single-precision rounding, as exporters leave it.
+pub(crate) const DECOMPOSITION_NOISE: f64 = 1e-5;
+
 /// A node's local transform: `T * R * S` applied to a point (glTF's order).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Trs {
@@ -41,8 +45,31 @@ impl Trs {
     ///
     /// # Errors
     /// [`SkinError::BadTransform`] for a non-finite matrix, one with a zero scale, or one that
-    /// is not `T R S` (shear, projection): glTF requires node matrices to be decomposable.
+    /// is not `T R S` (shear, projection) beyond single-precision rounding (a relative 1e-5):
+    /// glTF requires node matrices to be decomposable.
     pub fn from_matrix(m: &DMat4, what: &str) -> Result<Trs, SkinError> {
+        let (trs, residual) = Trs::decompose(m, what)?;
+        if residual > DECOMPOSITION_NOISE {
+            return Err(SkinError::BadTransform {
+                what: what.to_string(),
+                message: format!(
+                    "not a translation * rotation * scale (shear or projection: it differs \
+                     from its decomposition by {residual:.1e} of its largest entry)"
+                ),
+            });
+        }
+        Ok(trs)
+    }
+
+    /// Decompose a matrix into `T R S` as viewers do (three.js's `Matrix4.decompose`: the
+    /// scales are the column lengths, the first negated for a mirror, the rotation that of the
+    /// normalised columns), with the largest difference between the matrix and the
+    /// decomposition's, relative to the matrix's largest entry: about 1e-7 for a decomposable
+    /// matrix stored in single precision, more for shear or projection.
+    ///
+    /// # Errors
+    /// [`SkinError::BadTransform`] for a non-finite matrix or one with a zero scale.
+    pub fn decompose(m: &DMat4, what: &str) -> Result<(Trs, f64), SkinError> {
         let bad = |message: &str| SkinError::BadTransform {
             what: what.to_string(),
             message: message.to_string(),
@@ -56,26 +83,20 @@ impl Trs {
             rotation: rotation.normalize(),
             scale,
         };
+        if scale.min_element().abs() <= f64::MIN_POSITIVE || !trs.rotation.is_finite() {
+            return Err(bad("singular (zero scale)"));
+        }
         let norm = m
             .abs()
             .to_cols_array()
             .iter()
             .fold(0.0f64, |a, &b| a.max(b));
-        let back = trs.matrix();
-        let err = (back - *m)
+        let err = (trs.matrix() - *m)
             .abs()
             .to_cols_array()
             .iter()
             .fold(0.0f64, |a, &b| a.max(b));
-        if scale.min_element().abs() <= f64::MIN_POSITIVE || !trs.rotation.is_finite() {
-            return Err(bad("singular (zero scale)"));
-        }
-        if err > 1e-6 * norm.max(1.0) {
-            return Err(bad(
-                "not a translation * rotation * scale (shear or projection)",
-            ));
-        }
-        Ok(trs)
+        Ok((trs, err / norm.max(f64::MIN_POSITIVE)))
     }
 
     /// The uniform scale (their geometric mean, taken without overflow), when the three scales agree within a

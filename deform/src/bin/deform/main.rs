@@ -21,6 +21,7 @@ mod preview;
 mod progress;
 mod report;
 mod shared_args;
+mod similarity_report;
 mod spline_ends;
 mod surgery_io;
 mod timing;

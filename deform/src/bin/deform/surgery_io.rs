@@ -15,7 +15,7 @@ use anyhow::{Context, Result};
 use deform::render::Overlay;
 use deform::skinning::{GlbOptions, Rig, RigPart, Skinning};
 use deform::surgery::{Frame, Surgery};
-use deform::{BlendMethod, Deformer};
+use deform::BlendMethod;
 use glam::{DAffine3, DVec3};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -39,7 +39,7 @@ impl Posed {
         let pose = rig.pose(animation, t, &[])?;
         let lbs = Skinning::bind(rig, BlendMethod::Matrix)?;
         let mut positions = vec![DVec3::ZERO; rig.mesh.vertex_count()];
-        lbs.pose(pose.skin_motors()?, &mut positions)?;
+        lbs.pose_rig(&pose, &mut lbs.blend().scratch(), &mut positions)?;
         Ok(Some(Posed {
             positions,
             skin: pose.skin_matrices.clone(),

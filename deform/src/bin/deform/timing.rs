@@ -22,3 +22,20 @@ pub fn time_pose(d: &dyn Deformer, keys: &[cga::ScaledMotor], out: &mut [DVec3])
     }
     Ok(best)
 }
+
+/// [`time_pose`] of a posed rig ([`deform::skinning::Skinning::pose_rig`]: the skin matrices
+/// for the matrix backends, the skin motors for the others).
+pub fn time_rig_pose(
+    skin: &deform::skinning::Skinning,
+    pose: &deform::skinning::RigPose,
+    out: &mut [DVec3],
+) -> Result<f64> {
+    let mut scratch = skin.blend().scratch();
+    let mut best = f64::INFINITY;
+    for _ in 0..5 {
+        let t = Instant::now();
+        skin.pose_rig(pose, &mut scratch, out)?;
+        best = best.min(ms(t));
+    }
+    Ok(best)
+}

@@ -10,7 +10,7 @@ use crate::output_files::{
 use crate::preview;
 use crate::report::Report;
 use crate::shared_args::{OutputArgs, RigInput};
-use crate::timing::{ms, time_pose};
+use crate::timing::{ms, time_pose, time_rig_pose};
 use anyhow::{bail, Context, Result};
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::{Args, ValueEnum};
@@ -314,6 +314,7 @@ pub fn run(a: &SkinArgs) -> Result<()> {
         Keyframes::MotorLog => KeyframeBlend::MotorLog,
     };
     let mut pose = RigPose::default();
+    let mut approximation = crate::similarity_report::Approximation::default();
     let mut finished: Vec<(PathBuf, Vec<DVec3>)> = Vec::with_capacity(frames.len());
     let progress = crate::progress::frames(frames.len(), sequence && !a.out.quiet);
     for (k, (time, frame_edits)) in frames.iter().enumerate() {
@@ -321,7 +322,7 @@ pub fn run(a: &SkinArgs) -> Result<()> {
             bar.set_position(k as u64);
         }
         let frame_motors;
-        let motors = match &dmat {
+        let (motors, matrices) = match &dmat {
             Some(anim) => {
                 let flag = if a.range.is_some() {
                     "--range"
@@ -339,19 +340,31 @@ pub fn run(a: &SkinArgs) -> Result<()> {
                     );
                 }
                 frame_motors = anim.skin_motors(*time as usize)?;
-                &frame_motors[..]
+                (&frame_motors[..], None)
             }
             None => {
                 rig.pose_into(animation, *time, blend, frame_edits, &mut pose)?;
-                pose.skin_motors()?
+                // The motor backends (and the GPU, which takes motors) take each joint's
+                // nearest similarity: how far that moves the mesh is measured and reported.
+                let motors_used = !bound.blends_matrices()
+                    || gpu.is_some()
+                    || other.as_ref().is_some_and(|o| !o.blends_matrices());
+                if motors_used {
+                    approximation.add(&rig, &pose);
+                }
+                (pose.skin_motors()?, Some(&pose))
             }
         };
-        pose_ms += match &mut gpu {
-            Some(g) => g.pose(motors, &mut posed)?,
-            None => time_pose(&bound, motors, &mut posed)?,
+        pose_ms += match (&mut gpu, matrices) {
+            (Some(g), _) => g.pose(motors, &mut posed)?,
+            (None, Some(p)) => time_rig_pose(&bound, p, &mut posed)?,
+            (None, None) => time_pose(&bound, motors, &mut posed)?,
         };
         if let Some(o) = &other {
-            o.pose(motors, &mut other_posed)?;
+            match matrices {
+                Some(p) => o.pose_rig(p, &mut o.blend().scratch(), &mut other_posed)?,
+                None => o.pose(motors, &mut other_posed)?,
+            }
             linf = posed
                 .iter()
                 .zip(&other_posed)
@@ -399,6 +412,10 @@ pub fn run(a: &SkinArgs) -> Result<()> {
         report.add("linf_difference_percent_of_diagonal", 100.0 * linf / diag);
     }
     report.add("pose_ms", pose_ms / frames.len() as f64);
+    let world_diagonal = Mesh::new(posed.clone(), Vec::new())
+        .bounding_box()
+        .map_or(f64::NAN, |b| b.diagonal());
+    approximation.report(&rig, world_diagonal, &mut report);
     if let Some(baked) = &baked {
         write_glb(&a.out.output, baked, &GlbOptions::default())?;
     }
