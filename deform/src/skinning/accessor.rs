@@ -1,21 +1,30 @@
 //! glTF buffers and accessors, read with every offset checked against the data (a corrupt
 //! file is an error, never a panic or an out-of-bounds read).
 
+use super::compressed::{decode_draco, decode_meshopt_views, is_fallback_buffer, DracoValues};
 use super::SkinError;
 use base64::Engine;
+use std::collections::HashMap;
 use gltf::accessor::{DataType, Dimensions};
 use gltf::buffer::Source;
 use std::path::Path;
 
-/// The bytes of every buffer of a document.
+/// The bytes of every buffer of a document, with its compressed geometry decoded
+/// ([`super::compressed`]).
 pub(crate) struct Buffers {
     data: Vec<Vec<u8>>,
+    /// Meshopt-compressed buffer views, decoded.
+    views: HashMap<usize, Vec<u8>>,
+    /// The accessors of Draco-compressed primitives, decoded.
+    draco: DracoValues,
     /// [`GltfReadOptions::max_buffer_bytes`], which also bounds accessors without a view.
     max_bytes: usize,
 }
 
 impl Buffers {
-    /// Resolve every buffer: the GLB binary chunk, `data:` URIs, or files beside the model.
+    /// Resolve every buffer: the GLB binary chunk, `data:` URIs, or files beside the model
+    /// (a meshopt fallback buffer may have none); then decode the compressed views and
+    /// primitives.
     pub(crate) fn load(
         doc: &gltf::Document,
         blob: Option<&[u8]>,
@@ -27,6 +36,7 @@ impl Buffers {
             name: name.to_string(),
             message,
         };
+        let root = doc.as_json();
         let mut data = Vec::new();
         let mut total = 0usize;
         for b in doc.buffers() {
@@ -40,7 +50,11 @@ impl Buffers {
                     options.max_buffer_bytes
                 )));
             }
+            let fallback = is_fallback_buffer(&root.buffers[b.index()]);
             let bytes = match b.source() {
+                // A meshopt fallback buffer without a URI holds no data: every view of it is
+                // compressed elsewhere (a GLB's binary chunk belongs to another buffer).
+                Source::Bin if fallback => Vec::new(),
                 Source::Bin => blob
                     .ok_or_else(|| err(format!("buffer {}: no binary chunk", b.index())))?
                     .to_vec(),
@@ -63,7 +77,7 @@ impl Buffers {
                         .map_err(|e| err(format!("buffer {}: {e}", b.index())))?
                 }
             };
-            if bytes.len() < b.length() {
+            if bytes.len() < b.length() && !(fallback && bytes.is_empty()) {
                 return Err(err(format!(
                     "buffer {}: {} bytes, the file declares {}",
                     b.index(),
@@ -73,14 +87,34 @@ impl Buffers {
             }
             data.push(bytes);
         }
-        Ok(Buffers {
+        let views = decode_meshopt_views(root, &data).map_err(err)?;
+        let decoded: u64 = views.values().map(|v| v.len() as u64).sum();
+        if decoded > options.max_buffer_bytes as u64 {
+            return Err(err(format!(
+                "the compressed buffer views decode to {decoded} bytes, over the limit of {} \
+                 (GltfReadOptions::max_buffer_bytes)",
+                options.max_buffer_bytes
+            )));
+        }
+        let mut buffers = Buffers {
             data,
+            views,
+            draco: DracoValues::new(),
             max_bytes: options.max_buffer_bytes,
+        };
+        let draco = decode_draco(root, &|v| {
+            doc.views()
+                .nth(v)
+                .and_then(|view| buffers.view_bytes(&view).map(<[u8]>::to_vec))
         })
+        .map_err(err)?;
+        buffers.draco = draco;
+        Ok(buffers)
     }
 
     /// The accessor's elements as `f64`, `dimension` components each (normalised integers
-    /// mapped to [0, 1] or [-1, 1] as glTF specifies).
+    /// mapped to [0, 1] or [-1, 1] as glTF specifies), sparse substitutions applied; the
+    /// decoded values for an accessor of a Draco-compressed primitive.
     pub(crate) fn read(
         &self,
         a: &gltf::Accessor,
@@ -90,11 +124,8 @@ impl Buffers {
             name: name.to_string(),
             message: format!("accessor {}: {message}", a.index()),
         };
-        if a.sparse().is_some() {
-            return Err(SkinError::Unsupported {
-                name: name.to_string(),
-                message: format!("sparse accessor {}", a.index()),
-            });
+        if let Some(values) = self.draco.get(&a.index()) {
+            return Ok(values.clone());
         }
         let dim = a.dimensions().multiplicity();
         if matches!(a.dimensions(), Dimensions::Mat2 | Dimensions::Mat3) && a.data_type().size() < 4
@@ -105,65 +136,118 @@ impl Buffers {
             });
         }
         let count = a.count();
-        let Some(view) = a.view() else {
-            // No buffer view: all zeros (glTF 2.0, 3.6.2.3). The `gltf` crate's validation
-            // refuses one today; the count is still bounded like a buffer's bytes.
-            let values = count
-                .checked_mul(dim)
-                .filter(|n| n.saturating_mul(8) <= self.max_bytes)
-                .ok_or_else(|| {
-                    err(format!(
-                        "{count} elements without a buffer view, over the limit of {} bytes \
-                         (GltfReadOptions::max_buffer_bytes)",
-                        self.max_bytes
-                    ))
-                })?;
-            return Ok((vec![0.0; values], dim));
+        let normalized = a.normalized();
+        let mut out = match a.view() {
+            // No buffer view: all zeros (glTF 2.0, 3.6.2.3), sparse values aside. The count
+            // is still bounded like a buffer's bytes.
+            None => {
+                let values = count
+                    .checked_mul(dim)
+                    .filter(|n| n.saturating_mul(8) <= self.max_bytes)
+                    .ok_or_else(|| {
+                        err(format!(
+                            "{count} elements without a buffer view, over the limit of {} bytes \
+                             (GltfReadOptions::max_buffer_bytes)",
+                            self.max_bytes
+                        ))
+                    })?;
+                vec![0.0; values]
+            }
+            Some(view) => {
+                let elem = a.data_type().size() * dim;
+                let stride = view.stride().unwrap_or(elem);
+                self.elements(&view, a.offset(), count, elem, stride)
+                    .map_err(err)?
+                    .flat_map(|b| {
+                        (0..dim).map(move |c| {
+                            let size = a.data_type().size();
+                            component(a.data_type(), &b[c * size..(c + 1) * size], normalized)
+                        })
+                    })
+                    .collect()
+            }
         };
-        let size = a.data_type().size();
-        let elem = size * dim;
-        let stride = view.stride().unwrap_or(elem);
-        if stride < elem {
-            return Err(err(format!(
-                "stride {stride} below the element size {elem}"
-            )));
+        if let Some(sparse) = a.sparse() {
+            self.apply_sparse(&sparse, a, dim, &mut out).map_err(err)?;
         }
-        let buffer = self
-            .data
-            .get(view.buffer().index())
-            .ok_or_else(|| err("buffer missing".into()))?;
-        let view_end = view
-            .offset()
-            .checked_add(view.length())
-            .filter(|&e| e <= buffer.len())
-            .ok_or_else(|| err("buffer view past the end of its buffer".into()))?;
-        let start = view
-            .offset()
-            .checked_add(a.offset())
-            .ok_or_else(|| err("size overflows".into()))?;
+        Ok((out, dim))
+    }
+
+    /// `count` elements of `elem` bytes, `stride` apart from `offset` in `view`: each
+    /// element's bytes, every one checked to lie inside the view.
+    fn elements<'s>(
+        &'s self,
+        view: &gltf::buffer::View,
+        offset: usize,
+        count: usize,
+        elem: usize,
+        stride: usize,
+    ) -> Result<impl Iterator<Item = &'s [u8]> + 's, String> {
+        if stride < elem {
+            return Err(format!("stride {stride} below the element size {elem}"));
+        }
+        let bytes = self.view_bytes(view).ok_or_else(|| {
+            format!(
+                "buffer view {} past the end of its buffer (or in a fallback buffer without data)",
+                view.index()
+            )
+        })?;
         if count > 0 {
             let last = (count - 1)
                 .checked_mul(stride)
-                .and_then(|x| x.checked_add(start))
+                .and_then(|x| x.checked_add(offset))
                 .and_then(|x| x.checked_add(elem))
-                .ok_or_else(|| err("size overflows".into()))?;
-            if last > view_end {
-                return Err(err(format!(
+                .ok_or_else(|| "size overflows".to_string())?;
+            if last > bytes.len() {
+                return Err(format!(
                     "{count} elements of {elem} bytes (stride {stride}) reach past the buffer view"
-                )));
+                ));
             }
         }
-        let bytes = &buffer[..view_end];
-        let normalized = a.normalized();
-        let mut out = Vec::with_capacity(count * dim);
-        for i in 0..count {
-            let at = start + i * stride;
-            for c in 0..dim {
-                let b = &bytes[at + c * size..at + (c + 1) * size];
-                out.push(component(a.data_type(), b, normalized));
+        Ok((0..count).map(move |i| &bytes[offset + i * stride..offset + i * stride + elem]))
+    }
+
+    /// Replace the elements a sparse accessor lists by its values.
+    fn apply_sparse(
+        &self,
+        sparse: &gltf::accessor::sparse::Sparse,
+        a: &gltf::Accessor,
+        dim: usize,
+        out: &mut [f64],
+    ) -> Result<(), String> {
+        let n = sparse.count();
+        let indices = sparse.indices();
+        let index_size = match indices.index_type() {
+            gltf::accessor::sparse::IndexType::U8 => 1,
+            gltf::accessor::sparse::IndexType::U16 => 2,
+            gltf::accessor::sparse::IndexType::U32 => 4,
+        };
+        let index_type = match index_size {
+            1 => DataType::U8,
+            2 => DataType::U16,
+            _ => DataType::U32,
+        };
+        let at: Vec<usize> = self
+            .elements(&indices.view(), indices.offset(), n, index_size, index_size)
+            .map_err(|e| format!("sparse indices: {e}"))?
+            .map(|b| component(index_type, b, false) as usize)
+            .collect();
+        let size = a.data_type().size();
+        let values = sparse.values();
+        let elem = size * dim;
+        let values: Vec<&[u8]> = self
+            .elements(&values.view(), values.offset(), n, elem, elem)
+            .map_err(|e| format!("sparse values: {e}"))?
+            .collect();
+        for (&i, v) in at.iter().zip(values) {
+            let slot = out
+                .get_mut(i * dim..(i + 1) * dim)
+                .ok_or_else(|| format!("sparse index {i} past the accessor's {} elements", a.count()))?;
+            for (c, x) in slot.iter_mut().enumerate() {
+                *x = component(a.data_type(), &v[c * size..(c + 1) * size], a.normalized());
             }
         }
-        Ok((out, dim))
+        Ok(())
     }
 }
 
@@ -306,8 +390,12 @@ impl Buffers {
         self.read(a, name)
     }
 
-    /// The bytes of buffer view `view` (checked against its buffer).
+    /// The bytes of buffer view `view` (checked against its buffer; decoded, for a
+    /// meshopt-compressed view).
     pub(crate) fn view_bytes(&self, view: &gltf::buffer::View) -> Option<&[u8]> {
+        if let Some(decoded) = self.views.get(&view.index()) {
+            return Some(decoded);
+        }
         let buffer = self.data.get(view.buffer().index())?;
         let end = view.offset().checked_add(view.length())?;
         buffer.get(view.offset()..end)
@@ -460,6 +548,12 @@ pub(crate) fn check_indices(root: &gltf::json::Root) -> Result<(), String> {
     for (i, a) in root.accessors.iter().enumerate() {
         if let Some(v) = a.buffer_view {
             ok(format!("accessors[{i}].bufferView"), v.value(), views)?;
+        }
+        if let Some(s) = &a.sparse {
+            let indices = s.indices.buffer_view.value();
+            ok(format!("accessors[{i}].sparse.indices.bufferView"), indices, views)?;
+            let values = s.values.buffer_view.value();
+            ok(format!("accessors[{i}].sparse.values.bufferView"), values, views)?;
         }
     }
     for (i, n) in root.nodes.iter().enumerate() {

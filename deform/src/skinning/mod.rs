@@ -30,6 +30,7 @@
 mod accessor;
 mod animation;
 mod bake;
+mod compressed;
 mod edit;
 mod glb_container;
 mod glb_write;

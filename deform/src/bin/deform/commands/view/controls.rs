@@ -87,7 +87,7 @@ impl ControlChoice {
     pub fn with(self, r: &ControlRequest) -> Result<ControlChoice> {
         let mut c = self;
         if let Some(l) = r.lattice {
-            if let Some(bad) = l.iter().find(|n| !LATTICE_AXIS.contains(n)) {
+            if let Some(bad) = l.iter().find(|n| !LATTICE_AXIS.contains(*n)) {
                 bail!(
                     "lattice: {bad} control points on an axis (each axis takes {} to {})",
                     LATTICE_AXIS.start(),
