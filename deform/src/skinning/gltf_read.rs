@@ -9,6 +9,7 @@ use super::SkinError;
 use super::Trs;
 use crate::mesh::Mesh;
 use glam::{DMat4, DQuat, DVec3, DVec4};
+use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
 /// Read a glTF 2.0 rig (`.gltf` or `.glb`); see [`parse_gltf`].
@@ -135,35 +136,15 @@ pub fn parse_gltf_with(
     let doc = &gltf.document;
     let mut report = LoadReport::default();
     let nodes = read_nodes(doc, &mut report.notes)?;
-    let (skin, instances) = skinned_primitives(doc, &mut report, name)?;
-    let joints: Vec<usize> = skin.joints().map(|n| n.index()).collect();
-    let inverse_bind = match skin.inverse_bind_matrices() {
-        None => vec![DMat4::IDENTITY; joints.len()],
-        Some(a) => {
-            let (v, _) = buffers.read_as(&a, name, &Layout::INVERSE_BIND)?;
-            if v.len() < 16 * joints.len() {
-                return Err(SkinError::Data {
-                    name: name.to_string(),
-                    message: format!(
-                        "inverse bind matrices: {} values for {} joints",
-                        v.len(),
-                        joints.len()
-                    ),
-                });
-            }
-            v.chunks_exact(16)
-                .take(joints.len())
-                .map(DMat4::from_cols_slice)
-                .collect()
-        }
-    };
+    let instances = mesh_instances(doc, &mut report, name)?;
+    let (joints, inverse_bind, remaps) = gather_joints(doc, &buffers, &instances, name, &mut report)?;
     let mut mesh = Mesh::new(Vec::new(), Vec::new());
-    let mut influences = Influences::default();
     let mut primitives = Vec::new();
     let mut attributes = Vec::new();
     let mut materials = Vec::new();
     let quantized = doc.extensions_used().any(|e| e == "KHR_mesh_quantization");
-    for (mesh_index, prim_index, node) in instances {
+    let mut rows = Vec::with_capacity(instances.len());
+    for &(mesh_index, prim_index, node, binding) in &instances {
         let m = doc
             .meshes()
             .nth(mesh_index)
@@ -172,7 +153,9 @@ pub fn parse_gltf_with(
             .primitives()
             .nth(prim_index)
             .expect("index from the document");
-        let info = read_primitive(&p, &buffers, name, quantized, &mut mesh, &mut influences)?;
+        let remap = &remaps[&binding];
+        let (info, primitive_rows) = read_primitive(&p, &buffers, name, quantized, remap, &mut mesh)?;
+        rows.push(primitive_rows);
         attributes.push(primitive_attributes(
             &p,
             info.vertex_count,
@@ -189,10 +172,12 @@ pub fn parse_gltf_with(
         });
         if p.morph_targets().next().is_some() {
             report.notes.push(format!(
-                "mesh {mesh_index} primitive {prim_index}: morph targets ignored (unsupported)"
+                "mesh {mesh_index} primitive {prim_index}: morph targets ignored (unsupported: \
+                 the mesh is posed at its base shape)"
             ));
         }
     }
+    let influences = Influences::padded(rows);
     let animations = read_animations(doc, &buffers, name, &mut report)?;
     let mut look = read_look(bytes, doc, &buffers, base, options, &mut report.notes);
     look.attributes = merge_attributes(attributes, &mut report.notes);
@@ -312,26 +297,32 @@ fn read_nodes(doc: &gltf::Document, notes: &mut Vec<String>) -> Result<Vec<RigNo
     Ok(nodes)
 }
 
-/// A skinned primitive as `(mesh, primitive, node)`.
-type Instance = (usize, usize, usize);
+/// What binds a primitive's vertices: a skin, or (a mesh without one) its node alone.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+enum Binding {
+    /// Skin `k`: the vertices' `JOINTS_n` index its joints.
+    Skin(usize),
+    /// A mesh without a skin, moved rigidly by node `n` (as viewers show it).
+    Rigid(usize),
+}
 
-/// The first skin used by a mesh, and the `(mesh, primitive, node)` triangle primitives using
-/// it in document order.
-fn skinned_primitives<'a>(
-    doc: &'a gltf::Document,
+/// A triangle primitive as `(mesh, primitive, node, binding)`.
+type Instance = (usize, usize, usize, Binding);
+
+/// Every triangle primitive of every node with a mesh, in order of mesh, primitive, node:
+/// skinned ones bound by their skin, the others rigidly by their node (so that a scene reads
+/// as viewers show it: a helmet parented to a head bone moves with it).
+fn mesh_instances(
+    doc: &gltf::Document,
     report: &mut LoadReport,
     name: &str,
-) -> Result<(gltf::Skin<'a>, Vec<Instance>), SkinError> {
-    let mut uses: Vec<(usize, usize, usize, usize)> = Vec::new();
+) -> Result<Vec<Instance>, SkinError> {
+    let mut uses: Vec<Instance> = Vec::new();
     for n in doc.nodes() {
         let Some(m) = n.mesh() else { continue };
-        let Some(s) = n.skin() else {
-            report.notes.push(format!(
-                "node {}: mesh {} has no skin (ignored)",
-                n.index(),
-                m.index()
-            ));
-            continue;
+        let binding = match n.skin() {
+            Some(s) => Binding::Skin(s.index()),
+            None => Binding::Rigid(n.index()),
         };
         for p in m.primitives() {
             if p.mode() != gltf::mesh::Mode::Triangles {
@@ -343,41 +334,130 @@ fn skinned_primitives<'a>(
                 ));
                 continue;
             }
-            uses.push((m.index(), p.index(), n.index(), s.index()));
+            uses.push((m.index(), p.index(), n.index(), binding));
         }
     }
     uses.sort_unstable();
-    let Some(&(_, _, _, skin)) = uses.iter().min_by_key(|u| u.3) else {
+    if !uses.iter().any(|u| matches!(u.3, Binding::Skin(_))) {
         return Err(SkinError::NoSkin(format!(
             "{name}: no skinned triangle mesh"
         )));
-    };
-    let skin = doc.skins().nth(skin).expect("index from the document");
-    let others = uses.iter().filter(|u| u.3 != skin.index()).count();
-    if others > 0 {
+    }
+    let rigid = uses
+        .iter()
+        .filter(|u| matches!(u.3, Binding::Rigid(_)))
+        .count();
+    if rigid > 0 {
         report.notes.push(format!(
-            "{others} primitive(s) use another skin than skin {} (ignored: one skin per rig)",
-            skin.index()
+            "{rigid} primitive(s) of meshes without a skin are bound rigidly to their node"
         ));
     }
-    let list = uses
-        .into_iter()
-        .filter(|u| u.3 == skin.index())
-        .map(|(m, p, n, _)| (m, p, n))
-        .collect();
-    Ok((skin, list))
+    Ok(uses)
 }
 
-/// Append one primitive's positions, triangles and influences.
-/// `quantized`: the document uses `KHR_mesh_quantization`, so positions may be integers.
+/// The rig's joints: every skin's joints, merged (a node bound by several skins with the same
+/// inverse bind matrix, to single precision, is one joint), then the nodes of rigid meshes
+/// (inverse bind the identity: their vertices are in the node's frame). Returns the joints,
+/// their inverse bind matrices, and per binding the map from its joint indices to the rig's.
+#[allow(clippy::type_complexity)]
+fn gather_joints(
+    doc: &gltf::Document,
+    buffers: &Buffers,
+    instances: &[Instance],
+    name: &str,
+    report: &mut LoadReport,
+) -> Result<(Vec<usize>, Vec<DMat4>, HashMap<Binding, Vec<u32>>), SkinError> {
+    let mut bindings: Vec<Binding> = instances.iter().map(|u| u.3).collect();
+    bindings.sort_unstable();
+    bindings.dedup();
+    let mut joints: Vec<usize> = Vec::new();
+    let mut inverse_bind: Vec<DMat4> = Vec::new();
+    let mut remaps = HashMap::new();
+    let mut add = |node: usize, ibm: DMat4| -> u32 {
+        let same = |k: &usize| {
+            joints[*k] == node && {
+                let scale = ibm.abs().to_cols_array().iter().fold(1.0f64, |a, &b| a.max(b));
+                (inverse_bind[*k] - ibm).abs().to_cols_array().iter().all(|d| *d <= 1e-6 * scale)
+            }
+        };
+        if let Some(k) = (0..joints.len()).find(same) {
+            return k as u32;
+        }
+        joints.push(node);
+        inverse_bind.push(ibm);
+        (joints.len() - 1) as u32
+    };
+    let mut skins = 0;
+    for &b in &bindings {
+        let remap: Vec<u32> = match b {
+            Binding::Skin(k) => {
+                skins += 1;
+                let skin = doc.skins().nth(k).expect("index from the document");
+                let nodes: Vec<usize> = skin.joints().map(|n| n.index()).collect();
+                let ibms = skin_inverse_binds(&skin, nodes.len(), buffers, name)?;
+                nodes.iter().zip(ibms).map(|(&n, m)| add(n, m)).collect()
+            }
+            Binding::Rigid(n) => vec![add(n, DMat4::IDENTITY)],
+        };
+        remaps.insert(b, remap);
+    }
+    if skins > 1 {
+        report.notes.push(format!(
+            "{skins} skins merged into one list of {} joints",
+            joints.len()
+        ));
+    }
+    Ok((joints, inverse_bind, remaps))
+}
+
+/// A skin's inverse bind matrices (the identity where the file gives none, as the
+/// specification says).
+fn skin_inverse_binds(
+    skin: &gltf::Skin,
+    count: usize,
+    buffers: &Buffers,
+    name: &str,
+) -> Result<Vec<DMat4>, SkinError> {
+    let Some(a) = skin.inverse_bind_matrices() else {
+        return Ok(vec![DMat4::IDENTITY; count]);
+    };
+    let (v, _) = buffers.read_as(&a, name, &Layout::INVERSE_BIND)?;
+    if v.len() < 16 * count {
+        return Err(SkinError::Data {
+            name: name.to_string(),
+            message: format!(
+                "skin {}: {} inverse bind values for {count} joints",
+                skin.index(),
+                v.len()
+            ),
+        });
+    }
+    let m: Vec<DMat4> = v
+        .chunks_exact(16)
+        .take(count)
+        .map(DMat4::from_cols_slice)
+        .collect();
+    if let Some(j) = m.iter().position(|m| !m.is_finite()) {
+        return Err(SkinError::BadTransform {
+            what: format!("skin {} inverse bind matrix of joint {j}", skin.index()),
+            message: "not finite".into(),
+        });
+    }
+    Ok(m)
+}
+
+/// Append one primitive's positions and triangles to `mesh`; its influences, their joint
+/// indices mapped to the rig's by `remap` (a rigid primitive's one joint: weight 1 on
+/// `remap[0]`). `quantized`: the document uses `KHR_mesh_quantization`, so positions may be
+/// integers.
 fn read_primitive(
     p: &gltf::Primitive,
     buffers: &Buffers,
     name: &str,
     quantized: bool,
+    remap: &[u32],
     mesh: &mut Mesh,
-    influences: &mut Influences,
-) -> Result<PrimitiveInfo, SkinError> {
+) -> Result<(PrimitiveInfo, Influences), SkinError> {
     let data = |message: String| SkinError::Data {
         name: name.to_string(),
         message,
@@ -429,6 +509,24 @@ fn read_primitive(
             t[2] + offset as u32,
         ]
     }));
+    let info = PrimitiveInfo {
+        node: 0,
+        mesh: 0,
+        primitive: 0,
+        vertex_offset: offset,
+        vertex_count: count,
+        triangle_offset,
+        triangle_count: indices.len() / 3,
+    };
+    let rigid = p.get(&gltf::Semantic::Joints(0)).is_none() && remap.len() == 1;
+    if rigid {
+        let influences = Influences {
+            width: 1,
+            joints: vec![remap[0]; count],
+            weights: vec![1.0; count],
+        };
+        return Ok((info, influences));
+    }
     let sets: Vec<(Vec<f64>, Vec<f64>)> = (0..2)
         .map_while(|s| {
             let j = p.get(&gltf::Semantic::Joints(s))?;
@@ -448,41 +546,37 @@ fn read_primitive(
             p.index()
         )));
     }
-    let width = 4 * sets.len();
-    if influences.width != 0 && influences.width != width {
-        // Primitives with one and two sets: widen to 8, padding with zero weights.
-        return Err(SkinError::Unsupported {
-            name: name.to_string(),
-            message: "primitives with different numbers of joint sets".into(),
-        });
-    }
-    influences.width = width;
     for (j, w) in &sets {
         if j.len() != 4 * count || w.len() != 4 * count {
             return Err(data("JOINTS/WEIGHTS are not VEC4 per vertex".into()));
         }
     }
+    let width = 4 * sets.len();
+    let mut influences = Influences {
+        width,
+        joints: Vec::with_capacity(width * count),
+        weights: Vec::with_capacity(width * count),
+    };
     for v in 0..count {
         for (j, w) in &sets {
             for k in 0..4 {
                 let (joint, weight) = (j[4 * v + k], w[4 * v + k]);
                 // A zero weight's joint does not matter: keep it in range.
-                influences
-                    .joints
-                    .push(if weight == 0.0 { 0 } else { joint as u32 });
+                let joint = if weight == 0.0 {
+                    remap[0]
+                } else {
+                    *remap.get(joint as usize).ok_or(SkinError::JointOutOfRange {
+                        vertex: offset + v,
+                        joint: joint as u32,
+                        joints: remap.len(),
+                    })?
+                };
+                influences.joints.push(joint);
                 influences.weights.push(weight);
             }
         }
     }
-    Ok(PrimitiveInfo {
-        node: 0,
-        mesh: 0,
-        primitive: 0,
-        vertex_offset: offset,
-        vertex_count: count,
-        triangle_offset,
-        triangle_count: indices.len() / 3,
-    })
+    Ok((info, influences))
 }
 
 /// Every animation's node channels.

@@ -14,6 +14,38 @@ pub struct Influences {
 }
 
 impl Influences {
+    /// The influences of consecutive vertex ranges (the primitives of a rig), each padded with
+    /// zero weights on its first joint to the widest.
+    pub fn padded(parts: Vec<Influences>) -> Influences {
+        let width = parts.iter().map(|p| p.width).max().unwrap_or(0);
+        if parts.len() == 1 || parts.iter().all(|p| p.width == width) {
+            let mut out = Influences {
+                width,
+                ..Influences::default()
+            };
+            for p in parts {
+                out.joints.extend(p.joints);
+                out.weights.extend(p.weights);
+            }
+            return out;
+        }
+        let mut out = Influences {
+            width,
+            ..Influences::default()
+        };
+        for p in &parts {
+            for v in 0..p.vertex_count() {
+                let row = v * p.width..(v + 1) * p.width;
+                let first = p.joints[row.start];
+                out.joints.extend_from_slice(&p.joints[row.clone()]);
+                out.weights.extend_from_slice(&p.weights[row]);
+                out.joints.extend(std::iter::repeat_n(first, width - p.width));
+                out.weights.extend(std::iter::repeat_n(0.0, width - p.width));
+            }
+        }
+        out
+    }
+
     /// Number of vertices.
     pub fn vertex_count(&self) -> usize {
         self.weights.len().checked_div(self.width).unwrap_or(0)
