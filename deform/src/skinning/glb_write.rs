@@ -98,7 +98,8 @@ fn compact_influences(rig: &Rig) -> (usize, Vec<[u16; 8]>, Vec<[f32; 8]>) {
 /// stores them. Up to 8 influences per vertex are kept (the largest, renormalised).
 ///
 /// # Errors
-/// [`SkinError::InvalidArgument`] for a mesh without triangles, more than 65536 joints or
+/// [`SkinError::InvalidArgument`] for a mesh without triangles, more than 65536 joints, a
+/// node that is two joints (bound by several skins with different inverse bind matrices) or
 /// `node_transforms` of the wrong length.
 pub fn glb_bytes(rig: &Rig, options: &GlbOptions) -> Result<Vec<u8>> {
     if rig.mesh.triangle_count() == 0 {
@@ -110,6 +111,17 @@ pub fn glb_bytes(rig: &Rig, options: &GlbOptions) -> Result<Vec<u8>> {
         return Err(SkinError::InvalidArgument(format!(
             "{} joints: glTF joint indices are 16-bit here",
             rig.joints.len()
+        )));
+    }
+    // One skin is written, and glTF wants its joints unique: a node that several skins of
+    // the file bound with different inverse bind matrices cannot be one joint.
+    let mut seen = std::collections::HashSet::new();
+    if let Some(&node) = rig.joints.iter().find(|&&n| !seen.insert(n)) {
+        return Err(SkinError::InvalidArgument(format!(
+            "node {node} ({}) is a joint of several skins with different inverse bind \
+             matrices: the rig is written with one skin, whose joints must be unique \
+             (write OBJ or PLY instead)",
+            rig.nodes[node].name
         )));
     }
     let locals: Vec<Trs> = match &options.node_transforms {

@@ -139,7 +139,7 @@ pub enum SkinError {
         message: String,
     },
     /// An animation index or name that the rig does not have.
-    #[error("no animation {0} in this rig")]
+    #[error("no animation {0}")]
     NoAnimation(String),
     /// A joint name or index that the rig does not have.
     #[error("no joint {0} in this rig")]

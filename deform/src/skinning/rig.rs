@@ -179,6 +179,12 @@ impl Rig {
     /// # Errors
     /// [`SkinError::NoAnimation`].
     pub fn animation_index(&self, name_or_index: &str) -> Result<usize, SkinError> {
+        if self.animations.is_empty() {
+            return Err(SkinError::NoAnimation(format!(
+                "{name_or_index:?}: this model has no animations (pose it at rest: no \
+                 --animation or --time)"
+            )));
+        }
         if let Some(i) = self.animations.iter().position(|a| a.name == name_or_index) {
             return Ok(i);
         }

@@ -236,17 +236,6 @@ pub fn rest_placement(rig: &Rig) -> Result<glam::DMat4> {
         .map_or(glam::DMat4::IDENTITY, |p| rest.globals[p.node]))
 }
 
-/// `mesh` moved by `place` (see [`rest_placement`]).
-pub fn placed(mesh: &Mesh, place: &glam::DMat4) -> Mesh {
-    Mesh::new(
-        mesh.positions
-            .iter()
-            .map(|&p| place.transform_point3(p))
-            .collect(),
-        mesh.triangles.clone(),
-    )
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -184,14 +184,19 @@ impl RigInput {
 #[derive(Args, Debug)]
 pub struct ToolFrame {
     /// Give the tool in the posed world space at this time in seconds (clamped to the
-    /// animation's keys) instead of the rest-pose mesh space; as for `skin`, --animation
-    /// alone means time 0.
+    /// animation's keys) instead of the world space at the bind pose; as for `skin`,
+    /// --animation alone means time 0.
     #[arg(long, value_parser = crate::numbers::finite, allow_hyphen_values = true)]
     pub time: Option<f64>,
     /// The animation, by name or index (default: the first when --time is given, as for
     /// `skin`; without either, the rest pose).
     #[arg(long)]
     pub animation: Option<String>,
+    /// Give the tool in the rest mesh's own coordinates (the vertex space of the glTF mesh,
+    /// before the armature's transforms, unit scale and up axis) instead of the scene's world
+    /// space at the bind pose.
+    #[arg(long, conflicts_with_all = ["time", "animation"])]
+    pub mesh_space: bool,
 }
 
 #[cfg(test)]

@@ -15,26 +15,46 @@ use anyhow::{Context, Result};
 use deform::render::Overlay;
 use deform::skinning::{GlbOptions, Rig, RigPart, Skinning};
 use deform::surgery::{Frame, Surgery};
-use deform::BlendMethod;
+use deform::{BlendMethod, Mesh};
 use glam::{DAffine3, DVec3};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-/// The posed positions and skin matrices of the frame the tool is given in (none: rest).
+/// The space a tool is given in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ToolSpace {
+    /// The rest mesh's own coordinates (`--mesh-space`).
+    Mesh,
+    /// The scene's world space at the bind pose (the default).
+    BindPose,
+    /// The posed world space at `--time` of `--animation`.
+    Posed,
+}
+
+/// The posed positions and skin matrices of the frame the tool is given in (none: the rest
+/// mesh's own space).
 pub struct Posed {
     pub positions: Vec<DVec3>,
     pub skin: Vec<DAffine3>,
+    pub space: ToolSpace,
 }
 
 impl Posed {
     pub fn read(rig: &Rig, f: &ToolFrame) -> Result<Option<Posed>> {
-        // The defaults of `skin`: --animation alone is its time 0, --time alone the first.
-        let Some(t) = f.time.or(f.animation.as_ref().map(|_| 0.0)) else {
+        if f.mesh_space {
             return Ok(None);
-        };
-        let animation = match &f.animation {
-            Some(a) => Some(rig.animation_index(a)?),
-            None => (!rig.animations.is_empty()).then_some(0),
+        }
+        // The defaults of `skin`: --animation alone is its time 0, --time alone the first;
+        // neither, the bind pose (no animation).
+        let (animation, t, space) = match f.time.or(f.animation.as_ref().map(|_| 0.0)) {
+            None => (None, 0.0, ToolSpace::BindPose),
+            Some(t) => {
+                let animation = match &f.animation {
+                    Some(a) => Some(rig.animation_index(a)?),
+                    None => (!rig.animations.is_empty()).then_some(0),
+                };
+                (animation, t, ToolSpace::Posed)
+            }
         };
         let pose = rig.pose(animation, t, &[])?;
         let lbs = Skinning::bind(rig, BlendMethod::Matrix)?;
@@ -43,6 +63,7 @@ impl Posed {
         Ok(Some(Posed {
             positions,
             skin: pose.skin_matrices.clone(),
+            space,
         }))
     }
 
@@ -55,14 +76,28 @@ impl Posed {
             },
         }
     }
+
+    pub fn space(p: &Option<Posed>) -> ToolSpace {
+        p.as_ref().map_or(ToolSpace::Mesh, |p| p.space)
+    }
+
+    /// The bounding box of the model in the tool's space (to size what is drawn of a tool).
+    pub fn bounds(p: &Option<Posed>, rig: &Rig) -> Option<deform::Aabb> {
+        match p {
+            None => rig.mesh.bounding_box(),
+            Some(p) => Mesh::new(p.positions.clone(), Vec::new()).bounding_box(),
+        }
+    }
 }
 
 /// Write the new rig (`.glb`) or its rest mesh (OBJ or PLY), and a preview of the parts moved
 /// by `away(part)`, coloured by part, or by `marks` (one value per vertex of a single part),
 /// with `look`'s title and overlays (given in the rig's mesh space, drawn in world space).
+#[allow(clippy::too_many_arguments)]
 pub fn write_result(
     rig: &Rig,
     parts: &[RigPart],
+    space: ToolSpace,
     out: &OutputArgs,
     away: impl Fn(usize) -> DVec3,
     marks: Option<Vec<f64>>,
@@ -83,12 +118,21 @@ pub fn write_result(
     }
     report.add("output", out.output.display().to_string());
     if let Some(png) = &out.png {
-        let mut shown = result.mesh.clone();
+        // In the scene's world space at the bind pose, as `skin` draws the rest: each part
+        // skinned at the rest pose, then pulled apart.
+        // Tools given in the rest mesh's space are placed as the mesh node places the mesh;
+        // tools in the bind pose's world space are drawn as given.
+        let place = match space {
+            ToolSpace::Mesh => preview::rest_placement(rig)?,
+            ToolSpace::BindPose | ToolSpace::Posed => glam::DMat4::IDENTITY,
+        };
+        let rest_world = rig.bind_pose_positions()?;
+        let mut shown = Mesh::new(result.bind_pose_positions()?, result.mesh.triangles.clone());
         let mut part_of = vec![0.0; shown.vertex_count()];
         for p in &result.primitives {
             // The part a primitive belongs to (a part with several materials has several).
             let k = p.primitive;
-            let shift = away(k);
+            let shift = place.transform_vector3(away(k));
             let r = p.vertex_offset..p.vertex_offset + p.vertex_count;
             shown.positions[r.clone()]
                 .iter_mut()
@@ -96,8 +140,6 @@ pub fn write_result(
             part_of[r].iter_mut().for_each(|x| *x = k as f64);
         }
         let scalar = marks.unwrap_or(part_of);
-        // In world space, as `skin` draws it: a Z-up glTF model stands upright.
-        let place = preview::rest_placement(rig)?;
         let look = Look {
             rest: placed_overlay(&look.rest, &place),
             posed: placed_overlay(&look.posed, &place),
@@ -109,8 +151,8 @@ pub fn write_result(
             ..look
         };
         let image = preview::before_after(
-            &preview::placed(&rig.mesh, &place),
-            &preview::placed(&shown, &place),
+            &Mesh::new(rest_world, rig.mesh.triangles.clone()),
+            &shown,
             &scalar,
             &look,
         )?;
@@ -150,8 +192,10 @@ pub fn prepare(rig: &RigInput, frame: &ToolFrame, out: &OutputArgs) -> Result<Pr
 
 /// [`write_result`] for a tool with one result mesh, its new vertices marked in the preview
 /// and shown zoomed in, seen along `direction` (mesh space).
+#[allow(clippy::too_many_arguments)]
 pub fn write_one(
     rig: &Rig,
+    space: ToolSpace,
     mesh: &deform::surgery::SkinnedMesh,
     origin: &[deform::surgery::VertexOrigin],
     out: &OutputArgs,
@@ -175,6 +219,7 @@ pub fn write_one(
     write_result(
         rig,
         &[mesh.part()],
+        space,
         out,
         |_| DVec3::ZERO,
         Some(marks),
@@ -183,11 +228,12 @@ pub fn write_one(
     )
 }
 
-/// The tool's overlay: drawn when it is given in the rest pose's mesh space (the space the
-/// preview shows, placed in the world), left out when it is given in a posed frame.
+/// The tool's overlay: drawn when it is given at the bind pose (in the world space the
+/// preview shows, or in the rest mesh's space, placed), left out when it is given in a
+/// posed frame.
 pub fn tool_overlay(posed: &Option<Posed>, draw: impl FnOnce(&mut Overlay)) -> Overlay {
     let mut o = Overlay::new(2);
-    if posed.is_none() {
+    if Posed::space(posed) != ToolSpace::Posed {
         draw(&mut o);
     }
     o

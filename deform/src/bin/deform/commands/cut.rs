@@ -82,7 +82,8 @@ pub fn run(a: &CutArgs) -> Result<()> {
             }),
         );
     }
-    let spread = 0.04 * rig.mesh.bounding_box().map_or(1.0, |b| b.diagonal());
+    let bounds = Posed::bounds(&posed, &rig);
+    let spread = 0.04 * bounds.map_or(1.0, |b| b.diagonal());
     let n = plane.normal();
     // Each piece's surface, then its caps (their own vertices: planar UVs, flat normals).
     let split: Vec<_> = cut.pieces.iter().map(|p| p.surface_and_caps()).collect();
@@ -108,7 +109,7 @@ pub fn run(a: &CutArgs) -> Result<()> {
     let mut look = Look::new(title, "piece");
     // The plane, on the model's centre, in both views.
     let tool = tool_overlay(&posed, |o| {
-        let b = rig.mesh.bounding_box();
+        let b = bounds;
         let (c, size) = b.map_or((DVec3::ZERO, 1.0), |b| (b.center(), 0.8 * b.diagonal()));
         overlays::plane(o, n, plane_d, c, size, TOOL_INK);
     });
@@ -117,6 +118,7 @@ pub fn run(a: &CutArgs) -> Result<()> {
     write_result(
         &rig,
         &parts,
+        Posed::space(&posed),
         &a.out,
         |k| {
             if piece_of[k] == 0 {

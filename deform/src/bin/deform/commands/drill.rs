@@ -72,6 +72,7 @@ pub fn run(a: &DrillArgs) -> Result<()> {
     });
     write_one(
         &rig,
+        Posed::space(&posed),
         &r.mesh,
         &r.origin,
         &a.out,

@@ -421,7 +421,9 @@ pub fn run(a: &SkinArgs) -> Result<()> {
     }
     report.add("output", a.out.output.display().to_string());
     if let Some(png) = &a.out.png {
-        let rest_mesh = preview::placed(&rig.mesh, &preview::rest_placement(&rig)?);
+        // The rest in the scene's world space at the bind pose (armature transforms, unit
+        // scale and up axis applied), where the posed mesh is.
+        let rest_mesh = Mesh::new(rig.bind_pose_positions()?, rig.mesh.triangles.clone());
         let moved = displacement(&rest_mesh, &posed);
         let mut title = format!(
             "skin  {}  t {}  {} edit(s)  {}",

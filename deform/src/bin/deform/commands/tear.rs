@@ -82,6 +82,7 @@ pub fn run(a: &TearArgs) -> Result<()> {
     let direction = blades[0].b - blades[0].a;
     write_one(
         &rig,
+        Posed::space(&posed),
         &r.mesh,
         &r.origin,
         &a.out,
