@@ -4,9 +4,9 @@
 use super::compressed::{decode_draco, decode_meshopt_views, is_fallback_buffer, DracoValues};
 use super::SkinError;
 use base64::Engine;
-use std::collections::HashMap;
 use gltf::accessor::{DataType, Dimensions};
 use gltf::buffer::Source;
+use std::collections::HashMap;
 use std::path::Path;
 
 /// The bytes of every buffer of a document, with its compressed geometry decoded
@@ -240,9 +240,12 @@ impl Buffers {
             .map_err(|e| format!("sparse values: {e}"))?
             .collect();
         for (&i, v) in at.iter().zip(values) {
-            let slot = out
-                .get_mut(i * dim..(i + 1) * dim)
-                .ok_or_else(|| format!("sparse index {i} past the accessor's {} elements", a.count()))?;
+            let slot = out.get_mut(i * dim..(i + 1) * dim).ok_or_else(|| {
+                format!(
+                    "sparse index {i} past the accessor's {} elements",
+                    a.count()
+                )
+            })?;
             for (c, x) in slot.iter_mut().enumerate() {
                 *x = component(a.data_type(), &v[c * size..(c + 1) * size], a.normalized());
             }
@@ -551,9 +554,17 @@ pub(crate) fn check_indices(root: &gltf::json::Root) -> Result<(), String> {
         }
         if let Some(s) = &a.sparse {
             let indices = s.indices.buffer_view.value();
-            ok(format!("accessors[{i}].sparse.indices.bufferView"), indices, views)?;
+            ok(
+                format!("accessors[{i}].sparse.indices.bufferView"),
+                indices,
+                views,
+            )?;
             let values = s.values.buffer_view.value();
-            ok(format!("accessors[{i}].sparse.values.bufferView"), values, views)?;
+            ok(
+                format!("accessors[{i}].sparse.values.bufferView"),
+                values,
+                views,
+            )?;
         }
     }
     for (i, n) in root.nodes.iter().enumerate() {

@@ -52,10 +52,13 @@ fn extension<'a>(
 
 /// Whether buffer `b` is a meshopt fallback buffer (it may have no data).
 pub(crate) fn is_fallback_buffer(b: &json::Buffer) -> bool {
-    extension(b.extensions.as_ref().map(|e| &e.others), "EXT_meshopt_compression")
-        .and_then(|e| e.get("fallback"))
-        .and_then(serde_json::Value::as_bool)
-        .unwrap_or(false)
+    extension(
+        b.extensions.as_ref().map(|e| &e.others),
+        "EXT_meshopt_compression",
+    )
+    .and_then(|e| e.get("fallback"))
+    .and_then(serde_json::Value::as_bool)
+    .unwrap_or(false)
 }
 
 /// A `usize` field of an extension object.
@@ -89,7 +92,7 @@ pub(crate) fn decode_meshopt_views(
             field(e, "count"),
         ) else {
             return Err(bad(
-                "buffer, byteLength, byteStride and count are required".into(),
+                "buffer, byteLength, byteStride and count are required".into()
             ));
         };
         let offset = field(e, "byteOffset").unwrap_or(0);
@@ -102,7 +105,11 @@ pub(crate) fn decode_meshopt_views(
         let size = count
             .checked_mul(stride)
             .filter(|&n| n <= view.byte_length.0 as usize + stride)
-            .ok_or_else(|| bad(format!("{count} elements of {stride} bytes overflow the view")))?;
+            .ok_or_else(|| {
+                bad(format!(
+                    "{count} elements of {stride} bytes overflow the view"
+                ))
+            })?;
         let mut bytes = match mode {
             "ATTRIBUTES" => decode_attributes(data, count, stride)?,
             "TRIANGLES" | "INDICES" => decode_indices(data, count, stride, mode == "TRIANGLES")?,
@@ -249,7 +256,8 @@ pub(crate) fn decode_draco(
             };
             let bad = |m: String| format!("mesh {mi} primitive {pi} (Draco): {m}");
             let view = field(e, "bufferView").ok_or_else(|| bad("no bufferView".into()))?;
-            let bytes = view_bytes(view).ok_or_else(|| bad(format!("buffer view {view} has no data")))?;
+            let bytes =
+                view_bytes(view).ok_or_else(|| bad(format!("buffer view {view} has no data")))?;
             let decoded = draco_oxide_decoder::Decoder::new()
                 .decode_mesh(&bytes)
                 .map_err(|err| bad(format!("the stream does not decode: {err}")))?;
@@ -281,11 +289,10 @@ pub(crate) fn decode_draco(
                     .attributes
                     .iter()
                     .find(|a| a.get_id().as_usize() as u64 == id)
-                    .ok_or_else(|| bad(format!("{semantic}: no attribute of id {id} in the stream")))?;
-                let normalized = root
-                    .accessors
-                    .get(accessor)
-                    .is_some_and(|a| a.normalized);
+                    .ok_or_else(|| {
+                        bad(format!("{semantic}: no attribute of id {id} in the stream"))
+                    })?;
+                let normalized = root.accessors.get(accessor).is_some_and(|a| a.normalized);
                 out.insert(accessor, attribute_values(att, normalized));
             }
         }
@@ -302,7 +309,10 @@ fn semantic_name(s: &json::validation::Checked<json::mesh::Semantic>) -> String 
 }
 
 /// A decoded attribute's value for every point, as `f64`.
-fn attribute_values(att: &draco_oxide_core::attribute::Attribute, normalized: bool) -> (Vec<f64>, usize) {
+fn attribute_values(
+    att: &draco_oxide_core::attribute::Attribute,
+    normalized: bool,
+) -> (Vec<f64>, usize) {
     use draco_oxide_core::attribute::ComponentDataType as C;
     let n = att.get_num_components();
     let ty = att.get_component_type();

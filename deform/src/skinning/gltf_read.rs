@@ -137,7 +137,8 @@ pub fn parse_gltf_with(
     let mut report = LoadReport::default();
     let nodes = read_nodes(doc, &mut report.notes)?;
     let instances = mesh_instances(doc, &mut report, name)?;
-    let (joints, inverse_bind, remaps) = gather_joints(doc, &buffers, &instances, name, &mut report)?;
+    let (joints, inverse_bind, remaps) =
+        gather_joints(doc, &buffers, &instances, name, &mut report)?;
     let mut mesh = Mesh::new(Vec::new(), Vec::new());
     let mut primitives = Vec::new();
     let mut attributes = Vec::new();
@@ -154,7 +155,8 @@ pub fn parse_gltf_with(
             .nth(prim_index)
             .expect("index from the document");
         let remap = &remaps[&binding];
-        let (info, primitive_rows) = read_primitive(&p, &buffers, name, quantized, remap, &mut mesh)?;
+        let (info, primitive_rows) =
+            read_primitive(&p, &buffers, name, quantized, remap, &mut mesh)?;
         rows.push(primitive_rows);
         attributes.push(primitive_attributes(
             &p,
@@ -206,7 +208,8 @@ fn validate(root: &gltf::json::Root) -> Result<(), String> {
     let mut errors = Vec::new();
     root.validate(root, gltf::json::Path::new, &mut |path, error| {
         let path = path().to_string();
-        let allowed = (path.starts_with("accessors[") && path.ends_with("].bufferView")
+        let allowed = (path.starts_with("accessors[")
+            && path.ends_with("].bufferView")
             && matches!(error, Error::Missing))
             || path.starts_with("extensionsRequired")
             || path.starts_with("extensionsUsed");
@@ -376,8 +379,16 @@ fn gather_joints(
     let mut add = |node: usize, ibm: DMat4| -> u32 {
         let same = |k: &usize| {
             joints[*k] == node && {
-                let scale = ibm.abs().to_cols_array().iter().fold(1.0f64, |a, &b| a.max(b));
-                (inverse_bind[*k] - ibm).abs().to_cols_array().iter().all(|d| *d <= 1e-6 * scale)
+                let scale = ibm
+                    .abs()
+                    .to_cols_array()
+                    .iter()
+                    .fold(1.0f64, |a, &b| a.max(b));
+                (inverse_bind[*k] - ibm)
+                    .abs()
+                    .to_cols_array()
+                    .iter()
+                    .all(|d| *d <= 1e-6 * scale)
             }
         };
         if let Some(k) = (0..joints.len()).find(same) {
@@ -565,11 +576,13 @@ fn read_primitive(
                 let joint = if weight == 0.0 {
                     remap[0]
                 } else {
-                    *remap.get(joint as usize).ok_or(SkinError::JointOutOfRange {
-                        vertex: offset + v,
-                        joint: joint as u32,
-                        joints: remap.len(),
-                    })?
+                    *remap
+                        .get(joint as usize)
+                        .ok_or(SkinError::JointOutOfRange {
+                            vertex: offset + v,
+                            joint: joint as u32,
+                            joints: remap.len(),
+                        })?
                 };
                 influences.joints.push(joint);
                 influences.weights.push(weight);

@@ -39,8 +39,10 @@ impl Influences {
                 let first = p.joints[row.start];
                 out.joints.extend_from_slice(&p.joints[row.clone()]);
                 out.weights.extend_from_slice(&p.weights[row]);
-                out.joints.extend(std::iter::repeat_n(first, width - p.width));
-                out.weights.extend(std::iter::repeat_n(0.0, width - p.width));
+                out.joints
+                    .extend(std::iter::repeat_n(first, width - p.width));
+                out.weights
+                    .extend(std::iter::repeat_n(0.0, width - p.width));
             }
         }
         out

@@ -4,10 +4,10 @@
 use super::animation::KeyframeBlend;
 use super::edit::JointEdit;
 use super::rig::Rig;
+use super::similarity::{nearest_similarity, SIMILARITY_NOISE};
 use super::SkinError;
 use super::Trs;
 use cga::ScaledMotor;
-use super::similarity::{nearest_similarity, SIMILARITY_NOISE};
 use glam::{DAffine3, DMat4, DVec3};
 use rayon::prelude::*;
 

@@ -55,10 +55,7 @@ pub fn nearest_similarity(map: &DAffine3) -> Option<NearestSimilarity> {
     let a = map.matrix3;
     // Scaled by the largest entry first, so that scales near the ends of the f64 range are
     // measured, not overflowed or flushed.
-    let big = a
-        .to_cols_array()
-        .iter()
-        .fold(0.0f64, |m, x| m.max(x.abs()));
+    let big = a.to_cols_array().iter().fold(0.0f64, |m, x| m.max(x.abs()));
     if big == 0.0 || !big.is_finite() {
         return None;
     }
@@ -139,8 +136,9 @@ mod tests {
     #[test]
     fn rounding_is_noise_and_real_scale_is_not() {
         // Issue 45's inverse bind matrix: singular values 1.0000194, 1.0000005, 1.
-        let noisy = DAffine3::from_mat3(DMat3::from_diagonal(DVec3::new(1.0000194, 1.0000005, 1.0)))
-            * similarity(1.0);
+        let noisy =
+            DAffine3::from_mat3(DMat3::from_diagonal(DVec3::new(1.0000194, 1.0000005, 1.0)))
+                * similarity(1.0);
         let n = nearest_similarity(&noisy).unwrap();
         assert!(n.deviation < SIMILARITY_NOISE, "{}", n.deviation);
         assert!(n.deviation > 9e-6, "{}", n.deviation);
@@ -153,7 +151,11 @@ mod tests {
         let n = nearest_similarity(&shield).unwrap();
         let s = (1.24 + 1.0008) / 2.0;
         assert!((n.scale - s).abs() < 1e-12, "{}", n.scale);
-        assert!((n.deviation - (1.24 - s) / s).abs() < 1e-12, "{}", n.deviation);
+        assert!(
+            (n.deviation - (1.24 - s) / s).abs() < 1e-12,
+            "{}",
+            n.deviation
+        );
         assert!(n.rotation.angle_between(DQuat::from_rotation_y(0.4)) < 1e-12);
     }
 

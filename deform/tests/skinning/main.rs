@@ -10,6 +10,7 @@ mod cli;
 mod gltf_io;
 mod keyframes;
 mod look;
+mod wild;
 
 use cga::ScaledMotor;
 use common::{data_dir, reference, reference_mesh};

@@ -1,0 +1,729 @@
+//! Characters from the wild (issue 45), as generated fixtures: each reproduces one property
+//! that real exporters leave in skinned glTF files (f32 noise in inverse binds, non-uniform and
+//! mirrored joint scale, meshopt compression, quantised positions, a thousand primitives,
+//! skins shared and several, no animation, a centimetre Z-up armature, sparse accessors). Each
+//! is loaded by `parse_gltf` and skinned with the exact matrices (`lbs`) against an
+//! independent evaluator of glTF's skinning formula written here on the JSON (three.js's
+//! `boneMatrices = world * inverse bind`, weights normalised); written back as `.glb` for the
+//! validator, and cut, with the cut rig still posed finite.
+
+use crate::gltf_out;
+use deform::skinning::{glb_bytes, parse_gltf, GlbOptions, Rig, SkinError, Skinning};
+use deform::surgery::{CutOptions, Frame, Surgery};
+use deform::BlendMethod;
+use glam::{DMat4, DQuat, DVec3};
+use serde_json::{json, Value};
+
+/// A fixture: the glTF JSON and its binary buffer, assembled into a `.glb`.
+struct Fixture {
+    json: Value,
+    bin: Vec<u8>,
+}
+
+impl Fixture {
+    fn new() -> Fixture {
+        Fixture {
+            json: json!({"asset": {"version": "2.0"}, "buffers": [], "bufferViews": [],
+                         "accessors": [], "nodes": [], "meshes": [], "skins": [],
+                         "scenes": [{"nodes": [0]}], "scene": 0}),
+            bin: Vec::new(),
+        }
+    }
+
+    /// Append `bytes` as a buffer view; its index.
+    fn view(&mut self, bytes: &[u8], stride: Option<usize>) -> usize {
+        while !self.bin.len().is_multiple_of(4) {
+            self.bin.push(0);
+        }
+        let mut v = json!({"buffer": 0, "byteOffset": self.bin.len(), "byteLength": bytes.len()});
+        if let Some(s) = stride {
+            v["byteStride"] = json!(s);
+        }
+        self.bin.extend_from_slice(bytes);
+        push(&mut self.json["bufferViews"], v)
+    }
+
+    /// An accessor over a new view of `bytes`.
+    fn accessor(&mut self, bytes: &[u8], component: u32, kind: &str, count: usize) -> usize {
+        let view = self.view(bytes, None);
+        let a = json!({"bufferView": view, "componentType": component, "type": kind,
+                       "count": count});
+        push(&mut self.json["accessors"], a)
+    }
+
+    fn floats(&mut self, v: &[f32], kind: &str, count: usize) -> usize {
+        let bytes: Vec<u8> = v.iter().flat_map(|x| x.to_le_bytes()).collect();
+        let a = self.accessor(&bytes, 5126, kind, count);
+        if kind == "VEC3" {
+            let (lo, hi) = bounds(v);
+            self.json["accessors"][a]["min"] = json!(lo);
+            self.json["accessors"][a]["max"] = json!(hi);
+        }
+        a
+    }
+
+    fn node(&mut self, n: Value) -> usize {
+        push(&mut self.json["nodes"], n)
+    }
+
+    fn glb(&self) -> Vec<u8> {
+        let mut json = self.json.clone();
+        json["buffers"] = json!([{"byteLength": self.bin.len()}]);
+        let mut text = serde_json::to_vec(&json).unwrap();
+        while !text.len().is_multiple_of(4) {
+            text.push(b' ');
+        }
+        let mut bin = self.bin.clone();
+        while !bin.len().is_multiple_of(4) {
+            bin.push(0);
+        }
+        let total = 12 + 8 + text.len() + 8 + bin.len();
+        let mut out = Vec::with_capacity(total);
+        out.extend_from_slice(b"glTF");
+        out.extend_from_slice(&2u32.to_le_bytes());
+        out.extend_from_slice(&(total as u32).to_le_bytes());
+        out.extend_from_slice(&(text.len() as u32).to_le_bytes());
+        out.extend_from_slice(b"JSON");
+        out.extend_from_slice(&text);
+        out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
+        out.extend_from_slice(b"BIN\0");
+        out.extend_from_slice(&bin);
+        out
+    }
+}
+
+fn push(list: &mut Value, v: Value) -> usize {
+    let a = list.as_array_mut().unwrap();
+    a.push(v);
+    a.len() - 1
+}
+
+fn bounds(v: &[f32]) -> ([f32; 3], [f32; 3]) {
+    let mut lo = [f32::INFINITY; 3];
+    let mut hi = [f32::NEG_INFINITY; 3];
+    for p in v.chunks_exact(3) {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    (lo, hi)
+}
+
+/// A bar along y (rings of 4 vertices at `rings` heights, from 0 to 2), closed at both ends:
+/// positions and triangles.
+fn bar(rings: usize) -> (Vec<f32>, Vec<u16>) {
+    let mut p = Vec::new();
+    for r in 0..rings {
+        let y = 2.0 * r as f32 / (rings - 1) as f32;
+        for (x, z) in [(0.2, 0.2), (-0.2, 0.2), (-0.2, -0.2), (0.2, -0.2)] {
+            p.extend_from_slice(&[x, y, z]);
+        }
+    }
+    let mut t = Vec::new();
+    for r in 0..rings - 1 {
+        for k in 0..4 {
+            let (a, b) = ((r * 4 + k) as u16, (r * 4 + (k + 1) % 4) as u16);
+            let (c, d) = (a + 4, b + 4);
+            t.extend_from_slice(&[a, b, d, a, d, c]);
+        }
+    }
+    let top = (4 * (rings - 1)) as u16;
+    t.extend_from_slice(&[
+        0,
+        2,
+        1,
+        0,
+        3,
+        2,
+        top,
+        top + 1,
+        top + 2,
+        top,
+        top + 2,
+        top + 3,
+    ]);
+    (p, t)
+}
+
+/// Joints and weights of the bar for two joints: weight of the second = height / 2.
+fn bar_influences(positions: &[f32]) -> (Vec<u8>, Vec<f32>) {
+    let mut j = Vec::new();
+    let mut w = Vec::new();
+    for p in positions.chunks_exact(3) {
+        let a = (p[1] / 2.0).clamp(0.0, 1.0);
+        j.extend_from_slice(&[0, 1, 0, 0]);
+        w.extend_from_slice(&[1.0 - a, a, 0.0, 0.0]);
+    }
+    (j, w)
+}
+
+/// Options of [`two_joint_bar`].
+#[derive(Clone, Copy)]
+struct Bar {
+    /// The armature node's transform (scale, rotation).
+    armature: (f64, DQuat),
+    /// The second joint's local scale and rotation.
+    joint_scale: [f32; 3],
+    joint_turn: DQuat,
+    /// Multiply the second joint's inverse bind matrix by this (noise, mirror).
+    ibm_factor: DMat4,
+    /// Copies of the mesh's primitive.
+    primitives: usize,
+    /// A second mesh node sharing the skin.
+    shared: bool,
+    /// An animation (a STEP rotation of the second joint).
+    animated: bool,
+}
+
+impl Default for Bar {
+    fn default() -> Bar {
+        Bar {
+            armature: (1.0, DQuat::IDENTITY),
+            joint_scale: [1.0; 3],
+            joint_turn: DQuat::IDENTITY,
+            ibm_factor: DMat4::IDENTITY,
+            primitives: 1,
+            shared: false,
+            animated: true,
+        }
+    }
+}
+
+/// A bar skinned to two joints under an armature node: root 0 (armature) -> joint 1 -> joint
+/// 2 (at height 1); the mesh node 3 under the armature.
+fn two_joint_bar(o: Bar) -> Fixture {
+    let mut f = Fixture::new();
+    let (pos, tri) = bar(9);
+    let n = pos.len() / 3;
+    let (joints, weights) = bar_influences(&pos);
+    let p = f.floats(&pos, "VEC3", n);
+    let idx: Vec<u8> = tri.iter().flat_map(|x| x.to_le_bytes()).collect();
+    let i = f.accessor(&idx, 5123, "SCALAR", tri.len());
+    let j = f.accessor(&joints, 5121, "VEC4", n);
+    let w = f.floats(&weights, "VEC4", n);
+    let prim = json!({"attributes": {"POSITION": p, "JOINTS_0": j, "WEIGHTS_0": w},
+                      "indices": i});
+    let prims: Vec<Value> = (0..o.primitives).map(|_| prim.clone()).collect();
+    f.json["meshes"] = json!([{"primitives": prims}]);
+    let (s, q) = o.armature;
+    f.node(json!({"name": "Armature", "children": [1, 3],
+                  "scale": [s, s, s], "rotation": [q.x, q.y, q.z, q.w]}));
+    f.node(json!({"name": "hip", "children": [2]}));
+    let t = o.joint_turn;
+    f.node(json!({"name": "knee", "translation": [0.0, 1.0, 0.0],
+                  "rotation": [t.x, t.y, t.z, t.w], "scale": o.joint_scale}));
+    f.node(json!({"name": "body", "mesh": 0, "skin": 0}));
+    if o.shared {
+        f.json["nodes"][0]["children"] = json!([1, 3, 4]);
+        f.node(json!({"name": "body copy", "mesh": 0, "skin": 0}));
+    }
+    // Inverse bind matrices: the inverse of each joint's bind-time world matrix (in the
+    // armature's frame, as exporters write them), the second times `ibm_factor`.
+    let armature = DMat4::from_scale_rotation_translation(DVec3::splat(s), q, DVec3::ZERO);
+    let knee = DMat4::from_scale_rotation_translation(
+        DVec3::from(o.joint_scale.map(f64::from)),
+        t,
+        DVec3::Y,
+    );
+    // In the mesh node's frame (under the armature too): the hip's is the identity.
+    let _ = armature;
+    let ibm = [DMat4::IDENTITY, knee.inverse() * o.ibm_factor];
+    let values: Vec<f32> = ibm
+        .iter()
+        .flat_map(|m| m.to_cols_array().map(|x| x as f32))
+        .collect();
+    let ib = f.floats(&values, "MAT4", 2);
+    f.json["skins"] = json!([{"joints": [1, 2], "inverseBindMatrices": ib}]);
+    if o.animated {
+        let times = f.floats(&[0.0, 1.0], "SCALAR", 2);
+        let bend = DQuat::from_rotation_z(0.8);
+        let keys = [t, t * bend];
+        let v: Vec<f32> = keys
+            .iter()
+            .flat_map(|k| [k.x, k.y, k.z, k.w].map(|x| x as f32))
+            .collect();
+        let out = f.floats(&v, "VEC4", 2);
+        f.json["animations"] = json!([{"name": "bend",
+            "samplers": [{"input": times, "output": out, "interpolation": "STEP"}],
+            "channels": [{"sampler": 0, "target": {"node": 2, "path": "rotation"}}]}]);
+    }
+    f
+}
+
+/// glTF's skinning formula on the fixture's own JSON and buffer, independent of the
+/// crate's reader: per skinned mesh node, per primitive in document order, per vertex
+/// `sum w (world(joint) * inverse_bind) p` with the weights normalised (three.js's
+/// `SkinnedMesh`), at the rest pose or with the animation's keys at `time` (STEP only).
+fn reference_skinning(f: &Fixture, time: Option<f64>) -> Vec<DVec3> {
+    let j = &f.json;
+    let read = |a: usize| -> Vec<f64> {
+        let acc = &j["accessors"][a];
+        let view = &j["bufferViews"][acc["bufferView"].as_u64().unwrap() as usize];
+        let off = view["byteOffset"].as_u64().unwrap() as usize;
+        let len = view["byteLength"].as_u64().unwrap() as usize;
+        let b = &f.bin[off..off + len];
+        match acc["componentType"].as_u64().unwrap() {
+            5126 => b
+                .chunks_exact(4)
+                .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]) as f64)
+                .collect(),
+            5123 => b
+                .chunks_exact(2)
+                .map(|c| u16::from_le_bytes([c[0], c[1]]) as f64)
+                .collect(),
+            5121 => b.iter().map(|&x| x as f64).collect(),
+            t => panic!("component type {t}"),
+        }
+    };
+    let nodes = j["nodes"].as_array().unwrap();
+    let mut local: Vec<DMat4> = nodes
+        .iter()
+        .map(|n| {
+            let v = |k: &str, d: &[f64]| -> Vec<f64> {
+                n.get(k).map_or(d.to_vec(), |a| {
+                    a.as_array()
+                        .unwrap()
+                        .iter()
+                        .map(|x| x.as_f64().unwrap())
+                        .collect()
+                })
+            };
+            let t = v("translation", &[0.0; 3]);
+            let r = v("rotation", &[0.0, 0.0, 0.0, 1.0]);
+            let s = v("scale", &[1.0; 3]);
+            DMat4::from_scale_rotation_translation(
+                DVec3::new(s[0], s[1], s[2]),
+                DQuat::from_xyzw(r[0], r[1], r[2], r[3]).normalize(),
+                DVec3::new(t[0], t[1], t[2]),
+            )
+        })
+        .collect();
+    if let (Some(t), Some(a)) = (time, j.get("animations")) {
+        for c in a[0]["channels"].as_array().unwrap() {
+            let s = &a[0]["samplers"][c["sampler"].as_u64().unwrap() as usize];
+            let times = read(s["input"].as_u64().unwrap() as usize);
+            let values = read(s["output"].as_u64().unwrap() as usize);
+            let k = times.iter().rposition(|&x| x <= t).unwrap_or(0);
+            let node = c["target"]["node"].as_u64().unwrap() as usize;
+            let q = &values[4 * k..4 * k + 4];
+            let (sc, _, tr) = local[node].to_scale_rotation_translation();
+            let q = DQuat::from_xyzw(q[0], q[1], q[2], q[3]).normalize();
+            local[node] = DMat4::from_scale_rotation_translation(sc, q, tr);
+        }
+    }
+    let mut parent = vec![None; nodes.len()];
+    for (i, n) in nodes.iter().enumerate() {
+        for c in n
+            .get("children")
+            .and_then(Value::as_array)
+            .into_iter()
+            .flatten()
+        {
+            parent[c.as_u64().unwrap() as usize] = Some(i);
+        }
+    }
+    let world = |mut i: usize| {
+        let mut m = local[i];
+        while let Some(p) = parent[i] {
+            m = local[p] * m;
+            i = p;
+        }
+        m
+    };
+    let mut out = Vec::new();
+    let mut instances: Vec<(usize, usize)> = nodes
+        .iter()
+        .enumerate()
+        .filter_map(|(i, n)| Some((n.get("mesh")?.as_u64()? as usize, i)))
+        .collect();
+    instances.sort();
+    for (mesh, node) in instances {
+        let skin = &j["skins"][nodes[node]["skin"].as_u64().unwrap() as usize];
+        let joints: Vec<usize> = skin["joints"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_u64().unwrap() as usize)
+            .collect();
+        let ibm = read(skin["inverseBindMatrices"].as_u64().unwrap() as usize);
+        let bone: Vec<DMat4> = joints
+            .iter()
+            .enumerate()
+            .map(|(k, &n)| world(n) * DMat4::from_cols_slice(&ibm[16 * k..16 * k + 16]))
+            .collect();
+        for prim in j["meshes"][mesh]["primitives"].as_array().unwrap() {
+            let at = |k: &str| prim["attributes"][k].as_u64().unwrap() as usize;
+            let p = read(at("POSITION"));
+            let jj = read(at("JOINTS_0"));
+            let ww = read(at("WEIGHTS_0"));
+            for v in 0..p.len() / 3 {
+                let x = DVec3::new(p[3 * v], p[3 * v + 1], p[3 * v + 2]);
+                let sum: f64 = ww[4 * v..4 * v + 4].iter().sum();
+                let mut y = DVec3::ZERO;
+                for k in 0..4 {
+                    let w = ww[4 * v + k] / sum;
+                    y += w * bone[jj[4 * v + k] as usize].transform_point3(x);
+                }
+                out.push(y);
+            }
+        }
+    }
+    out
+}
+
+fn diagonal(p: &[DVec3]) -> f64 {
+    let lo = p.iter().fold(DVec3::INFINITY, |a, b| a.min(*b));
+    let hi = p.iter().fold(DVec3::NEG_INFINITY, |a, b| a.max(*b));
+    (hi - lo).length()
+}
+
+/// `rig` skinned by `method` at the rest pose or the animation's `time`.
+fn skin_rig(rig: &Rig, method: BlendMethod, time: Option<f64>) -> Vec<DVec3> {
+    let pose = rig.pose(time.map(|_| 0), time.unwrap_or(0.0), &[]).unwrap();
+    let skin = Skinning::bind(rig, method).unwrap();
+    let mut out = vec![DVec3::ZERO; rig.mesh.vertex_count()];
+    skin.pose_rig(&pose, &mut skin.blend().scratch(), &mut out)
+        .unwrap();
+    out
+}
+
+/// Load `f`, check `lbs` against the reference at rest and at t = 1, write it back for the
+/// validator, cut it through the middle at the bind pose and pose the cut rig.
+fn check(name: &str, f: &Fixture) -> Rig {
+    let bytes = f.glb();
+    let rig = parse_gltf(&bytes, name, None).unwrap_or_else(|e| panic!("{name}: {e}"));
+    let animated = !rig.animations.is_empty();
+    let times = if animated {
+        vec![None, Some(1.0)]
+    } else {
+        vec![None]
+    };
+    for time in times {
+        let want = reference_skinning(f, time);
+        let diag = diagonal(&want);
+        for method in [BlendMethod::Matrix, BlendMethod::MatrixF32] {
+            let got = skin_rig(&rig, method, time);
+            assert_eq!(got.len(), want.len(), "{name}");
+            let err = got
+                .iter()
+                .zip(&want)
+                .map(|(a, b)| a.distance(*b))
+                .fold(0.0, f64::max)
+                / diag;
+            let tol = if method == BlendMethod::Matrix {
+                1e-6
+            } else {
+                1e-5
+            };
+            assert!(err < tol, "{name} {time:?} {}: {err:e}", method.name());
+        }
+    }
+    let out = glb_bytes(&rig, &GlbOptions::default()).unwrap();
+    std::fs::write(gltf_out().join(format!("wild-{name}.glb")), &out).unwrap();
+    let back = parse_gltf(&out, name, None).unwrap();
+    assert_eq!(back.mesh.vertex_count(), rig.mesh.vertex_count(), "{name}");
+    // A cut at the bind pose, in world space: half the bar's height.
+    let world = rig.bind_pose_positions().unwrap();
+    let pose = rig.rest_pose().unwrap();
+    let lo = world.iter().fold(DVec3::INFINITY, |a, b| a.min(*b));
+    let hi = world.iter().fold(DVec3::NEG_INFINITY, |a, b| a.max(*b));
+    let axis = (hi - lo).normalize();
+    let plane = cga::Plane::from_normal_distance(axis, axis.dot(0.5 * (lo + hi)));
+    let surgery = Surgery::new(&rig.mesh, &rig.influences).unwrap();
+    let frame = Frame::Posed {
+        positions: &world,
+        skin: &pose.skin_matrices,
+    };
+    let cut = surgery
+        .cut(&plane, frame, &CutOptions::default())
+        .unwrap_or_else(|e| panic!("{name}: cut: {e}"));
+    assert!(cut.pieces.len() >= 2, "{name}: pieces on both sides");
+    let parts: Vec<_> = cut.pieces.iter().map(|p| p.mesh.part()).collect();
+    let cut_rig = rig.with_parts(&parts).unwrap();
+    let posed = skin_rig(&cut_rig, BlendMethod::Matrix, animated.then_some(1.0));
+    assert!(posed.iter().all(|p| p.is_finite()), "{name}");
+    let out = glb_bytes(&cut_rig, &GlbOptions::default()).unwrap();
+    std::fs::write(gltf_out().join(format!("wild-{name}-cut.glb")), &out).unwrap();
+    rig
+}
+
+/// The Blender 1.8-era inverse bind matrix (singular values 1.0000194, 1.0000005, 1) is f32
+/// noise: every backend takes it without a word; the shield's non-uniform joint scale is not:
+/// `lbs` skins it exactly, the motors name the joint and measure the move.
+#[test]
+fn noisy_inverse_binds_and_non_uniform_joints() {
+    let noise = DMat4::from_scale(DVec3::new(1.0000194, 1.0000005, 1.0));
+    let f = two_joint_bar(Bar {
+        ibm_factor: noise,
+        ..Bar::default()
+    });
+    let rig = check("noisy-inverse-bind", &f);
+    let pose = rig.pose(Some(0), 1.0, &[]).unwrap();
+    assert_eq!(pose.approximated_joints().count(), 0);
+    assert!(pose.skin_motors().is_ok());
+    assert_eq!(rig.similarity_shift(&pose), 0.0);
+
+    // Bound at scale 1 (the inverse bind lacks the scale), posed with the shield's scale.
+    let f = two_joint_bar(Bar {
+        joint_scale: [1.24, 1.0008, 1.24],
+        joint_turn: DQuat::from_rotation_y(0.3),
+        ibm_factor: DMat4::from_scale(DVec3::new(1.24, 1.0008, 1.24)),
+        ..Bar::default()
+    });
+    let rig = check("non-uniform-joint", &f);
+    let pose = rig.pose(Some(0), 1.0, &[]).unwrap();
+    let far: Vec<_> = pose.approximated_joints().collect();
+    assert_eq!(far.len(), 1, "{far:?}");
+    assert!(far[0].1 > 0.05, "{far:?}");
+    let shift = rig.similarity_shift(&pose);
+    // The motor backends move the mesh by that much, and no more, against lbs.
+    let lbs = skin_rig(&rig, BlendMethod::Matrix, Some(1.0));
+    let cga = skin_rig(&rig, BlendMethod::ConformalProjected, Some(1.0));
+    let moved = lbs
+        .iter()
+        .zip(&cga)
+        .map(|(a, b)| a.distance(*b))
+        .fold(0.0, f64::max);
+    assert!(
+        shift > 0.0 && (moved - shift).abs() <= 1e-9 * diagonal(&lbs),
+        "{moved} {shift}"
+    );
+}
+
+/// A mirrored joint (its inverse bind mirrored too, as exporters write a mirrored rig): the
+/// skin matrices are proper, matrices and motors both take it.
+#[test]
+fn mirrored_joint() {
+    let f = two_joint_bar(Bar {
+        joint_scale: [-1.0, 1.0, 1.0],
+        ..Bar::default()
+    });
+    let rig = check("mirrored-joint", &f);
+    let pose = rig.pose(Some(0), 1.0, &[]).unwrap();
+    assert_eq!(pose.approximated_joints().count(), 0);
+}
+
+/// A Mixamo-style armature: centimetres (scale 0.01) and Z-up turned to Y-up. The bind pose
+/// in world space is the bar standing 0.02 units tall along y; the rest mesh stays as stored.
+#[test]
+fn centimetre_z_up_armature() {
+    let turn = DQuat::from_rotation_x(-std::f64::consts::FRAC_PI_2);
+    let f = two_joint_bar(Bar {
+        armature: (0.01, turn),
+        ..Bar::default()
+    });
+    let rig = check("centimetre-armature", &f);
+    let world = rig.bind_pose_positions().unwrap();
+    let want = reference_skinning(&f, None);
+    let err = world
+        .iter()
+        .zip(&want)
+        .map(|(a, b)| a.distance(*b))
+        .fold(0.0, f64::max);
+    assert!(err < 1e-9, "{err}");
+    let height = world.iter().map(|p| p.z).fold(f64::NEG_INFINITY, f64::max)
+        - world.iter().map(|p| p.z).fold(f64::INFINITY, f64::min);
+    assert!((diagonal(&world) / diagonal(&rig.mesh.positions) - 0.01).abs() < 1e-6);
+    assert!(
+        height.abs() > 0.019,
+        "stood up along the turned axis: {height}"
+    );
+}
+
+/// A thousand primitives of one mesh, and a second node sharing the skin: every instance is
+/// read, in order of mesh, primitive, node.
+#[test]
+fn many_primitives_and_a_shared_skin() {
+    let f = two_joint_bar(Bar {
+        primitives: 1000,
+        ..Bar::default()
+    });
+    let rig = check("thousand-primitives", &f);
+    assert_eq!(rig.primitives.len(), 1000);
+    let f = two_joint_bar(Bar {
+        shared: true,
+        ..Bar::default()
+    });
+    let rig = check("shared-skin", &f);
+    assert_eq!(rig.primitives.len(), 2);
+    assert_eq!(rig.joints.len(), 2, "one skin, its joints once");
+}
+
+/// No animation: asking for one says so; the rest pose works.
+#[test]
+fn no_animation() {
+    let f = two_joint_bar(Bar {
+        animated: false,
+        ..Bar::default()
+    });
+    let rig = check("no-animation", &f);
+    let e = rig.animation_index("0").unwrap_err().to_string();
+    assert!(e.contains("this model has no animations"), "{e}");
+}
+
+/// Meshopt-compressed views (`EXT_meshopt_compression`, encoded by meshoptimizer here) read
+/// as the same rig as the plain file.
+#[test]
+fn meshopt_compressed_views() {
+    let plain = two_joint_bar(Bar::default());
+    let mut f = two_joint_bar(Bar::default());
+    // Compress the POSITION view (accessor 0, stride 12) and the indices (accessor 1).
+    let mut bin = std::mem::take(&mut f.bin);
+    let views = f.json["bufferViews"].clone();
+    let view_of =
+        |a: usize| views[f.json["accessors"][a]["bufferView"].as_u64().unwrap() as usize].clone();
+    let (pv, iv) = (view_of(0), view_of(1));
+    let slice = |v: &Value| {
+        let o = v["byteOffset"].as_u64().unwrap() as usize;
+        bin[o..o + v["byteLength"].as_u64().unwrap() as usize].to_vec()
+    };
+    let positions: Vec<[u8; 12]> = slice(&pv)
+        .chunks_exact(12)
+        .map(|c| c.try_into().unwrap())
+        .collect();
+    let indices: Vec<u32> = slice(&iv)
+        .chunks_exact(2)
+        .map(|c| u16::from_le_bytes([c[0], c[1]]) as u32)
+        .collect();
+    let pe = meshopt::encoding::encode_vertex_buffer(&positions).unwrap();
+    let ie = meshopt::encoding::encode_index_buffer(&indices, positions.len()).unwrap();
+    // The compressed streams go into buffer 1 (the GLB chunk); buffer 0 becomes the
+    // fallback without data... kept simple: both in the one chunk, views marked.
+    let mut put = |bytes: &[u8]| {
+        while !bin.len().is_multiple_of(4) {
+            bin.push(0);
+        }
+        let o = bin.len();
+        bin.extend_from_slice(bytes);
+        o
+    };
+    let (po, io) = (put(&pe), put(&ie));
+    let pvi = f.json["accessors"][0]["bufferView"].as_u64().unwrap() as usize;
+    let ivi = f.json["accessors"][1]["bufferView"].as_u64().unwrap() as usize;
+    f.json["bufferViews"][pvi]["byteStride"] = json!(12);
+    f.json["bufferViews"][pvi]["extensions"] = json!({"EXT_meshopt_compression": {
+        "buffer": 0, "byteOffset": po, "byteLength": pe.len(), "byteStride": 12,
+        "count": positions.len(), "mode": "ATTRIBUTES"}});
+    f.json["bufferViews"][ivi]["extensions"] = json!({"EXT_meshopt_compression": {
+        "buffer": 0, "byteOffset": io, "byteLength": ie.len(), "byteStride": 2,
+        "count": indices.len(), "mode": "TRIANGLES"}});
+    f.json["extensionsUsed"] = json!(["EXT_meshopt_compression"]);
+    f.json["extensionsRequired"] = json!(["EXT_meshopt_compression"]);
+    // The uncompressed bytes are overwritten: only the decoder can give them back.
+    for v in [&pv, &iv] {
+        let o = v["byteOffset"].as_u64().unwrap() as usize;
+        let n = v["byteLength"].as_u64().unwrap() as usize;
+        bin[o..o + n].fill(0xAB);
+    }
+    f.bin = bin;
+    let a = parse_gltf(&f.glb(), "meshopt", None).unwrap();
+    let b = parse_gltf(&plain.glb(), "plain", None).unwrap();
+    assert_eq!(a.mesh.positions, b.mesh.positions);
+    // The index codec may rotate a triangle's corners (same triangle, same orientation).
+    let canonical = |t: &[u32; 3]| {
+        let k = (0..3).min_by_key(|&k| t[k]).unwrap();
+        [t[k], t[(k + 1) % 3], t[(k + 2) % 3]]
+    };
+    let ta: Vec<_> = a.mesh.triangles.iter().map(canonical).collect();
+    let tb: Vec<_> = b.mesh.triangles.iter().map(canonical).collect();
+    assert_eq!(ta, tb);
+    let out = glb_bytes(&a, &GlbOptions::default()).unwrap();
+    std::fs::write(gltf_out().join("wild-meshopt-decoded.glb"), &out).unwrap();
+}
+
+/// Quantised positions (`KHR_mesh_quantization`: normalised u16) and a sparse accessor
+/// moving one vertex: read as the reference reads them.
+#[test]
+fn quantised_and_sparse_positions() {
+    let mut f = two_joint_bar(Bar::default());
+    // Positions as u16 normalised over [-1, 3] per axis -> [0, 65535], dequantised by the
+    // inverse bind matrices (as gltfpack does for skinned meshes).
+    let (pos, _) = bar(9);
+    let q: Vec<u16> = pos
+        .iter()
+        .map(|&x| (((x as f64 + 1.0) / 4.0) * 65535.0).round() as u16)
+        .collect();
+    let mut padded = Vec::new();
+    for c in q.chunks_exact(3) {
+        padded.extend_from_slice(&[c[0], c[1], c[2], 0]);
+    }
+    let bytes: Vec<u8> = padded.iter().flat_map(|x| x.to_le_bytes()).collect();
+    let view = f.view(&bytes, Some(8));
+    f.json["accessors"][0] = json!({"bufferView": view, "componentType": 5123,
+        "normalized": true, "type": "VEC3", "count": pos.len() / 3,
+        "min": [0, 0, 0], "max": [65535, 65535, 65535]});
+    f.json["extensionsUsed"] = json!(["KHR_mesh_quantization"]);
+    f.json["extensionsRequired"] = json!(["KHR_mesh_quantization"]);
+    // Dequantise: p = 4 q - 1, folded into every inverse bind matrix.
+    let dequantise = DMat4::from_scale_rotation_translation(
+        DVec3::splat(4.0),
+        DQuat::IDENTITY,
+        DVec3::splat(-1.0),
+    );
+    let ib = f.json["skins"][0]["inverseBindMatrices"].as_u64().unwrap() as usize;
+    let vi = f.json["accessors"][ib]["bufferView"].as_u64().unwrap() as usize;
+    let o = f.json["bufferViews"][vi]["byteOffset"].as_u64().unwrap() as usize;
+    for k in 0..2 {
+        let at = o + 64 * k;
+        let m: Vec<f64> = f.bin[at..at + 64]
+            .chunks_exact(4)
+            .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]) as f64)
+            .collect();
+        let m = DMat4::from_cols_slice(&m) * dequantise;
+        let bytes: Vec<u8> = m
+            .to_cols_array()
+            .iter()
+            .flat_map(|x| (*x as f32).to_le_bytes())
+            .collect();
+        f.bin[at..at + 64].copy_from_slice(&bytes);
+    }
+    let rig = parse_gltf(&f.glb(), "quantised", None).unwrap();
+    let want: Vec<DVec3> = pos
+        .chunks_exact(3)
+        .map(|p| DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64))
+        .collect();
+    let got = skin_rig(&rig, BlendMethod::Matrix, None);
+    let err = got
+        .iter()
+        .zip(&want)
+        .map(|(a, b)| a.distance(*b))
+        .fold(0.0, f64::max);
+    assert!(err < 1e-4, "dequantised at rest: {err}");
+    let out = glb_bytes(&rig, &GlbOptions::default()).unwrap();
+    std::fs::write(gltf_out().join("wild-quantised.glb"), &out).unwrap();
+
+    // Sparse: vertex 5 of the positions replaced.
+    let mut f = two_joint_bar(Bar::default());
+    let idx = f.view(&5u16.to_le_bytes(), None);
+    let val: Vec<u8> = [9.0f32, 8.0, 7.0]
+        .iter()
+        .flat_map(|x| x.to_le_bytes())
+        .collect();
+    let vals = f.view(&val, None);
+    f.json["accessors"][0]["sparse"] = json!({"count": 1,
+        "indices": {"bufferView": idx, "componentType": 5123},
+        "values": {"bufferView": vals}});
+    f.json["accessors"][0]["max"] = json!([9.0, 8.0, 7.0]);
+    let rig = parse_gltf(&f.glb(), "sparse", None).unwrap();
+    assert_eq!(rig.mesh.positions[5], DVec3::new(9.0, 8.0, 7.0));
+    assert_eq!(
+        rig.mesh.positions[4],
+        DVec3::new(0.2f32 as f64, 0.25, 0.2f32 as f64)
+    );
+}
+
+/// A required extension the reader does not support is refused in one line, by name.
+#[test]
+fn unsupported_required_extension() {
+    let mut f = two_joint_bar(Bar::default());
+    f.json["extensionsUsed"] = json!(["KHR_texture_basisu"]);
+    f.json["extensionsRequired"] = json!(["KHR_texture_basisu"]);
+    let e = parse_gltf(&f.glb(), "basisu", None).unwrap_err();
+    assert!(matches!(e, SkinError::Unsupported { .. }), "{e}");
+    let text = e.to_string();
+    assert!(
+        text.contains("KHR_texture_basisu") && !text.contains('\n'),
+        "{text}"
+    );
+}
