@@ -165,7 +165,7 @@ mod tests {
         let n = nearest_similarity(&mirror).unwrap();
         assert!(n.deviation >= 1.0, "{}", n.deviation);
         let flat = DAffine3::from_scale(DVec3::new(1.0, 1.0, 0.0));
-        assert!(nearest_similarity(&flat).map_or(true, |n| n.deviation >= 1.0));
+        assert!(nearest_similarity(&flat).is_none_or(|n| n.deviation >= 1.0));
         assert!(nearest_similarity(&DAffine3::from_scale(DVec3::ZERO)).is_none());
         let mut nan = similarity(1.0);
         nan.translation.x = f64::NAN;
