@@ -194,22 +194,6 @@ impl Rig {
         }
     }
 
-    /// The rest mesh in the scene's world space at the bind pose, as viewers show the model
-    /// before any animation: matrix skinning of the rest pose with the skin matrices exactly
-    /// (armature transforms, unit scale and up axis applied; a Mixamo rig's centimetres and
-    /// Z-up turned into the scene's metres and Y-up).
-    ///
-    /// # Errors
-    /// As [`Rig::pose`], and [`SkinError::Pose`] for positions leaving the `f64` range.
-    pub fn bind_pose_positions(&self) -> Result<Vec<DVec3>, SkinError> {
-        let pose = self.rest_pose()?;
-        let skin = super::Skinning::bind(self, crate::blend::BlendMethod::Matrix)
-            .map_err(|e| SkinError::Pose(e.to_string()))?;
-        let mut out = vec![DVec3::ZERO; self.mesh.vertex_count()];
-        skin.pose_rig(&pose, &mut skin.blend().scratch(), &mut out)?;
-        Ok(out)
-    }
-
     /// How far the mesh moves, at `pose`, because the motor backends take each joint's nearest
     /// similarity for its skin matrix: the largest `|sum_n w_n (S_n - M_n) p|` over the
     /// vertices (matrix skinning with the exact matrices against matrix skinning with the
