@@ -498,9 +498,20 @@ fn a_drill_that_removes_nothing_says_why() {
     let s = Scene::new("thin-drill");
     let out = s.p("o.obj");
     let args = [
-        "drill", &man, "--tip", "0,-1,0.9", "--end", "0,1,0.9", "--radius", "1e-6", "-o", &out,
+        "drill",
+        &man,
+        "--mesh-space",
+        "--tip",
+        "0,-1,0.9",
+        "--end",
+        "0,1,0.9",
+        "--radius",
+        "1e-6",
+        "-o",
+        &out,
     ];
-    // Through the surface but far thinner than its faces, even refined: said so.
+    // Through the surface (in the rest mesh's Z-up coordinates) but far thinner than its
+    // faces, even refined: said so.
     refused(&args, "too thin for the mesh there", &out);
     let args = [
         "drill", &man, "--tip", "5,5,5", "--end", "6,5,5", "--radius", "0.1", "-o", &out,
