@@ -146,17 +146,7 @@ impl PreparedKeys {
     /// finite scaled motor.
     pub fn prepare(&mut self, keys: &[ScaledMotor], method: BlendMethod) -> Result<()> {
         KeyError::check_count("keys", keys.len())?;
-        self.method = method;
-        self.count = 0;
-        self.scaled = false;
-        self.logs.clear();
-        self.log_scales.clear();
-        self.motors.clear();
-        self.quats.clear();
-        self.affines.clear();
-        self.affines_f32.clear();
-        self.conformal.clear();
-        self.rows.clear();
+        self.reset(method, false);
         for (j, k) in keys.iter().enumerate() {
             let log = k
                 .try_log()
@@ -199,6 +189,21 @@ impl PreparedKeys {
         Ok(())
     }
 
+    /// Empty every buffer (keeping its capacity) for a new pose by `method`.
+    fn reset(&mut self, method: BlendMethod, scaled: bool) {
+        self.method = method;
+        self.count = 0;
+        self.scaled = scaled;
+        self.logs.clear();
+        self.log_scales.clear();
+        self.motors.clear();
+        self.quats.clear();
+        self.affines.clear();
+        self.affines_f32.clear();
+        self.conformal.clear();
+        self.rows.clear();
+    }
+
     /// Prepare any affine maps (not only similarities: glTF's skin matrices, `global * inverse
     /// bind`, may scale non-uniformly or shear) as the keys of a matrix method,
     /// [`BlendMethod::Matrix`] or [`BlendMethod::MatrixF32`], reusing this value's buffers.
@@ -218,17 +223,7 @@ impl PreparedKeys {
         if let Some(j) = maps.iter().position(|m| !m.is_finite()) {
             return Err(KeyError::Affine(format!("key {j}: the affine map is not finite")).into());
         }
-        self.method = method;
-        self.count = 0;
-        self.scaled = true;
-        self.logs.clear();
-        self.log_scales.clear();
-        self.motors.clear();
-        self.quats.clear();
-        self.affines.clear();
-        self.affines_f32.clear();
-        self.conformal.clear();
-        self.rows.clear();
+        self.reset(method, true);
         if method == BlendMethod::MatrixF32 {
             self.affines_f32.extend(maps.iter().map(|m| Affine3A {
                 matrix3: m.matrix3.as_mat3().into(),

@@ -504,13 +504,7 @@ impl BoundBlend {
         out: &mut [DVec3],
     ) -> Result<()> {
         let prepared = self.checked_prepare(keys, prepared, out)?;
-        let single = |i: usize| prepared.transform(self.weights.row(i), self.local[i]);
-        let finite = if self.batches.is_empty() {
-            for_each_vertex(out, single)
-        } else {
-            kernels::run(prepared, &self.batches, &single, out)
-        };
-        finite_pose(finite, out)
+        self.pose_prepared(prepared, out)
     }
 
     /// [`BoundBlend::pose_using`] with affine maps for keys (any map, not only a
@@ -528,7 +522,12 @@ impl BoundBlend {
         check_key_count("this deformer", self.key_count(), maps.len())?;
         check_positions(self.vertex_count(), out.len())?;
         prepared.prepare_affine(maps, self.method)?;
-        let prepared = &*prepared;
+        self.pose_prepared(prepared, out)
+    }
+
+    /// Every vertex posed by keys already prepared: the batch loop, or one vertex at a time
+    /// where there are no batches.
+    fn pose_prepared(&self, prepared: &PreparedKeys, out: &mut [DVec3]) -> Result<()> {
         let single = |i: usize| prepared.transform(self.weights.row(i), self.local[i]);
         let finite = if self.batches.is_empty() {
             for_each_vertex(out, single)
