@@ -2,6 +2,8 @@
 //! matrices), the node hierarchy and the animations, so any viewer shows and re-animates it.
 
 use super::animation::{Interpolation, Property};
+use super::look::VertexAttribute;
+use super::morph::{self, parse_target_attribute};
 use super::rig::Rig;
 use super::SkinError;
 use super::Trs;
@@ -150,10 +152,16 @@ pub fn glb_bytes(rig: &Rig, options: &GlbOptions) -> Result<Vec<u8>> {
     let mut primitives = Vec::new();
     for (index, p) in rig.primitives.iter().enumerate() {
         let range = p.vertex_offset..p.vertex_offset + p.vertex_count;
-        let pos: Vec<f32> = rig.mesh.positions[range.clone()]
+        // The base shape: the rest shape without the morph targets' default weights.
+        let mut base = rig.mesh.positions[range.clone()].to_vec();
+        let targets: Vec<VertexAttribute> = look
+            .attributes
             .iter()
-            .flat_map(|x| x.as_vec3().to_array())
+            .filter(|a| parse_target_attribute(&a.name).is_some())
+            .map(|a| a.rows(range.clone()))
             .collect();
+        morph::displace(&mut base, &targets, &look.morph_weights, -1.0);
+        let pos: Vec<f32> = base.iter().flat_map(|x| x.as_vec3().to_array()).collect();
         let position = floats(&mut bin, &pos, 3, "VEC3", Some(34962), true, "POSITION")?;
         let idx: Vec<u8> = rig.mesh.triangles
             [p.triangle_offset..p.triangle_offset + p.triangle_count]
@@ -179,7 +187,9 @@ pub fn glb_bytes(rig: &Rig, options: &GlbOptions) -> Result<Vec<u8>> {
                 "NORMAL"
             )?);
         }
-        for a in look.attributes.iter().filter(|a| a.name != "NORMAL") {
+        let plain =
+            |a: &&VertexAttribute| a.name != "NORMAL" && parse_target_attribute(&a.name).is_none();
+        for a in look.attributes.iter().filter(plain) {
             let values = &a.values[range.start * a.width..range.end * a.width];
             let kind = ["SCALAR", "VEC2", "VEC3", "VEC4"][a.width - 1];
             attributes[a.name.as_str()] = json!(floats(
@@ -217,10 +227,22 @@ pub fn glb_bytes(rig: &Rig, options: &GlbOptions) -> Result<Vec<u8>> {
             )?);
         }
         let mut primitive = json!({"attributes": attributes, "indices": indices, "mode": 4});
+        if !look.morph_weights.is_empty() {
+            primitive["targets"] = json!(write_targets(
+                &mut bin,
+                &targets,
+                look.morph_weights.len(),
+                !look.flat
+            )?);
+        }
         if let Some(m) = look.primitive_materials.get(index).copied().flatten() {
             primitive["material"] = json!(m);
         }
         primitives.push(primitive);
+    }
+    let mut mesh = json!({"name": "skin", "primitives": primitives});
+    if !look.morph_weights.is_empty() {
+        mesh["weights"] = json!(look.morph_weights);
     }
     let ibm: Vec<f32> = rig
         .inverse_bind
@@ -305,7 +327,7 @@ pub fn glb_bytes(rig: &Rig, options: &GlbOptions) -> Result<Vec<u8>> {
         "scene": 0,
         "scenes": [{"nodes": roots}],
         "nodes": nodes,
-        "meshes": [{"name": "skin", "primitives": primitives}],
+        "meshes": [mesh],
         "skins": [{"joints": rig.joints, "inverseBindMatrices": ibm}],
     });
     if !animations.is_empty() {
@@ -313,6 +335,33 @@ pub fn glb_bytes(rig: &Rig, options: &GlbOptions) -> Result<Vec<u8>> {
     }
     write_look(look, images, &mut doc);
     bin.finish(doc).map_err(SkinError::InvalidArgument)
+}
+
+/// One primitive's morph targets (`count` of them, from its rows of the target attributes):
+/// each its `POSITION` offsets (zeros where the rig has none) and, when the primitive has
+/// `normals`, its `NORMAL` offsets where the rig has them.
+fn write_targets(
+    bin: &mut GlbBuilder,
+    rows: &[VertexAttribute],
+    count: usize,
+    normals: bool,
+) -> Result<Vec<Value>> {
+    let vertices = rows.first().map_or(0, VertexAttribute::vertex_count);
+    (0..count)
+        .map(|k| {
+            let find = |semantic: &str| {
+                rows.iter()
+                    .find(|a| parse_target_attribute(&a.name) == Some((k, semantic)))
+            };
+            let zeros = vec![0.0; 3 * vertices];
+            let position = find("POSITION").map_or(&zeros[..], |a| &a.values[..]);
+            let mut target = json!({"POSITION": floats(bin, position, 3, "VEC3", Some(34962), true, "morph POSITION")?});
+            if let Some(n) = find("NORMAL").filter(|_| normals) {
+                target["NORMAL"] = json!(floats(bin, &n.values, 3, "VEC3", Some(34962), false, "morph NORMAL")?);
+            }
+            Ok(target)
+        })
+        .collect()
 }
 
 /// Refuses a look that does not fit the rig: attributes of another length or width, material
@@ -328,6 +377,15 @@ fn check_look(rig: &Rig) -> Result<()> {
                 a.width
             )));
         }
+    }
+    let targets = rig.look.morph_weights.len();
+    if let Some(a) = rig.look.attributes.iter().find(|a| {
+        parse_target_attribute(&a.name).is_some_and(|(k, _)| k >= targets || a.width != 3)
+    }) {
+        return Err(SkinError::InvalidArgument(format!(
+            "attribute {}: not one of the {targets} morph targets' offsets",
+            a.name
+        )));
     }
     let materials = rig.look.materials.len();
     if let Some(m) = rig

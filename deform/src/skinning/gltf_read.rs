@@ -4,6 +4,7 @@ use super::accessor::{Buffers, GltfReadOptions, Layout};
 use super::animation::{Animation, Channel, Interpolation, Property};
 use super::influences::Influences;
 use super::look_read::{merge_attributes, primitive_attributes, read_look};
+use super::morph;
 use super::rig::{LoadReport, PrimitiveInfo, Rig, RigNode};
 use super::SkinError;
 use super::Trs;
@@ -84,11 +85,12 @@ pub fn gltf_external_files(path: impl AsRef<Path>) -> Vec<PathBuf> {
 /// the file's materials, textures, samplers and images (image files beside the model are read
 /// under the same rules as buffers, and embedded when written).
 ///
-/// Handled and reported in [`Rig::report`]: weights not summing to 1 (normalised; an all-zero
-/// vertex is bound to its first joint), morph targets and morph-weight channels (ignored:
-/// unsupported), meshes without a skin or with another skin, non-triangle primitives
+/// Morph targets are kept in the look and their default weights applied to the rest shape
+/// (see `morph.rs`). Handled and reported in [`Rig::report`]: weights not summing to 1
+/// (normalised; an all-zero vertex is bound to its first joint), morph-weight channels (not
+/// played), meshes without a skin (moved rigidly by their node), non-triangle primitives
 /// (skipped). Typed errors: a truncated or corrupt file, accessors reaching past their
-/// buffers, sparse accessors, joint indices past the skin, negative or non-finite weights,
+/// buffers, joint indices past the skin, negative or non-finite weights,
 /// non-finite or non-decomposable transforms, keyframe times that do not increase,
 /// non-finite keyframes.
 ///
@@ -145,6 +147,9 @@ pub fn parse_gltf_with(
     let mut materials = Vec::new();
     let quantized = doc.extensions_used().any(|e| e == "KHR_mesh_quantization");
     let mut rows = Vec::with_capacity(instances.len());
+    // Morph targets are numbered per mesh instance (node, mesh): its first target's number.
+    let mut target_offsets = std::collections::HashMap::new();
+    let mut morph_weights = Vec::new();
     for &(mesh_index, prim_index, node, binding) in &instances {
         let m = doc
             .meshes()
@@ -158,13 +163,19 @@ pub fn parse_gltf_with(
         let (info, primitive_rows) =
             read_primitive(&p, &buffers, name, quantized, remap, &mut mesh)?;
         rows.push(primitive_rows);
-        attributes.push(primitive_attributes(
-            &p,
-            info.vertex_count,
-            &buffers,
-            name,
-            &mut report.notes,
-        )?);
+        let mut kept =
+            primitive_attributes(&p, info.vertex_count, &buffers, name, &mut report.notes)?;
+        let first = *target_offsets.entry((node, mesh_index)).or_insert_with(|| {
+            let n = doc.nodes().nth(node).expect("index from the document");
+            let weights = morph::default_weights(&n, &m, p.morph_targets().count());
+            morph_weights.extend(weights);
+            morph_weights.len() - p.morph_targets().count()
+        });
+        let targets = morph::primitive_targets(&p, first, info.vertex_count, &buffers, name)?;
+        let range = info.vertex_offset..info.vertex_offset + info.vertex_count;
+        morph::displace(&mut mesh.positions[range], &targets, &morph_weights, 1.0);
+        kept.extend(targets);
+        attributes.push((info.vertex_count, kept));
         materials.push(p.material().index());
         primitives.push(PrimitiveInfo {
             node,
@@ -172,17 +183,12 @@ pub fn parse_gltf_with(
             primitive: prim_index,
             ..info
         });
-        if p.morph_targets().next().is_some() {
-            report.notes.push(format!(
-                "mesh {mesh_index} primitive {prim_index}: morph targets ignored (unsupported: \
-                 the mesh is posed at its base shape)"
-            ));
-        }
     }
     let influences = Influences::padded(rows);
     let animations = read_animations(doc, &buffers, name, &mut report)?;
     let mut look = read_look(bytes, doc, &buffers, base, options, &mut report.notes);
     look.attributes = merge_attributes(attributes, &mut report.notes);
+    look.morph_weights = morph_weights;
     look.flat = look.attribute("NORMAL").is_none();
     look.primitive_materials = materials;
     let mut rig = Rig::new(
@@ -613,7 +619,8 @@ fn read_animations(
                 gltf::animation::Property::Scale => Property::Scale,
                 gltf::animation::Property::MorphTargetWeights => {
                     report.notes.push(format!(
-                        "{what}: morph target weights ignored (unsupported)"
+                        "{what}: animated morph target weights are not played or written \
+                         (the targets are kept, at their default weights)"
                     ));
                     continue;
                 }

@@ -30,6 +30,15 @@ impl VertexAttribute {
         &self.values[v * self.width..(v + 1) * self.width]
     }
 
+    /// The rows of the vertices in `range`.
+    pub fn rows(&self, range: std::ops::Range<usize>) -> VertexAttribute {
+        VertexAttribute {
+            name: self.name.clone(),
+            width: self.width,
+            values: self.values[range.start * self.width..range.end * self.width].to_vec(),
+        }
+    }
+
     /// The attribute of vertices made from `sources` (one row per new vertex: vertices of this
     /// attribute and coefficients, as [`crate::surgery::SkinnedMesh::sources`] records them):
     /// the same weighted sum. A `NORMAL` is renormalised (a zero sum gets `+z`).
@@ -93,6 +102,9 @@ pub struct Look {
     /// specification says): none are written, so it keeps that look. Otherwise a rig without
     /// a `NORMAL` attribute (libigl, procedural) is written with smooth normals.
     pub flat: bool,
+    /// The default weight of each morph target, whose offsets are the attributes
+    /// `TARGET{k}_POSITION` (and `TARGET{k}_NORMAL`); the rig's rest shape has them applied.
+    pub morph_weights: Vec<f32>,
 }
 
 impl Look {

@@ -6,6 +6,7 @@
 use super::accessor::percent_decoded;
 use super::accessor::{read_external, Buffers, GltfReadOptions};
 use super::look::{extensions_in, Look, LookImage, VertexAttribute};
+use super::morph::parse_target_attribute;
 use super::SkinError;
 use base64::Engine;
 use serde_json::Value;
@@ -67,28 +68,28 @@ pub(crate) fn primitive_attributes(
     Ok(out)
 }
 
-/// The attributes every primitive has (same name and width), concatenated in primitive order;
-/// the others are left out with a note.
+/// The attributes every primitive has (same name and width), concatenated in primitive order,
+/// and every morph target's offsets (zero on the primitives without the target); the others
+/// are left out with a note. Each primitive comes with its vertex count.
 pub(crate) fn merge_attributes(
-    per_primitive: Vec<Vec<VertexAttribute>>,
+    per_primitive: Vec<(usize, Vec<VertexAttribute>)>,
     notes: &mut Vec<String>,
 ) -> Vec<VertexAttribute> {
-    let Some(first) = per_primitive.first() else {
-        return Vec::new();
-    };
     let everywhere = |a: &VertexAttribute| {
         per_primitive
             .iter()
-            .all(|list| list.iter().any(|b| b.name == a.name && b.width == a.width))
+            .all(|(_, list)| list.iter().any(|b| b.name == a.name && b.width == a.width))
     };
-    let kept: Vec<(String, usize)> = first
-        .iter()
-        .filter(|a| everywhere(a))
-        .map(|a| (a.name.clone(), a.width))
-        .collect();
+    let mut kept: Vec<(String, usize)> = Vec::new();
+    for a in per_primitive.iter().flat_map(|(_, list)| list) {
+        let target = parse_target_attribute(&a.name).is_some();
+        if (target || everywhere(a)) && !kept.iter().any(|k| k.0 == a.name) {
+            kept.push((a.name.clone(), a.width));
+        }
+    }
     let mut dropped: Vec<&str> = per_primitive
         .iter()
-        .flatten()
+        .flat_map(|(_, list)| list)
         .filter(|a| !kept.iter().any(|k| k.0 == a.name))
         .map(|a| a.name.as_str())
         .collect();
@@ -103,11 +104,10 @@ pub(crate) fn merge_attributes(
         .map(|(name, width)| {
             let values = per_primitive
                 .iter()
-                .flat_map(|list| {
+                .flat_map(|(count, list)| {
                     list.iter()
                         .find(|a| a.name == name)
-                        .map(|a| a.values.clone())
-                        .unwrap_or_default()
+                        .map_or_else(|| vec![0.0; count * width], |a| a.values.clone())
                 })
                 .collect();
             VertexAttribute {
@@ -260,6 +260,7 @@ pub(crate) fn read_look(
         extensions_used: listed("extensionsUsed"),
         extensions_required: listed("extensionsRequired"),
         flat: false,
+        morph_weights: Vec::new(),
         materials,
         textures,
         samplers,

@@ -39,6 +39,7 @@ mod influences;
 mod libigl_rig;
 mod look;
 mod look_read;
+mod morph;
 mod parts;
 mod pose;
 mod procedural;

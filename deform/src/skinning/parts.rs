@@ -58,6 +58,20 @@ impl Rig {
     /// As [`Rig::new`] (influences of another length, joint indices past the skin), and
     /// [`SkinError::InvalidArgument`] for sources of another length or past the mesh.
     pub fn with_parts(&self, parts: &[RigPart]) -> Result<Rig, SkinError> {
+        self.with_parts_traced(parts).map(|(rig, _)| rig)
+    }
+
+    /// [`Rig::with_parts`], and for each vertex of the new rig the vertex of the parts it is
+    /// (an index into the parts' vertices, concatenated in order): a part split by primitive
+    /// has its vertices regrouped (and a vertex on two primitives' border repeated), so
+    /// per-vertex values of the parts (a surgery's [`crate::surgery::VertexOrigin`]) map to
+    /// the new rig through it.
+    ///
+    /// # Errors
+    /// As [`Rig::with_parts`].
+    pub fn with_parts_traced(&self, parts: &[RigPart]) -> Result<(Rig, Vec<usize>), SkinError> {
+        let mut trace = Vec::new();
+        let mut part_start = 0;
         let width = parts.iter().map(|p| p.influences.width).max().unwrap_or(4);
         let mut mesh = Mesh::new(Vec::new(), Vec::new());
         let mut influences = Influences {
@@ -143,6 +157,7 @@ impl Rig {
                 });
                 materials.push(self.look.primitive_materials.get(g).copied().flatten());
                 mesh.positions.extend(used.iter().map(|&v| m.positions[v]));
+                trace.extend(used.iter().map(|&v| part_start + v));
                 mesh.triangles.extend(
                     tris.iter()
                         .map(|t| t.map(|v| local[v as usize] + offset as u32)),
@@ -161,6 +176,7 @@ impl Rig {
                     }
                 }
             }
+            part_start += m.vertex_count();
         }
         let mut rig = Rig::new(
             self.nodes.clone(),
@@ -177,7 +193,7 @@ impl Rig {
             primitive_materials: materials,
             ..self.look.clone()
         };
-        Ok(rig)
+        Ok((rig, trace))
     }
 
     /// The look's attributes over part `k`'s vertices: interpolated from `sources`, and on a

@@ -218,10 +218,14 @@ pub struct Surgery {
     /// Coincident vertices welded, for the loops and caps of a cut (`None`: none coincide).
     weld: Option<weld::Weld>,
     diagonal: f64,
+    /// Input triangles with a repeated corner, left out.
+    dropped: usize,
 }
 
 impl Surgery {
-    /// Check the mesh and build its face index.
+    /// Check the mesh and build its face index. Triangles with a repeated corner (no surface:
+    /// exporters leave them, viewers draw nothing) are left out of the mesh the tools work on
+    /// and return ([`Surgery::dropped_triangles`] counts them).
     ///
     /// # Errors
     /// [`SurgeryError::BadMesh`] for an empty mesh, the errors of
@@ -235,6 +239,19 @@ impl Surgery {
         }
         influences.check(n).map_err(SurgeryError::BadMesh)?;
         crate::mesh::check_elements(mesh).map_err(|e| SurgeryError::BadMesh(e.to_string()))?;
+        let kept: Vec<[u32; 3]> = mesh
+            .triangles
+            .iter()
+            .filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
+            .copied()
+            .collect();
+        let dropped = mesh.triangle_count() - kept.len();
+        if kept.is_empty() {
+            return Err(SurgeryError::BadMesh(
+                "every triangle has a repeated corner".into(),
+            ));
+        }
+        let mesh = &Mesh::new(mesh.positions.clone(), kept);
         let edges = crate::mesh::adjacency::edges(&mesh.triangles, n);
         let bad: Vec<usize> = edges.non_manifold().collect();
         if let Some(&e) = bad.first() {
@@ -254,7 +271,13 @@ impl Surgery {
                 sources: weights::identity_sources(n),
             },
             diagonal,
+            dropped,
         })
+    }
+
+    /// How many triangles of the input had a repeated corner and were left out.
+    pub fn dropped_triangles(&self) -> usize {
+        self.dropped
     }
 
     /// The bound mesh.

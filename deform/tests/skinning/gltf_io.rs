@@ -327,19 +327,48 @@ fn second_joint_set_round_trip() {
     assert!(exact > 0);
 }
 
-/// Morph targets are read past and reported (unsupported), not an error.
+/// Morph targets are kept (issue 45): each target is a look attribute `TARGET{k}_POSITION`, the
+/// default weights are kept and applied to the rest shape. SimpleSkin's target here is its own
+/// position accessor, so weight `w` scales every rest vertex by `1 + w`.
 #[test]
-fn morph_targets_are_reported() {
-    let Some(r) = simple_skin_edited(|d| {
-        d["meshes"][0]["primitives"][0]["targets"] = serde_json::json!([{"POSITION": 1}]);
-    }) else {
+fn morph_targets_are_kept() {
+    let load = |weights: Option<f64>| {
+        simple_skin_edited(|d| {
+            d["meshes"][0]["primitives"][0]["targets"] = serde_json::json!([{"POSITION": 1}]);
+            if let Some(w) = weights {
+                d["meshes"][0]["weights"] = serde_json::json!([w]);
+            }
+        })
+        .map(|r| r.unwrap())
+    };
+    let (Some(plain), Some(weighted)) = (load(None), load(Some(0.5))) else {
         return;
     };
-    let rig = r.unwrap();
+    assert_eq!(plain.look.morph_weights, vec![0.0]);
+    assert_eq!(weighted.look.morph_weights, vec![0.5]);
+    let target = plain
+        .look
+        .attribute("TARGET0_POSITION")
+        .expect("target kept");
+    assert_eq!(target.vertex_count(), plain.mesh.vertex_count());
+    for (v, (a, b)) in plain
+        .mesh
+        .positions
+        .iter()
+        .zip(&weighted.mesh.positions)
+        .enumerate()
+    {
+        let offset = target.row(v);
+        assert!(
+            (a.x - offset[0] as f64).abs() < 1e-6,
+            "vertex {v}: target is the positions"
+        );
+        assert!(b.distance(*a * 1.5) < 1e-6, "vertex {v}: {a} -> {b}");
+    }
     assert!(
-        rig.report.notes.iter().any(|n| n.contains("morph targets")),
+        !plain.report.notes.iter().any(|n| n.contains("morph")),
         "{:?}",
-        rig.report.notes
+        plain.report.notes
     );
 }
 

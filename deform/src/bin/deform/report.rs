@@ -1,6 +1,6 @@
 //! What a command prints at the end: its counts and timings, as aligned lines for people
 //! (numbers short, strings bare) or (with `--json`) one JSON object on stdout, every number
-//! in full; nothing with `--quiet`.
+//! in full, the notes as one array `notes`); nothing with `--quiet`.
 
 use crate::shared_args::OutputArgs;
 use deform::Mesh;
@@ -23,14 +23,26 @@ impl Report {
     pub fn add(&mut self, key: &'static str, value: impl Into<serde_json::Value>) {
         self.fields.push((key, value.into()));
     }
+    /// The fields as one JSON object; the notes (every `note` added) as one array `notes`.
+    pub fn json(&self) -> serde_json::Value {
+        let mut map = serde_json::Map::new();
+        let mut notes = Vec::new();
+        for (k, v) in &self.fields {
+            if *k == "note" {
+                notes.push(v.clone());
+            } else {
+                map.insert(k.to_string(), v.clone());
+            }
+        }
+        if !notes.is_empty() {
+            map.insert("notes".into(), notes.into());
+        }
+        serde_json::Value::Object(map)
+    }
+
     pub fn print(&self, out: &OutputArgs) {
         if out.json {
-            let map: serde_json::Map<String, serde_json::Value> = self
-                .fields
-                .iter()
-                .map(|(k, v)| (k.to_string(), v.clone()))
-                .collect();
-            println!("{}", serde_json::Value::Object(map));
+            println!("{}", self.json());
         } else if !out.quiet {
             // Values in one column; a key longer than 22 characters pushes its own value out.
             let width = self

@@ -91,8 +91,9 @@ impl Posed {
 }
 
 /// Write the new rig (`.glb`) or its rest mesh (OBJ or PLY), and a preview of the parts moved
-/// by `away(part)`, coloured by part, or by `marks` (one value per vertex of a single part),
-/// with `look`'s title and overlays (given in the rig's mesh space, drawn in world space).
+/// by `away(part)`, coloured by part, or by `marks` (one value per vertex of the parts, in
+/// order: the new vertices), the marked vertices in focus along `direction` when given, with
+/// `look`'s title and overlays (given in the rig's mesh space, drawn in world space).
 #[allow(clippy::too_many_arguments)]
 pub fn write_result(
     rig: &Rig,
@@ -101,11 +102,12 @@ pub fn write_result(
     out: &OutputArgs,
     away: impl Fn(usize) -> DVec3,
     marks: Option<Vec<f64>>,
+    focus: Option<DVec3>,
     look: Look,
     report: &mut Report,
 ) -> Result<()> {
-    let result = rig
-        .with_parts(parts)
+    let (result, trace) = rig
+        .with_parts_traced(parts)
         .context("the result is not a valid rig")?;
     let glb = out
         .output
@@ -139,6 +141,20 @@ pub fn write_result(
                 .for_each(|x| *x += shift);
             part_of[r].iter_mut().for_each(|x| *x = k as f64);
         }
+        // The marks follow the vertices into the rig's order (regrouped by primitive).
+        let marks = marks.map(|m| trace.iter().map(|&v| m[v]).collect::<Vec<f64>>());
+        let mut look = look;
+        if let (Some(m), Some(direction)) = (&marks, focus) {
+            let vertices: Vec<u32> = (0..m.len() as u32)
+                .filter(|&v| m[v as usize] > 0.0)
+                .collect();
+            if !vertices.is_empty() {
+                look.focus = Some(Focus {
+                    vertices,
+                    direction: Some(direction),
+                });
+            }
+        }
         let scalar = marks.unwrap_or(part_of);
         let look = Look {
             rest: placed_overlay(&look.rest, &place),
@@ -161,6 +177,17 @@ pub fn write_result(
     }
     report.print(out);
     Ok(())
+}
+
+/// A note for the triangles the surgery left out (a repeated corner: no surface).
+pub fn report_dropped(surgery: &Surgery, report: &mut Report) {
+    let n = surgery.dropped_triangles();
+    if n > 0 {
+        report.add(
+            "note",
+            format!("{n} triangle(s) with a repeated corner (no surface) left out"),
+        );
+    }
 }
 
 /// What every surgery command reads first: the rig (refusing outputs that are inputs), the
@@ -199,7 +226,7 @@ pub fn write_one(
     mesh: &deform::surgery::SkinnedMesh,
     origin: &[deform::surgery::VertexOrigin],
     out: &OutputArgs,
-    mut look: Look,
+    look: Look,
     direction: DVec3,
     report: &mut Report,
 ) -> Result<()> {
@@ -207,15 +234,6 @@ pub fn write_one(
         .iter()
         .map(|o| if o.is_input() { 0.0 } else { 1.0 })
         .collect();
-    let vertices: Vec<u32> = (0..marks.len() as u32)
-        .filter(|&v| marks[v as usize] > 0.0)
-        .collect();
-    if !vertices.is_empty() {
-        look.focus = Some(Focus {
-            vertices,
-            direction: Some(direction),
-        });
-    }
     write_result(
         rig,
         &[mesh.part()],
@@ -223,6 +241,7 @@ pub fn write_one(
         out,
         |_| DVec3::ZERO,
         Some(marks),
+        Some(direction),
         look,
         report,
     )

@@ -6,7 +6,7 @@ use crate::overlays;
 use crate::preview::{Look, TOOL_INK};
 use crate::report::Report;
 use crate::shared_args::{OutputArgs, RigInput, ToolFrame};
-use crate::surgery_io::{prepare, tool_overlay, write_result, Posed, Prepared};
+use crate::surgery_io::{prepare, report_dropped, tool_overlay, write_result, Posed, Prepared};
 use crate::timing::ms;
 use anyhow::{bail, Result};
 use clap::Args;
@@ -63,6 +63,7 @@ pub fn run(a: &CutArgs) -> Result<()> {
     let cut_ms = ms(t);
     let mut report = Report::new("cut", &rig.mesh);
     report.add("index_ms", index_ms);
+    report_dropped(&surgery, &mut report);
     report.add("cut_ms", cut_ms);
     report.add("new_vertices", cut.new_vertices);
     report.add("split_faces", cut.split_faces);
@@ -127,6 +128,7 @@ pub fn run(a: &CutArgs) -> Result<()> {
                 -n * spread
             }
         },
+        None,
         None,
         look,
         &mut report,

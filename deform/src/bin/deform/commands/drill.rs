@@ -5,7 +5,7 @@ use crate::overlays::circle;
 use crate::preview::{Look, TOOL_INK};
 use crate::report::Report;
 use crate::shared_args::{OutputArgs, RigInput, ToolFrame};
-use crate::surgery_io::{prepare, tool_overlay, write_one, Posed, Prepared};
+use crate::surgery_io::{prepare, report_dropped, tool_overlay, write_one, Posed, Prepared};
 use crate::timing::ms;
 use anyhow::Result;
 use clap::Args;
@@ -50,6 +50,7 @@ pub fn run(a: &DrillArgs) -> Result<()> {
     let drill_ms = ms(t);
     let mut report = Report::new("drill", &rig.mesh);
     report.add("index_ms", index_ms);
+    report_dropped(&surgery, &mut report);
     report.add("drill_ms", drill_ms);
     report.add("new_vertices", r.new_vertices);
     report.add("removed_faces", r.removed_faces);

@@ -6,7 +6,7 @@ use crate::numbers::point;
 use crate::preview::{Look, TOOL_INK};
 use crate::report::Report;
 use crate::shared_args::{OutputArgs, RigInput, ToolFrame};
-use crate::surgery_io::{prepare, tool_overlay, write_one, Posed, Prepared};
+use crate::surgery_io::{prepare, report_dropped, tool_overlay, write_one, Posed, Prepared};
 use crate::timing::ms;
 use anyhow::Result;
 use clap::Args;
@@ -56,6 +56,7 @@ pub fn run(a: &TearArgs) -> Result<()> {
     let tear_ms = ms(t);
     let mut report = Report::new("tear", &rig.mesh);
     report.add("index_ms", index_ms);
+    report_dropped(&surgery, &mut report);
     report.add("tear_ms", tear_ms);
     report.add("steps", blades.len() - 1);
     report.add("incision_vertices", r.incision_vertex_count());

@@ -45,6 +45,10 @@ pub struct RigEdit {
     /// Pose the dual-quaternion comparison with every frame.
     pub compare: bool,
     edits: Vec<(usize, deform::input::MotorSpec)>,
+    /// What the page has not been told yet: that this backend approximates joints.
+    note: Option<String>,
+    /// The approximation was told for the current backend.
+    told: bool,
     pub bind_ms: f64,
     pub pose_ms: f64,
 }
@@ -65,6 +69,8 @@ impl RigEdit {
             dqs_posed: rig.mesh.positions.clone(),
             compare: false,
             edits: Vec::new(),
+            note: None,
+            told: false,
             bind_ms: ms(t),
             pose_ms: 0.0,
             history: vec![Version { rig, made }],
@@ -87,6 +93,7 @@ impl RigEdit {
         self.skin = skin;
         self.dqs = dqs;
         self.backend = backend;
+        self.told = false;
         self.dqs_posed = self.rig().mesh.positions.clone();
         self.bind_ms = ms(t);
         Ok(())
@@ -136,16 +143,35 @@ impl RigEdit {
             &joint_edits,
             &mut self.pose,
         )?;
-        let motors = self.pose.skin_motors()?;
+        // `lbs` blends the exact skin matrices, the motor backends their nearest similarities.
         posed.resize(rig.mesh.vertex_count(), DVec3::ZERO);
-        self.skin
-            .blend()
-            .pose_using(motors, &mut self.prepared, posed)?;
+        self.skin.pose_rig(&self.pose, &mut self.prepared, posed)?;
         self.pose_ms = ms(t);
         if self.compare {
             self.dqs
-                .blend()
-                .pose_using(motors, &mut self.dqs_prepared, &mut self.dqs_posed)?;
+                .pose_rig(&self.pose, &mut self.dqs_prepared, &mut self.dqs_posed)?;
+        }
+        if !self.told && !self.skin.blends_matrices() && self.pose.approximated_joints().count() > 0
+        {
+            self.told = true;
+            let joints: Vec<String> = self
+                .pose
+                .approximated_joints()
+                .map(|(j, _)| rig.nodes[rig.joints[j]].name.clone())
+                .collect();
+            let world = rig.bind_pose_positions()?;
+            let diagonal = deform::Mesh::new(world, Vec::new())
+                .bounding_box()
+                .map_or(f64::NAN, |b| b.diagonal());
+            let percent = 100.0 * rig.similarity_shift(&self.pose) / diagonal;
+            self.note = Some(format!(
+                "{} takes joint(s) {} as their nearest similarities (non-uniform scale, shear \
+                 or a mirror): the mesh moves by {}% of its diagonal because of it; lbs skins \
+                 them exactly",
+                backend.name(),
+                joints.join(", "),
+                deform::render::short_number(percent)
+            ));
         }
         self.edits = edits.iter().map(|e| (e.joint, e.motor.clone())).collect();
         let frames = rig
@@ -162,6 +188,11 @@ impl RigEdit {
             energy: None,
             joints: Some(frames),
         })
+    }
+
+    /// A note for the page, once per backend: the joints it approximates and the move.
+    pub fn take_note(&mut self) -> Option<String> {
+        self.note.take()
     }
 
     /// A rig field: `dqs-difference`, `piece`, `made` (`None` for another name).
@@ -205,10 +236,11 @@ impl RigEdit {
 
     /// A tool's result as the new version of the rig (undoable).
     fn push(&mut self, parts: &[RigPart], origin: &[VertexOrigin]) -> Result<()> {
-        let rig = self.rig().with_parts(parts)?;
-        let made = origin
+        let (rig, trace) = self.rig().with_parts_traced(parts)?;
+        // The origins are per vertex of the parts, in order; the rig regroups them.
+        let made = trace
             .iter()
-            .map(|o| if o.is_input() { 0.0 } else { 1.0 })
+            .map(|&v| if origin[v].is_input() { 0.0 } else { 1.0 })
             .collect();
         self.history.push(Version { rig, made });
         self.redo.clear();

@@ -233,6 +233,9 @@ impl Session {
                 rig.compare = self.field.name == "dqs-difference";
                 let reply = rig.pose(seq, animation, time, &backend, &edits, &mut self.posed)?;
                 let mut out = vec![Out::Text(reply)];
+                if let Some(message) = rig.take_note() {
+                    out.push(Out::Text(Reply::Note { message }));
+                }
                 let ms = rig.pose_ms;
                 out.push(self.positions_frame(seq, ms));
                 out.extend(self.field_frame());

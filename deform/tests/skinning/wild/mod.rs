@@ -1,14 +1,19 @@
 //! Characters from the wild (issue 45), as generated fixtures: each reproduces one property
 //! that real exporters leave in skinned glTF files (f32 noise in inverse binds, non-uniform and
 //! mirrored joint scale, meshopt compression, quantised positions, a thousand primitives,
-//! skins shared and several, no animation, a centimetre Z-up armature, sparse accessors). Each
+//! skins shared and several, no animation, a centimetre Z-up armature, sparse accessors, morph
+//! targets, Draco). Each
 //! is loaded by `parse_gltf` and skinned with the exact matrices (`lbs`) against an
 //! independent evaluator of glTF's skinning formula written here on the JSON (three.js's
-//! `boneMatrices = world * inverse bind`, weights normalised); written back as `.glb` for the
+//! `boneMatrices = world * inverse bind`, weights normalised, morph targets at their default
+//! weights applied first); written back as `.glb` for the
 //! validator, and cut, with the cut rig still posed finite.
 
+mod encoded;
+mod properties;
+
 use crate::gltf_out;
-use deform::skinning::{glb_bytes, parse_gltf, GlbOptions, Rig, SkinError, Skinning};
+use deform::skinning::{glb_bytes, parse_gltf, GlbOptions, Rig, Skinning};
 use deform::surgery::{CutOptions, Frame, Surgery};
 use deform::BlendMethod;
 use glam::{DMat4, DQuat, DVec3};
@@ -354,7 +359,22 @@ fn reference_skinning(f: &Fixture, time: Option<f64>) -> Vec<DVec3> {
             .collect();
         for prim in j["meshes"][mesh]["primitives"].as_array().unwrap() {
             let at = |k: &str| prim["attributes"][k].as_u64().unwrap() as usize;
-            let p = read(at("POSITION"));
+            let mut p = read(at("POSITION"));
+            // Morph targets at the default weights (the node's, else the mesh's).
+            let weights = nodes[node]
+                .get("weights")
+                .or_else(|| j["meshes"][mesh].get("weights"));
+            for (t, target) in prim
+                .get("targets")
+                .and_then(Value::as_array)
+                .into_iter()
+                .flatten()
+                .enumerate()
+            {
+                let w = weights.map_or(0.0, |w| w[t].as_f64().unwrap());
+                let d = read(target["POSITION"].as_u64().unwrap() as usize);
+                p.iter_mut().zip(&d).for_each(|(x, d)| *x += w * d);
+            }
             let jj = read(at("JOINTS_0"));
             let ww = read(at("WEIGHTS_0"));
             for v in 0..p.len() / 3 {
@@ -441,289 +461,10 @@ fn check(name: &str, f: &Fixture) -> Rig {
     assert!(cut.pieces.len() >= 2, "{name}: pieces on both sides");
     let parts: Vec<_> = cut.pieces.iter().map(|p| p.mesh.part()).collect();
     let cut_rig = rig.with_parts(&parts).unwrap();
+    assert_eq!(cut_rig.look.morph_weights, rig.look.morph_weights, "{name}");
     let posed = skin_rig(&cut_rig, BlendMethod::Matrix, animated.then_some(1.0));
     assert!(posed.iter().all(|p| p.is_finite()), "{name}");
     let out = glb_bytes(&cut_rig, &GlbOptions::default()).unwrap();
     std::fs::write(gltf_out().join(format!("wild-{name}-cut.glb")), &out).unwrap();
     rig
-}
-
-/// The Blender 1.8-era inverse bind matrix (singular values 1.0000194, 1.0000005, 1) is f32
-/// noise: every backend takes it without a word; the shield's non-uniform joint scale is not:
-/// `lbs` skins it exactly, the motors name the joint and measure the move.
-#[test]
-fn noisy_inverse_binds_and_non_uniform_joints() {
-    let noise = DMat4::from_scale(DVec3::new(1.0000194, 1.0000005, 1.0));
-    let f = two_joint_bar(Bar {
-        ibm_factor: noise,
-        ..Bar::default()
-    });
-    let rig = check("noisy-inverse-bind", &f);
-    let pose = rig.pose(Some(0), 1.0, &[]).unwrap();
-    assert_eq!(pose.approximated_joints().count(), 0);
-    assert!(pose.skin_motors().is_ok());
-    assert_eq!(rig.similarity_shift(&pose), 0.0);
-
-    // Bound at scale 1 (the inverse bind lacks the scale), posed with the shield's scale.
-    let f = two_joint_bar(Bar {
-        joint_scale: [1.24, 1.0008, 1.24],
-        joint_turn: DQuat::from_rotation_y(0.3),
-        ibm_factor: DMat4::from_scale(DVec3::new(1.24, 1.0008, 1.24)),
-        ..Bar::default()
-    });
-    let rig = check("non-uniform-joint", &f);
-    let pose = rig.pose(Some(0), 1.0, &[]).unwrap();
-    let far: Vec<_> = pose.approximated_joints().collect();
-    assert_eq!(far.len(), 1, "{far:?}");
-    assert!(far[0].1 > 0.05, "{far:?}");
-    let shift = rig.similarity_shift(&pose);
-    // The motor backends move the mesh by that much, and no more, against lbs.
-    let lbs = skin_rig(&rig, BlendMethod::Matrix, Some(1.0));
-    let cga = skin_rig(&rig, BlendMethod::ConformalProjected, Some(1.0));
-    let moved = lbs
-        .iter()
-        .zip(&cga)
-        .map(|(a, b)| a.distance(*b))
-        .fold(0.0, f64::max);
-    assert!(
-        shift > 0.0 && (moved - shift).abs() <= 1e-9 * diagonal(&lbs),
-        "{moved} {shift}"
-    );
-}
-
-/// A mirrored joint (its inverse bind mirrored too, as exporters write a mirrored rig): the
-/// skin matrices are proper, matrices and motors both take it.
-#[test]
-fn mirrored_joint() {
-    let f = two_joint_bar(Bar {
-        joint_scale: [-1.0, 1.0, 1.0],
-        ..Bar::default()
-    });
-    let rig = check("mirrored-joint", &f);
-    let pose = rig.pose(Some(0), 1.0, &[]).unwrap();
-    assert_eq!(pose.approximated_joints().count(), 0);
-}
-
-/// A Mixamo-style armature: centimetres (scale 0.01) and Z-up turned to Y-up. The bind pose
-/// in world space is the bar standing 0.02 units tall along y; the rest mesh stays as stored.
-#[test]
-fn centimetre_z_up_armature() {
-    let turn = DQuat::from_rotation_x(-std::f64::consts::FRAC_PI_2);
-    let f = two_joint_bar(Bar {
-        armature: (0.01, turn),
-        ..Bar::default()
-    });
-    let rig = check("centimetre-armature", &f);
-    let world = rig.bind_pose_positions().unwrap();
-    let want = reference_skinning(&f, None);
-    let err = world
-        .iter()
-        .zip(&want)
-        .map(|(a, b)| a.distance(*b))
-        .fold(0.0, f64::max);
-    assert!(err < 1e-9, "{err}");
-    let height = world.iter().map(|p| p.z).fold(f64::NEG_INFINITY, f64::max)
-        - world.iter().map(|p| p.z).fold(f64::INFINITY, f64::min);
-    assert!((diagonal(&world) / diagonal(&rig.mesh.positions) - 0.01).abs() < 1e-6);
-    assert!(
-        height.abs() > 0.019,
-        "stood up along the turned axis: {height}"
-    );
-}
-
-/// A thousand primitives of one mesh, and a second node sharing the skin: every instance is
-/// read, in order of mesh, primitive, node.
-#[test]
-fn many_primitives_and_a_shared_skin() {
-    let f = two_joint_bar(Bar {
-        primitives: 1000,
-        ..Bar::default()
-    });
-    let rig = check("thousand-primitives", &f);
-    assert_eq!(rig.primitives.len(), 1000);
-    let f = two_joint_bar(Bar {
-        shared: true,
-        ..Bar::default()
-    });
-    let rig = check("shared-skin", &f);
-    assert_eq!(rig.primitives.len(), 2);
-    assert_eq!(rig.joints.len(), 2, "one skin, its joints once");
-}
-
-/// No animation: asking for one says so; the rest pose works.
-#[test]
-fn no_animation() {
-    let f = two_joint_bar(Bar {
-        animated: false,
-        ..Bar::default()
-    });
-    let rig = check("no-animation", &f);
-    let e = rig.animation_index("0").unwrap_err().to_string();
-    assert!(e.contains("this model has no animations"), "{e}");
-}
-
-/// Meshopt-compressed views (`EXT_meshopt_compression`, encoded by meshoptimizer here) read
-/// as the same rig as the plain file.
-#[test]
-fn meshopt_compressed_views() {
-    let plain = two_joint_bar(Bar::default());
-    let mut f = two_joint_bar(Bar::default());
-    // Compress the POSITION view (accessor 0, stride 12) and the indices (accessor 1).
-    let mut bin = std::mem::take(&mut f.bin);
-    let views = f.json["bufferViews"].clone();
-    let view_of =
-        |a: usize| views[f.json["accessors"][a]["bufferView"].as_u64().unwrap() as usize].clone();
-    let (pv, iv) = (view_of(0), view_of(1));
-    let slice = |v: &Value| {
-        let o = v["byteOffset"].as_u64().unwrap() as usize;
-        bin[o..o + v["byteLength"].as_u64().unwrap() as usize].to_vec()
-    };
-    let positions: Vec<[u8; 12]> = slice(&pv)
-        .chunks_exact(12)
-        .map(|c| c.try_into().unwrap())
-        .collect();
-    let indices: Vec<u32> = slice(&iv)
-        .chunks_exact(2)
-        .map(|c| u16::from_le_bytes([c[0], c[1]]) as u32)
-        .collect();
-    let pe = meshopt::encoding::encode_vertex_buffer(&positions).unwrap();
-    let ie = meshopt::encoding::encode_index_buffer(&indices, positions.len()).unwrap();
-    // The compressed streams go into buffer 1 (the GLB chunk); buffer 0 becomes the
-    // fallback without data... kept simple: both in the one chunk, views marked.
-    let mut put = |bytes: &[u8]| {
-        while !bin.len().is_multiple_of(4) {
-            bin.push(0);
-        }
-        let o = bin.len();
-        bin.extend_from_slice(bytes);
-        o
-    };
-    let (po, io) = (put(&pe), put(&ie));
-    let pvi = f.json["accessors"][0]["bufferView"].as_u64().unwrap() as usize;
-    let ivi = f.json["accessors"][1]["bufferView"].as_u64().unwrap() as usize;
-    f.json["bufferViews"][pvi]["byteStride"] = json!(12);
-    f.json["bufferViews"][pvi]["extensions"] = json!({"EXT_meshopt_compression": {
-        "buffer": 0, "byteOffset": po, "byteLength": pe.len(), "byteStride": 12,
-        "count": positions.len(), "mode": "ATTRIBUTES"}});
-    f.json["bufferViews"][ivi]["extensions"] = json!({"EXT_meshopt_compression": {
-        "buffer": 0, "byteOffset": io, "byteLength": ie.len(), "byteStride": 2,
-        "count": indices.len(), "mode": "TRIANGLES"}});
-    f.json["extensionsUsed"] = json!(["EXT_meshopt_compression"]);
-    f.json["extensionsRequired"] = json!(["EXT_meshopt_compression"]);
-    // The uncompressed bytes are overwritten: only the decoder can give them back.
-    for v in [&pv, &iv] {
-        let o = v["byteOffset"].as_u64().unwrap() as usize;
-        let n = v["byteLength"].as_u64().unwrap() as usize;
-        bin[o..o + n].fill(0xAB);
-    }
-    f.bin = bin;
-    let a = parse_gltf(&f.glb(), "meshopt", None).unwrap();
-    let b = parse_gltf(&plain.glb(), "plain", None).unwrap();
-    assert_eq!(a.mesh.positions, b.mesh.positions);
-    // The index codec may rotate a triangle's corners (same triangle, same orientation).
-    let canonical = |t: &[u32; 3]| {
-        let k = (0..3).min_by_key(|&k| t[k]).unwrap();
-        [t[k], t[(k + 1) % 3], t[(k + 2) % 3]]
-    };
-    let ta: Vec<_> = a.mesh.triangles.iter().map(canonical).collect();
-    let tb: Vec<_> = b.mesh.triangles.iter().map(canonical).collect();
-    assert_eq!(ta, tb);
-    let out = glb_bytes(&a, &GlbOptions::default()).unwrap();
-    std::fs::write(gltf_out().join("wild-meshopt-decoded.glb"), &out).unwrap();
-}
-
-/// Quantised positions (`KHR_mesh_quantization`: normalised u16) and a sparse accessor
-/// moving one vertex: read as the reference reads them.
-#[test]
-fn quantised_and_sparse_positions() {
-    let mut f = two_joint_bar(Bar::default());
-    // Positions as u16 normalised over [-1, 3] per axis -> [0, 65535], dequantised by the
-    // inverse bind matrices (as gltfpack does for skinned meshes).
-    let (pos, _) = bar(9);
-    let q: Vec<u16> = pos
-        .iter()
-        .map(|&x| (((x as f64 + 1.0) / 4.0) * 65535.0).round() as u16)
-        .collect();
-    let mut padded = Vec::new();
-    for c in q.chunks_exact(3) {
-        padded.extend_from_slice(&[c[0], c[1], c[2], 0]);
-    }
-    let bytes: Vec<u8> = padded.iter().flat_map(|x| x.to_le_bytes()).collect();
-    let view = f.view(&bytes, Some(8));
-    f.json["accessors"][0] = json!({"bufferView": view, "componentType": 5123,
-        "normalized": true, "type": "VEC3", "count": pos.len() / 3,
-        "min": [0, 0, 0], "max": [65535, 65535, 65535]});
-    f.json["extensionsUsed"] = json!(["KHR_mesh_quantization"]);
-    f.json["extensionsRequired"] = json!(["KHR_mesh_quantization"]);
-    // Dequantise: p = 4 q - 1, folded into every inverse bind matrix.
-    let dequantise = DMat4::from_scale_rotation_translation(
-        DVec3::splat(4.0),
-        DQuat::IDENTITY,
-        DVec3::splat(-1.0),
-    );
-    let ib = f.json["skins"][0]["inverseBindMatrices"].as_u64().unwrap() as usize;
-    let vi = f.json["accessors"][ib]["bufferView"].as_u64().unwrap() as usize;
-    let o = f.json["bufferViews"][vi]["byteOffset"].as_u64().unwrap() as usize;
-    for k in 0..2 {
-        let at = o + 64 * k;
-        let m: Vec<f64> = f.bin[at..at + 64]
-            .chunks_exact(4)
-            .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]) as f64)
-            .collect();
-        let m = DMat4::from_cols_slice(&m) * dequantise;
-        let bytes: Vec<u8> = m
-            .to_cols_array()
-            .iter()
-            .flat_map(|x| (*x as f32).to_le_bytes())
-            .collect();
-        f.bin[at..at + 64].copy_from_slice(&bytes);
-    }
-    let rig = parse_gltf(&f.glb(), "quantised", None).unwrap();
-    let want: Vec<DVec3> = pos
-        .chunks_exact(3)
-        .map(|p| DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64))
-        .collect();
-    let got = skin_rig(&rig, BlendMethod::Matrix, None);
-    let err = got
-        .iter()
-        .zip(&want)
-        .map(|(a, b)| a.distance(*b))
-        .fold(0.0, f64::max);
-    assert!(err < 1e-4, "dequantised at rest: {err}");
-    let out = glb_bytes(&rig, &GlbOptions::default()).unwrap();
-    std::fs::write(gltf_out().join("wild-quantised.glb"), &out).unwrap();
-
-    // Sparse: vertex 5 of the positions replaced.
-    let mut f = two_joint_bar(Bar::default());
-    let idx = f.view(&5u16.to_le_bytes(), None);
-    let val: Vec<u8> = [9.0f32, 8.0, 7.0]
-        .iter()
-        .flat_map(|x| x.to_le_bytes())
-        .collect();
-    let vals = f.view(&val, None);
-    f.json["accessors"][0]["sparse"] = json!({"count": 1,
-        "indices": {"bufferView": idx, "componentType": 5123},
-        "values": {"bufferView": vals}});
-    f.json["accessors"][0]["max"] = json!([9.0, 8.0, 7.0]);
-    let rig = parse_gltf(&f.glb(), "sparse", None).unwrap();
-    assert_eq!(rig.mesh.positions[5], DVec3::new(9.0, 8.0, 7.0));
-    assert_eq!(
-        rig.mesh.positions[4],
-        DVec3::new(0.2f32 as f64, 0.25, 0.2f32 as f64)
-    );
-}
-
-/// A required extension the reader does not support is refused in one line, by name.
-#[test]
-fn unsupported_required_extension() {
-    let mut f = two_joint_bar(Bar::default());
-    f.json["extensionsUsed"] = json!(["KHR_texture_basisu"]);
-    f.json["extensionsRequired"] = json!(["KHR_texture_basisu"]);
-    let e = parse_gltf(&f.glb(), "basisu", None).unwrap_err();
-    assert!(matches!(e, SkinError::Unsupported { .. }), "{e}");
-    let text = e.to_string();
-    assert!(
-        text.contains("KHR_texture_basisu") && !text.contains('\n'),
-        "{text}"
-    );
 }
