@@ -12,7 +12,7 @@
 
 use cga::ScaledMotor;
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use deform::arap::{fit_rotor, fit_svd, Arap, ArapOptions, Stop, Targets};
+use deform::deformers::arap::{fit_rotor, fit_svd, Arap, ArapOptions, Stop, Targets};
 use deform::Mesh;
 use glam::{DQuat, DVec3};
 use std::hint::black_box;

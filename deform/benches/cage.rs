@@ -8,11 +8,11 @@
 
 use cga::ScaledMotor;
 use criterion::{criterion_group, criterion_main, Criterion};
-use deform::cage::{
+use deform::blend::control::ControlForm;
+use deform::deformers::cage::{
     harmonic_cage_coordinates, mean_value_coordinates, CageDeformer, CageOptions, HarmonicGrid,
 };
-use deform::control::ControlForm;
-use deform::ffd::{Ffd, FfdOptions};
+use deform::deformers::ffd::{Ffd, FfdOptions};
 use deform::{BlendMethod, Deformer, Mesh};
 use glam::{DQuat, DVec3};
 use std::hint::black_box;

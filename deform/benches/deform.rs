@@ -7,7 +7,8 @@
 //! `CARGO_TARGET_DIR=/work/target-deform cargo bench -p deform --bench deform`
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use deform::{cotangent_laplacian, harmonic_field, Harmonic, HarmonicOptions};
+use deform::operators::harmonic::{harmonic_field, Harmonic, HarmonicOptions};
+use deform::operators::laplacian::cotangent_laplacian;
 use std::hint::black_box;
 use std::time::Duration;
 

@@ -9,7 +9,7 @@
 //! `cargo run --release -p deform --example arap_report`
 
 use cga::ScaledMotor;
-use deform::arap::{Arap, ArapOptions, Stop, Targets};
+use deform::deformers::arap::{Arap, ArapOptions, Stop, Targets};
 #[path = "../benches/support/scenes.rs"]
 mod scenes;
 

@@ -9,10 +9,11 @@
 #[path = "../benches/support/scenes.rs"]
 mod scenes;
 
-use deform::{
-    harmonic_system, BlendMethod, BoundBlend, DirichletSolver, HandleOptions, HarmonicOptions,
-    KeyWeights, MotorHandles, SolverOptions, SystemAnalysis,
-};
+use deform::blend::{BoundBlend, KeyWeights};
+use deform::deformers::handles::HandleOptions;
+use deform::operators::harmonic::{harmonic_system, HarmonicOptions};
+use deform::operators::solve::{DirichletSolver, SolverOptions, SystemAnalysis};
+use deform::{BlendMethod, MotorHandles};
 use devkit::grade::{Tally, Target};
 use devkit::measure::spread_ms;
 
@@ -37,7 +38,8 @@ fn main() {
     });
     let cot = spread_ms(5, || {
         std::hint::black_box(
-            deform::cotangent_laplacian(&mesh, Default::default()).expect("laplacian"),
+            deform::operators::laplacian::cotangent_laplacian(&mesh, Default::default())
+                .expect("laplacian"),
         );
     });
     let q = harmonic_system(&mesh, &options).expect("system");

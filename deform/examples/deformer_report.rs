@@ -111,12 +111,12 @@ fn report(name: &str, mesh: &Mesh, targets: &Targets, tally: &mut Tally) {
     }
     // The positional form of a lattice (4 x 3 x 3 points, cubic: 64 weights per vertex):
     // the batch loop against the per-vertex sum it replaced, both on both cores.
-    let ffd = deform::ffd::Ffd::bind(
+    let ffd = deform::deformers::ffd::Ffd::bind(
         mesh,
         [4, 3, 3],
         None,
-        deform::ffd::FfdOptions {
-            form: deform::control::ControlForm::Positional,
+        deform::deformers::ffd::FfdOptions {
+            form: deform::blend::control::ControlForm::Positional,
             ..Default::default()
         },
     )

@@ -15,7 +15,7 @@ mod scenes;
 use devkit::grade::{Tally, Target};
 use devkit::measure::spread_ms;
 
-use deform::{harmonic_field, HarmonicOptions};
+use deform::operators::harmonic::{harmonic_field, HarmonicOptions};
 
 fn main() -> Result<(), deform::Error> {
     let mut tally = Tally::default();

@@ -10,10 +10,11 @@ use devkit::grade::{Spread, Tally, Target};
 use devkit::measure::spread_ms;
 use devkit::shared::data_file;
 
-use deform::{
-    cotangent_laplacian, harmonic_system, validate, DirichletSolver, HarmonicOptions, Mesh,
-    SolverOptions,
-};
+use deform::mesh::validate::validate;
+use deform::operators::harmonic::{harmonic_system, HarmonicOptions};
+use deform::operators::laplacian::cotangent_laplacian;
+use deform::operators::solve::{DirichletSolver, SolverOptions};
+use deform::Mesh;
 
 /// Median (with range) wall time in milliseconds of `runs` calls.
 fn time_ms<T>(runs: usize, mut f: impl FnMut() -> T) -> Spread {
@@ -29,8 +30,8 @@ fn main() -> Result<(), deform::Error> {
     ) else {
         return Ok(());
     };
-    let cactus = deform::io::read_mesh(cactus)?;
-    let arma = deform::io::read_mesh(arma)?;
+    let cactus = deform::mesh::io::read_mesh(cactus)?;
+    let arma = deform::mesh::io::read_mesh(arma)?;
     let arma4 = arma.subdivide_midpoint();
     let cases: [(&str, &Mesh); 3] = [
         ("cactus-5k", &cactus),
@@ -67,7 +68,7 @@ fn main() -> Result<(), deform::Error> {
             DirichletSolver::new(&q, &constrained, SolverOptions::default())
         });
         let t_harm = time_ms(runs, || {
-            deform::harmonic_field(mesh, &fixed, &moved, opts).map(|x| x.len())
+            deform::operators::harmonic::harmonic_field(mesh, &fixed, &moved, opts).map(|x| x.len())
         });
         let s = DirichletSolver::new(&q, &constrained, SolverOptions::default())?;
         let bc: Vec<f64> = (0..constrained.len()).map(|i| (i % 3) as f64).collect();

@@ -70,7 +70,7 @@ fn main() {
         "skinning: the batch loop ({} lanes) against the vertex-by-vertex loop in the same run; \
          limits: {clock:.2} GHz x 16 operations/cycle/core (two 4-wide adds and two multiplies; a fused multiply-add counts once), and streaming \
          the bytes at the rate measured here for the same working set",
-        deform::simd_level()
+        deform::blend::simd_level()
     );
     let mut tally = Tally::default();
     for s in skin_scenes::all() {

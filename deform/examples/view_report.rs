@@ -53,7 +53,7 @@ fn main() {
         let dir = std::env::var("CGA_DATA_DIR").unwrap_or("../shared/data".into());
         format!("{dir}/meshes/large/armadillo-50k.obj")
     });
-    let m = deform::io::read_mesh(&mesh).expect("a mesh");
+    let m = deform::mesh::io::read_mesh(&mesh).expect("a mesh");
     let n = m.vertex_count();
     // Four groups: the ~800 vertices nearest each of four vertices spread over the mesh.
     let groups: Vec<Vec<usize>> = [0.1, 0.35, 0.6, 0.85]

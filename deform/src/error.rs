@@ -45,6 +45,9 @@ pub enum Error {
     /// A bad motor or selection file.
     #[error(transparent)]
     Input(#[from] InputError),
+    /// A request over the work budget, refused before any work.
+    #[error(transparent)]
+    Budget(#[from] crate::methods::budget::BudgetError),
 }
 
 impl From<MeshError> for Error {

@@ -16,6 +16,19 @@ const LAYERS: &[(&str, &[&str])] = &[
     ("render", &["mesh"]),
     ("input", &["mesh"]),
     ("gpu", &["mesh", "blend"]),
+    (
+        "methods",
+        &[
+            "mesh",
+            "operators",
+            "blend",
+            "deformers",
+            "skinning",
+            "surgery",
+            "render",
+            "input",
+        ],
+    ),
 ];
 
 fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {

@@ -4,30 +4,39 @@
 //!
 //! | layer | what | may use | error |
 //! |---|---|---|---|
-//! | [`mesh`] | [`Mesh`], adjacency, [`validate()`]/[`clean()`], shapes, files ([`io`]) | - | [`MeshError`] |
-//! | [`operators`] | Laplacians, mass matrices, [`DirichletSolver`], [`Harmonic`] fields | mesh | [`SolveError`] |
-//! | [`blend`] | [`BlendMethod`], [`KeyWeights`], [`BoundBlend`], [`control`] points | mesh | [`KeyError`], [`BlendError`] |
-//! | [`deformers`] | the [`Deformer`] shape; spline, B-spline + FABRIK, handles, ARAP, FFD, cages | mesh, operators, blend | [`DeformError`] |
+//! | [`mesh`] | [`Mesh`], adjacency, [`mesh::validate::validate()`]/[`mesh::validate::clean()`], shapes, files ([`mesh::io`]) | - | [`mesh::MeshError`] |
+//! | [`operators`] | Laplacians, mass matrices, [`operators::solve::DirichletSolver`], [`operators::harmonic::Harmonic`] fields | mesh | [`operators::SolveError`] |
+//! | [`blend`] | [`BlendMethod`], [`blend::KeyWeights`], [`blend::BoundBlend`], [`blend::control`] points | mesh | [`blend::KeyError`], [`blend::BlendError`] |
+//! | [`deformers`] | the [`Deformer`] shape; spline, B-spline + FABRIK, handles, ARAP, FFD, cages | mesh, operators, blend | [`deformers::DeformError`] |
 //! | [`skinning`] | glTF and libigl rigs, animation, skinning by every blend method | mesh, operators, blend, deformers | [`skinning::SkinError`] |
 //! | [`surgery`] | cut, tear and drill that stay animatable | mesh, skinning | [`surgery::SurgeryError`] |
-//! | [`render`] | the PNG preview renderer | mesh | [`MeshError`] |
+//! | [`render`] | the PNG preview renderer | mesh | [`mesh::MeshError`] |
+//! | [`methods`] | what the program, its editor and library callers share: the work budget | every layer | [`methods::budget::BudgetError`] |
 //! | [`input`] | motor JSON and selections, one format for every program command | mesh | [`input::InputError`] |
 //!
 //! Every layer's error converts into [`Error`] with `?`. Deformers bind once and pose many
 //! times: a bound deformer is immutable, so threads share it, each posing with its own
-//! [`PoseScratch`] (a [`Poser`]); a warm scratch makes a pose allocation-free. The `deform`
+//! scratch ([`Deformer::Scratch`], paired in a [`Poser`]); a warm scratch makes a pose
+//! allocation-free. The `deform`
 //! program is behind the default feature `cli`; depend on `deform` with
 //! `default-features = false` for the library alone.
 //!
 //! Every fallible function returns `Ok` only with finite values. Angles (cotangents, mean-value
 //! tangents, the degenerate-triangle test) are computed scale-invariantly, so a mesh scaled by
-//! `1e-300` or `1e299` has the unit mesh's cotangent Laplacian and fields; [`validate()`]
-//! refuses coordinates beyond [`validate::MAX_COORDINATE`] (where edge vectors would
-//! overflow), and quantities with units (masses, mean-value weights) that leave the `f64`
-//! range are [`MeshError::Overflow`].
+//! `1e-300` or `1e299` has the unit mesh's cotangent Laplacian and fields;
+//! [`mesh::validate::validate()`] refuses coordinates beyond [`mesh::validate::MAX_COORDINATE`] (where
+//! edge vectors would overflow), and quantities with units (masses, mean-value weights) that
+//! leave the `f64` range are [`mesh::MeshError::Overflow`].
+//!
+//! Each item has one public path, in its layer (`deform::operators::harmonic::harmonic_field`,
+//! `deform::mesh::io::read_mesh`); the crate root re-exports a small prelude: [`Mesh`],
+//! [`Error`], [`Result`], [`Deformer`], [`Poser`], [`BlendMethod`], [`Rig`] and every deformer
+//! ([`SplineDeformer`], [`ChainDeformer`], [`MotorHandles`], [`Arap`], [`Ffd`],
+//! [`CageDeformer`], [`Skinning`]).
 //!
 //! ```
-//! use deform::{harmonic_field, io, HarmonicOptions};
+//! use deform::mesh::io;
+//! use deform::operators::harmonic::{harmonic_field, HarmonicOptions};
 //! let off = "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
 //! let mesh = io::parse_off(off, "tet").unwrap();
 //! let x = harmonic_field(&mesh, &[0], &[3], HarmonicOptions::default()).unwrap();
@@ -46,50 +55,22 @@ pub mod input;
 #[cfg(test)]
 mod layering;
 pub mod mesh;
+pub mod methods;
 pub mod operators;
 pub mod render;
 pub mod skinning;
 pub mod surgery;
 
-// The paths users had before the layers became folders.
-pub use blend::control;
-pub use deformers::{arap, bspline, cage, fabrik, ffd, handles, spline};
-pub use mesh::{adjacency, io, shapes, validate};
-pub use operators::{harmonic, laplacian, mass, solve};
-
-/// The shape every deformer shares (the path it had before the layers; see
-/// [`deformers::deformer`]).
-pub mod deformer {
-    pub use crate::blend::{KeyError, MAX_KEYS};
-    pub use crate::deformers::deformer::{Deformer, PoseScratch, Poser};
-}
-
-pub use blend::{simd_level, BlendMethod, BoundBlend, KeyWeights, PreparedKeys};
-pub use blend::{BlendError, KeyError, MAX_KEYS};
-pub use bspline::{
-    bspline_basis, bspline_degree, bspline_motor, fit_bspline, BsplineFit, FitSolver,
-};
-pub use deformers::{DeformError, Deformer, PoseScratch, Poser};
+// The prelude: what nearly every user names, and every deformer. Everything else has one
+// path, in its layer.
+pub use blend::BlendMethod;
+pub use deformers::arap::Arap;
+pub use deformers::cage::CageDeformer;
+pub use deformers::fabrik::ChainDeformer;
+pub use deformers::ffd::Ffd;
+pub use deformers::handles::MotorHandles;
+pub use deformers::spline::SplineDeformer;
+pub use deformers::{Deformer, Poser};
 pub use error::{Error, Result};
-pub use fabrik::{
-    chain_key_motors, chain_parameters, fabrik, ChainDeformer, ChainPose, FabrikOptions,
-    FabrikSolution, FabrikStatus,
-};
-pub use handles::{HandleOptions, MotorHandles};
-pub use harmonic::{
-    harmonic_coordinates, harmonic_field, harmonic_system, Harmonic, HarmonicOptions,
-    BIHARMONIC_FILL_FLOOR, BIHARMONIC_FILL_PER_NONZERO,
-};
-pub use laplacian::{
-    cotangent_laplacian, laplacian, mean_value_laplacian, mean_value_weights, uniform_laplacian,
-    CotangentOptions, DegeneratePolicy, LaplacianKind,
-};
-pub use mass::{mass_diagonal, mass_matrix, MassKind};
-pub use mesh::{Aabb, Mesh};
-pub use mesh::{IndexList, MeshError};
-pub use operators::SolveError;
-pub use solve::{
-    DirichletSolver, Factorization, Parallelism, SolveScratch, SolverOptions, SystemAnalysis,
-};
-pub use spline::{SplineDeformer, SplineOptions, WeightScheme};
-pub use validate::{check_elements, check_solvable, clean, Cleaned, ValidationReport};
+pub use mesh::Mesh;
+pub use skinning::{Rig, Skinning};

@@ -29,14 +29,14 @@ pub fn flops(m: BlendMethod, w: usize) -> f64 {
 }
 
 /// Arithmetic operations per vertex of the batch kernel of `m` in the copy this process runs
-/// (`deform::simd_level`): the [`flops`], except where the AVX2 copy fuses a multiply and an
+/// (`deform::blend::simd_level`): the [`flops`], except where the AVX2 copy fuses a multiply and an
 /// add into one instruction (the row sums of dual quaternions, matrix LBS, equation (17) and
 /// log blending, half their flops; and log blending's three series, 43, and its exponential's
 /// sums, 50), which is what the compute limit divides by the machine's operations per cycle.
 pub fn operations(m: BlendMethod, w: usize) -> f64 {
     let fused_rows = |per_key: f64| per_key * w as f64;
     match m {
-        _ if deform::simd_level() != "avx2" => flops(m, w),
+        _ if deform::blend::simd_level() != "avx2" => flops(m, w),
         BlendMethod::DualQuaternion => fused_rows(8.0) + 65.0,
         BlendMethod::Matrix => fused_rows(12.0) + 18.0,
         BlendMethod::Conformal => fused_rows(13.0) + 21.0,

@@ -6,9 +6,9 @@
 #![allow(dead_code)]
 
 use cga::ScaledMotor;
-use deform::{
-    BlendMethod, HandleOptions, Mesh, MotorHandles, SplineDeformer, SplineOptions, WeightScheme,
-};
+use deform::deformers::handles::HandleOptions;
+use deform::deformers::spline::{SplineOptions, WeightScheme};
+use deform::{BlendMethod, Mesh, MotorHandles, SplineDeformer};
 use devkit::shared::data_file;
 use glam::{DQuat, DVec3};
 
@@ -16,7 +16,7 @@ use glam::{DQuat, DVec3};
 /// (else `../shared/data/meshes`); `None` when absent (a panic under `CI=true`).
 pub fn mesh(rel: &str) -> Option<Mesh> {
     let path = data_file(&format!("meshes/{rel}"))?;
-    Some(deform::io::read_mesh(&path).expect("mesh loads"))
+    Some(deform::mesh::io::read_mesh(&path).expect("mesh loads"))
 }
 
 /// armadillo-50k (see [`mesh`]).

@@ -40,7 +40,7 @@ fn rigid_keys(positions: &[DVec3], m: usize) -> Vec<ScaledMotor> {
 }
 
 /// Dense libigl weights as influences (`width` = the number of bones).
-fn dense(w: &deform::io::Dmat) -> Influences {
+fn dense(w: &deform::mesh::io::Dmat) -> Influences {
     let (n, m) = (w.rows, w.cols);
     Influences {
         width: m,
@@ -53,9 +53,10 @@ fn dense(w: &deform::io::Dmat) -> Influences {
 
 /// libigl's armadillo with its 5 weights.
 pub fn armadillo() -> Option<SkinScene> {
-    let mesh = deform::io::read_mesh(data_file("meshes/libigl/armadillo.obj")?).expect("mesh");
-    let w =
-        deform::io::read_dmat(data_file("meshes/libigl/armadillo-weights.dmat")?).expect("weights");
+    let mesh =
+        deform::mesh::io::read_mesh(data_file("meshes/libigl/armadillo.obj")?).expect("mesh");
+    let w = deform::mesh::io::read_dmat(data_file("meshes/libigl/armadillo-weights.dmat")?)
+        .expect("weights");
     Some(SkinScene {
         name: "armadillo",
         keys: rigid_keys(&mesh.positions, w.cols),
@@ -67,8 +68,9 @@ pub fn armadillo() -> Option<SkinScene> {
 
 /// libigl's arm with its 4 bone weights.
 pub fn arm() -> Option<SkinScene> {
-    let mesh = deform::io::read_mesh(data_file("meshes/libigl/arm.obj")?).expect("mesh");
-    let w = deform::io::read_dmat(data_file("meshes/libigl/arm-weights.dmat")?).expect("weights");
+    let mesh = deform::mesh::io::read_mesh(data_file("meshes/libigl/arm.obj")?).expect("mesh");
+    let w =
+        deform::mesh::io::read_dmat(data_file("meshes/libigl/arm-weights.dmat")?).expect("weights");
     Some(SkinScene {
         name: "arm",
         keys: rigid_keys(&mesh.positions, w.cols),

@@ -65,9 +65,10 @@ fn scene(name: &'static str, rig: Rig) -> SurgeryScene {
 /// libigl's arm with its skeleton and weights.
 pub fn arm() -> Option<SurgeryScene> {
     let lib = "meshes/libigl/";
-    let mesh = deform::io::read_mesh(data_file(&format!("{lib}arm.obj"))?).expect("mesh");
-    let sk = deform::io::read_tgf(data_file(&format!("{lib}arm.tgf"))?).expect("skeleton");
-    let w = deform::io::read_dmat(data_file(&format!("{lib}arm-weights.dmat"))?).expect("weights");
+    let mesh = deform::mesh::io::read_mesh(data_file(&format!("{lib}arm.obj"))?).expect("mesh");
+    let sk = deform::mesh::io::read_tgf(data_file(&format!("{lib}arm.tgf"))?).expect("skeleton");
+    let w = deform::mesh::io::read_dmat(data_file(&format!("{lib}arm-weights.dmat"))?)
+        .expect("weights");
     Some(scene("arm", libigl_rig(mesh, &sk, &w).expect("rig")))
 }
 

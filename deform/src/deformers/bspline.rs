@@ -50,7 +50,7 @@ pub(crate) fn knot(k: usize, n: usize, p: usize) -> f64 {
 ///
 /// ```
 /// let mut w = [0.0; 4];
-/// let first = deform::bspline_basis(6, 3, 1.0, &mut w);
+/// let first = deform::deformers::bspline::bspline_basis(6, 3, 1.0, &mut w);
 /// assert_eq!((first, w), (2, [0.0, 0.0, 0.0, 1.0]));
 /// ```
 ///

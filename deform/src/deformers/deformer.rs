@@ -11,17 +11,33 @@
 //!   wrong length). The positions are written only when every key is valid, so an error
 //!   leaves them as they were.
 //!
-//! The per-pose buffers live in a [`PoseScratch`] the caller owns (one per thread), never in
-//! the bound deformer: a bound deformer is immutable after `bind`, so any number of threads
-//! pose it at once. A [`Poser`] pairs a deformer with its scratch;
-//! [`Deformer::pose`] is the one-off form that makes a fresh scratch each call.
+//! The per-pose buffers live in a scratch the caller owns (one per thread), never in the bound
+//! deformer: a bound deformer is immutable after `bind`, so any number of threads pose it at
+//! once. Each deformer names its scratch type ([`Deformer::Scratch`]), so the scratch of
+//! another kind of deformer does not compile. A [`Poser`] pairs a deformer with its scratch;
+//! [`Deformer::pose`] is the one-off form that makes a fresh scratch each call. Deformers
+//! chosen at run time that share a scratch type are `dyn Deformer<Scratch = S>` (lattices and
+//! cages share [`ControlScratch`]).
+//!
+//! ```compile_fail
+//! # use deform::{Deformer, Mesh, MotorHandles};
+//! # use deform::operators::harmonic::HarmonicOptions;
+//! # use deform::deformers::arap::{Arap, ArapOptions};
+//! # use cga::ScaledMotor;
+//! # fn wrong(handles: &MotorHandles, arap: &Arap, out: &mut [glam::DVec3]) {
+//! let mut scratch = handles.scratch(); // prepared keys
+//! // An ARAP pose with the handles' scratch: a type error, not a silent replacement.
+//! Deformer::pose_using(arap, &[ScaledMotor::IDENTITY], &mut scratch, out).unwrap();
+//! # }
+//! ```
 //!
 //! Spline-aligned deformation ([`crate::SplineDeformer`]), motor handles
 //! ([`crate::MotorHandles`]) and every later deformer implement [`Deformer`], so tools (the
 //! `deform` program, benches) drive them the same way.
 //!
 //! ```
-//! use deform::{Deformer, MotorHandles, HarmonicOptions, Mesh};
+//! use deform::{Deformer, MotorHandles, Mesh};
+//! use deform::operators::harmonic::HarmonicOptions;
 //! use cga::ScaledMotor;
 //! use glam::{DQuat, DVec3};
 //! // A strip of 2 x 4 vertices; the left end is handle 0, the right end handle 1.
@@ -42,14 +58,15 @@ use super::error::{DeformError, Result};
 use crate::blend::control::{ControlBinding, ControlScratch};
 use cga::ScaledMotor;
 use glam::DVec3;
-use std::any::Any;
-use std::fmt;
 
 /// A deformer after `bind`: poses its mesh from a list of keys.
 ///
 /// Immutable once bound (`Send + Sync`): the buffers a pose needs are the caller's
-/// [`PoseScratch`].
+/// [`Deformer::Scratch`].
 pub trait Deformer: Send + Sync {
+    /// The per-pose buffers, owned by the caller: one per thread that poses.
+    type Scratch: Send;
+
     /// The number of vertices it poses.
     fn vertex_count(&self) -> usize;
 
@@ -58,11 +75,12 @@ pub trait Deformer: Send + Sync {
 
     /// Fresh per-pose buffers for this deformer (allocated here, reused by every
     /// [`Deformer::pose_using`] that gets them).
-    fn scratch(&self) -> PoseScratch;
+    fn scratch(&self) -> Self::Scratch;
 
     /// Write the posed positions into `positions` (length [`Deformer::vertex_count`]), using
     /// the caller's `scratch`: no allocation once the scratch has served one pose. A scratch
-    /// made by another deformer is replaced (with an allocation), never misread.
+    /// made by another deformer of the same type (another mesh) is resized or replaced,
+    /// never misread.
     ///
     /// # Errors
     /// [`DeformError::Keys`] for a bad key or a key list of the wrong length,
@@ -71,7 +89,7 @@ pub trait Deformer: Send + Sync {
     fn pose_using(
         &self,
         keys: &[ScaledMotor],
-        scratch: &mut PoseScratch,
+        scratch: &mut Self::Scratch,
         positions: &mut [DVec3],
     ) -> Result<()>;
 
@@ -94,61 +112,12 @@ pub trait Deformer: Send + Sync {
     }
 }
 
-/// The per-pose buffers of a deformer, owned by the caller: one per thread that poses.
-/// Made by [`Deformer::scratch`]; its content is private to the deformer that made it.
-#[derive(Default)]
-pub struct PoseScratch(Option<Box<dyn Any + Send>>);
-
-impl PoseScratch {
-    /// A scratch holding `buffers`.
-    pub(crate) fn of<T: Any + Send>(buffers: T) -> Self {
-        PoseScratch(Some(Box::new(buffers)))
-    }
-
-    /// The buffers as a `T`, made by the fallible `make` when the scratch is empty or holds
-    /// another type.
-    pub(crate) fn get_or_try<T: Any + Send, E>(
-        &mut self,
-        make: impl FnOnce() -> Result<T, E>,
-    ) -> Result<&mut T, E> {
-        if !self.0.as_ref().is_some_and(|b| b.is::<T>()) {
-            self.0 = Some(Box::new(make()?));
-        }
-        Ok(self
-            .0
-            .as_mut()
-            .and_then(|b| b.downcast_mut::<T>())
-            .expect("the scratch holds a T"))
-    }
-
-    /// The buffers as a `T`, made by `make` when the scratch is empty or holds another type
-    /// (the scratch of another kind of deformer).
-    pub(crate) fn get<T: Any + Send>(&mut self, make: impl FnOnce() -> T) -> &mut T {
-        if !self.0.as_ref().is_some_and(|b| b.is::<T>()) {
-            self.0 = Some(Box::new(make()));
-        }
-        self.0
-            .as_mut()
-            .and_then(|b| b.downcast_mut::<T>())
-            .expect("the scratch holds a T")
-    }
-}
-
-impl fmt::Debug for PoseScratch {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(if self.0.is_some() {
-            "PoseScratch(..)"
-        } else {
-            "PoseScratch(empty)"
-        })
-    }
-}
-
 /// A deformer and a scratch of its own: the form for a pose loop. Make one per thread;
 /// the deformer itself is shared.
 ///
 /// ```
-/// # use deform::{Deformer, Mesh, MotorHandles, HarmonicOptions};
+/// # use deform::{Deformer, Mesh, MotorHandles};
+/// # use deform::operators::harmonic::HarmonicOptions;
 /// # use cga::ScaledMotor;
 /// # use glam::DVec3;
 /// # let p: Vec<DVec3> = (0..8).map(|i| DVec3::new((i % 4) as f64, (i / 4) as f64, 0.0)).collect();
@@ -165,14 +134,19 @@ impl fmt::Debug for PoseScratch {
 ///     }
 /// });
 /// ```
-#[derive(Debug)]
 pub struct Poser<'a, D: Deformer + ?Sized> {
     deformer: &'a D,
-    scratch: PoseScratch,
+    scratch: D::Scratch,
+}
+
+impl<D: Deformer + ?Sized> std::fmt::Debug for Poser<'_, D> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("Poser(..)")
+    }
 }
 
 impl<'a, D: Deformer + ?Sized> Poser<'a, D> {
-    /// `deformer` with a fresh scratch (works for `dyn Deformer` too).
+    /// `deformer` with a fresh scratch (works for `dyn Deformer<Scratch = S>` too).
     pub fn new(deformer: &'a D) -> Self {
         Poser {
             deformer,
@@ -195,10 +169,13 @@ impl<'a, D: Deformer + ?Sized> Poser<'a, D> {
 }
 
 /// `impl Deformer for $t` by delegating to its field `$field`, a
-/// [`BoundBlend`](crate::blend::BoundBlend).
+/// [`BoundBlend`](crate::blend::BoundBlend) (scratch `$scratch`: its prepared keys) or a
+/// control binding.
 macro_rules! deformer_via_blend {
-    ($t:ty, $field:ident) => {
-        impl $crate::deformers::deformer::Deformer for $t {
+    ($t:ty, $field:ident, $scratch:ty) => {
+        impl $crate::deformers::Deformer for $t {
+            type Scratch = $scratch;
+
             fn vertex_count(&self) -> usize {
                 self.$field.vertex_count()
             }
@@ -207,8 +184,8 @@ macro_rules! deformer_via_blend {
                 self.$field.key_count()
             }
 
-            fn scratch(&self) -> $crate::deformers::deformer::PoseScratch {
-                $crate::deformers::deformer::PoseScratch::of(self.$field.scratch())
+            fn scratch(&self) -> $scratch {
+                self.$field.scratch()
             }
 
             // `BoundBlend` reports a `BlendError`, a wrapped deformer a `DeformError`.
@@ -216,11 +193,10 @@ macro_rules! deformer_via_blend {
             fn pose_using(
                 &self,
                 keys: &[cga::ScaledMotor],
-                scratch: &mut $crate::deformers::deformer::PoseScratch,
+                scratch: &mut $scratch,
                 positions: &mut [glam::DVec3],
             ) -> $crate::deformers::Result<()> {
-                let prepared = scratch.get(|| self.$field.scratch());
-                Ok(self.$field.pose_using(keys, prepared, positions)?)
+                Ok(self.$field.pose_using(keys, scratch, positions)?)
             }
         }
     };
@@ -230,6 +206,8 @@ pub(crate) use deformer_via_blend;
 /// Cages and lattices: control points moved by motors (or by the motors' action on the
 /// points, in the positional form).
 impl Deformer for ControlBinding {
+    type Scratch = ControlScratch;
+
     fn vertex_count(&self) -> usize {
         ControlBinding::vertex_count(self)
     }
@@ -238,18 +216,16 @@ impl Deformer for ControlBinding {
         self.rest_points().len()
     }
 
-    fn scratch(&self) -> PoseScratch {
-        PoseScratch::of(ControlBinding::scratch(self))
+    fn scratch(&self) -> ControlScratch {
+        ControlBinding::scratch(self)
     }
 
     fn pose_using(
         &self,
         keys: &[ScaledMotor],
-        scratch: &mut PoseScratch,
+        scratch: &mut ControlScratch,
         positions: &mut [DVec3],
     ) -> Result<()> {
-        let work: &mut ControlScratch = scratch.get(|| ControlBinding::scratch(self));
-        self.pose_using(keys, work, positions)
-            .map_err(DeformError::from)
+        ControlBinding::pose_using(self, keys, scratch, positions).map_err(DeformError::from)
     }
 }

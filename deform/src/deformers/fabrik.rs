@@ -305,4 +305,4 @@ impl ChainDeformer {
     }
 }
 
-deformer_via_blend!(ChainDeformer, spline);
+deformer_via_blend!(ChainDeformer, spline, crate::blend::PreparedKeys);

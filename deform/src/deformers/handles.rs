@@ -140,4 +140,4 @@ impl MotorHandles {
     }
 }
 
-deformer_via_blend!(MotorHandles, blend);
+deformer_via_blend!(MotorHandles, blend, crate::blend::PreparedKeys);

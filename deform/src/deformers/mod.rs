@@ -14,12 +14,12 @@
 pub mod arap;
 pub mod bspline;
 pub mod cage;
-pub mod deformer;
+pub(crate) mod deformer;
 mod error;
 pub mod fabrik;
 pub mod ffd;
 pub mod handles;
 pub mod spline;
 
-pub use deformer::{Deformer, PoseScratch, Poser};
+pub use deformer::{Deformer, Poser};
 pub use error::{DeformError, Result};

@@ -252,4 +252,4 @@ impl SplineDeformer {
     }
 }
 
-deformer_via_blend!(SplineDeformer, blend);
+deformer_via_blend!(SplineDeformer, blend, crate::blend::PreparedKeys);

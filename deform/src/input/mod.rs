@@ -1,12 +1,13 @@
-//! What the `deform` program reads besides meshes: key motors in JSON ([`motors`]) and handle
-//! selections ([`selection`]). One format for every subcommand.
+//! What the `deform` program reads besides meshes: key motors in JSON ([`parse_motor`],
+//! [`parse_key_list`], [`parse_group_motors`]) and handle selections ([`Selection`]). One
+//! format for every subcommand.
 //!
 //! **May use**: the mesh foundation (selection files in DMAT). **Must not use**: any other
 //! layer or the crate-level `Error`; its error is [`InputError`].
 
 mod json;
-pub mod motors;
-pub mod selection;
+mod motors;
+mod selection;
 
 pub use motors::{parse_group_motors, parse_key_list, parse_motor, MotorSpec, RotateSpec};
 pub use selection::{parse_selection_json, selection_from_dmat, Selection};

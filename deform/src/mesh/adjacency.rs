@@ -2,8 +2,8 @@
 //! connected components and the fans around each vertex.
 //!
 //! Every function takes index slices (`triangles` and `vertex_count`), so callers such as
-//! [`crate::mesh::validate()`] need no [`Mesh`]; the `Mesh` methods of the same names forward here.
-//! All of them assume the triangle indices are in range (check with [`crate::mesh::validate()`]
+//! [`crate::mesh::validate::validate()`] need no [`Mesh`]; the `Mesh` methods of the same names forward here.
+//! All of them assume the triangle indices are in range (check with [`crate::mesh::validate::validate()`]
 //! first); they panic otherwise.
 
 pub use crate::mesh::union_find::Components;

@@ -117,7 +117,7 @@ pub enum MeshError {
         /// Actual length.
         got: usize,
     },
-    /// Vertices asked for after [`clean()`](crate::mesh::clean) removed them (they were unreferenced).
+    /// Vertices asked for after [`clean()`](crate::mesh::validate::clean) removed them (they were unreferenced).
     #[error("vertices {vertices} were removed by cleaning (unreferenced)")]
     RemovedVertices {
         /// Offending (original) indices.

@@ -1,7 +1,7 @@
 //! The mesh foundation: the [`Mesh`] type, its adjacency, validation and cleaning, procedural
 //! shapes and mesh files.
 //!
-//! * [`Mesh`] and [`Aabb`] ([`triangle_mesh`]), with on-demand [`adjacency`];
+//! * [`Mesh`] and [`Aabb`], with on-demand [`adjacency`];
 //! * [`validate()`](validate::validate) and [`clean()`](validate::clean) with the offending
 //!   indices;
 //! * [`shapes`]: procedural meshes (tube, sphere) for demos, tests and benches;
@@ -18,7 +18,7 @@ pub mod io;
 pub(crate) mod numbers;
 pub mod shapes;
 pub(crate) mod triangle;
-pub mod triangle_mesh;
+mod triangle_mesh;
 pub(crate) mod union_find;
 pub mod validate;
 
@@ -26,4 +26,3 @@ pub use error::{IndexList, MeshError, Result};
 pub use triangle::is_degenerate_triangle;
 pub use triangle_mesh::{Aabb, Mesh};
 pub use union_find::Components;
-pub use validate::{check_elements, clean, validate, Cleaned, ValidationReport};

@@ -11,7 +11,7 @@ use std::f64::consts::TAU;
 /// Outward-facing, watertight. Needs `sides >= 3`, `rings >= 2`.
 ///
 /// ```
-/// let bar = deform::shapes::tube(1.0, 10.0, 16, 21);
+/// let bar = deform::mesh::shapes::tube(1.0, 10.0, 16, 21);
 /// assert_eq!(bar.vertex_count(), 16 * 21 + 2);
 /// // The volume of a prism over the inscribed 16-gon: outward-facing and closed.
 /// let area = 8.0 * (std::f64::consts::TAU / 16.0).sin();
@@ -73,7 +73,7 @@ pub fn tube_ring(sides: usize, r: usize) -> Vec<u32> {
 /// level splits every triangle in four), vertices projected onto the sphere.
 ///
 /// ```
-/// let s = deform::shapes::icosphere(1.0, 2);
+/// let s = deform::mesh::shapes::icosphere(1.0, 2);
 /// assert_eq!((s.vertex_count(), s.triangle_count()), (162, 320));
 /// ```
 ///

@@ -10,7 +10,7 @@ use glam::DVec3;
 /// Nothing is checked either: [`Mesh::new`] takes any triangles, and the methods that read
 /// them (areas, normals, volume, subdivision, adjacency, components) index the positions
 /// directly and panic on a triangle index past the last vertex. Check a mesh from outside
-/// with [`crate::mesh::check_elements`] or [`crate::mesh::validate()`] first; every
+/// with [`crate::mesh::validate::check_elements`] or [`crate::mesh::validate::validate()`] first; every
 /// operator, deformer and reader of this crate does.
 ///
 /// ```
@@ -58,7 +58,7 @@ impl Aabb {
 }
 
 impl Mesh {
-    /// A mesh from positions and triangles (not validated; see [`crate::mesh::validate()`]).
+    /// A mesh from positions and triangles (not validated; see [`crate::mesh::validate::validate()`]).
     pub fn new(positions: Vec<DVec3>, triangles: Vec<[u32; 3]>) -> Self {
         Mesh {
             positions,

@@ -114,7 +114,8 @@ impl ValidationReport {
 /// degenerate and non-manifold meshes pass (see [`check_solvable`] for those).
 ///
 /// ```
-/// use deform::{check_elements, Mesh};
+/// use deform::mesh::validate::check_elements;
+/// use deform::Mesh;
 /// use glam::DVec3;
 /// let m = Mesh::new(vec![DVec3::ZERO, DVec3::X, DVec3::Y], vec![[0, 1, 7]]);
 /// assert!(check_elements(&m).is_err());
@@ -149,7 +150,8 @@ fn positions_report(mesh: &Mesh) -> ValidationReport {
 /// Checks a mesh and reports every problem with its indices. Never panics.
 ///
 /// ```
-/// use deform::{validate, Mesh};
+/// use deform::mesh::validate::validate;
+/// use deform::Mesh;
 /// use glam::DVec3;
 /// let m = Mesh::new(vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z], vec![[0, 1, 2], [0, 1, 7]]);
 /// let r = validate(&m);
@@ -176,7 +178,7 @@ fn inspect(mesh: &Mesh, full: bool) -> ValidationReport {
 
 /// The first half of a validation: the positions, the triangles usable for topology and
 /// their edge table, kept so that the Laplacian's pattern can be laid out from the same
-/// edges ([`crate::Harmonic::new`] orders that pattern while the second half runs).
+/// edges ([`crate::operators::harmonic::Harmonic::new`] orders that pattern while the second half runs).
 pub(crate) struct Scan {
     report: ValidationReport,
     /// Triangles in range with three distinct indices.
@@ -343,7 +345,8 @@ impl Cleaned {
 /// the remaining vertices keep their relative order.
 ///
 /// ```
-/// use deform::{clean, Mesh};
+/// use deform::mesh::validate::clean;
+/// use deform::Mesh;
 /// use glam::DVec3;
 /// let m = Mesh::new(
 ///     vec![DVec3::ZERO, DVec3::ONE, DVec3::X, DVec3::Y],

@@ -150,7 +150,8 @@ fn checked_system(
 /// holding one value per field.
 ///
 /// ```
-/// use deform::{Harmonic, HarmonicOptions, Mesh};
+/// use deform::operators::harmonic::{Harmonic, HarmonicOptions};
+/// use deform::Mesh;
 /// use glam::DVec3;
 /// // A 3x1 strip of squares along x; fix the left edge to 0, the right edge to 1.
 /// let p: Vec<DVec3> = (0..8).map(|i| DVec3::new((i % 4) as f64, (i / 4) as f64, 0.0)).collect();

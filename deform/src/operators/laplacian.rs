@@ -14,8 +14,8 @@
 //! Out-of-range triangle indices and non-finite coordinates, or coordinates beyond
 //! [`MAX_COORDINATE`](crate::mesh::validate::MAX_COORDINATE), are refused first ([`check_elements`]).
 
-use crate::mesh::check_elements;
 use crate::mesh::triangle::Frame;
+use crate::mesh::validate::check_elements;
 use crate::mesh::IndexList;
 use crate::mesh::Mesh;
 use crate::mesh::MeshError;
@@ -94,7 +94,8 @@ pub(crate) fn laplacian_on(
 /// [`CotangentOptions::degenerate`].
 ///
 /// ```
-/// use deform::{cotangent_laplacian, Mesh};
+/// use deform::operators::laplacian::cotangent_laplacian;
+/// use deform::Mesh;
 /// use glam::DVec3;
 /// // A right isosceles triangle: the right angle (cot 0) faces the hypotenuse.
 /// let m = Mesh::new(vec![DVec3::ZERO, DVec3::X, DVec3::Y], vec![[0, 1, 2]]);
@@ -150,7 +151,8 @@ fn cotangent(
 /// values and is left out to keep the matrix symmetric. Zero-area triangles are skipped.
 ///
 /// ```
-/// use deform::{mean_value_laplacian, Mesh};
+/// use deform::operators::laplacian::mean_value_laplacian;
+/// use deform::Mesh;
 /// use glam::DVec3;
 /// let m = Mesh::new(vec![DVec3::ZERO, DVec3::X, DVec3::Y], vec![[0, 1, 2]]);
 /// let l = mean_value_laplacian(&m).unwrap();
@@ -213,7 +215,8 @@ pub(crate) fn ensure_finite(m: &CsMat<f64>, what: &'static str) -> Result<()> {
 /// The uniform (graph) Laplacian: `L_ij = 1` for every edge, `L_ii = -valence(i)`.
 ///
 /// ```
-/// use deform::{uniform_laplacian, Mesh};
+/// use deform::operators::laplacian::uniform_laplacian;
+/// use deform::Mesh;
 /// use glam::DVec3;
 /// let m = Mesh::new(vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::ONE], vec![[0, 1, 2], [1, 3, 2]]);
 /// let l = uniform_laplacian(&m).unwrap();

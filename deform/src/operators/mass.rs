@@ -1,7 +1,7 @@
 //! Lumped (diagonal) mass matrices.
 
-use crate::mesh::check_elements;
 use crate::mesh::triangle::Frame;
+use crate::mesh::validate::check_elements;
 use crate::mesh::Mesh;
 use crate::mesh::MeshError;
 use crate::operators::Result;
@@ -30,7 +30,8 @@ pub enum MassKind {
 /// zero, or a vertex whose sum overflows), never an infinite or zero mass.
 ///
 /// ```
-/// use deform::{mass_diagonal, MassKind, Mesh};
+/// use deform::operators::mass::{mass_diagonal, MassKind};
+/// use deform::Mesh;
 /// use glam::DVec3;
 /// let m = Mesh::new(vec![DVec3::ZERO, DVec3::X, DVec3::Y], vec![[0, 1, 2]]);
 /// let v = mass_diagonal(&m, MassKind::Voronoi).unwrap();

@@ -47,7 +47,7 @@ impl Plane {
 ///
 /// ```
 /// use deform::render::Camera;
-/// use deform::Aabb;
+/// use deform::mesh::Aabb;
 /// use glam::DVec3;
 /// let cube = Aabb { min: DVec3::splat(-1.0), max: DVec3::splat(1.0) };
 /// let cam = Camera::framing(&cube, 0.0, 0.0, 200, 100);

@@ -107,7 +107,7 @@ impl Skinning {
     }
 }
 
-deformer_via_blend!(Skinning, blend);
+deformer_via_blend!(Skinning, blend, crate::blend::PreparedKeys);
 
 impl Rig {
     /// The rest mesh in the scene's world space at the bind pose, as viewers show the model

@@ -169,7 +169,7 @@ pub enum Frame<'a> {
     /// A frame posed by a blend method (any but `conformal-projected`, which blends points,
     /// not transforms): the posed position of every vertex, and the joints'
     /// skin motors prepared for the method that posed them (the [`PreparedKeys`] of
-    /// [`crate::BoundBlend::pose_using`], or `PreparedKeys::new(pose.skin_motors()?, method)`).
+    /// [`crate::blend::BoundBlend::pose_using`], or `PreparedKeys::new(pose.skin_motors()?, method)`).
     /// A new vertex is mapped back by the inverse of its own blend of those keys, so the
     /// same method poses it where the tool made it.
     Blended {
@@ -229,7 +229,7 @@ impl Surgery {
     ///
     /// # Errors
     /// [`SurgeryError::BadMesh`] for an empty mesh, the errors of
-    /// [`crate::mesh::check_elements`] (indices out of range, non-finite or huge coordinates),
+    /// [`crate::mesh::validate::check_elements`] (indices out of range, non-finite or huge coordinates),
     /// or influences that [`Influences::check`] refuses (another length, joints and weights of
     /// different lengths, a weight that is not finite); [`SurgeryError::NonManifold`].
     pub fn new(mesh: &Mesh, influences: &Influences) -> Result<Surgery, SurgeryError> {
@@ -238,7 +238,8 @@ impl Surgery {
             return Err(SurgeryError::BadMesh("the mesh has no triangles".into()));
         }
         influences.check(n).map_err(SurgeryError::BadMesh)?;
-        crate::mesh::check_elements(mesh).map_err(|e| SurgeryError::BadMesh(e.to_string()))?;
+        crate::mesh::validate::check_elements(mesh)
+            .map_err(|e| SurgeryError::BadMesh(e.to_string()))?;
         let kept: Vec<[u32; 3]> = mesh
             .triangles
             .iter()

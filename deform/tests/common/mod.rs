@@ -122,16 +122,17 @@ pub fn mul(a: &sprs::CsMat<f64>, x: &[f64]) -> Vec<f64> {
 /// `{name}-weights.dmat` (`arm`, `elephant`).
 pub fn libigl_rig(name: &str) -> Option<deform::skinning::Rig> {
     let lib = data_dir()?.join("meshes/libigl");
-    let mesh = deform::io::read_obj(lib.join(format!("{name}.obj"))).expect("mesh");
-    let skeleton = deform::io::read_tgf(lib.join(format!("{name}.tgf"))).expect("skeleton");
-    let weights = deform::io::read_dmat(lib.join(format!("{name}-weights.dmat"))).expect("weights");
+    let mesh = deform::mesh::io::read_obj(lib.join(format!("{name}.obj"))).expect("mesh");
+    let skeleton = deform::mesh::io::read_tgf(lib.join(format!("{name}.tgf"))).expect("skeleton");
+    let weights =
+        deform::mesh::io::read_dmat(lib.join(format!("{name}-weights.dmat"))).expect("weights");
     Some(deform::skinning::libigl_rig(mesh, &skeleton, &weights).expect("rig"))
 }
 
 /// Edge-manifold and consistently oriented: no edge has more than two triangles, no directed
 /// edge appears twice, no triangle repeats a vertex.
 pub fn assert_oriented_manifold(triangles: &[[u32; 3]], vertex_count: usize) {
-    let e = deform::adjacency::edges(triangles, vertex_count);
+    let e = deform::mesh::adjacency::edges(triangles, vertex_count);
     assert_eq!(e.non_manifold().count(), 0, "non-manifold edges");
     let mut directed: Vec<(u32, u32)> = triangles
         .iter()

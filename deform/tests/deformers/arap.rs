@@ -5,8 +5,8 @@ use crate::common;
 
 use cga::ScaledMotor;
 use common::{reference, reference_mesh, u32s};
-use deform::arap::{Arap, ArapEnergy, ArapOptions, LocalStep, Stop, Targets};
-use deform::shapes::{tube, tube_ring};
+use deform::deformers::arap::{Arap, ArapEnergy, ArapOptions, LocalStep, Stop, Targets};
+use deform::mesh::shapes::{tube, tube_ring};
 use deform::Mesh;
 use glam::{DMat3, DQuat, DVec3};
 

@@ -1,7 +1,8 @@
 //! Key weights over contiguous runs and over gathered key lists pose the same.
 
 use cga::ScaledMotor;
-use deform::{BlendMethod, BoundBlend, Deformer, KeyWeights, MotorHandles};
+use deform::blend::{BoundBlend, KeyWeights};
+use deform::{BlendMethod, Deformer, MotorHandles};
 use glam::{DQuat, DVec3};
 
 #[test]
@@ -66,7 +67,7 @@ fn gathered_rows_pose_like_contiguous_rows() {
 
 #[test]
 fn a_cloned_deformer_poses_the_same() {
-    let mesh = deform::shapes::icosphere(1.0, 2);
+    let mesh = deform::mesh::shapes::icosphere(1.0, 2);
     let h = MotorHandles::bind(&mesh, &[&[0], &[3]], Default::default()).unwrap();
     let c = h.clone();
     let keys = [
@@ -139,7 +140,7 @@ fn the_batch_loop_poses_as_the_per_vertex_blend() {
                 let bound = BoundBlend::bind(&positions, rows.clone(), &rest, method).unwrap();
                 let mut out = vec![DVec3::ZERO; n];
                 bound.pose(&posed, &mut out).unwrap();
-                let prepared = deform::PreparedKeys::new(&posed, method).unwrap();
+                let prepared = deform::blend::PreparedKeys::new(&posed, method).unwrap();
                 let mut worst = 0.0f64;
                 for (i, (o, &p)) in out.iter().zip(bound.local()).enumerate() {
                     let want = prepared.transform(rows.row(i), p);
@@ -166,7 +167,7 @@ fn the_batch_loop_poses_as_the_per_vertex_blend() {
 /// bits of the per-vertex sum, with a partial last batch and more keys than lanes.
 #[test]
 fn the_positional_batch_loop_sums_as_the_per_vertex_loop() {
-    use deform::control::{ControlBinding, ControlForm};
+    use deform::blend::control::{ControlBinding, ControlForm};
     for (key_count, width, n) in [(64, 8, 4103), (3, 2, 7)] {
         let positions: Vec<DVec3> = (0..n)
             .map(|i| DVec3::new(i as f64 * 0.01, (i % 13) as f64, 0.5))

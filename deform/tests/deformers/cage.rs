@@ -2,15 +2,17 @@
 //! coordinates in [0, 1], rigid motions, the shared model/cage pairs, bad cages.
 
 use crate::common;
-use deform::DeformError;
+use deform::deformers::DeformError;
 
 use cga::ScaledMotor;
-use deform::cage::{
+use deform::blend::control::ControlForm;
+use deform::blend::KeyError;
+use deform::deformers::cage::{
     check_cage, check_encloses, harmonic_cage_coordinates, mean_value_coordinates, CageCoordinates,
     CageDeformer, CageError, CageOptions, HarmonicGrid,
 };
-use deform::control::ControlForm;
-use deform::{io, shapes, BlendMethod, Deformer, KeyError, Mesh};
+use deform::mesh::{io, shapes};
+use deform::{BlendMethod, Deformer, Mesh};
 use glam::{DMat3, DQuat, DVec3};
 
 /// An axis-aligned box cage of 8 corners and 12 outward faces.
@@ -313,9 +315,9 @@ fn winding_numbers_from_the_coordinates_match_the_direct_ones() {
     let cage = dented_cage();
     let mut points = model().positions;
     points.extend([DVec3::splat(5.0), DVec3::new(0.0, 0.0, -3.0)]);
-    let (_, w) = deform::cage::coordinates_and_winding(&cage, &points).unwrap();
+    let (_, w) = deform::deformers::cage::coordinates_and_winding(&cage, &points).unwrap();
     for (i, &p) in points.iter().enumerate() {
-        let direct = deform::cage::winding_number(&cage, p);
+        let direct = deform::deformers::cage::winding_number(&cage, p);
         assert!(
             (w[i] - direct).abs() < 1e-9,
             "point {i}: {} vs {direct}",
@@ -335,7 +337,7 @@ fn a_self_intersecting_cage_is_refused() {
         Err(DeformError::Cage(CageError::SelfIntersecting { pairs, .. })) => assert!(pairs > 0),
         other => panic!("expected SelfIntersecting, got {other:?}"),
     }
-    assert!(deform::cage::intersect::self_intersections(&dented_cage(), 10).is_empty());
+    assert!(deform::deformers::cage::intersect::self_intersections(&dented_cage(), 10).is_empty());
 }
 
 #[test]

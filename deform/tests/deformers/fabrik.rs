@@ -2,8 +2,11 @@
 //! spline-aligned deformation.
 
 use super::spline::{bar, RINGS, SIDES};
-use deform::shapes::tube_ring;
-use deform::{chain_key_motors, fabrik, ChainDeformer, FabrikOptions, FabrikStatus, SplineOptions};
+use deform::deformers::fabrik::fabrik;
+use deform::deformers::fabrik::{chain_key_motors, FabrikOptions, FabrikStatus};
+use deform::deformers::spline::SplineOptions;
+use deform::mesh::shapes::tube_ring;
+use deform::ChainDeformer;
 use glam::DVec3;
 
 fn chain(n: usize) -> Vec<DVec3> {

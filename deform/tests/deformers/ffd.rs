@@ -2,10 +2,12 @@
 //! (motor vs positional), bad input.
 
 use cga::ScaledMotor;
-use deform::control::ControlForm;
-use deform::ffd::{Ffd, FfdError, FfdOptions, Lattice, LatticeBasis};
-use deform::DeformError;
-use deform::{shapes, BlendMethod, Deformer, KeyError, Mesh};
+use deform::blend::control::ControlForm;
+use deform::blend::KeyError;
+use deform::deformers::ffd::{Ffd, FfdError, FfdOptions, Lattice, LatticeBasis};
+use deform::deformers::DeformError;
+use deform::mesh::shapes;
+use deform::{BlendMethod, Deformer, Mesh};
 use glam::{DQuat, DVec3};
 
 fn bar() -> Mesh {

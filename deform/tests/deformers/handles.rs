@@ -2,11 +2,14 @@
 //! bust with its selection file.
 
 use crate::common;
-use deform::{DeformError, MeshError};
+use deform::deformers::DeformError;
+use deform::mesh::MeshError;
 
 use cga::ScaledMotor;
-use deform::io::{read_dmat, read_mesh};
-use deform::{Deformer, HandleOptions, KeyError, MotorHandles};
+use deform::blend::KeyError;
+use deform::deformers::handles::HandleOptions;
+use deform::mesh::io::{read_dmat, read_mesh};
+use deform::{Deformer, MotorHandles};
 use glam::{DQuat, DVec3};
 
 #[test]
@@ -64,7 +67,7 @@ fn handles_on_max_follow_their_motors_and_coordinates_sum_to_one() {
 
 #[test]
 fn bad_handle_sets_are_typed_errors() {
-    let mesh = deform::shapes::icosphere(1.0, 1);
+    let mesh = deform::mesh::shapes::icosphere(1.0, 1);
     let r = MotorHandles::bind(&mesh, &[&[0, 1], &[]], Default::default());
     assert!(matches!(
         r,

@@ -2,12 +2,14 @@
 //! sections III and IV) against closed forms and invariants.
 
 use cga::{Motor, ScaledMotor};
-use deform::shapes::{tube, tube_ring};
-use deform::{
-    bspline_motor, fit_bspline, BlendMethod, Deformer, FitSolver, KeyError, SplineDeformer,
-    SplineOptions, WeightScheme,
-};
-use deform::{DeformError, MeshError, SolveError};
+use deform::blend::KeyError;
+use deform::deformers::bspline::{bspline_motor, fit_bspline, FitSolver};
+use deform::deformers::spline::{SplineOptions, WeightScheme};
+use deform::deformers::DeformError;
+use deform::mesh::shapes::{tube, tube_ring};
+use deform::mesh::MeshError;
+use deform::operators::SolveError;
+use deform::{BlendMethod, Deformer, SplineDeformer};
 use glam::{DQuat, DVec3};
 use proptest::prelude::*;
 use std::f64::consts::{FRAC_PI_2, PI};

@@ -1,14 +1,17 @@
 //! Harmonic fields and coordinates on real data, and bad input.
 
 use crate::common;
-use deform::{MeshError, SolveError};
+use deform::mesh::MeshError;
+use deform::operators::SolveError;
 
 use common::{grid, mul};
-use deform::io::{read_dmat, read_mesh};
-use deform::{
-    cotangent_laplacian, harmonic_coordinates, harmonic_field, DirichletSolver, Harmonic,
-    HarmonicOptions, LaplacianKind, Mesh, Parallelism, SolverOptions,
+use deform::mesh::io::{read_dmat, read_mesh};
+use deform::operators::harmonic::{
+    harmonic_coordinates, harmonic_field, Harmonic, HarmonicOptions,
 };
+use deform::operators::laplacian::{cotangent_laplacian, LaplacianKind};
+use deform::operators::solve::{DirichletSolver, Parallelism, SolverOptions};
+use deform::Mesh;
 use glam::DVec3;
 
 /// Mesh and selection groups (`-1` free, then groups 0, 1, 2).
@@ -121,7 +124,7 @@ fn biharmonic_reproduces_linear_functions_on_a_flat_grid() {
         order: 2,
         ..Default::default()
     };
-    let q = deform::harmonic_system(&m, &opts).expect("Q");
+    let q = deform::operators::harmonic::harmonic_system(&m, &opts).expect("Q");
     let s = DirichletSolver::new(&q, &boundary, SolverOptions::default()).expect("solver");
     let bc: Vec<f64> = boundary
         .iter()
@@ -355,7 +358,7 @@ fn overlapped_bind_gives_the_sequential_bits() {
             laplacian,
             ..Default::default()
         };
-        let q = deform::harmonic_system(&m, &options).expect("system");
+        let q = deform::operators::harmonic::harmonic_system(&m, &options).expect("system");
         let s = DirichletSolver::new(&q, &constrained, options.solver).expect("solver");
         let mut boundary = vec![0.0; constrained.len() * 3];
         let mut at = 0;
@@ -379,7 +382,7 @@ fn overlapped_bind_gives_the_sequential_bits() {
 /// The three factor layouts solve the same system: the knight's coordinates agree to 1e-12.
 #[test]
 fn factor_layouts_agree() {
-    use deform::Factorization;
+    use deform::operators::solve::Factorization;
     let Some((m, groups)) = selection("decimated-knight.off", "decimated-knight-selection.dmat")
     else {
         return;

@@ -1,13 +1,16 @@
 //! The hostile-input findings of issue 9: each is a typed error or a correct result.
 
 use crate::common;
-use deform::{MeshError, SolveError};
+use deform::mesh::MeshError;
+use deform::operators::SolveError;
 
-use deform::io::{parse_dmat, parse_medit, parse_obj, parse_tgf};
-use deform::{
-    check_solvable, cotangent_laplacian, harmonic_field, harmonic_system, mass_diagonal,
-    mean_value_laplacian, validate, HarmonicOptions, LaplacianKind, MassKind, Mesh,
-};
+use deform::mesh::io::{parse_dmat, parse_medit, parse_obj, parse_tgf};
+use deform::mesh::validate::check_solvable;
+use deform::mesh::validate::validate;
+use deform::operators::harmonic::{harmonic_field, harmonic_system, HarmonicOptions};
+use deform::operators::laplacian::{cotangent_laplacian, mean_value_laplacian, LaplacianKind};
+use deform::operators::mass::{mass_diagonal, MassKind};
+use deform::Mesh;
 use glam::DVec3;
 
 /// A closed tetrahedron scaled by `s`.
@@ -261,11 +264,11 @@ fn a_non_finite_system_matrix_is_refused() {
     let q = cotangent_laplacian(&tet(1.0), Default::default())
         .expect("L")
         .map(|v| -v);
-    let opts = deform::SolverOptions::default();
-    let mut s = deform::DirichletSolver::new(&q, &[0], opts).expect("solver");
+    let opts = deform::operators::solve::SolverOptions::default();
+    let mut s = deform::operators::solve::DirichletSolver::new(&q, &[0], opts).expect("solver");
     let mut bad = q.map(|v| v * 1e308 * 10.0);
     assert!(matches!(
-        deform::DirichletSolver::new(&bad, &[0], opts),
+        deform::operators::solve::DirichletSolver::new(&bad, &[0], opts),
         Err(SolveError::Mesh(MeshError::Overflow { .. }))
     ));
     assert!(matches!(
@@ -274,7 +277,7 @@ fn a_non_finite_system_matrix_is_refused() {
     ));
     bad = q.map(|v| v * f64::MAX);
     // Finite entries whose factor overflows are refused too, never a NaN solution.
-    match deform::DirichletSolver::new(&bad, &[0], opts) {
+    match deform::operators::solve::DirichletSolver::new(&bad, &[0], opts) {
         Ok(s) => assert!(s
             .solve(&[1.0], 1)
             .expect("finite")
@@ -296,9 +299,10 @@ fn a_non_finite_system_matrix_is_refused() {
 fn huge_counts_are_errors_not_overflows() {
     use deform::blend::KeyWeights;
     use deform::input::parse_group_motors;
-    use deform::io::Dmat;
+    use deform::mesh::io::Dmat;
+    use deform::operators::harmonic::Harmonic;
+    use deform::operators::solve::{DirichletSolver, SolverOptions};
     use deform::skinning::read_libigl_animation;
-    use deform::{DirichletSolver, Harmonic, SolverOptions};
     let m = tet(1.0);
     let h = Harmonic::new(&m, &[&[0], &[3]], HarmonicOptions::default()).unwrap();
     assert!(h.fields(&[0.0, 1.0], usize::MAX).is_err());
@@ -324,22 +328,23 @@ fn huge_counts_are_errors_not_overflows() {
 /// hundreds of characters is cut in the message (it was printed whole).
 #[test]
 fn parse_errors_name_overflow_and_cut_long_tokens() {
-    let e = deform::io::parse_obj("v 1e400 0 0\n", "o.obj").unwrap_err();
+    let e = deform::mesh::io::parse_obj("v 1e400 0 0\n", "o.obj").unwrap_err();
     assert_eq!(
         e.to_string(),
         "o.obj:1: x coordinate \"1e400\" overflows f64"
     );
-    let e = deform::io::parse_obj("v 0 -inf 0\n", "o.obj").unwrap_err();
+    let e = deform::mesh::io::parse_obj("v 0 -inf 0\n", "o.obj").unwrap_err();
     assert_eq!(e.to_string(), "o.obj:1: non-finite y coordinate \"-inf\"");
     let digits = "9".repeat(500);
-    let e = deform::io::parse_obj(&format!("v 0 0 {digits}\n"), "o.obj").unwrap_err();
+    let e = deform::mesh::io::parse_obj(&format!("v 0 0 {digits}\n"), "o.obj").unwrap_err();
     let text = e.to_string();
     assert!(
         text.contains("overflows f64") && text.contains("(500 bytes)"),
         "{text}"
     );
     assert!(text.len() < 120, "{} characters: {text}", text.len());
-    let e = deform::io::parse_obj(&format!("v 0 0 0\nf 1 2 {digits}x\n"), "o.obj").unwrap_err();
+    let e =
+        deform::mesh::io::parse_obj(&format!("v 0 0 0\nf 1 2 {digits}x\n"), "o.obj").unwrap_err();
     let text = e.to_string();
     assert!(
         text.contains("bad face index") && text.contains("(501 bytes)"),

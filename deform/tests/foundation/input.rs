@@ -3,7 +3,7 @@
 use deform::input::{
     parse_group_motors, parse_key_list, parse_selection_json, selection_from_dmat,
 };
-use deform::io::parse_dmat;
+use deform::mesh::io::parse_dmat;
 use glam::{DQuat, DVec3};
 
 #[test]

@@ -1,9 +1,9 @@
 //! Readers and writers, on the shared data set and on small inline files.
 
 use crate::common;
-use deform::MeshError;
+use deform::mesh::MeshError;
 
-use deform::io::{self, read_dmat, read_medit, read_mesh, read_tgf};
+use deform::mesh::io::{self, read_dmat, read_medit, read_mesh, read_tgf};
 use deform::Mesh;
 
 /// (file, vertices, triangles after fan triangulation) from the data README.
@@ -69,7 +69,7 @@ fn every_mesh_file_loads_with_the_readme_counts() {
                 .find(|c| c.0 == rel)
                 .unwrap_or_else(|| panic!("{rel} is not in the README table"));
             assert_eq!((m.vertex_count(), m.triangle_count()), (v, f), "{rel}");
-            let r = deform::validate(&m);
+            let r = deform::mesh::validate::validate(&m);
             assert!(r.out_of_range_faces.is_empty(), "{rel}");
             assert!(r.non_finite_vertices.is_empty(), "{rel}");
             seen += 1;

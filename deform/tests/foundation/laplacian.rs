@@ -1,13 +1,15 @@
 //! Laplacians and mass matrices against closed-form cases.
 
 use crate::common;
-use deform::MeshError;
+use deform::mesh::MeshError;
 
 use common::{grid, mul};
-use deform::{
-    cotangent_laplacian, mass_diagonal, mean_value_laplacian, mean_value_weights,
-    uniform_laplacian, CotangentOptions, DegeneratePolicy, MassKind, Mesh,
+use deform::operators::laplacian::{
+    cotangent_laplacian, mean_value_laplacian, mean_value_weights, uniform_laplacian,
+    CotangentOptions, DegeneratePolicy,
 };
+use deform::operators::mass::{mass_diagonal, MassKind};
+use deform::Mesh;
 use glam::DVec3;
 use proptest::prelude::*;
 use sprs::CsMat;
@@ -78,7 +80,7 @@ fn equilateral_weights() {
 fn cotangent_reproduces_linear_functions_on_a_flat_irregular_grid() {
     let (nx, ny) = (9, 7);
     let m = grid(nx, ny, true);
-    assert!(deform::validate(&m).is_clean());
+    assert!(deform::mesh::validate::validate(&m).is_clean());
     let l = cotangent_laplacian(&m, Default::default()).expect("L");
     let f: Vec<f64> = m
         .positions
@@ -134,9 +136,9 @@ fn mean_value_directed_weights_reproduce_linear_functions() {
 /// non-finite or huge coordinates (they skipped the NaN triangles and returned `Ok`).
 #[test]
 fn laplacians_and_masses_refuse_bad_elements() {
-    use deform::{
-        laplacian, mass_diagonal, mass_matrix, mean_value_weights, LaplacianKind, MassKind,
-    };
+    use deform::operators::laplacian::laplacian;
+    use deform::operators::laplacian::{mean_value_weights, LaplacianKind};
+    use deform::operators::mass::{mass_diagonal, mass_matrix, MassKind};
     let good = || Mesh::new(vec![DVec3::ZERO, DVec3::X, DVec3::Y], vec![[0, 1, 2]]);
     let mut out_of_range = good();
     out_of_range.triangles[0] = [0, 1, 7];
@@ -231,7 +233,7 @@ fn degenerate_triangles_skipped_or_reported() {
         },
     );
     match err {
-        Err(deform::SolveError::Mesh(MeshError::DegenerateTriangles { faces })) => {
+        Err(deform::operators::SolveError::Mesh(MeshError::DegenerateTriangles { faces })) => {
             assert_eq!(faces.0, vec![8])
         }
         other => panic!("{other:?}"),
@@ -273,7 +275,7 @@ fn mass_matrices_sum_to_the_area() {
         mass_diagonal(&o, MassKind::Voronoi).expect("mass"),
         vec![0.25, 0.25, 0.5]
     );
-    let mm = deform::mass_matrix(&o, MassKind::Barycentric).expect("M");
+    let mm = deform::operators::mass::mass_matrix(&o, MassKind::Barycentric).expect("M");
     assert_eq!(mm.nnz(), 3);
     assert!((mm.get(2, 2).unwrap() - 1.0 / 3.0).abs() < 1e-15);
 }

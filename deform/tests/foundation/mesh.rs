@@ -1,10 +1,12 @@
 //! Mesh geometry, adjacency, validation and cleaning.
 
 use crate::common;
-use deform::SolveError;
+use deform::operators::SolveError;
 
 use common::grid;
-use deform::{clean, validate, Mesh};
+use deform::mesh::validate::clean;
+use deform::mesh::validate::validate;
+use deform::Mesh;
 use glam::DVec3;
 
 fn tetrahedron() -> Mesh {
@@ -161,7 +163,7 @@ fn raw_stanford_bunny_is_cleaned() {
     let Some(p) = common::mesh_path("common-3d-test-models/stanford-bunny.obj") else {
         return;
     };
-    let m = deform::io::read_mesh(p).expect("bunny");
+    let m = deform::mesh::io::read_mesh(p).expect("bunny");
     let r = validate(&m);
     assert_eq!(r.unreferenced_vertices.len(), 1113);
     assert_eq!(r.boundary_edges, 223);
@@ -179,11 +181,12 @@ fn raw_stanford_bunny_is_cleaned() {
         .max_by(|&a, &b| ys[a].total_cmp(&ys[b]))
         .expect("hi") as u32;
     assert_eq!(rc.components.len(), 1);
-    let x = deform::harmonic_field(&c.mesh, &[lo], &[hi], Default::default()).expect("field");
+    let x = deform::operators::harmonic::harmonic_field(&c.mesh, &[lo], &[hi], Default::default())
+        .expect("field");
     assert!(x.iter().all(|v| v.is_finite()));
     assert_eq!((x[lo as usize], x[hi as usize]), (0.0, 1.0));
     // On the raw scan the unreferenced vertices make the system singular, named as such.
-    match deform::harmonic_field(
+    match deform::operators::harmonic::harmonic_field(
         &m,
         &[c.new_to_old[lo as usize]],
         &[c.new_to_old[hi as usize]],
@@ -210,7 +213,7 @@ fn slab_handles_match_the_readme_timing_convention() {
     let Some(p) = common::mesh_path("large/cactus-5k.off") else {
         return;
     };
-    let m = deform::io::read_mesh(p).expect("cactus");
+    let m = deform::mesh::io::read_mesh(p).expect("cactus");
     let fixed = m.vertices_in_slab(1, 0.0, 0.05);
     let moved = m.vertices_in_slab(1, 0.95, 1.0);
     // The README's table lists 422 handles for cactus-5k.

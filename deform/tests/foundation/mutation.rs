@@ -7,8 +7,11 @@
 use crate::common;
 
 use common::Lcg;
-use deform::io::{parse_dmat, parse_medit, parse_obj, parse_off, parse_tgf};
-use deform::{cotangent_laplacian, harmonic_field, validate, HarmonicOptions, Mesh};
+use deform::mesh::io::{parse_dmat, parse_medit, parse_obj, parse_off, parse_tgf};
+use deform::mesh::validate::validate;
+use deform::operators::harmonic::{harmonic_field, HarmonicOptions};
+use deform::operators::laplacian::cotangent_laplacian;
+use deform::Mesh;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
 /// Formats the test knows how to read.

@@ -1,11 +1,13 @@
 //! Property tests: hostile numbers (huge, tiny, subnormal, NaN, infinities) fed to every
 //! fallible function of `deform` never panic, and `Ok` always holds finite values.
 
-use deform::io::{parse_dmat, parse_medit, parse_obj, parse_off, parse_tgf};
-use deform::{
-    check_solvable, cotangent_laplacian, harmonic_field, mass_diagonal, mean_value_laplacian,
-    validate, HarmonicOptions, LaplacianKind, MassKind, Mesh,
-};
+use deform::mesh::io::{parse_dmat, parse_medit, parse_obj, parse_off, parse_tgf};
+use deform::mesh::validate::check_solvable;
+use deform::mesh::validate::validate;
+use deform::operators::harmonic::{harmonic_field, HarmonicOptions};
+use deform::operators::laplacian::{cotangent_laplacian, mean_value_laplacian, LaplacianKind};
+use deform::operators::mass::{mass_diagonal, MassKind};
+use deform::Mesh;
 use glam::DVec3;
 use proptest::prelude::*;
 

@@ -2,7 +2,9 @@
 
 use crate::common;
 
-use deform::{cotangent_laplacian, harmonic_field, validate, HarmonicOptions};
+use deform::mesh::validate::validate;
+use deform::operators::harmonic::{harmonic_field, HarmonicOptions};
+use deform::operators::laplacian::cotangent_laplacian;
 
 const CASES: &[&str] = &["libigl_knight.json", "libigl_tube_41x24.json"];
 

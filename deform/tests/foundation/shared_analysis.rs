@@ -3,8 +3,10 @@
 //! after `update_values`, and reports the same typed errors.
 
 use deform::mesh::shapes::icosphere;
-use deform::MeshError;
-use deform::{cotangent_laplacian, DirichletSolver, SolveError, SolverOptions, SystemAnalysis};
+use deform::mesh::MeshError;
+use deform::operators::laplacian::cotangent_laplacian;
+use deform::operators::solve::{DirichletSolver, SolverOptions, SystemAnalysis};
+use deform::operators::SolveError;
 
 fn worst(a: &[f64], b: &[f64]) -> f64 {
     a.iter()

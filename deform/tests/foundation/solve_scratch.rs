@@ -2,9 +2,10 @@
 //! allocation at all (counted by a global allocator in this test binary only).
 
 use crate::common;
-use deform::MeshError;
+use deform::mesh::MeshError;
 
-use deform::{cotangent_laplacian, DirichletSolver, SolverOptions};
+use deform::operators::laplacian::cotangent_laplacian;
+use deform::operators::solve::{DirichletSolver, SolverOptions};
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 
@@ -92,7 +93,7 @@ fn a_scratch_too_small_or_for_another_solver_is_refused() {
     let mut out = vec![0.0; 2 * s.len()];
     assert!(matches!(
         s.solve_into(None, &vec![0.0; 2 * nc], 2, &mut out, &mut small),
-        Err(deform::SolveError::Mesh(
+        Err(deform::operators::SolveError::Mesh(
             MeshError::DimensionMismatch { .. }
         ))
     ));
@@ -107,7 +108,7 @@ fn a_scratch_too_small_or_for_another_solver_is_refused() {
     let mut foreign = other.scratch(1).expect("scratch");
     assert!(matches!(
         s.solve_into(None, &vec![0.0; nc], 1, &mut out[..s.len()], &mut foreign),
-        Err(deform::SolveError::Mesh(
+        Err(deform::operators::SolveError::Mesh(
             MeshError::DimensionMismatch { .. }
         ))
     ));

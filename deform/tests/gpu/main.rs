@@ -223,10 +223,10 @@ fn spline_blend_on_the_gpu() {
 /// lattice block of each vertex) posed on the GPU like on the CPU, for every method.
 #[test]
 fn ffd_motor_form_on_the_gpu() {
-    use deform::control::ControlForm;
-    use deform::ffd::{Ffd, FfdOptions};
+    use deform::blend::control::ControlForm;
+    use deform::deformers::ffd::{Ffd, FfdOptions};
     let Some(ctx) = context() else { return };
-    let mesh = deform::shapes::tube(1.0, 10.0, 16, 21);
+    let mesh = deform::mesh::shapes::tube(1.0, 10.0, 16, 21);
     let diag = diagonal(&mesh.positions);
     for method in BlendMethod::ALL {
         let options = FfdOptions {
@@ -257,13 +257,13 @@ fn ffd_motor_form_on_the_gpu() {
 /// CPU; bad inputs are the same typed errors.
 #[test]
 fn positional_lattices_and_cages_on_the_gpu() {
-    use deform::cage::{CageDeformer, CageOptions};
-    use deform::control::{ControlBinding, ControlForm};
-    use deform::ffd::{Ffd, FfdOptions, LatticeBasis};
+    use deform::blend::control::{ControlBinding, ControlForm};
+    use deform::deformers::cage::{CageDeformer, CageOptions};
+    use deform::deformers::ffd::{Ffd, FfdOptions, LatticeBasis};
     let Some(ctx) = context() else { return };
-    let mesh = deform::shapes::tube(1.0, 10.0, 16, 21);
+    let mesh = deform::mesh::shapes::tube(1.0, 10.0, 16, 21);
     let diag = diagonal(&mesh.positions);
-    let mut cage = deform::shapes::tube(1.6, 12.0, 4, 6);
+    let mut cage = deform::mesh::shapes::tube(1.6, 12.0, 4, 6);
     cage.positions.iter_mut().for_each(|p| p.x -= 1.0);
     let bernstein = FfdOptions {
         form: ControlForm::Positional,
@@ -369,10 +369,10 @@ fn positional_lattices_and_cages_on_the_gpu() {
 /// positive and below the wall-clock time of the whole pose.
 #[test]
 fn a_timed_pass_poses_the_same_and_reports_its_device_time() {
-    use deform::control::ControlForm;
-    use deform::ffd::{Ffd, FfdOptions};
+    use deform::blend::control::ControlForm;
+    use deform::deformers::ffd::{Ffd, FfdOptions};
     let Some(ctx) = context() else { return };
-    let mesh = deform::shapes::tube(1.0, 10.0, 32, 201);
+    let mesh = deform::mesh::shapes::tube(1.0, 10.0, 32, 201);
     for form in [
         ControlForm::Motor(BlendMethod::DualQuaternion),
         ControlForm::Positional,

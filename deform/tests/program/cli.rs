@@ -2,7 +2,7 @@
 //! input's counts, previews decode, bad arguments and bad input exit with code 2 and a message
 //! naming what and where, and nothing is half-written or overwritten.
 
-use deform::shapes::{tube, tube_ring};
+use deform::mesh::shapes::{tube, tube_ring};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
@@ -34,7 +34,7 @@ impl Scene {
         let _ = std::fs::remove_dir_all(&dir);
         std::fs::create_dir_all(&dir).unwrap();
         let bar = tube(1.0, 10.0, SIDES, RINGS);
-        deform::io::write_obj(&bar, dir.join("bar.obj")).unwrap();
+        deform::mesh::io::write_obj(&bar, dir.join("bar.obj")).unwrap();
         let sel = format!(
             "{{\"0\": {:?}, \"1\": {:?}}}",
             tube_ring(SIDES, 0),
@@ -77,7 +77,7 @@ impl Drop for Scene {
 }
 
 fn read_obj(path: &str) -> deform::Mesh {
-    deform::io::read_obj(Path::new(path)).expect("output parses back")
+    deform::mesh::io::read_obj(Path::new(path)).expect("output parses back")
 }
 
 #[test]
@@ -469,8 +469,8 @@ fn deformed_obj_keeps_texture_coordinates() {
     let o = ffd_2x2x2(&s.p("textured.obj"), &s.p("twist.json"), &out);
     assert!(o.status.success(), "{}", stderr(&o));
     let written = std::fs::read_to_string(&out).unwrap();
-    let (mesh, texture) = deform::io::parse_obj_textured(&written, "out").unwrap();
-    let (input, input_texture) = deform::io::parse_obj_textured(&text, "in").unwrap();
+    let (mesh, texture) = deform::mesh::io::parse_obj_textured(&written, "out").unwrap();
+    let (input, input_texture) = deform::mesh::io::parse_obj_textured(&text, "in").unwrap();
     assert_eq!(mesh.triangles, input.triangles);
     assert_eq!(texture, input_texture, "the same vt, corner by corner");
     assert!(

@@ -10,7 +10,7 @@
 use crate::common;
 
 use common::Lcg;
-use deform::shapes::{icosphere, tube, tube_ring};
+use deform::mesh::shapes::{icosphere, tube, tube_ring};
 use deform::skinning::{glb_bytes, procedural_arm, GlbOptions};
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -52,7 +52,7 @@ impl Inputs {
         let _ = std::fs::remove_dir_all(&dir);
         std::fs::create_dir_all(&dir).unwrap();
         let (sides, rings) = (6, 7);
-        deform::io::write_obj(&tube(1.0, 10.0, sides, rings), dir.join("bar.obj")).unwrap();
+        deform::mesh::io::write_obj(&tube(1.0, 10.0, sides, rings), dir.join("bar.obj")).unwrap();
         let sel = format!(
             "{{\"0\": {:?}, \"1\": {:?}}}",
             tube_ring(sides, 0),
@@ -81,8 +81,8 @@ impl Inputs {
             }
         }
         std::fs::write(dir.join("bar.dmat"), dmat).unwrap();
-        deform::io::write_obj(&icosphere(1.0, 1), dir.join("ball.obj")).unwrap();
-        deform::io::write_obj(&icosphere(1.6, 1), dir.join("cage.obj")).unwrap();
+        deform::mesh::io::write_obj(&icosphere(1.0, 1), dir.join("ball.obj")).unwrap();
+        deform::mesh::io::write_obj(&icosphere(1.6, 1), dir.join("cage.obj")).unwrap();
         let arm = glb_bytes(&procedural_arm(8, 9), &GlbOptions::default()).unwrap();
         std::fs::write(dir.join("arm.glb"), arm).unwrap();
         std::fs::write(
@@ -300,7 +300,7 @@ fn output_is_finite(path: &Path) -> Result<(), String> {
         }
         return Err("non-finite position in the .glb".into());
     }
-    let mesh = deform::io::read_obj(path).map_err(|e| e.to_string())?;
+    let mesh = deform::mesh::io::read_obj(path).map_err(|e| e.to_string())?;
     match mesh.positions.iter().position(|p| !p.is_finite()) {
         None => Ok(()),
         Some(i) => Err(format!("vertex {i} is not finite")),

@@ -4,7 +4,7 @@
 
 use crate::common;
 
-use deform::shapes::{icosphere, tube};
+use deform::mesh::shapes::{icosphere, tube};
 use std::path::PathBuf;
 use std::process::{Command, Output};
 
@@ -30,7 +30,7 @@ fn s(p: &std::path::Path) -> &str {
 fn ffd_twists_a_bar_and_writes_obj_png_and_json() {
     let dir = scratch("ffd");
     let bar = tube(1.0, 10.0, 8, 11);
-    deform::io::write_obj(&bar, dir.join("bar.obj")).unwrap();
+    deform::mesh::io::write_obj(&bar, dir.join("bar.obj")).unwrap();
     // Layer u = 1 of a 2x2x2 lattice (odd indices) turns 90 degrees about the bar's axis.
     let motors = r#"{"1": {"rotate": {"axis": [1, 0, 0], "degrees": 90}},
         "3": {"rotate": {"axis": [1, 0, 0], "degrees": 90}},
@@ -60,7 +60,7 @@ fn ffd_twists_a_bar_and_writes_obj_png_and_json() {
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
         let json: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
         assert_eq!(json["command"], "ffd");
-        let out = deform::io::read_mesh(dir.join("out.obj")).unwrap();
+        let out = deform::mesh::io::read_mesh(dir.join("out.obj")).unwrap();
         assert_eq!(out.vertex_count(), bar.vertex_count());
         assert!(dir.join("out.png").is_file());
     }
@@ -92,9 +92,9 @@ fn ffd_twists_a_bar_and_writes_obj_png_and_json() {
 fn cage_identity_reproduces_the_mesh_and_a_small_cage_exits_2() {
     let dir = scratch("cage");
     let model = icosphere(1.0, 2);
-    deform::io::write_obj(&model, dir.join("model.obj")).unwrap();
-    deform::io::write_obj(&icosphere(1.6, 1), dir.join("cage.obj")).unwrap();
-    deform::io::write_obj(&icosphere(0.5, 1), dir.join("small.obj")).unwrap();
+    deform::mesh::io::write_obj(&model, dir.join("model.obj")).unwrap();
+    deform::mesh::io::write_obj(&icosphere(1.6, 1), dir.join("cage.obj")).unwrap();
+    deform::mesh::io::write_obj(&icosphere(0.5, 1), dir.join("small.obj")).unwrap();
     std::fs::write(dir.join("id.json"), r#"{"*": {}}"#).unwrap();
     for coords in ["mvc", "harmonic"] {
         let o = run(&[
@@ -113,7 +113,7 @@ fn cage_identity_reproduces_the_mesh_and_a_small_cage_exits_2() {
             "--quiet",
         ]);
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-        let out = deform::io::read_mesh(dir.join("out.obj")).unwrap();
+        let out = deform::mesh::io::read_mesh(dir.join("out.obj")).unwrap();
         assert_eq!(out.vertex_count(), model.vertex_count());
         assert!(out
             .positions
@@ -172,10 +172,10 @@ fn the_partial_bar_cage_exits_2() {
 fn ffd_and_cage_on_the_gpu_pose_as_the_cpu() {
     let dir = scratch("gpu");
     let bar = tube(1.0, 10.0, 8, 21);
-    deform::io::write_obj(&bar, dir.join("bar.obj")).unwrap();
+    deform::mesh::io::write_obj(&bar, dir.join("bar.obj")).unwrap();
     let mut cage = tube(1.6, 12.0, 4, 6);
     cage.positions.iter_mut().for_each(|p| p.x -= 1.0);
-    deform::io::write_obj(&cage, dir.join("cage.obj")).unwrap();
+    deform::mesh::io::write_obj(&cage, dir.join("cage.obj")).unwrap();
     std::fs::write(
         dir.join("m.json"),
         r#"{"1": {"rotate": {"axis": [1, 0, 0], "degrees": 60}, "translate": [0, 0.5, 0]},
@@ -236,15 +236,15 @@ fn ffd_and_cage_on_the_gpu_pose_as_the_cpu() {
                 assert!(err.contains("posing on the CPU (--gpu=auto)"), "{err}");
                 continue;
             }
-            let b = deform::io::read_mesh(&auto_obj).unwrap();
-            let g = deform::io::read_mesh(&gpu_obj).unwrap();
+            let b = deform::mesh::io::read_mesh(&auto_obj).unwrap();
+            let g = deform::mesh::io::read_mesh(&gpu_obj).unwrap();
             assert_eq!(
                 b.positions, g.positions,
                 "{what} {form:?}: auto is the GPU's pose"
             );
             assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-            let a = deform::io::read_mesh(&cpu_obj).unwrap();
-            let b = deform::io::read_mesh(&gpu_obj).unwrap();
+            let a = deform::mesh::io::read_mesh(&cpu_obj).unwrap();
+            let b = deform::mesh::io::read_mesh(&gpu_obj).unwrap();
             let worst = a
                 .positions
                 .iter()

@@ -14,7 +14,7 @@ const RED: [u8; 3] = [220, 60, 40];
 
 /// An icosphere of radius `r` centred at `c` (the library's, moved).
 fn icosphere(level: u32, r: f64, c: DVec3) -> Mesh {
-    let mut m = deform::shapes::icosphere(r, level as usize);
+    let mut m = deform::mesh::shapes::icosphere(r, level as usize);
     for p in &mut m.positions {
         *p += c;
     }

@@ -47,7 +47,7 @@ fn skin_cli() {
         "-q",
     ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let m = deform::io::read_obj(&obj).unwrap();
+    let m = deform::mesh::io::read_obj(&obj).unwrap();
     assert_eq!(m.vertex_count(), 1728);
     // The Fox's UVs as `vt` (V flipped for OBJ), one per vertex, used by every face corner;
     // no `vn`, since the Fox has no normals.
@@ -89,7 +89,10 @@ fn skin_cli() {
         "-q",
     ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    assert_eq!(deform::io::read_obj(&ele).unwrap().vertex_count(), 6034);
+    assert_eq!(
+        deform::mesh::io::read_obj(&ele).unwrap().vertex_count(),
+        6034
+    );
     // A frame past the animation's 457 (1e300 read "no animation frame 18446744073709551615"),
     // and a --range whose frames are not indices: the flag and the frames there are.
     for (when, flag, frame) in [
@@ -194,7 +197,7 @@ fn an_edit_written_to_glb_plays_like_the_obj_of_each_frame() {
             "-o",
             obj.to_str().unwrap(),
         ]);
-        let want = deform::io::read_obj(&obj).unwrap().positions;
+        let want = deform::mesh::io::read_obj(&obj).unwrap().positions;
         let mut pose = RigPose::default();
         written
             .pose_into(
@@ -251,7 +254,7 @@ fn skin_time_defaults_to_the_first_animation() {
             .output()
             .unwrap();
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-        deform::io::read_obj(&obj).unwrap().positions
+        deform::mesh::io::read_obj(&obj).unwrap().positions
     };
     let implicit = run("time-implicit.obj", &["--time", "0.5"]);
     let explicit = run("time-explicit.obj", &["--time", "0.5", "--animation", "0"]);

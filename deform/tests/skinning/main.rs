@@ -287,7 +287,8 @@ fn candy_wrapper_volume() {
     let Some(rig) = common::libigl_rig("arm") else {
         return;
     };
-    let skeleton = deform::io::read_tgf(data_dir().unwrap().join("meshes/libigl/arm.tgf")).unwrap();
+    let skeleton =
+        deform::mesh::io::read_tgf(data_dir().unwrap().join("meshes/libigl/arm.tgf")).unwrap();
     let v0 = rig.mesh.volume();
     // Twist the last bone about its own axis by 180 degrees (in place).
     for bone in 0..skeleton.bones.len() {
@@ -336,10 +337,10 @@ fn candy_wrapper_volume() {
 fn elephant_animation() {
     let Some(dir) = data_dir() else { return };
     let lib = dir.join("meshes/libigl");
-    let mesh = deform::io::read_obj(lib.join("elephant.obj")).unwrap();
-    let skeleton = deform::io::read_tgf(lib.join("elephant.tgf")).unwrap();
-    let weights = deform::io::read_dmat(lib.join("elephant-weights.dmat")).unwrap();
-    let anim = deform::io::read_dmat(lib.join("elephant-anim.dmat")).unwrap();
+    let mesh = deform::mesh::io::read_obj(lib.join("elephant.obj")).unwrap();
+    let skeleton = deform::mesh::io::read_tgf(lib.join("elephant.tgf")).unwrap();
+    let weights = deform::mesh::io::read_dmat(lib.join("elephant-weights.dmat")).unwrap();
+    let anim = deform::mesh::io::read_dmat(lib.join("elephant-anim.dmat")).unwrap();
     // A bone naming a joint past the skeleton (it was accepted, the dangling end ignored).
     let mut dangling = skeleton.clone();
     dangling.bones[3][1] = skeleton.joints.len() as u32;
@@ -350,7 +351,7 @@ fn elephant_animation() {
     let rig = libigl_rig(mesh, &skeleton, &weights).unwrap();
     // A matrix of the wrong height is named as such (it read "no animation 47 rows ... in this
     // rig").
-    let short = deform::io::Dmat {
+    let short = deform::mesh::io::Dmat {
         rows: anim.rows - 1,
         cols: 1,
         data: anim.data[..anim.rows - 1].to_vec(),

@@ -5,10 +5,11 @@
 
 use super::{assert_manifold, assert_on_drill, assert_on_incision};
 use cga::{Plane, ScaledMotor};
+use deform::blend::PreparedKeys;
 use deform::skinning::{procedural_arm, Influences, Rig, Skinning};
 use deform::surgery::{CutOptions, Drill, DrillOptions, Frame, Scalpel, Surgery, TearOptions};
 use deform::surgery::{SurgeryError, VertexOrigin};
-use deform::{BlendMethod, PreparedKeys};
+use deform::BlendMethod;
 use glam::DVec3;
 
 /// The methods whose blend has an affine inverse per vertex.

@@ -12,7 +12,7 @@ use glam::DVec3;
 fn check_drill(rig: &Rig, r: &deform::surgery::DrillResult, d: &deform::surgery::Drill) {
     let m = &r.mesh.mesh;
     assert_manifold(m);
-    let all = deform::adjacency::boundary_loops(&m.triangles, m.vertex_count()).len();
+    let all = deform::mesh::adjacency::boundary_loops(&m.triangles, m.vertex_count()).len();
     assert_eq!(r.boundary_loops, all, "boundary loops");
     let diag = rig.mesh.bounding_box().unwrap().diagonal();
     let axis = (d.end - d.tip).normalize();
@@ -300,7 +300,7 @@ fn a_drill_counts_holes_over_the_welded_surface() {
             .iter()
             .map(|t| t.map(|v| canon[v as usize]))
             .collect();
-        deform::adjacency::boundary_loops(&tris, m.vertex_count()).len()
+        deform::mesh::adjacency::boundary_loops(&tris, m.vertex_count()).len()
     };
     assert_eq!(welded_loops(&rig.mesh), 0);
     assert_eq!(welded_loops(&r.mesh.mesh), 2);

@@ -89,7 +89,7 @@ fn check_cut(rig: &Rig, cut: &CutResult, plane: &Plane, options: &CutOptions) {
         let m = &piece.mesh.mesh;
         assert_manifold(m);
         // The loop count found locally agrees with a count over the whole piece.
-        let all = deform::adjacency::boundary_loops(&m.triangles, m.vertex_count()).len();
+        let all = deform::mesh::adjacency::boundary_loops(&m.triangles, m.vertex_count()).len();
         assert_eq!(piece.boundary_loops, all, "boundary loops");
         assert_eq!(piece.origin.len(), m.vertex_count());
         for (v, o) in piece.origin.iter().enumerate() {
@@ -310,7 +310,7 @@ fn cut_real_meshes() {
         return;
     };
     let loops0 =
-        deform::adjacency::boundary_loops(&rig.mesh.triangles, rig.mesh.vertex_count()).len();
+        deform::mesh::adjacency::boundary_loops(&rig.mesh.triangles, rig.mesh.vertex_count()).len();
     let s = Surgery::new(&rig.mesh, &rig.influences).unwrap();
     let b = rig.mesh.bounding_box().unwrap();
     let c = b.center();

@@ -32,7 +32,7 @@ pub(crate) fn welded(m: &Mesh) -> Vec<[u32; 3]> {
 }
 
 fn welded_loops(m: &Mesh) -> usize {
-    deform::adjacency::boundary_loops(&welded(m), m.vertex_count()).len()
+    deform::mesh::adjacency::boundary_loops(&welded(m), m.vertex_count()).len()
 }
 
 /// Welded, the piece is an edge-manifold, consistently oriented surface.
@@ -73,7 +73,7 @@ fn cesium_man_cuts_close_over_uv_seams() {
     };
     let rig = read_gltf(dir.join("gltf/CesiumMan.glb")).unwrap();
     let mesh = &rig.mesh;
-    let raw_loops = deform::adjacency::boundary_loops(&mesh.triangles, mesh.vertex_count());
+    let raw_loops = deform::mesh::adjacency::boundary_loops(&mesh.triangles, mesh.vertex_count());
     assert!(raw_loops.len() > 100, "{} seam loops", raw_loops.len());
     assert_eq!(welded_loops(mesh), 0, "CesiumMan is closed once welded");
     let s = Surgery::new(mesh, &rig.influences).unwrap();

@@ -12,7 +12,7 @@ use glam::DVec3;
 fn check_tear(rig: &Rig, r: &deform::surgery::TearResult, opened: bool) {
     let m = &r.mesh.mesh;
     assert_manifold(m);
-    let all = deform::adjacency::boundary_loops(&m.triangles, m.vertex_count()).len();
+    let all = deform::mesh::adjacency::boundary_loops(&m.triangles, m.vertex_count()).len();
     assert_eq!(r.boundary_loops, all, "boundary loops");
     let diag = rig.mesh.bounding_box().unwrap().diagonal();
     if !opened {
@@ -199,7 +199,7 @@ fn tear_real_and_posed() {
     };
     let s = Surgery::new(&arm.mesh, &arm.influences).unwrap();
     let loops0 =
-        deform::adjacency::boundary_loops(&arm.mesh.triangles, arm.mesh.vertex_count()).len();
+        deform::mesh::adjacency::boundary_loops(&arm.mesh.triangles, arm.mesh.vertex_count()).len();
     // Two blades pointing into the skin along the normals of two nearby vertices.
     let normals = arm.mesh.vertex_normals();
     let c = arm.mesh.bounding_box().unwrap().center();

@@ -15,7 +15,7 @@ use std::collections::HashSet;
 
 /// Loops of the mesh welded by bit-identical positions (an independent count).
 fn welded_loops(m: &Mesh) -> usize {
-    deform::adjacency::boundary_loops(&welded(m), m.vertex_count()).len()
+    deform::mesh::adjacency::boundary_loops(&welded(m), m.vertex_count()).len()
 }
 
 /// A blade from `a` to `b`.
@@ -373,7 +373,9 @@ fn a_long_step_crosses_a_seam() {
     let rig = procedural_arm(24, 41);
     let whole = Surgery::new(&rig.mesh, &rig.influences).unwrap();
     let (mesh, inf) = seamed(&rig, 3.0);
-    assert!(deform::adjacency::boundary_loops(&mesh.triangles, mesh.vertex_count()).len() >= 2);
+    assert!(
+        deform::mesh::adjacency::boundary_loops(&mesh.triangles, mesh.vertex_count()).len() >= 2
+    );
     assert_eq!(welded_loops(&mesh), 0);
     let split = Surgery::new(&mesh, &inf).unwrap();
     let at = |x: f64| blade(DVec3::new(x, 1.2, 0.05), DVec3::new(x, 0.2, 0.05));

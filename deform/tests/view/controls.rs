@@ -4,16 +4,16 @@
 
 use crate::client::{worst, Server};
 use deform::input::parse_key_list;
-use deform::shapes::tube;
+use deform::mesh::shapes::tube;
 use deform::Deformer;
 use glam::DVec3;
 use serde_json::{json, Value};
 
 #[test]
 fn lattice_and_cage_control_points_pose_as_the_library_poses_them() {
-    use deform::cage::{CageDeformer, CageOptions};
-    use deform::control::ControlForm;
-    use deform::ffd::{Ffd, FfdOptions};
+    use deform::blend::control::ControlForm;
+    use deform::deformers::cage::{CageDeformer, CageOptions};
+    use deform::deformers::ffd::{Ffd, FfdOptions};
     let server = Server::start(&[]);
     let mut c = server.connect(None).expect("connects");
     c.state();
@@ -79,8 +79,8 @@ fn lattice_and_cage_control_points_pose_as_the_library_poses_them() {
 /// refused and leave the session as it was.
 #[test]
 fn lattice_size_basis_and_cage_coordinates_are_chosen_from_the_page() {
-    use deform::cage::{CageCoordinates, CageDeformer, CageOptions, HarmonicGrid};
-    use deform::ffd::{Ffd, FfdOptions, LatticeBasis};
+    use deform::deformers::cage::{CageCoordinates, CageDeformer, CageOptions, HarmonicGrid};
+    use deform::deformers::ffd::{Ffd, FfdOptions, LatticeBasis};
     let server = Server::start(&[]);
     let mut c = server.connect(None).expect("connects");
     c.state();

@@ -4,10 +4,12 @@
 
 use crate::client::{worst, Server};
 use cga::ScaledMotor;
+use deform::deformers::handles::HandleOptions;
+use deform::deformers::spline::SplineOptions;
 use deform::input::parse_key_list;
-use deform::shapes::{tube, tube_ring};
+use deform::mesh::shapes::{tube, tube_ring};
 use deform::skinning::{read_gltf, Skinning};
-use deform::{BlendMethod, Deformer, HandleOptions, MotorHandles, SplineDeformer, SplineOptions};
+use deform::{BlendMethod, Deformer, MotorHandles, SplineDeformer};
 use glam::DVec3;
 use serde_json::json;
 use std::path::PathBuf;
@@ -29,7 +31,7 @@ fn a_mesh_with_its_selection_poses_by_handles_and_by_the_spline_as_the_library_d
     let bar = tube(1.0, 10.0, 12, 31);
     let (first, middle, last) = (tube_ring(12, 0), tube_ring(12, 15), tube_ring(12, 30));
     let obj = dir.join("bar.obj");
-    deform::io::write_obj(&bar, &obj).unwrap();
+    deform::mesh::io::write_obj(&bar, &obj).unwrap();
     let sel = dir.join("bar-groups.json");
     std::fs::write(
         &sel,
@@ -174,7 +176,7 @@ fn a_libigl_rig_from_the_shared_data_poses_as_the_library_skins_it() {
 fn models_it_cannot_serve_are_refused_before_it_listens() {
     let dir = folder("refused");
     let obj = dir.join("bar.obj");
-    deform::io::write_obj(&tube(1.0, 4.0, 6, 5), &obj).unwrap();
+    deform::mesh::io::write_obj(&tube(1.0, 4.0, 6, 5), &obj).unwrap();
     let sel = dir.join("sel.json");
     std::fs::write(&sel, r#"{"0": [999]}"#).unwrap();
     let cases: Vec<(Vec<String>, &str)> = vec![

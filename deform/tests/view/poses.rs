@@ -4,12 +4,13 @@
 
 use crate::client::{worst, Frame, Server};
 use cga::ScaledMotor;
-use deform::arap::{Arap, ArapOptions, Stop, Targets};
+use deform::deformers::arap::{Arap, ArapOptions, Stop, Targets};
+use deform::deformers::handles::HandleOptions;
 use deform::input::{parse_key_list, parse_selection_json};
-use deform::shapes::{icosphere, tube, tube_ring};
+use deform::mesh::shapes::{icosphere, tube, tube_ring};
 use deform::skinning::{procedural_arm, JointEdit, Skinning};
 use deform::surgery::{CutOptions, Frame as SurgeryFrame, Surgery};
-use deform::{BlendMethod, Deformer, HandleOptions, MotorHandles};
+use deform::{BlendMethod, Deformer, MotorHandles};
 use glam::{DQuat, DVec3};
 use serde_json::{json, Value};
 
@@ -128,7 +129,8 @@ fn painted_handles_pose_as_the_library_poses_them_and_the_blend_switches_live() 
     c.send(json!({"op": "method", "method": "handles", "blend": "motor-log"}));
     let posed = c.positions(0);
     let (name, glb) = exported_glb(&mut c);
-    let want = deform::io::glb_bytes(&deform::Mesh::new(posed, mesh.triangles.clone())).unwrap();
+    let want =
+        deform::mesh::io::glb_bytes(&deform::Mesh::new(posed, mesh.triangles.clone())).unwrap();
     assert_eq!(name, "sphere-posed.glb");
     assert!(glb == want, "the exported .glb is not the library's");
     let out = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../target/gltf-out");
@@ -228,7 +230,8 @@ fn the_rig_poses_as_the_library_poses_it_and_a_cut_undoes_and_redoes() {
     let plane = cga::Plane::from_normal_distance(n, n.dot(point));
     // The page drew the frame by motor log blending: its keys map the new vertices back.
     let prepared =
-        deform::PreparedKeys::new(pose.skin_motors().unwrap(), BlendMethod::MotorLog).unwrap();
+        deform::blend::PreparedKeys::new(pose.skin_motors().unwrap(), BlendMethod::MotorLog)
+            .unwrap();
     let frame = SurgeryFrame::Blended {
         positions: &want,
         keys: &prepared,
@@ -380,7 +383,7 @@ fn tears_and_drills_from_rays_make_what_the_library_makes_and_undo() {
 
 #[test]
 fn arap_energy_and_local_step_are_the_library_options() {
-    use deform::arap::{ArapEnergy, LocalStep};
+    use deform::deformers::arap::{ArapEnergy, LocalStep};
     let server = Server::start(&[]);
     let mut c = server.connect(None).expect("connects");
     c.state();

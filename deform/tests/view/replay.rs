@@ -52,7 +52,9 @@ fn replayed(c: &mut Client, state: &Value, dir: &Path, files: &[&str]) -> Vec<DV
         String::from_utf8_lossy(&out.stderr)
     );
     let written = words[words.iter().position(|w| *w == "-o").unwrap() + 1];
-    deform::io::read_obj(dir.join(written)).unwrap().positions
+    deform::mesh::io::read_obj(dir.join(written))
+        .unwrap()
+        .positions
 }
 
 #[test]
@@ -62,7 +64,7 @@ fn the_replay_line_poses_the_exported_files_as_the_server_posed_them() {
     let s = c.state();
     assert_eq!(s["scene"], "sphere");
     let rest: Vec<DVec3> = {
-        let m = deform::shapes::icosphere(1.0, 4);
+        let m = deform::mesh::shapes::icosphere(1.0, 4);
         m.positions
     };
     let specs = json!([{"translate": [0, 0.3, 0]}, {"translate": [0, 0.8, 0], "scale": 1.4, "center": [0, 1, 0]},
@@ -130,7 +132,7 @@ fn the_replay_line_poses_the_exported_files_as_the_server_posed_them() {
         "controls": {"lattice": [5, 3, 3], "basis": "bspline-2"}}),
     );
     let s = c.state();
-    let bar = deform::shapes::tube(1.0, 10.0, 16, 41).positions;
+    let bar = deform::mesh::shapes::tube(1.0, 10.0, 16, 41).positions;
     let lift = |s: &Value| -> Value {
         let points: Vec<[f64; 3]> =
             serde_json::from_value(s["controls"]["points"].clone()).unwrap();

@@ -3,7 +3,7 @@
 //! an undo rebinds, a new change drops the redo steps).
 
 use crate::client::{Client, Frame, Server};
-use deform::shapes::icosphere;
+use deform::mesh::shapes::icosphere;
 use glam::DVec3;
 use serde_json::{json, Value};
 

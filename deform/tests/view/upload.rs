@@ -3,7 +3,7 @@
 
 use crate::client::{Client, Frame, Server};
 use base64::Engine;
-use deform::shapes::icosphere;
+use deform::mesh::shapes::icosphere;
 use serde_json::json;
 
 fn upload(c: &mut Client, name: &str, bytes: &[u8]) {
@@ -18,14 +18,14 @@ fn an_uploaded_mesh_opens_as_a_scene_and_poses() {
     c.state();
     let ball = icosphere(2.0, 3);
     let mut obj = Vec::new();
-    deform::io::write_obj_to(&ball, &mut obj).unwrap();
+    deform::mesh::io::write_obj_to(&ball, &mut obj).unwrap();
     // A path in the name is dropped: only the file's own name names the scene.
     upload(&mut c, "some/dir/ball.OBJ", &obj);
     let (rest, triangles) = c.until(false, |f| match f {
         Frame::Mesh { rest, triangles } => Some((rest.clone(), triangles.clone())),
         _ => None,
     });
-    let want = deform::io::parse_obj(std::str::from_utf8(&obj).unwrap(), "ball").unwrap();
+    let want = deform::mesh::io::parse_obj(std::str::from_utf8(&obj).unwrap(), "ball").unwrap();
     assert_eq!(
         (rest, triangles),
         (want.positions.clone(), want.triangles.clone())

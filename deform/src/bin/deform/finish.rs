@@ -56,8 +56,8 @@ pub fn displacement(rest: &Mesh, posed: &[DVec3]) -> Vec<f64> {
 /// [`pose_and_finish`] for a lattice or a cage, posed on the GPU as `gpu` chooses (its adapter
 /// in the report).
 pub fn pose_control_and_finish(
-    d: &dyn Deformer,
-    binding: &deform::control::ControlBinding,
+    d: &(impl Deformer + ?Sized),
+    binding: &deform::blend::control::ControlBinding,
     gpu: crate::shared_args::GpuChoice,
     (mesh, motors): (&Mesh, &[cga::ScaledMotor]),
     look: Look,
@@ -76,7 +76,7 @@ pub fn pose_control_and_finish(
 
 /// Pose, time, report and write, the preview coloured by displacement.
 pub fn pose_and_finish(
-    d: &dyn Deformer,
+    d: &(impl Deformer + ?Sized),
     mesh: &Mesh,
     motors: &[cga::ScaledMotor],
     look: Look,

@@ -61,7 +61,7 @@ impl GpuPoser {
     }
 
     /// Upload a lattice's or cage's binding (either form), as [`GpuPoser::open`].
-    pub fn open_control(binding: &deform::control::ControlBinding) -> Result<GpuPoser> {
+    pub fn open_control(binding: &deform::blend::control::ControlBinding) -> Result<GpuPoser> {
         let ctx = context()?;
         let blend = deform::gpu::GpuBlend::bind_control(&ctx, binding)
             .map_err(|e| anyhow::anyhow!("--gpu: {e}"))?;
@@ -102,7 +102,7 @@ impl GpuPoser {
     }
 
     /// Always the error that says how to build with the GPU.
-    pub fn open_control(_: &deform::control::ControlBinding) -> Result<GpuPoser> {
+    pub fn open_control(_: &deform::blend::control::ControlBinding) -> Result<GpuPoser> {
         Err(no_gpu_feature())
     }
 

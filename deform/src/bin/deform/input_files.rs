@@ -13,12 +13,12 @@ use std::path::Path;
 
 /// Read a mesh, validated for deformation.
 pub fn read_mesh(path: &Path) -> Result<Mesh> {
-    usable(path, deform::io::read_mesh(path)?)
+    usable(path, deform::mesh::io::read_mesh(path)?)
 }
 
 /// `mesh`, read from `path`, if it passes the checks for deformation.
 fn usable(path: &Path, mesh: Mesh) -> Result<Mesh> {
-    deform::check_solvable(&mesh)
+    deform::mesh::validate::check_solvable(&mesh)
         .with_context(|| format!("{}: not a usable mesh", path.display()))?;
     Ok(mesh)
 }
@@ -32,7 +32,7 @@ pub fn read_selection(path: &Path, vertex_count: usize) -> Result<Selection> {
         .map(str::to_ascii_lowercase);
     let sel = match ext.as_deref() {
         Some("dmat") => {
-            let m = deform::io::read_dmat(path)?;
+            let m = deform::mesh::io::read_dmat(path)?;
             selection_from_dmat(&m, vertex_count, &name)?
         }
         Some("json") => {
@@ -52,7 +52,7 @@ pub const MAX_DOCUMENT_BYTES: u64 = 1 << 30;
 /// Read a text file (or pipe) of at most [`MAX_DOCUMENT_BYTES`].
 pub fn read_text(path: &Path) -> Result<String> {
     let shown = path.display();
-    let bytes = deform::io::read_limited(path, MAX_DOCUMENT_BYTES)
+    let bytes = deform::mesh::io::read_limited(path, MAX_DOCUMENT_BYTES)
         .with_context(|| format!("{shown}: cannot read"))?;
     String::from_utf8(bytes).with_context(|| format!("{shown}: not UTF-8 text"))
 }
@@ -79,8 +79,8 @@ pub fn read_rig(input: &RigInput) -> Result<Rig> {
         );
     };
     let mesh = read_mesh(&input.model)?;
-    let skeleton = deform::io::read_tgf(s)?;
-    let weights = deform::io::read_dmat(w)?;
+    let skeleton = deform::mesh::io::read_tgf(s)?;
+    let weights = deform::mesh::io::read_dmat(w)?;
     libigl_rig(mesh, &skeleton, &weights)
         .with_context(|| format!("{}: cannot rig", input.model.display()))
 }

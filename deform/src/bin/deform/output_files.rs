@@ -29,7 +29,7 @@ fn canonical(p: &Path) -> PathBuf {
 pub fn check_outputs(inputs: &[&Path], outputs: &[&Path]) -> Result<()> {
     for i in inputs {
         if let Ok(m) = std::fs::metadata(i) {
-            if deform::io::is_device(&m.file_type()) {
+            if deform::mesh::io::is_device(&m.file_type()) {
                 bail!("{}: a device, not a file: refusing to read it", i.display());
             }
         }
@@ -120,7 +120,7 @@ pub fn write_deformed(path: &Path, mesh: &Mesh, input: Option<&ObjInputExtras>) 
         return write_mesh(path, mesh);
     };
     let normals = input.normals.then(|| mesh.seamless_vertex_normals());
-    let extras = deform::io::ObjExtras {
+    let extras = deform::mesh::io::ObjExtras {
         texture: input.texture.as_ref(),
         normals: normals.as_deref(),
         uvs: None,
@@ -141,7 +141,7 @@ pub fn write_mesh(path: &Path, mesh: &Mesh) -> Result<()> {
     match ext.as_str() {
         "glb" => {
             check_finite(path, mesh)?;
-            let bytes = deform::io::glb_bytes(mesh)?;
+            let bytes = deform::mesh::io::glb_bytes(mesh)?;
             write_atomic(path, |w| {
                 w.write_all(&bytes)?;
                 Ok(())
@@ -150,7 +150,7 @@ pub fn write_mesh(path: &Path, mesh: &Mesh) -> Result<()> {
         "ply" => {
             check_finite(path, mesh)?;
             write_atomic(path, |w| {
-                deform::io::write_ply_to(mesh, w)?;
+                deform::mesh::io::write_ply_to(mesh, w)?;
                 Ok(())
             })
         }
@@ -187,7 +187,7 @@ fn check_finite(path: &Path, mesh: &Mesh) -> Result<()> {
 
 /// Write a mesh as OBJ (the vertex order and count as given).
 pub fn write_obj(path: &Path, mesh: &Mesh) -> Result<()> {
-    write_obj_with(path, mesh, deform::io::ObjExtras::default())
+    write_obj_with(path, mesh, deform::mesh::io::ObjExtras::default())
 }
 
 /// Write a rig's mesh (rest or posed) as OBJ with the texture coordinates of its look
@@ -206,7 +206,7 @@ pub fn write_rig_mesh(path: &Path, mesh: &Mesh, look: &deform::skinning::Look) -
     let normals = look
         .attribute("NORMAL")
         .map(|_| mesh.seamless_vertex_normals());
-    let extras = deform::io::ObjExtras {
+    let extras = deform::mesh::io::ObjExtras {
         uvs: uv.map(|a| &a.values[..]),
         normals: normals.as_deref(),
         texture: None,
@@ -215,10 +215,10 @@ pub fn write_rig_mesh(path: &Path, mesh: &Mesh, look: &deform::skinning::Look) -
 }
 
 /// Write a mesh as OBJ with texture coordinates and normals.
-fn write_obj_with(path: &Path, mesh: &Mesh, extras: deform::io::ObjExtras) -> Result<()> {
+fn write_obj_with(path: &Path, mesh: &Mesh, extras: deform::mesh::io::ObjExtras) -> Result<()> {
     check_finite(path, mesh)?;
     write_atomic(path, |w| {
-        deform::io::write_obj_with_to(mesh, extras, w)?;
+        deform::mesh::io::write_obj_with_to(mesh, extras, w)?;
         Ok(())
     })
 }

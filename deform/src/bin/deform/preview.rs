@@ -6,11 +6,12 @@
 //! is small, a third view zoomed on the vertices it made.
 
 use anyhow::Result;
+use deform::mesh::Aabb;
 use deform::render::{
     annotate, render_with_camera, Camera, Coloring, Image, Legend, Overlay, RenderOptions,
 };
 use deform::skinning::Rig;
-use deform::{Aabb, Mesh};
+use deform::Mesh;
 use glam::DVec3;
 
 const BACKGROUND: [u8; 3] = [235, 235, 235];

@@ -4,8 +4,10 @@
 
 use clap::builder::{PossibleValuesParser, TypedValueParser};
 use clap::{Args, ValueEnum};
-use deform::control::ControlForm;
-use deform::{BlendMethod, HarmonicOptions, LaplacianKind};
+use deform::blend::control::ControlForm;
+use deform::operators::harmonic::HarmonicOptions;
+use deform::operators::laplacian::LaplacianKind;
+use deform::BlendMethod;
 use std::path::{Path, PathBuf};
 
 /// Options every command that writes files shares.

@@ -82,7 +82,7 @@ impl Posed {
     }
 
     /// The bounding box of the model in the tool's space (to size what is drawn of a tool).
-    pub fn bounds(p: &Option<Posed>, rig: &Rig) -> Option<deform::Aabb> {
+    pub fn bounds(p: &Option<Posed>, rig: &Rig) -> Option<deform::mesh::Aabb> {
         match p {
             None => rig.mesh.bounding_box(),
             Some(p) => Mesh::new(p.positions.clone(), Vec::new()).bounding_box(),

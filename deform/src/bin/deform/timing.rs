@@ -12,7 +12,11 @@ pub fn ms(t: Instant) -> f64 {
 
 /// The best of a few poses with one scratch (the first pose fills the scratch and warms the
 /// caches), in milliseconds.
-pub fn time_pose(d: &dyn Deformer, keys: &[cga::ScaledMotor], out: &mut [DVec3]) -> Result<f64> {
+pub fn time_pose<D: Deformer + ?Sized>(
+    d: &D,
+    keys: &[cga::ScaledMotor],
+    out: &mut [DVec3],
+) -> Result<f64> {
     let mut poser = Poser::new(d);
     let mut best = f64::INFINITY;
     for _ in 0..5 {

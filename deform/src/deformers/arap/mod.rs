@@ -29,8 +29,8 @@
 //! relative change is small. The energy is non-increasing from the first iteration on.
 //!
 //! ```
-//! use deform::arap::{Arap, ArapOptions, Stop, Targets};
-//! use deform::shapes::{tube, tube_ring};
+//! use deform::deformers::arap::{Arap, ArapOptions, Stop, Targets};
+//! use deform::mesh::shapes::{tube, tube_ring};
 //! use cga::ScaledMotor;
 //! use glam::{DQuat, DVec3};
 //! let bar = tube(1.0, 10.0, 8, 11);
@@ -55,7 +55,7 @@ pub use local::{fit_rotor, fit_svd, LocalStep};
 pub use options::{ArapEnergy, ArapError, ArapOptions, ArapReport, Stop, Targets};
 
 use crate::blend::{check_key_count, check_positions, KeyError};
-use crate::deformers::deformer::{Deformer, PoseScratch};
+use crate::deformers::Deformer;
 use crate::deformers::Result;
 use crate::mesh::IndexList;
 use crate::mesh::Mesh;
@@ -408,8 +408,11 @@ impl Arap {
 }
 
 /// Keys are one motor per handle group; every pose starts from the rest pose and runs
-/// [`ArapOptions::stop`].
+/// [`ArapOptions::stop`]. The scratch is made on the first pose (where a failure to allocate
+/// the solve's scratch is an error), and replaced when it came from another `Arap`.
 impl Deformer for Arap {
+    type Scratch = Option<ArapScratch>;
+
     fn vertex_count(&self) -> usize {
         self.system.len()
     }
@@ -418,23 +421,28 @@ impl Deformer for Arap {
         self.handle_count()
     }
 
-    fn scratch(&self) -> PoseScratch {
-        // Made on the first pose, where a failure to allocate the solve's scratch is an error.
-        PoseScratch::default()
+    fn scratch(&self) -> Option<ArapScratch> {
+        None
     }
 
     fn pose_using(
         &self,
         keys: &[ScaledMotor],
-        scratch: &mut PoseScratch,
+        scratch: &mut Option<ArapScratch>,
         positions: &mut [DVec3],
     ) -> Result<()> {
         check_positions(self.vertex_count(), positions.len())?;
-        let w = scratch.get_or_try(|| self.scratch())?;
-        if self.check_scratch(w).is_err() {
-            // The scratch of another `Arap`: replaced, as the trait promises.
-            *w = self.scratch()?;
+        if scratch
+            .as_ref()
+            .is_none_or(|w| self.check_scratch(w).is_err())
+        {
+            // Empty, or the scratch of another `Arap`: made for this one.
+            *scratch = None;
         }
+        let w = match scratch {
+            Some(w) => w,
+            None => scratch.insert(Arap::scratch(self)?),
+        };
         self.fill_boundary(&Targets::Motors(keys), &mut w.boundary)?;
         let mut p = std::mem::take(&mut w.positions);
         p.copy_from_slice(&self.system.rest);

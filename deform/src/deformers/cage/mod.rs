@@ -12,8 +12,9 @@
 //! ([`check_encloses`]).
 //!
 //! ```
-//! use deform::cage::{CageDeformer, CageOptions};
-//! use deform::{shapes, Deformer};
+//! use deform::deformers::cage::{CageDeformer, CageOptions};
+//! use deform::mesh::shapes;
+//! use deform::Deformer;
 //! let cage = shapes::icosphere(2.0, 1);
 //! let model = shapes::icosphere(1.0, 1);
 //! let d = CageDeformer::bind(&model, &cage, CageOptions::default()).unwrap();
@@ -128,4 +129,8 @@ impl CageDeformer {
     }
 }
 
-crate::deformers::deformer::deformer_via_blend!(CageDeformer, binding);
+crate::deformers::deformer::deformer_via_blend!(
+    CageDeformer,
+    binding,
+    crate::blend::control::ControlScratch
+);

@@ -8,8 +8,9 @@
 //! each control point moves by its motor.
 //!
 //! ```
-//! use deform::ffd::{Ffd, FfdOptions};
-//! use deform::{shapes, Deformer};
+//! use deform::deformers::ffd::{Ffd, FfdOptions};
+//! use deform::mesh::shapes;
+//! use deform::Deformer;
 //! use cga::ScaledMotor;
 //! let bar = shapes::tube(1.0, 4.0, 8, 5);
 //! let ffd = Ffd::bind(&bar, [2, 2, 2], None, FfdOptions::default()).unwrap();
@@ -94,4 +95,8 @@ impl Ffd {
     }
 }
 
-crate::deformers::deformer::deformer_via_blend!(Ffd, binding);
+crate::deformers::deformer::deformer_via_blend!(
+    Ffd,
+    binding,
+    crate::blend::control::ControlScratch
+);

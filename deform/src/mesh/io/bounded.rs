@@ -19,8 +19,8 @@ pub const MAX_FILE_BYTES: u64 = 1 << 32;
 /// std::fs::create_dir_all(&dir).unwrap();
 /// let file = dir.join("five.txt");
 /// std::fs::write(&file, b"12345").unwrap();
-/// assert_eq!(deform::io::read_limited(&file, 5).unwrap(), b"12345");
-/// let e = deform::io::read_limited(&file, 4).unwrap_err();
+/// assert_eq!(deform::mesh::io::read_limited(&file, 5).unwrap(), b"12345");
+/// let e = deform::mesh::io::read_limited(&file, 4).unwrap_err();
 /// assert_eq!(e.kind(), std::io::ErrorKind::FileTooLarge);
 /// std::fs::remove_dir_all(&dir).unwrap();
 /// ```

@@ -86,7 +86,7 @@ fn header(bytes: &[u8], at: usize, ctx: Ctx) -> Result<(usize, usize, usize)> {
 /// or columns (e.g. `0 5`) parses, with no values.
 ///
 /// ```
-/// let m = deform::io::parse_dmat(b"2 3\n1 2 3\n4 5 6\n", "m").unwrap();
+/// let m = deform::mesh::io::parse_dmat(b"2 3\n1 2 3\n4 5 6\n", "m").unwrap();
 /// assert_eq!((m.rows, m.cols, m.get(2, 1)), (3, 2, 6.0));
 /// ```
 pub fn parse_dmat(bytes: &[u8], name: &str) -> Result<Dmat> {

@@ -38,11 +38,11 @@ pub fn read_medit(path: impl AsRef<Path>) -> Result<MeditMesh> {
 /// `Triangles`, `Quadrilaterals` (split into two triangles), `Tetrahedra`, `Edges`, each a
 /// count followed by entries with a trailing reference label; `End` stops. Coordinates must
 /// be finite and tetrahedra must refer to existing vertices (nothing else checks them);
-/// triangle indices past the last vertex are kept and reported by [`crate::mesh::validate()`].
+/// triangle indices past the last vertex are kept and reported by [`crate::mesh::validate::validate()`].
 ///
 /// ```
 /// let t = "MeshVersionFormatted 1\nDimension 3\nVertices\n3\n0 0 0 0\n1 0 0 0\n0 1 0 0\nTriangles\n1\n1 2 3 0\nEnd\n";
-/// let m = deform::io::parse_medit(t, "t").unwrap();
+/// let m = deform::mesh::io::parse_medit(t, "t").unwrap();
 /// assert_eq!(m.triangles, vec![[0, 1, 2]]);
 /// ```
 pub fn parse_medit(text: &str, name: &str) -> Result<MeditMesh> {

@@ -46,9 +46,9 @@ pub fn read_mesh(path: impl AsRef<Path>) -> Result<Mesh> {
 /// name's extension as [`read_mesh`] does; the bytes must be UTF-8 text.
 ///
 /// ```
-/// let m = deform::io::parse_mesh(b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "tri.OBJ").unwrap();
+/// let m = deform::mesh::io::parse_mesh(b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "tri.OBJ").unwrap();
 /// assert_eq!(m.triangles, vec![[0, 1, 2]]);
-/// assert!(deform::io::parse_mesh(b"", "tri.stl").is_err());
+/// assert!(deform::mesh::io::parse_mesh(b"", "tri.stl").is_err());
 /// ```
 pub fn parse_mesh(bytes: &[u8], name: &str) -> Result<Mesh> {
     let ext = extension(name);

@@ -22,10 +22,10 @@ pub fn read_obj(path: impl AsRef<Path>) -> Result<Mesh> {
 /// corners may be `v`, `v/t`, `v//n` or `v/t/n`, with negative (relative) indices allowed;
 /// polygons become triangle fans. Texture coordinates ([`parse_obj_textured`] reads them),
 /// normals, groups, materials, lines and points are ignored. Coordinates must be finite. Indices past the last vertex are kept and
-/// reported by [`crate::mesh::validate()`].
+/// reported by [`crate::mesh::validate::validate()`].
 ///
 /// ```
-/// let m = deform::io::parse_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n", "quad").unwrap();
+/// let m = deform::mesh::io::parse_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n", "quad").unwrap();
 /// assert_eq!(m.triangles, vec![[0, 1, 2], [0, 2, 3]]);
 /// ```
 pub fn parse_obj(text: &str, name: &str) -> Result<Mesh> {

@@ -16,10 +16,10 @@ pub fn read_off(path: impl AsRef<Path>) -> Result<Mesh> {
 /// `V F E`, `V` vertex lines, then `F` face lines `n i_0 .. i_{n-1}` (0-based, polygons are
 /// fan-triangulated, trailing colour values ignored). `#` starts a comment. Coordinates
 /// must be finite; indices past the last vertex are kept and reported by
-/// [`crate::mesh::validate()`].
+/// [`crate::mesh::validate::validate()`].
 ///
 /// ```
-/// let m = deform::io::parse_off("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "tri").unwrap();
+/// let m = deform::mesh::io::parse_off("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "tri").unwrap();
 /// assert_eq!((m.vertex_count(), m.triangles), (3, vec![[0, 1, 2]]));
 /// ```
 pub fn parse_off(text: &str, name: &str) -> Result<Mesh> {

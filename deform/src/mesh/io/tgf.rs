@@ -25,7 +25,7 @@ pub fn read_tgf(path: impl AsRef<Path>) -> Result<Skeleton> {
 /// Coordinates must be finite and bones must join existing joints.
 ///
 /// ```
-/// let s = deform::io::parse_tgf("1 0 0 0\n2 0 1 0\n#\n1 2\n#\n", "s").unwrap();
+/// let s = deform::mesh::io::parse_tgf("1 0 0 0\n2 0 1 0\n#\n1 2\n#\n", "s").unwrap();
 /// assert_eq!(s.bones, vec![[0, 1]]);
 /// ```
 pub fn parse_tgf(text: &str, name: &str) -> Result<Skeleton> {

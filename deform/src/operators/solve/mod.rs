@@ -109,7 +109,9 @@ impl Default for SolverOptions {
 /// A prefactored Dirichlet problem; see the [module docs](self).
 ///
 /// ```
-/// use deform::{cotangent_laplacian, DirichletSolver, Mesh, SolverOptions};
+/// use deform::operators::laplacian::cotangent_laplacian;
+/// use deform::operators::solve::{DirichletSolver, SolverOptions};
+/// use deform::Mesh;
 /// use glam::DVec3;
 /// // A strip of two triangles; fix vertex 0 to 0 and vertex 3 to 1.
 /// let m = Mesh::new(

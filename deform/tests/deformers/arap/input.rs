@@ -3,10 +3,14 @@
 
 use super::{bar, motor};
 use cga::ScaledMotor;
-use deform::arap::{Arap, ArapEnergy, ArapError, ArapOptions, Stop, Targets};
-use deform::shapes::tube;
-use deform::{CotangentOptions, Deformer, KeyError};
-use deform::{DeformError, MeshError, SolveError};
+use deform::blend::KeyError;
+use deform::deformers::arap::{Arap, ArapEnergy, ArapError, ArapOptions, Stop, Targets};
+use deform::deformers::DeformError;
+use deform::mesh::shapes::tube;
+use deform::mesh::MeshError;
+use deform::operators::laplacian::CotangentOptions;
+use deform::operators::SolveError;
+use deform::Deformer;
 use glam::{DQuat, DVec3};
 
 #[test]
@@ -203,7 +207,7 @@ fn degenerate_triangles_follow_the_foundation_policy() {
     assert!(p.iter().all(|x| x.is_finite()));
     let strict = ArapOptions {
         cotangent: CotangentOptions {
-            degenerate: deform::DegeneratePolicy::Error,
+            degenerate: deform::operators::laplacian::DegeneratePolicy::Error,
             ..CotangentOptions::default()
         },
         ..ArapOptions::default()
@@ -223,7 +227,7 @@ fn the_arap_command_moves_the_motor_groups_and_fixes_the_others() {
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).expect("dir");
     let (mesh, left, _, right) = bar();
-    deform::io::write_obj(&mesh, dir.join("bar.obj")).expect("obj");
+    deform::mesh::io::write_obj(&mesh, dir.join("bar.obj")).expect("obj");
     std::fs::write(
         dir.join("sel.json"),
         format!("{{\"0\": {left:?}, \"1\": {right:?}}}"),
@@ -259,7 +263,7 @@ fn the_arap_command_moves_the_motor_groups_and_fixes_the_others() {
         (v["fixed"].as_u64(), v["handles"].as_u64()),
         (Some(12), Some(1))
     );
-    let posed = deform::io::read_mesh(std::path::Path::new(&out)).expect("output");
+    let posed = deform::mesh::io::read_mesh(std::path::Path::new(&out)).expect("output");
     assert_eq!(posed.vertex_count(), mesh.vertex_count());
     for &v in &left {
         assert!(posed.positions[v as usize].distance(mesh.positions[v as usize]) < 1e-9);

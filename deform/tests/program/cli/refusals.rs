@@ -296,7 +296,7 @@ fn outputs_must_name_a_format_the_command_writes() {
     assert_eq!(&bytes[..4], b"glTF");
     let len = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
     let doc: serde_json::Value = serde_json::from_slice(&bytes[20..20 + len]).unwrap();
-    let bar = deform::io::read_obj(&mesh).unwrap();
+    let bar = deform::mesh::io::read_obj(&mesh).unwrap();
     let prim = &doc["meshes"][0]["primitives"][0];
     let count =
         |a: &serde_json::Value| doc["accessors"][a.as_u64().unwrap() as usize]["count"].clone();
@@ -565,7 +565,7 @@ fn inputs_past_their_readers_limit_are_refused_unread() {
         std::fs::File::create(&path).unwrap().set_len(len).unwrap();
         path
     };
-    let mesh = sparse("huge.obj", deform::io::MAX_FILE_BYTES + 1);
+    let mesh = sparse("huge.obj", deform::mesh::io::MAX_FILE_BYTES + 1);
     let args = [
         "handles", &mesh, "--select", &sel, "--motors", &motors, "-o", &out,
     ];
@@ -579,7 +579,7 @@ fn inputs_past_their_readers_limit_are_refused_unread() {
         "handles", &bar, "--select", &doc, "--motors", &motors, "-o", &out,
     ];
     refused(&args, "more than 1073741824 bytes", &out);
-    let model = sparse("huge.glb", deform::io::MAX_FILE_BYTES + 1);
+    let model = sparse("huge.glb", deform::mesh::io::MAX_FILE_BYTES + 1);
     let args = ["skin", &model, "-o", &out];
     refused(&args, "more than 4294967296 bytes", &out);
 }

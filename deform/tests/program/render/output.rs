@@ -2,7 +2,7 @@
 //! camera and at the image's edges, a large mesh, and bad input.
 
 use super::{cube, drawn, grid, icosphere, luminance, options, uv_sphere, BG, RED};
-use deform::MeshError;
+use deform::mesh::MeshError;
 use std::io::Cursor;
 
 use deform::render::{

@@ -13,7 +13,7 @@ use crate::shared_args::{MeshInput, OutputArgs};
 use crate::timing::ms;
 use anyhow::{bail, Context, Result};
 use clap::{Args, ValueEnum};
-use deform::arap::{Arap, ArapEnergy, ArapOptions, LocalStep, Stop, Targets};
+use deform::deformers::arap::{Arap, ArapEnergy, ArapOptions, LocalStep, Stop, Targets};
 use deform::input::parse_group_motors;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -93,12 +93,7 @@ pub fn run(a: &ArapArgs) -> Result<()> {
         },
         (Some(0), None) => bail!("--iterations must be at least 1"),
         (Some(n), None) => {
-            let what = format!("{n} iterations over {} vertices", mesh.vertex_count());
-            crate::budget::check(
-                "--iterations",
-                &what,
-                &[n as u64, mesh.vertex_count() as u64],
-            )?;
+            crate::budget::get().iterations("--iterations", n, mesh.vertex_count())?;
             Stop::Iterations(n)
         }
         (None, None) => Stop::Iterations(10),

@@ -12,7 +12,7 @@ use crate::shared_args::{FormArgs, OutputArgs};
 use crate::timing::ms;
 use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
-use deform::cage::{CageCoordinates, CageDeformer, CageOptions, HarmonicGrid};
+use deform::deformers::cage::{CageCoordinates, CageDeformer, CageOptions, HarmonicGrid};
 use deform::input::parse_group_motors;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -53,21 +53,11 @@ pub fn run(a: &CageArgs) -> Result<()> {
         // The grid's own limits first: the budget's hint to raise --max-work cannot help there.
         let grid = HarmonicGrid { resolution: a.grid };
         grid.check().context("--grid")?;
-        let g = a.grid as u64;
-        let what = format!(
-            "a harmonic grid of {g} nodes per side (its factorisation grows as the 4th power)"
-        );
-        // Measured on the knight in a cube: 0.30 GB at 64 nodes a side, 1.86 GB at 96, about 22
-        // bytes (three f64s) per g^4: the budget counts three elements per g^4.
-        crate::budget::check("--grid", &what, &[g, g, g, g, 3])?;
+        crate::budget::get().cage_grid("--grid", a.grid)?;
     }
     let mesh = read_mesh_checked(&a.mesh, &[a.cage.as_path(), a.motors.as_path()], &a.out)?;
     let cage = read_mesh(&a.cage)?;
-    // A coordinate per mesh vertex and cage vertex: a 2,562-vertex cage on armadillo-50k took
-    // 2.5 GB while binding, about 2.5 f64s a pair; the budget counts three.
-    let (n, m) = (mesh.vertex_count(), cage.vertex_count());
-    let what = format!("{n} mesh vertices by {m} cage vertices (a coordinate per pair)");
-    crate::budget::check("--cage", &what, &[n as u64, m as u64, 3])?;
+    crate::budget::get().cage_pairs("--cage", mesh.vertex_count(), cage.vertex_count())?;
     let name = a.motors.display().to_string();
     let motors = parse_group_motors(&read_text(&a.motors)?, &name, cage.vertex_count())?;
     let options = CageOptions {
@@ -88,7 +78,9 @@ pub fn run(a: &CageArgs) -> Result<()> {
     .map_err(|e| {
         let hint = if matches!(
             e,
-            deform::DeformError::Cage(deform::cage::CageError::SelfIntersecting { .. })
+            deform::deformers::DeformError::Cage(
+                deform::deformers::cage::CageError::SelfIntersecting { .. }
+            )
         ) {
             " (--allow-self-intersecting accepts it)"
         } else {

@@ -14,11 +14,11 @@ use crate::timing::{ms, time_pose};
 use anyhow::{Context, Result};
 use cga::{Motor, ScaledMotor};
 use clap::Args;
-use deform::shapes::{icosphere, tube, tube_ring};
-use deform::{
-    BlendMethod, ChainDeformer, FabrikOptions, HandleOptions, Mesh, MotorHandles, SplineDeformer,
-    SplineOptions, WeightScheme,
-};
+use deform::deformers::fabrik::FabrikOptions;
+use deform::deformers::handles::HandleOptions;
+use deform::deformers::spline::{SplineOptions, WeightScheme};
+use deform::mesh::shapes::{icosphere, tube, tube_ring};
+use deform::{BlendMethod, ChainDeformer, Mesh, MotorHandles, SplineDeformer};
 use glam::{DQuat, DVec3};
 use std::f64::consts::PI;
 use std::path::PathBuf;
@@ -293,7 +293,7 @@ pub fn run(a: &DemoArgs) -> Result<()> {
     // ARAP with rotors: a square bar, its left end fixed, its right end lifted and turned by
     // a motor; a few iterations of the spokes-and-rims energy from the rest pose.
     {
-        use deform::arap::{Arap, ArapOptions, Stop, Targets};
+        use deform::deformers::arap::{Arap, ArapOptions, Stop, Targets};
         let (sides, rings) = (6, 41);
         let beam = tube(1.0, LENGTH, sides, rings);
         let (fixed, end) = (tube_ring(sides, 0), tube_ring(sides, rings - 1));

@@ -12,7 +12,9 @@ use crate::spline_ends::{ends, straight_chain};
 use crate::timing::ms;
 use anyhow::{bail, Context, Result};
 use clap::Args;
-use deform::{ChainDeformer, FabrikOptions, SplineOptions};
+use deform::deformers::fabrik::FabrikOptions;
+use deform::deformers::spline::SplineOptions;
+use deform::ChainDeformer;
 use glam::DVec3;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -65,7 +67,7 @@ pub fn run(a: &FabrikArgs) -> Result<()> {
                 bail!("--joints must be at least 2");
             }
             let what = format!("a chain of {} joints", a.joints);
-            crate::budget::check("--joints", &what, &[a.joints as u64, 64])?;
+            crate::budget::get().check("--joints", &what, &[a.joints as u64, 64])?;
             straight_chain(&mesh, &first, &last, a.joints)
         }
     };
@@ -74,7 +76,7 @@ pub fn run(a: &FabrikArgs) -> Result<()> {
         a.iterations,
         joints.len()
     );
-    crate::budget::check(
+    crate::budget::get().check(
         "--iterations",
         &what,
         &[a.iterations as u64, joints.len() as u64],
@@ -85,7 +87,7 @@ pub fn run(a: &FabrikArgs) -> Result<()> {
         a.controls,
         joints.len()
     );
-    crate::budget::check(
+    crate::budget::get().check(
         "--controls",
         &what,
         &[joints.len() as u64, a.controls as u64, a.controls as u64],
@@ -128,7 +130,10 @@ pub fn run(a: &FabrikArgs) -> Result<()> {
     report.add("fit_residual", result.fit.max_residual);
     report.add("bind_ms", bind_ms);
     report.add("pose_ms", pose_ms);
-    if result.solution.status == deform::FabrikStatus::Unreachable && !a.out.quiet && !a.out.json {
+    if result.solution.status == deform::deformers::fabrik::FabrikStatus::Unreachable
+        && !a.out.quiet
+        && !a.out.json
+    {
         eprintln!(
             "note: the target is out of reach; the chain is stretched towards it ({} short)",
             deform::render::short_number(result.solution.distance)

@@ -11,7 +11,7 @@ use crate::shared_args::{FormArgs, OutputArgs};
 use crate::timing::ms;
 use anyhow::{Context, Result};
 use clap::Args;
-use deform::ffd::{Ffd, FfdOptions, LatticeBasis};
+use deform::deformers::ffd::{Ffd, FfdOptions, LatticeBasis};
 use deform::input::parse_group_motors;
 use glam::DVec3;
 use std::path::PathBuf;
@@ -42,24 +42,9 @@ pub struct FfdArgs {
 
 pub fn run(a: &FfdArgs) -> Result<()> {
     // The lattice's own limits first: the budget's hint to raise --max-work cannot help there.
-    deform::ffd::Lattice::check_dims(a.lattice).context("--lattice")?;
+    deform::deformers::ffd::Lattice::check_dims(a.lattice).context("--lattice")?;
     let mesh = read_mesh_checked(&a.mesh, &[a.motors.as_path()], &a.out)?;
-    // Per vertex: a weight per control point, and for Bernstein polynomials of degree L-1,
-    // M-1, N-1 their evaluation (quadratic in the degree).
-    let [l, m, n] = a.lattice.map(|c| c as u64);
-    let squares = [l, m, n]
-        .iter()
-        .try_fold(0u64, |acc, &d| acc.checked_add(d.checked_mul(d)?));
-    let per_vertex = crate::budget::product(&[l, m, n]).and_then(|points| match a.degree {
-        None => points.checked_add(squares?),
-        Some(_) => Some(points),
-    });
-    let what = format!(
-        "{l}x{m}x{n} control points for {} vertices",
-        mesh.vertex_count()
-    );
-    let factors = [per_vertex.unwrap_or(u64::MAX), mesh.vertex_count() as u64];
-    crate::budget::check("--lattice", &what, &factors)?;
+    crate::budget::get().ffd_lattice("--lattice", a.lattice, a.degree, mesh.vertex_count())?;
     let count: usize = a.lattice.iter().product();
     let name = a.motors.display().to_string();
     let motors = parse_group_motors(&read_text(&a.motors)?, &name, count)?;

@@ -11,8 +11,9 @@ use crate::shared_args::{BlendingArgs, MeshInput, OutputArgs};
 use crate::timing::ms;
 use anyhow::{Context, Result};
 use clap::Args;
+use deform::deformers::handles::HandleOptions;
 use deform::input::parse_group_motors;
-use deform::{HandleOptions, MotorHandles};
+use deform::MotorHandles;
 use glam::DVec3;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -34,7 +35,7 @@ pub fn run(a: &HandlesArgs) -> Result<()> {
     let (mesh, sel) = read_mesh_input(&a.input, &[a.motors.as_path()], &a.out)?;
     let name = a.motors.display().to_string();
     let motors = parse_group_motors(&read_text(&a.motors)?, &name, sel.groups.len())?;
-    crate::budget::check_groups("--select", sel.groups.len(), mesh.vertex_count())?;
+    crate::budget::get().handle_groups("--select", sel.groups.len(), mesh.vertex_count())?;
     let options = HandleOptions {
         harmonic: a.blending.harmonic(),
         method: a.blending.blend,

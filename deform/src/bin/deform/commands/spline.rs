@@ -12,8 +12,9 @@ use crate::spline_ends::ends;
 use crate::timing::{ms, time_pose};
 use anyhow::{bail, Context, Result};
 use clap::{Args, ValueEnum};
+use deform::deformers::spline::{SplineOptions, WeightScheme};
 use deform::input::parse_key_list;
-use deform::{SplineDeformer, SplineOptions, WeightScheme};
+use deform::SplineDeformer;
 use glam::DVec3;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -83,13 +84,8 @@ pub fn run(a: &SplineArgs) -> Result<()> {
         WeightScheme::Bezier => n.saturating_mul(n),
         scheme => scheme.width(keys.len()) as u64,
     };
-    let what = format!(
-        "{} {} keys over {} vertices",
-        keys.len(),
-        options.scheme.name(),
-        mesh.vertex_count()
-    );
-    crate::budget::check("--keys", &what, &[mesh.vertex_count() as u64, per_vertex])?;
+    let keys_named = format!("{} {}", keys.len(), options.scheme.name());
+    crate::budget::get().spline_keys("--keys", &keys_named, per_vertex, mesh.vertex_count())?;
     let t = Instant::now();
     let d = with_progress(
         "binding (harmonic field)",

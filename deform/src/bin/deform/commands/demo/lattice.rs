@@ -10,10 +10,10 @@ use crate::preview::{Look, POSED_INK};
 use crate::timing::{ms, time_pose};
 use anyhow::Result;
 use cga::ScaledMotor;
-use deform::cage::{CageDeformer, CageOptions};
-use deform::control::ControlForm;
-use deform::ffd::{Ffd, FfdOptions};
-use deform::shapes::tube;
+use deform::blend::control::{ControlForm, ControlScratch};
+use deform::deformers::cage::{CageDeformer, CageOptions};
+use deform::deformers::ffd::{Ffd, FfdOptions};
+use deform::mesh::shapes::tube;
 use deform::{BlendMethod, Deformer, Mesh};
 use glam::{DQuat, DVec3};
 use std::time::Instant;
@@ -26,7 +26,7 @@ fn run(
     name: &'static str,
     method: String,
     rest: &Mesh,
-    bind: impl FnOnce() -> deform::Result<Box<dyn Deformer>>,
+    bind: impl FnOnce() -> deform::Result<Box<dyn Deformer<Scratch = ControlScratch>>>,
     keys: &[ScaledMotor],
     look: Look,
 ) -> Result<DemoScene> {
@@ -77,11 +77,11 @@ pub fn scenes(length: f64) -> Result<Vec<DemoScene>> {
             {
                 // The lattice moved by its motors.
                 let mut look = Look::new("", "displacement");
-                let lattice = deform::ffd::Lattice::new(
+                let lattice = deform::deformers::ffd::Lattice::new(
                     [2, 2, 2],
                     bounds.0,
                     bounds.1,
-                    deform::ffd::LatticeBasis::Bernstein,
+                    deform::deformers::ffd::LatticeBasis::Bernstein,
                 )?;
                 let points = moved(&lattice.rest_points(), &keys);
                 overlays::lattice(&mut look.posed, &points, [2, 2, 2], POSED_INK);

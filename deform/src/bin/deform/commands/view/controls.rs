@@ -4,9 +4,9 @@
 //! basis, the cage's coordinates.
 
 use anyhow::{anyhow, bail, Result};
-use deform::cage::{CageCoordinates, CageDeformer, CageOptions, HarmonicGrid};
-use deform::control::ControlForm;
-use deform::ffd::{Ffd, FfdOptions, LatticeBasis};
+use deform::blend::control::{ControlForm, ControlScratch};
+use deform::deformers::cage::{CageCoordinates, CageDeformer, CageOptions, HarmonicGrid};
+use deform::deformers::ffd::{Ffd, FfdOptions, LatticeBasis};
 use deform::{Deformer, Mesh};
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
@@ -144,7 +144,7 @@ impl ControlChoice {
 
 /// A mesh bound to control points.
 pub struct Controls {
-    pub deformer: Box<dyn Deformer>,
+    pub deformer: Box<dyn Deformer<Scratch = ControlScratch>>,
     /// The control points at rest (the page's gizmos turn about them).
     pub points: Vec<DVec3>,
     /// Pairs of points the page joins with a line.

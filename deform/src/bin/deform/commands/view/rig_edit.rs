@@ -4,13 +4,14 @@
 use super::protocol::{AnimationInfo, EditSpec, Reply, RigInfo};
 use crate::timing::ms;
 use anyhow::{anyhow, bail, Result};
+use deform::blend::PreparedKeys;
 use deform::skinning::{
     bake_edits, glb_bytes, GlbOptions, JointEdit, KeyframeBlend, Rig, RigPart, RigPose, Skinning,
 };
 use deform::surgery::{
     CutOptions, Drill, DrillOptions, Frame, Scalpel, Surgery, TearOptions, VertexOrigin,
 };
-use deform::{BlendMethod, PreparedKeys};
+use deform::BlendMethod;
 use glam::DVec3;
 use std::time::Instant;
 

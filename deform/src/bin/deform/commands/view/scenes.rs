@@ -1,7 +1,7 @@
 //! What the editor opens: the demo's procedural scenes (no files needed) and the model named
 //! on the command line, each with the method it starts with.
 
-use deform::shapes::{icosphere, tube, tube_ring};
+use deform::mesh::shapes::{icosphere, tube, tube_ring};
 use deform::skinning::{procedural_arm, Rig};
 use deform::Mesh;
 use glam::DVec3;

@@ -19,14 +19,15 @@ use super::scenes::{Content, Method, Scene};
 use crate::timing::ms;
 use anyhow::{anyhow, bail, Context, Result};
 use cga::ScaledMotor;
-use deform::arap::{Arap, ArapOptions, ArapScratch, Stop, Targets};
-use deform::control::ControlForm;
+use deform::blend::control::ControlForm;
+use deform::blend::control::ControlScratch;
+use deform::blend::{BoundBlend, PreparedKeys};
+use deform::deformers::arap::{Arap, ArapOptions, ArapScratch, Stop, Targets};
+use deform::deformers::handles::HandleOptions;
+use deform::deformers::spline::SplineOptions;
 use deform::input::MotorSpec;
 use deform::surgery::{FaceBvh, RayHit};
-use deform::{
-    BlendMethod, BoundBlend, Deformer, HandleOptions, Mesh, MotorHandles, PoseScratch,
-    PreparedKeys, SplineDeformer, SplineOptions,
-};
+use deform::{BlendMethod, Deformer, Mesh, MotorHandles, SplineDeformer};
 use glam::DVec3;
 use std::time::Instant;
 
@@ -55,12 +56,12 @@ enum Bound {
     Spline {
         spline: Box<SplineDeformer>,
         rest: Vec<ScaledMotor>,
-        scratch: PoseScratch,
+        scratch: PreparedKeys,
     },
     /// An FFD lattice or a cage: one motor per control point.
     Control {
         controls: Box<Controls>,
-        scratch: PoseScratch,
+        scratch: ControlScratch,
     },
 }
 
@@ -405,7 +406,11 @@ impl Session {
         if self.method == Method::Handles {
             // A weight per vertex and group: a loaded selection may have thousands of groups.
             // (The spline's B-spline keys weigh a vertex by at most four of them.)
-            crate::budget::check_groups("the selection", sets.len(), self.mesh.vertex_count())?;
+            crate::budget::get().handle_groups(
+                "the selection",
+                sets.len(),
+                self.mesh.vertex_count(),
+            )?;
         }
         Ok(match self.method {
             Method::Handles => {

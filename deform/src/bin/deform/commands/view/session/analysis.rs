@@ -3,7 +3,9 @@
 //! factorisation and the solves only.
 
 use anyhow::Result;
-use deform::{harmonic_system, HarmonicOptions, Mesh, SystemAnalysis};
+use deform::operators::harmonic::{harmonic_system, HarmonicOptions};
+use deform::operators::solve::SystemAnalysis;
+use deform::Mesh;
 use std::hash::{Hash, Hasher};
 
 /// The analysis and the mesh (positions, triangles, options) it was made for.

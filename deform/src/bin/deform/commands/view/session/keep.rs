@@ -15,7 +15,7 @@ impl Session {
         let name = file_name(&self.scenes[self.scene].name, what)?;
         let obj = |mesh: &Mesh| -> Result<String> {
             let mut bytes = Vec::new();
-            deform::io::write_obj_to(mesh, &mut bytes)?;
+            deform::mesh::io::write_obj_to(mesh, &mut bytes)?;
             Ok(String::from_utf8(bytes)?)
         };
         let json_list = |specs: &[MotorSpec]| serde_json::to_string_pretty(specs);
@@ -59,7 +59,7 @@ impl Session {
                     Some(rig) => rig.glb()?,
                     None => {
                         let posed = Mesh::new(self.posed.clone(), self.mesh.triangles.clone());
-                        deform::io::glb_bytes(&posed)?
+                        deform::mesh::io::glb_bytes(&posed)?
                     }
                 };
                 let name = glb_name(scene, self.rig.is_some());
@@ -143,8 +143,9 @@ impl Session {
         let content = if lower.ends_with(".glb") || lower.ends_with(".gltf") {
             Content::Rig(Box::new(deform::skinning::parse_gltf(&bytes, &name, None)?))
         } else {
-            let mesh = deform::io::parse_mesh(&bytes, &name)?;
-            deform::check_solvable(&mesh).with_context(|| format!("{name}: not a usable mesh"))?;
+            let mesh = deform::mesh::io::parse_mesh(&bytes, &name)?;
+            deform::mesh::validate::check_solvable(&mesh)
+                .with_context(|| format!("{name}: not a usable mesh"))?;
             Content::Mesh {
                 mesh,
                 groups: Vec::new(),

@@ -6,7 +6,7 @@ use super::{Out, Session};
 use crate::commands::view::controls::ControlRequest;
 use crate::commands::view::scenes::Method;
 use anyhow::{anyhow, bail, Result};
-use deform::arap::{ArapEnergy, LocalStep};
+use deform::deformers::arap::{ArapEnergy, LocalStep};
 use deform::BlendMethod;
 
 /// ARAP's energy and local step, and the lattice and cage options, as a request gives them.

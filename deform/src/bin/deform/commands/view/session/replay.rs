@@ -5,7 +5,7 @@ use super::{Bound, Session};
 use crate::commands::view::controls::Coordinates;
 use crate::commands::view::scenes::Method;
 use anyhow::{bail, Result};
-use deform::ffd::LatticeBasis;
+use deform::deformers::ffd::LatticeBasis;
 use deform::input::{MotorSpec, RotateSpec};
 use glam::DVec3;
 
