@@ -5,7 +5,7 @@
 //!
 //! The harness is Rust code meant to be included next to the generated module (it uses
 //! `super::*`); `tests/` builds it for every spec in `algebras/`. Numeric checks made while
-//! generating (before the emitter relies on a result) live beside it in [`crate::generator::verify`].
+//! generating (before the emitter relies on a result) live beside it in `generator::verify`.
 
 use crate::generator::emit::{snake, Generated, Method, Op};
 use crate::generator::spec::{Spec, TypeDef};

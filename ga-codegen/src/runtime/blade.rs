@@ -84,7 +84,7 @@ pub(crate) enum BladeNameError {
 ///
 /// Linear in the length of the name times the size of the basis: the ways to split each
 /// tail of the name are counted once (capped at two), from the end, instead of by
-/// backtracking. The bases of a [`crate::Metric`] are prefix-free, so there is at most one
+/// backtracking. The bases of a [`crate::runtime::metric::Metric`] are prefix-free, so there is at most one
 /// way; other bases may give [`BladeNameError::Ambiguous`]. A name that uses a basis vector
 /// past the 32 a [`Bitmap`] holds is [`BladeNameError::Unknown`].
 pub(crate) fn parse_blade(name: &str, basis: &[String]) -> Result<(Bitmap, i32), BladeNameError> {

@@ -1,6 +1,6 @@
 //! The Rust emitter: turns a validated [`Spec`] into a Rust module, as tokens.
 //!
-//! Every product of two declared types is expanded symbolically ([`crate::generator::symbolic`]),
+//! Every product of two declared types is expanded symbolically (`generator::symbolic`),
 //! every identically-zero term is dropped, and the result type is the smallest declared type that
 //! holds every remaining blade (a pure scalar is returned as the scalar type itself; a product
 //! that is identically zero is not emitted at all). The output is meant for `include!` inside a

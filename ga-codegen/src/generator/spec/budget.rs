@@ -4,23 +4,23 @@
 //! symbolic polynomial (a few microseconds and about a kilobyte at the peak, on a laptop core),
 //! and is proportional to the code emitted. With `m` the mean number of terms of a product of
 //! two basis blades (1 for a diagonal metric, more for a dense one; measured on a sample of
-//! blade pairs by congruence, see [`MetricCost`]):
+//! blade pairs by congruence, see `MetricCost`):
 //!
 //! - the exact product table of the basis blades: `4^n` times the work of one entry;
 //! - each type of `w` blades (stored and constant): `2 m w^2 + 8 w` for its unary methods
-//!   (reverse, dual, norm, scalar products) plus [`ITEMS_PER_TYPE`] emitted items;
+//!   (reverse, dual, norm, scalar products) plus `ITEMS_PER_TYPE` emitted items;
 //! - each ordered pair of types: `3 m w_a w_b` for the geometric and outer products and the
-//!   left contraction, plus [`ITEMS_PER_PAIR`] emitted items (`*`, `^`, `|`, `+`, `-`, `From`);
+//!   left contraction, plus `ITEMS_PER_PAIR` emitted items (`*`, `^`, `|`, `+`, `-`, `From`);
 //! - each sandwich of a versor of `v` blades on an operand of `x`: `m v x + 2 m^2 v^2 x` (the
 //!   product `V X` and then `(V X) ~V`), plus its matrix form;
-//! - each emitted item costs [`ITEM`] units (formatting, parsing, printing).
+//! - each emitted item costs `ITEM` units (formatting, parsing, printing).
 //!
 //! Measured (release build, one core): `algebras/cga.toml` is about 0.13 million units
 //! (0.5 s), `--signature 7,0,0` 1.46 million (3.4 s, 830 MB), a dense 6-dimensional metric
 //! 0.94 million (2.6 s), 80 two-blade types about 1.7 million (2.8 s, 870 MB); refused:
 //! `--signature 8,0,0` (about 10 million units; it took 50 s and 4.7 GB), 150 two-blade types
 //! (5.8 million; 2.8 GB), a dense 7-dimensional metric (10.8 million; 16 s). The budget is
-//! [`BUDGET`].
+//! `BUDGET`.
 
 use super::error::{SpecError, SpecErrorKind, SpecLocation, TooLarge};
 use super::{SandwichDef, TypeDef};
