@@ -38,7 +38,7 @@
 //! # Rules
 //!
 //! - Metric entries are read as the decimal they are written as (`0.1` is exactly 1/10) and
-//!   their exact products must fit in 128-bit rationals ([`exact`]).
+//!   their exact products must fit in 128-bit rationals (`exact.rs`).
 //! - Basis names are `e` + letters or digits, not Rust keywords, and their suffixes are
 //!   prefix-free (not `e1` with `e12`), so every blade name reads one way, in linear time.
 //! - Type names are UpperCamelCase, not keywords, not `Scalar`, `Sandwich`, `F64x2`, `F32x4`,
@@ -47,7 +47,7 @@
 //!   work proportional to the code emitted.
 //!
 //! Validation runs in phases, one module each: `metric` (basis and metric),
-//! `types`, `sandwiches`, [`budget`], [`exact`]. Every error carries a [`SpecLocation`].
+//! `types`, `sandwiches`, [`budget`], `exact`. Every error carries a [`SpecLocation`].
 
 pub mod budget;
 mod error;
