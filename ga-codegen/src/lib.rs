@@ -5,46 +5,39 @@
 //! expands every product symbolically with exact coefficients, drops every term that is
 //! identically zero, and emits `#[repr(C)]` Rust types with straight-line products.
 //!
-//! It also holds the slow generic [`Multivector`] that every generated function is tested
-//! against. The runtime part ([`Algebra`], [`Multivector`]) is always built; the generator
-//! itself is behind the default `codegen` feature.
+//! The crate has two parts, one folder each:
+//!
+//! - [`runtime`]: what generated code links against, always built: the algebra and its exact
+//!   metric ([`runtime::algebra`], [`runtime::metric`], [`runtime::rational`],
+//!   [`runtime::blade`]), the slow generic [`runtime::multivector::Multivector`] that every
+//!   generated function is tested against, and the lane types of the generated lane forms
+//!   ([`runtime::f64x2`], [`runtime::f32x4`], [`runtime::wide_lanes`]).
+//! - `generator` (the default `codegen` feature): spec parsing and validation
+//!   (`generator::spec`), the symbolic engine, the Rust and WGSL emitter (`generator::emit`)
+//!   and the check harness (`generator::checks`).
+//!
+//! Every item has one path, in its part, except this small prelude at the root: the front door
+//! of each part, [`Algebra`] and [`Multivector`] (the two runtime items non-lane generated code
+//! names, as `{runtime}::Algebra` and `{runtime}::Multivector`: a module passed as the
+//! generator's `runtime` path must provide them), and, with `codegen`, `Spec`, `SpecError`,
+//! `generate`, `generate_wgsl`, `EmitOptions`, `ScalarType` and `GenError`. Lane forms name
+//! their lane types by their one path under `{runtime}::runtime`.
 
 #![warn(missing_docs)]
 // Matrices and blade tables are indexed by position on purpose: the index loops read like the
 // formulas they implement.
 #![allow(clippy::needless_range_loop)]
 
-pub mod algebra;
-pub mod blade;
-pub mod ident;
-pub mod lanes;
-pub mod lanes4;
-pub mod metric;
-pub mod multivector;
-pub mod rational;
-pub mod wide;
-
-pub use algebra::Algebra;
-pub use metric::{Metric, MetricError};
-pub use multivector::Multivector;
-pub use rational::Rational;
+pub mod runtime;
 
 #[cfg(feature = "codegen")]
-pub mod spec;
-#[cfg(feature = "codegen")]
-pub mod symbolic;
+pub mod generator;
+
+// The prelude (see the crate docs): the only items with a second path.
+pub use runtime::algebra::Algebra;
+pub use runtime::multivector::Multivector;
 
 #[cfg(feature = "codegen")]
-pub use spec::{Spec, SpecError};
+pub use generator::emit::{generate, generate_wgsl, EmitOptions, GenError, ScalarType};
 #[cfg(feature = "codegen")]
-pub mod emit;
-#[cfg(feature = "codegen")]
-pub use emit::{generate, generate_wgsl, EmitOptions, GenError, Generated, Method, Op, ScalarType};
-#[cfg(feature = "codegen")]
-pub mod checks;
-#[cfg(feature = "codegen")]
-pub mod factor;
-#[cfg(feature = "codegen")]
-pub mod unit_versor;
-#[cfg(feature = "codegen")]
-pub mod verify;
+pub use generator::spec::{Spec, SpecError};

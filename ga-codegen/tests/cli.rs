@@ -168,7 +168,7 @@ fn devices_folders_and_huge_specs_are_refused() {
     let huge = dir.join("huge.toml");
     std::fs::write(
         &huge,
-        "#".repeat(ga_codegen::spec::MAX_SPEC_BYTES as usize + 1),
+        "#".repeat(ga_codegen::generator::spec::MAX_SPEC_BYTES as usize + 1),
     )
     .unwrap();
     let huge = huge.to_string_lossy().into_owned();

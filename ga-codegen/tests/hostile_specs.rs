@@ -4,8 +4,9 @@
 //! names that are prefixes of each other or keywords, and blade names of any length; the
 //! named cases are the ones a hostile user found.
 
-use ga_codegen::spec::{RawSpec, RawType, SpecErrorKind, SpecLocation, TooLarge};
-use ga_codegen::{generate, Algebra, EmitOptions, MetricError, Spec};
+use ga_codegen::generator::spec::{RawSpec, RawType, SpecErrorKind, SpecLocation, TooLarge};
+use ga_codegen::runtime::metric::MetricError;
+use ga_codegen::{generate, Algebra, EmitOptions, Spec};
 use proptest::prelude::*;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
@@ -312,7 +313,7 @@ proptest! {
         if let Ok(spec) = outcome.unwrap() {
             for t in &spec.types {
                 let mut fields: Vec<&str> = t.fields.iter().map(|f| f.name.as_str()).collect();
-                prop_assert!(fields.iter().all(|f| !ga_codegen::ident::is_keyword(f)));
+                prop_assert!(fields.iter().all(|f| !ga_codegen::runtime::ident::is_keyword(f)));
                 fields.sort_unstable();
                 fields.dedup();
                 prop_assert_eq!(fields.len(), t.fields.len());
@@ -393,7 +394,7 @@ fn the_generic_multivector_refuses_other_algebras_and_blades() {
         let _ = g3.gp_blades(0, 8);
     });
     assert!(m.contains("in an algebra of 8 blades"), "{m}");
-    let r = ga_codegen::Rational::from_f64(1.0).unwrap();
+    let r = ga_codegen::runtime::rational::Rational::from_f64(1.0).unwrap();
     assert_eq!(g3.metric().checked_inner(&[r], &[r, r, r]), None);
 }
 

@@ -49,7 +49,7 @@ fn item(code: &str, head: &str) -> String {
 }
 
 fn snake(name: &str) -> String {
-    ga_codegen::emit::snake(name)
+    ga_codegen::generator::emit::snake(name)
 }
 
 #[test]

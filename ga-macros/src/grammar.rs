@@ -1,7 +1,7 @@
 //! The token grammar of `algebra!`: parsed with syn into a [`RawSpec`] plus the source range
 //! of every name and number, so that spec errors can point at the token they concern.
 
-use ga_codegen::spec::{RawSandwich, RawSpec, RawType};
+use ga_codegen::generator::spec::{RawSandwich, RawSpec, RawType};
 use ga_codegen::ScalarType;
 use proc_macro2::{Punct, Spacing, Span, TokenStream, TokenTree};
 use quote::ToTokens;

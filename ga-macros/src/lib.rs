@@ -61,7 +61,7 @@
 //!
 //! **From a file**: `algebra!(path = "spec.toml")`, the path relative to the directory of the
 //! calling crate's `Cargo.toml` (`CARGO_MANIFEST_DIR`), in the TOML format of
-//! `ga_codegen::spec`. `scalar = f32` and `runtime = path` may follow. The file is tracked
+//! `ga_codegen::generator::spec`. `scalar = f32` and `runtime = path` may follow. The file is tracked
 //! (the expansion adds `const _: &[u8] = include_bytes!(..)`), so editing it re-expands.
 //!
 //! **Inline**: the fields of the TOML spec written as tokens. Top-level entries end with `;`

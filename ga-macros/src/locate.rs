@@ -4,7 +4,7 @@
 //! spec error is located by looking it up in the ranges recorded while parsing ([`Spans`]).
 
 use crate::grammar::{Range, Spans};
-use ga_codegen::spec::{RawSpec, SpecError, SpecLocation};
+use ga_codegen::generator::spec::{RawSpec, SpecError, SpecLocation};
 use ga_codegen::GenError;
 
 /// Where a spec error should be reported (the whole invocation when the spans lack it).

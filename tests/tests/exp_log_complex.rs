@@ -320,5 +320,5 @@ fn every_closed_form_is_emitted_there() {
     ] {
         assert!(code.contains(item), "{item}");
     }
-    assert!(ga_codegen::emit::refusals(&spec).is_empty());
+    assert!(ga_codegen::generator::emit::refusals(&spec).is_empty());
 }

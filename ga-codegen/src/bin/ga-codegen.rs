@@ -17,7 +17,7 @@
 //! `--exp-log` makes it an error instead. `--wide` adds `pub mod wide`, structure-of-arrays twins of
 //! the versor types over a lane type (`F64x4`, `F32x8`), for loops over many operands. Errors name the file, the type and the blade, and exit with code 2.
 
-use ga_codegen::spec::SpecErrorKind;
+use ga_codegen::generator::spec::SpecErrorKind;
 use ga_codegen::{generate, EmitOptions, ScalarType, Spec};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -141,7 +141,7 @@ fn parse_signature(v: &str) -> Result<(usize, usize, usize), String> {
         [p, q] => (*p, *q, 0),
         _ => return Err(bad()),
     };
-    let most = ga_codegen::spec::budget::MAX_DIMENSION;
+    let most = ga_codegen::generator::spec::budget::MAX_DIMENSION;
     match p.checked_add(q).and_then(|s| s.checked_add(r)) {
         Some(n) if (1..=most).contains(&n) => Ok((p, q, r)),
         _ => Err(format!(
@@ -187,7 +187,7 @@ fn main() -> ExitCode {
         }
     };
     if !args.exp_log {
-        for (t, why) in ga_codegen::emit::refusals(&spec) {
+        for (t, why) in ga_codegen::generator::emit::refusals(&spec) {
             eprintln!(
                 "note: {}: type `{t}` gets no closed-form exp/log: {why} (--exp-log makes this an error)",
                 spec.source

@@ -1,0 +1,543 @@
+//! The Rust emitter: turns a validated [`Spec`] into a Rust module, as tokens.
+//!
+//! Every product of two declared types is expanded symbolically (`generator::symbolic`),
+//! every identically-zero term is dropped, and the result type is the smallest declared type that
+//! holds every remaining blade (a pure scalar is returned as the scalar type itself; a product
+//! that is identically zero is not emitted at all). The output is meant for `include!` inside a
+//! module (or a macro expansion): it has no inner attributes.
+//!
+//! The emitter works in phases, grouped by family, one file each:
+//! - `render.rs`: literals, identifiers and polynomials as tokens (and as text for docs);
+//! - `products/`: the module's types and products: `infer.rs` (result types of symbolic
+//!   products and the expressions that build them), `types.rs` (one struct per declared type
+//!   with its methods and scalar operators), `operators.rs` (binary operators between declared
+//!   types and conversions), `sandwich.rs` (fused sandwich products and their matrix
+//!   (outermorphism) form);
+//! - `lanes/`: lane forms: `mod.rs` (paired-lane `F64x2` forms of dense geometric products),
+//!   `quad.rs` (their 4-lane `F32x4` f32 forms), `wide.rs` (structure-of-arrays twins over a
+//!   lane type, for batches of operands);
+//! - `exp_log/`: closed-form `exp`, `log`, `sqrt` and `normalize` of even versors by the
+//!   invariant decomposition of bivectors: `mod.rs`, `decompose.rs`, `logarithm.rs`,
+//!   `log_double.rs`, `normalize.rs`, `turn_root.rs`;
+//! - `wgsl/`: the same types, products and sandwiches as WGSL (`generate_wgsl`; `exp.rs`: the
+//!   closed-form exponentials);
+//! - `library.rs`: serde and bytemuck impls and the list of types, for a library's API;
+//! - `summary.rs`: the human-readable table of what was emitted.
+//!
+//! Code is built as [`TokenStream`]s with `quote`; [`Generated::code`] parses them into a
+//! `syn::File` and formats it with prettyplease, and the `algebra!` macro returns the tokens
+//! as they are.
+
+mod exp_log;
+mod lanes;
+mod library;
+mod products;
+mod render;
+mod summary;
+mod wgsl;
+
+pub use exp_log::decompose::Refusal;
+pub use exp_log::refusals;
+pub use render::snake;
+pub use wgsl::generate_wgsl;
+
+use crate::generator::spec::Spec;
+use crate::generator::symbolic::BladeTable;
+use proc_macro2::TokenStream;
+use quote::{quote, ToTokens};
+use render::{int, lit};
+use std::cell::OnceCell;
+use std::fmt;
+
+/// The scalar type of the generated code.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum ScalarType {
+    /// `f32`.
+    F32,
+    /// `f64`.
+    #[default]
+    F64,
+}
+
+impl ScalarType {
+    /// The Rust type name.
+    pub fn name(self) -> &'static str {
+        match self {
+            ScalarType::F32 => "f32",
+            ScalarType::F64 => "f64",
+        }
+    }
+
+    /// The Rust type as tokens.
+    pub fn tokens(self) -> TokenStream {
+        match self {
+            ScalarType::F32 => quote!(f32),
+            ScalarType::F64 => quote!(f64),
+        }
+    }
+}
+
+/// Options of the emitter.
+#[derive(Clone, Debug)]
+pub struct EmitOptions {
+    /// Scalar type.
+    pub scalar: ScalarType,
+    /// Path of the `ga-codegen` crate in the generated code (default `::ga_codegen`). The
+    /// generated code names `{path}::Algebra` and `{path}::Multivector` (the crate's root
+    /// prelude) and, in lane forms, the lane types under `{path}::runtime` (`f64x2::F64x2`,
+    /// `f32x4::F32x4`, `wide_lanes::{Lane, F64x4, F32x8}`).
+    pub runtime: String,
+    /// The module is a library's public API: also emit `serde` and `bytemuck` impls behind
+    /// cargo features of those names (of the crate that includes the module, which then
+    /// depends on those crates optionally) and a `types` module re-exporting every
+    /// generated type. `ga-codegen --library`.
+    pub library: bool,
+    /// Make a bivector or even versor type that gets no closed-form `exp`/`log` (its span is
+    /// above the closed-form range, see [`refusals`]) an error ([`GenError::NoClosedForm`])
+    /// instead of an omission. `ga-codegen --exp-log`, `algebra!(exp_log = required; ..)`.
+    pub require_exp_log: bool,
+    /// Also emit `pub mod wide`: structure-of-arrays twins of the versor types and of the
+    /// types they act on, generic over a [`crate::runtime::wide_lanes::Lane`] (`F64x4`, `F32x8`, or the
+    /// scalar itself), with their sums, products and fused sandwiches. `ga-codegen --wide`.
+    pub wide: bool,
+}
+
+impl Default for EmitOptions {
+    fn default() -> Self {
+        EmitOptions {
+            scalar: ScalarType::F64,
+            runtime: "::ga_codegen".to_string(),
+            library: false,
+            require_exp_log: false,
+            wide: false,
+        }
+    }
+}
+
+/// Why code could not be generated from a valid spec.
+#[derive(Clone, Debug, PartialEq)]
+pub enum GenError {
+    /// A sandwich's declared output type cannot hold a blade of the result.
+    SandwichOutput {
+        /// The spec file.
+        file: String,
+        /// Versor type.
+        versor: String,
+        /// Operand type.
+        operand: String,
+        /// Declared output type.
+        output: String,
+        /// The blade it cannot hold (or a constant it does not keep).
+        blade: String,
+    },
+    /// A sandwich that is identically zero.
+    ZeroSandwich {
+        /// The spec file.
+        file: String,
+        /// Versor type.
+        versor: String,
+        /// Operand type.
+        operand: String,
+    },
+    /// Closed-form `exp`/`log` were required ([`EmitOptions::require_exp_log`]) and a type
+    /// cannot have them.
+    NoClosedForm {
+        /// The spec file.
+        file: String,
+        /// The bivector or even versor type.
+        ty: String,
+        /// Why (the span of its blades).
+        reason: String,
+    },
+    /// [`EmitOptions::runtime`] is not a Rust path.
+    RuntimePath {
+        /// The path as given.
+        path: String,
+        /// Why it does not parse.
+        reason: String,
+    },
+    /// A name that cannot be written in Rust, or emitted code that does not parse (a
+    /// generator bug).
+    Internal(String),
+}
+
+impl fmt::Display for GenError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            GenError::SandwichOutput { file, versor, operand, output, blade } => write!(
+                f,
+                "{file}: type `{output}`: `{blade}`: output of the sandwich of `{operand}` by `{versor}` cannot hold this blade (or keep this constant; constants need a `unit` versor)"
+            ),
+            GenError::ZeroSandwich { file, versor, operand } => {
+                write!(f, "{file}: type `{versor}`: `{operand}`: the sandwich is identically zero")
+            }
+            GenError::NoClosedForm { file, ty, reason } => {
+                write!(f, "{file}: type `{ty}`: no closed-form exp/log: {reason}")
+            }
+            GenError::RuntimePath { path, reason } => {
+                let shown: String = path.chars().take(80).collect();
+                let more = if path.chars().nth(80).is_some() { "..." } else { "" };
+                write!(
+                    f,
+                    "runtime path {shown:?}{more} is not a Rust path (names joined by `::`, \
+                     such as `::ga_codegen` or `crate::ga_runtime`): {reason}"
+                )
+            }
+            GenError::Internal(m) => write!(f, "internal generator error: {m}"),
+        }
+    }
+}
+
+impl std::error::Error for GenError {}
+
+/// What a product returns.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum OutType {
+    /// Identically zero: not emitted.
+    Zero,
+    /// A pure scalar: the scalar type.
+    Scalar,
+    /// A declared type (index).
+    Type(usize),
+}
+
+/// An emitted binary operation between two declared types.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Op {
+    /// `a * b`, the geometric product.
+    Geometric,
+    /// `a ^ b`, the outer product.
+    Outer,
+    /// `a | b`, the left contraction.
+    LeftContraction,
+    /// `a + b`.
+    Add,
+    /// `a - b`.
+    Sub,
+    /// `a.sandwich(b)`, `a * b * ~a` fused (with its matrix form).
+    Sandwich,
+    /// `B::from(a)`, a conversion into a type that holds every blade of `a`.
+    From,
+}
+
+impl Op {
+    /// The binary operators, in the order they are emitted for each pair of types.
+    pub const OPERATORS: [Op; 5] = [
+        Op::Geometric,
+        Op::Outer,
+        Op::LeftContraction,
+        Op::Add,
+        Op::Sub,
+    ];
+
+    /// The operator as written (`*`, `^`, `|`, `+`, `-`), or `sandwich` / `from`.
+    pub fn symbol(self) -> &'static str {
+        match self {
+            Op::Geometric => "*",
+            Op::Outer => "^",
+            Op::LeftContraction => "|",
+            Op::Add => "+",
+            Op::Sub => "-",
+            Op::Sandwich => "sandwich",
+            Op::From => "from",
+        }
+    }
+}
+
+impl fmt::Display for Op {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.symbol())
+    }
+}
+
+/// An emitted unary method whose result is not fixed by the type.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Method {
+    /// `rev()`: the reverse.
+    Rev,
+    /// `involute()`: the grade involution.
+    Involute,
+    /// `conjugate()`: the Clifford conjugate.
+    Conjugate,
+    /// `dual()`.
+    Dual,
+    /// `grade(k)`: the grade-`k` part.
+    Grade,
+    /// `normalized()`.
+    Normalized,
+    /// `inverse()`: the versor inverse.
+    Inverse,
+}
+
+impl Method {
+    /// The method's name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Rev => "rev",
+            Method::Involute => "involute",
+            Method::Conjugate => "conjugate",
+            Method::Dual => "dual",
+            Method::Grade => "grade",
+            Method::Normalized => "normalized",
+            Method::Inverse => "inverse",
+        }
+    }
+}
+
+/// One emitted binary operation, for the summary and the check harness.
+#[derive(Clone, Debug, PartialEq)]
+pub struct OpSummary {
+    /// The operation.
+    pub op: Op,
+    /// Left type.
+    pub left: String,
+    /// Right type.
+    pub right: String,
+    /// Result type name (the scalar type's name for scalars).
+    pub output: String,
+    /// Number of multiply terms after simplification.
+    pub terms: usize,
+}
+
+/// Generated code (as tokens) and its summary.
+#[derive(Clone, Debug)]
+pub struct Generated {
+    /// The module's items.
+    pub tokens: TokenStream,
+    /// The comment that heads the formatted file (says it is generated, and from what).
+    pub header: String,
+    /// Types: name and number of stored fields.
+    pub types: Vec<(String, usize)>,
+    /// Every emitted binary operation, sandwich and conversion (`from`).
+    pub ops: Vec<OpSummary>,
+    /// Emitted unary methods whose result is not fixed: (type, method).
+    pub methods: Vec<(String, Method)>,
+    /// Operations skipped because identically zero.
+    pub zero_ops: usize,
+    /// The closed-form exp/log impls, one line each (`Bivector exp -> Motor`,
+    /// `Motor log -> Bivector`, `Motor sqrt, normalize`).
+    pub closed_forms: Vec<String>,
+    code: OnceCell<Result<String, GenError>>,
+}
+
+impl Generated {
+    /// The module as a syntax tree; an error only for a generator bug.
+    pub fn file(&self) -> Result<syn::File, GenError> {
+        syn::parse2(self.tokens.clone()).map_err(|e| GenError::Internal(format!("{e}")))
+    }
+
+    /// The module formatted with prettyplease, after the header comment (computed once).
+    pub fn code(&self) -> Result<&str, GenError> {
+        self.code
+            .get_or_init(|| {
+                let file = self.file()?;
+                Ok(self.header.clone() + &prettyplease::unparse(&file))
+            })
+            .as_deref()
+            .map_err(Clone::clone)
+    }
+
+    /// Lines of formatted code (0 if it does not parse).
+    pub fn lines(&self) -> usize {
+        self.code().map_or(0, |c| c.lines().count())
+    }
+}
+
+/// The emitter's state: the spec, the symbolic engine and what has been emitted so far.
+struct Gen<'a> {
+    spec: &'a Spec,
+    table: BladeTable,
+    scalar: ScalarType,
+    /// `f64` or `f32`.
+    s: TokenStream,
+    /// The runtime crate's path.
+    rt: TokenStream,
+    /// The runtime crate's path as written.
+    runtime: String,
+    out: TokenStream,
+    ops: Vec<OpSummary>,
+    methods: Vec<(String, Method)>,
+    zero_ops: usize,
+    /// The closed-form exp/log impls emitted, for the summary.
+    closed_forms: Vec<String>,
+    /// Type indices ordered by size, for result inference.
+    by_size: Vec<usize>,
+    /// The generic algebra, for numerical checks at generation time.
+    alg: std::sync::Arc<crate::Algebra>,
+}
+
+/// Every type and field name must be a Rust identifier.
+fn check_names(spec: &Spec) -> Result<(), GenError> {
+    for t in &spec.types {
+        if !render::is_ident(&t.name) {
+            return Err(GenError::Internal(format!(
+                "{}: type `{}`: not a Rust identifier",
+                spec.source, t.name
+            )));
+        }
+        for f in &t.fields {
+            if !render::is_ident(&f.name) {
+                return Err(GenError::Internal(format!(
+                    "{}: type `{}`: `{}`: the blade name is not a Rust identifier",
+                    spec.source, t.name, f.name
+                )));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The most segments a runtime path may have (`::ga_codegen` has one).
+const MAX_RUNTIME_SEGMENTS: usize = 64;
+
+/// The generator state for a checked spec.
+fn gen<'a>(spec: &'a Spec, opts: &EmitOptions) -> Result<Gen<'a>, GenError> {
+    let refuse = |reason: String| GenError::RuntimePath {
+        path: opts.runtime.clone(),
+        reason,
+    };
+    let path = syn::parse_str::<syn::Path>(&opts.runtime).map_err(|e| refuse(e.to_string()))?;
+    // A path of thousands of segments overflowed the stack of the formatter's parser.
+    if path.segments.len() > MAX_RUNTIME_SEGMENTS {
+        return Err(refuse(format!(
+            "{} segments, more than {MAX_RUNTIME_SEGMENTS}",
+            path.segments.len()
+        )));
+    }
+    if path.segments.iter().any(|s| !s.arguments.is_none()) {
+        return Err(refuse(
+            "generic arguments (a crate or module path has none)".into(),
+        ));
+    }
+    let rt = path.to_token_stream();
+    let mut by_size: Vec<usize> = (0..spec.types.len()).collect();
+    by_size.sort_by_key(|&i| spec.types[i].fields.len() + spec.types[i].constants.len());
+    Ok(Gen {
+        spec,
+        table: BladeTable::new(&spec.metric),
+        scalar: opts.scalar,
+        s: opts.scalar.tokens(),
+        rt,
+        runtime: opts.runtime.clone(),
+        out: TokenStream::new(),
+        ops: Vec::new(),
+        methods: Vec::new(),
+        zero_ops: 0,
+        closed_forms: Vec::new(),
+        by_size,
+        alg: crate::Algebra::new(spec.metric.clone()),
+    })
+}
+
+/// Generate the Rust module for a spec.
+pub fn generate(spec: &Spec, opts: &EmitOptions) -> Result<Generated, GenError> {
+    check_names(spec)?;
+    if opts.require_exp_log {
+        if let Some((ty, why)) = refusals(spec).into_iter().next() {
+            return Err(GenError::NoClosedForm {
+                file: spec.source.clone(),
+                ty,
+                reason: why.to_string(),
+            });
+        }
+    }
+    let mut g = gen(spec, opts)?;
+    g.header();
+    for ti in 0..spec.types.len() {
+        g.type_def(ti);
+    }
+    for ai in 0..spec.types.len() {
+        for bi in 0..spec.types.len() {
+            g.binary(ai, bi);
+        }
+    }
+    for d in &spec.sandwiches {
+        g.sandwich(d)?;
+    }
+    g.exp_log();
+    if opts.wide {
+        g.wide_module()?;
+    }
+    if opts.library {
+        g.library_items();
+    }
+    let header = format!(
+        "// Generated by ga-codegen from {} ({}, scalar {}). Do not edit: regenerate with\n// `ga-codegen {}{}`.\n",
+        render::one_line(&spec.source),
+        render::one_line(&spec.name),
+        opts.scalar.name(),
+        render::one_line(&spec.source),
+        match (opts.scalar, opts.library) {
+            (ScalarType::F64, false) => "",
+            (ScalarType::F64, true) => " --library",
+            (ScalarType::F32, false) => " --scalar f32",
+            (ScalarType::F32, true) => " --scalar f32 --library",
+        }
+    );
+    Ok(Generated {
+        tokens: g.out,
+        header,
+        types: spec
+            .types
+            .iter()
+            .map(|t| (t.name.clone(), t.fields.len()))
+            .collect(),
+        ops: g.ops,
+        methods: g.methods,
+        zero_ops: g.zero_ops,
+        closed_forms: g.closed_forms,
+        code: OnceCell::new(),
+    })
+}
+
+impl Gen<'_> {
+    /// Constants, the generic algebra, the `Sandwich` trait and the `Scalar` alias.
+    fn header(&mut self) {
+        let spec = self.spec;
+        let n = spec.metric.dim();
+        let (s, rt) = (&self.s, &self.rt);
+        let basis = spec
+            .metric
+            .names()
+            .iter()
+            .map(|b| proc_macro2::Literal::string(b));
+        let rows = (0..n).map(|i| {
+            let row = (0..n).map(|j| lit(spec.metric.get(i, j)));
+            quote!([#(#row),*])
+        });
+        let n = int(n);
+        let algebra_doc = render::doc(&format!(
+            "The generic algebra of this module, for the slow reference [`{}::Multivector`].",
+            self.runtime
+        ));
+        self.out.extend(quote! {
+            /// Names of the basis vectors, in order (blade bitmaps use this order).
+            pub const BASIS: [&str; #n] = [#(#basis),*];
+
+            /// The metric: `METRIC[i][j]` is the inner product of basis vectors `i` and `j`.
+            pub const METRIC: [[f64; #n]; #n] = [#(#rows),*];
+
+            #algebra_doc
+            pub fn algebra() -> ::std::sync::Arc<#rt::Algebra> {
+                static ALGEBRA: ::std::sync::OnceLock<::std::sync::Arc<#rt::Algebra>> = ::std::sync::OnceLock::new();
+                ALGEBRA
+                    .get_or_init(|| {
+                        let rows: ::std::vec::Vec<::std::vec::Vec<f64>> = METRIC.iter().map(|r| r.to_vec()).collect();
+                        #rt::Algebra::from_metric(&BASIS, &rows).expect("the metric was validated when the code was generated")
+                    })
+                    .clone()
+            }
+
+            /// The sandwich product `self * x * ~self` of a versor with `x`, fused into one expression.
+            pub trait Sandwich<X> {
+                /// The type of the result.
+                type Output;
+                /// `self * x * ~self`.
+                fn sandwich(&self, x: X) -> Self::Output;
+            }
+
+            /// The scalar type of this module.
+            pub type Scalar = #s;
+        });
+    }
+}

@@ -1,0 +1,239 @@
+//! Phase 4: refuse, before any product is expanded, a spec too large to generate.
+//!
+//! The estimate counts the work the generator does, in units of about one term inserted in a
+//! symbolic polynomial (a few microseconds and about a kilobyte at the peak, on a laptop core),
+//! and is proportional to the code emitted. With `m` the mean number of terms of a product of
+//! two basis blades (1 for a diagonal metric, more for a dense one; measured on a sample of
+//! blade pairs by congruence, see `MetricCost`):
+//!
+//! - the exact product table of the basis blades: `4^n` times the work of one entry;
+//! - each type of `w` blades (stored and constant): `2 m w^2 + 8 w` for its unary methods
+//!   (reverse, dual, norm, scalar products) plus `ITEMS_PER_TYPE` emitted items;
+//! - each ordered pair of types: `3 m w_a w_b` for the geometric and outer products and the
+//!   left contraction, plus `ITEMS_PER_PAIR` emitted items (`*`, `^`, `|`, `+`, `-`, `From`);
+//! - each sandwich of a versor of `v` blades on an operand of `x`: `m v x + 2 m^2 v^2 x` (the
+//!   product `V X` and then `(V X) ~V`), plus its matrix form;
+//! - each emitted item costs `ITEM` units (formatting, parsing, printing).
+//!
+//! Measured (release build, one core): `algebras/cga.toml` is about 0.13 million units
+//! (0.5 s), `--signature 7,0,0` 1.46 million (3.4 s, 830 MB), a dense 6-dimensional metric
+//! 0.94 million (2.6 s), 80 two-blade types about 1.7 million (2.8 s, 870 MB); refused:
+//! `--signature 8,0,0` (about 10 million units; it took 50 s and 4.7 GB), 150 two-blade types
+//! (5.8 million; 2.8 GB), a dense 7-dimensional metric (10.8 million; 16 s). The budget is
+//! `BUDGET`.
+
+use super::error::{SpecError, SpecErrorKind, SpecLocation, TooLarge};
+use super::{SandwichDef, TypeDef};
+use crate::runtime::algebra::Congruence;
+use crate::runtime::blade::Bitmap;
+use crate::runtime::metric::Metric;
+
+/// What a metric costs per blade product, measured on a sample of blade pairs.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct MetricCost {
+    /// Mean number of terms of a blade product (at least 1).
+    pub terms: f64,
+    /// Mean work of one entry of the exact product table.
+    pub entry: f64,
+}
+
+/// Blade pairs sampled (all of them in algebras of up to 4 vectors).
+const SAMPLE: u64 = 256;
+
+impl MetricCost {
+    /// Measure a metric; `None` when its exact products overflow (reported by the
+    /// exactness phase).
+    pub fn of(metric: &Metric) -> Option<MetricCost> {
+        let c = Congruence::new(metric)?;
+        let size = 1u32 << metric.dim();
+        let pairs: Vec<(Bitmap, Bitmap)> = if u64::from(size) * u64::from(size) <= SAMPLE {
+            (0..size)
+                .flat_map(|a| (0..size).map(move |b| (a, b)))
+                .collect()
+        } else {
+            // A fixed pseudo-random sample (64-bit LCG, high bits), the same on every run.
+            let mut x = 0x9e37_79b9_7f4a_7c15u64;
+            let mut next = move || {
+                x = x
+                    .wrapping_mul(6364136223846793005)
+                    .wrapping_add(1442695040888963407);
+                ((x >> 33) % u64::from(size)) as Bitmap
+            };
+            (0..SAMPLE).map(|_| (next(), next())).collect()
+        };
+        let back = (0..size).map(|f| c.spread_back(f)).sum::<usize>() as f64 / size as f64;
+        let (mut terms, mut entry) = (0.0, 0.0);
+        for &(a, b) in &pairs {
+            terms += c.product(a, b)?.len().max(1) as f64;
+            entry += 1.0 + (c.spread(a) * c.spread(b)) as f64 * back;
+        }
+        let pairs = pairs.len() as f64;
+        Some(MetricCost {
+            terms: terms / pairs,
+            entry: entry / pairs,
+        })
+    }
+}
+
+/// Largest number of basis vectors the generator takes: the general multivector of an
+/// 8-dimensional algebra has 256 blades and its products alone are 65,536 terms each.
+pub const MAX_DIMENSION: usize = 8;
+
+/// Largest estimate accepted, in units of work (about 5 s and 1.2 GB).
+pub(crate) const BUDGET: u64 = 2_000_000;
+
+/// Units of work per emitted item (an impl or a method).
+pub(crate) const ITEM: u64 = 40;
+
+/// Emitted items per type (struct, constructors, unary methods, conversions).
+pub(crate) const ITEMS_PER_TYPE: u64 = 12;
+
+/// Emitted items per ordered pair of types.
+pub(crate) const ITEMS_PER_PAIR: u64 = 6;
+
+/// The estimate of one spec, by part.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub(crate) struct Estimate {
+    /// The product table of the basis blades.
+    pub table: u64,
+    /// The unary methods of every type.
+    pub types: u64,
+    /// The binary operators of every ordered pair of types.
+    pub pairs: u64,
+    /// Every sandwich, with its index and units.
+    pub sandwiches: Vec<(usize, u64)>,
+}
+
+impl Estimate {
+    /// The estimate of a spec: its dimension, the cost of its metric, types and sandwiches.
+    pub fn of(
+        dim: usize,
+        cost: MetricCost,
+        types: &[TypeDef],
+        sandwiches: &[SandwichDef],
+    ) -> Estimate {
+        let width = |t: &TypeDef| (t.fields.len() + t.constants.len()) as f64;
+        let widths: Vec<f64> = types.iter().map(width).collect();
+        let sum: f64 = widths.iter().sum();
+        let count = types.len() as f64;
+        let (m, item) = (cost.terms, ITEM as f64);
+        let units = |x: f64| x.min(u64::MAX as f64 / 8.0) as u64;
+        Estimate {
+            table: units(4f64.powi(dim as i32) * cost.entry),
+            types: units(
+                widths
+                    .iter()
+                    .map(|w| 2.0 * m * w * w + 8.0 * w + ITEMS_PER_TYPE as f64 * item)
+                    .sum(),
+            ),
+            pairs: units(3.0 * m * sum * sum + count * count * ITEMS_PER_PAIR as f64 * item),
+            sandwiches: sandwiches
+                .iter()
+                .enumerate()
+                .map(|(i, s)| {
+                    let (v, x) = (widths[s.versor], widths[s.operand]);
+                    (i, units(m * v * x + 2.0 * m * m * v * v * x + 3.0 * item))
+                })
+                .collect(),
+        }
+    }
+
+    /// The total.
+    pub fn total(&self) -> u64 {
+        self.table + self.types + self.pairs + self.sandwiches.iter().map(|s| s.1).sum::<u64>()
+    }
+}
+
+/// Refuse a spec over [`MAX_DIMENSION`] or over [`BUDGET`], saying why.
+pub(super) fn check(
+    metric: &Metric,
+    types: &[TypeDef],
+    sandwiches: &[SandwichDef],
+    source: &str,
+) -> Result<(), SpecError> {
+    let dim = metric.dim();
+    if dim > MAX_DIMENSION {
+        return Err(SpecError::new(
+            source,
+            SpecLocation::BasisList,
+            SpecErrorKind::TooLarge(TooLarge::Dimension {
+                n: dim,
+                max: MAX_DIMENSION,
+            }),
+        ));
+    }
+    let Some(cost) = MetricCost::of(metric) else {
+        // Exact products overflow: the exactness phase says which entry.
+        return Ok(());
+    };
+    let e = Estimate::of(dim, cost, types, sandwiches);
+    let estimate = e.total();
+    if estimate <= BUDGET {
+        return Ok(());
+    }
+    let biggest_sandwich = e.sandwiches.iter().max_by_key(|s| s.1).copied();
+    let (cause, location, type_name) = match biggest_sandwich {
+        Some((i, units)) if units >= e.pairs.max(e.types).max(e.table) => {
+            let s = &sandwiches[i];
+            let (v, x) = (&types[s.versor], &types[s.operand]);
+            (
+                format!(
+                    "the sandwich of `{}` ({} blades) by `{}` ({} blades): {units} units; \
+                     declare fewer sandwiches or smaller types",
+                    x.name,
+                    x.fields.len() + x.constants.len(),
+                    v.name,
+                    v.fields.len() + v.constants.len()
+                ),
+                SpecLocation::Sandwich(i),
+                Some(v.name.clone()),
+            )
+        }
+        _ if e.pairs >= e.types.max(e.table) => (
+            format!(
+                "the products of every pair of the {} types ({} ordered pairs, {} blades in \
+                 all): {} units; declare fewer or smaller types",
+                types.len(),
+                types.len() * types.len(),
+                types
+                    .iter()
+                    .map(|t| t.fields.len() + t.constants.len())
+                    .sum::<usize>(),
+                e.pairs
+            ),
+            SpecLocation::Spec,
+            None,
+        ),
+        _ if e.types >= e.table => (
+            format!(
+                "the methods of the {} types: {} units",
+                types.len(),
+                e.types
+            ),
+            SpecLocation::Spec,
+            None,
+        ),
+        _ => (
+            format!(
+                "the product table of the 2^{dim} blades ({:.1} terms per blade product): {} \
+                 units",
+                cost.terms, e.table
+            ),
+            SpecLocation::BasisList,
+            None,
+        ),
+    };
+    let mut err = SpecError::new(
+        source,
+        location,
+        SpecErrorKind::TooLarge(TooLarge::Work {
+            estimate,
+            budget: BUDGET,
+            cause,
+        }),
+    );
+    if let Some(t) = type_name {
+        err = err.in_type(&t);
+    }
+    Err(err)
+}
