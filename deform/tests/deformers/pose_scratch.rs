@@ -230,7 +230,13 @@ fn a_scratch_of_another_arap_is_replaced_not_misread() {
     let mut posed = vec![DVec3::ZERO; arap.vertex_count()];
     Deformer::pose_using(&arap, &keys, &mut foreign, &mut posed).expect("pose");
     assert_eq!(posed, expected);
-    // And the scratch now serves this ARAP: a second pose gives the same.
+    // And the scratch now serves this ARAP: a warm second pose agrees to rounding (the same
+    // 1e-12 as the threads above; a warm scratch is not bit-for-bit a fresh one).
     Deformer::pose_using(&arap, &keys, &mut foreign, &mut posed).expect("pose");
-    assert_eq!(posed, expected);
+    let worst = posed
+        .iter()
+        .zip(&expected)
+        .map(|(a, b)| (*a - *b).length())
+        .fold(0.0, f64::max);
+    assert!(worst <= 1e-12, "off by {worst:e}");
 }
