@@ -144,6 +144,19 @@ fn hostile_rig_inputs_exit_2_or_succeed_without_panicking() {
     std::fs::write(s.p("edit.json"), "{}").unwrap();
     let edit = format!("0={}", s.p("edit.json"));
     refused(&["skin", &man, "--time", "nan", "-o", &out], "finite", &out);
+    // A file per frame: a 10-vertex rig kept vertices x frames under the budget, and a million
+    // in-betweens (or 100,000 frames) ran past 20 s writing files. Each file counts now.
+    let simple_path = simple.to_string_lossy().into_owned();
+    refused(
+        &["skin", &simple_path, "--in-betweens", "1000000", "-o", &out],
+        "--in-betweens: 1000000 files",
+        &out,
+    );
+    refused(
+        &["skin", &simple_path, "--range", "0:1:100000", "-o", &out],
+        "--range: 100000 files",
+        &out,
+    );
     for tool in [
         vec!["cut", &man, "--plane", "0,0,1,1"],
         vec![
