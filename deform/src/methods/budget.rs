@@ -124,19 +124,25 @@ impl WorkBudget {
         )
     }
 
-    /// Spline keys: every vertex weighed by `per_vertex` keys of `keys` (all of them for
-    /// Bezier keys, by de Casteljau's `n^2` steps, so `per_vertex = n^2` there).
+    /// Spline keys: every vertex weighed by the keys its `scheme` reaches (all `n` of them
+    /// for Bezier keys, by de Casteljau's `n^2` steps).
     ///
     /// # Errors
     /// As [`WorkBudget::check`].
     pub fn spline_keys(
         &self,
         item: &str,
-        keys: &str,
-        per_vertex: u64,
+        keys: usize,
+        scheme: crate::deformers::spline::WeightScheme,
         vertices: usize,
     ) -> Result<(), BudgetError> {
-        let what = format!("{keys} keys over {vertices} vertices");
+        use crate::deformers::spline::WeightScheme;
+        let n = keys as u64;
+        let per_vertex = match scheme {
+            WeightScheme::Bezier => n.saturating_mul(n),
+            scheme => scheme.width(keys) as u64,
+        };
+        let what = format!("{keys} {} keys over {vertices} vertices", scheme.name());
         self.check(item, &what, &[vertices as u64, per_vertex])
     }
 

@@ -78,14 +78,7 @@ pub fn run(a: &SplineArgs) -> Result<()> {
         harmonic: a.blending.harmonic(),
         method: a.blending.blend,
     };
-    // Bezier keys weigh every vertex by all n keys, by de Casteljau's n^2 steps.
-    let n = keys.len() as u64;
-    let per_vertex = match options.scheme {
-        WeightScheme::Bezier => n.saturating_mul(n),
-        scheme => scheme.width(keys.len()) as u64,
-    };
-    let keys_named = format!("{} {}", keys.len(), options.scheme.name());
-    crate::budget::get().spline_keys("--keys", &keys_named, per_vertex, mesh.vertex_count())?;
+    crate::budget::get().spline_keys("--keys", keys.len(), options.scheme, mesh.vertex_count())?;
     let t = Instant::now();
     let d = with_progress(
         "binding (harmonic field)",
