@@ -48,6 +48,9 @@ pub enum Error {
     /// A request over the work budget, refused before any work.
     #[error(transparent)]
     Budget(#[from] crate::methods::budget::BudgetError),
+    /// A method, option or pose request that cannot be taken.
+    #[error(transparent)]
+    Method(#[from] crate::methods::MethodError),
 }
 
 impl From<MeshError> for Error {

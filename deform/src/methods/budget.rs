@@ -16,6 +16,8 @@
 //! assert!(e.to_string().contains("100000 files"), "{e}");
 //! ```
 
+use crate::deformers::ffd::LatticeBasis;
+
 /// A request over the budget, naming the option that asked for it, what it comes to and the
 /// budget.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
@@ -147,8 +149,8 @@ impl WorkBudget {
     }
 
     /// An FFD lattice of `dims` control points on `vertices` vertices: a weight per vertex and
-    /// control point, and for Bernstein polynomials (`bspline_degree` `None`) their
-    /// evaluation, quadratic in the degree.
+    /// control point, and for Bernstein polynomials their evaluation, quadratic in the
+    /// degree.
     ///
     /// # Errors
     /// As [`WorkBudget::check`].
@@ -156,16 +158,16 @@ impl WorkBudget {
         &self,
         item: &str,
         dims: [usize; 3],
-        bspline_degree: Option<usize>,
+        basis: LatticeBasis,
         vertices: usize,
     ) -> Result<(), BudgetError> {
         let [l, m, n] = dims.map(|c| c as u64);
         let squares = [l, m, n]
             .iter()
             .try_fold(0u64, |acc, &d| acc.checked_add(d.checked_mul(d)?));
-        let per_vertex = product(&[l, m, n]).and_then(|points| match bspline_degree {
-            None => points.checked_add(squares?),
-            Some(_) => Some(points),
+        let per_vertex = product(&[l, m, n]).and_then(|points| match basis {
+            LatticeBasis::Bernstein => points.checked_add(squares?),
+            LatticeBasis::BSpline(_) => Some(points),
         });
         let what = format!("{l}x{m}x{n} control points for {vertices} vertices");
         self.check(
@@ -279,10 +281,14 @@ mod tests {
     fn lattice_estimates_follow_the_basis() {
         let b = WorkBudget { max_work: 1000 };
         // 4x4x4 = 64 points on 10 vertices: B-splines 640, Bernstein 64 + 48 = 112 per vertex.
-        assert!(b.ffd_lattice("--lattice", [4, 4, 4], Some(3), 10).is_ok());
-        assert!(b.ffd_lattice("--lattice", [4, 4, 4], None, 10).is_err());
         assert!(b
-            .ffd_lattice("--lattice", [usize::MAX, 2, 2], None, 10)
+            .ffd_lattice("--lattice", [4, 4, 4], LatticeBasis::BSpline(3), 10)
+            .is_ok());
+        assert!(b
+            .ffd_lattice("--lattice", [4, 4, 4], LatticeBasis::Bernstein, 10)
+            .is_err());
+        assert!(b
+            .ffd_lattice("--lattice", [usize::MAX, 2, 2], LatticeBasis::Bernstein, 10)
             .is_err());
     }
 }

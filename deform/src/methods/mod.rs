@@ -1,8 +1,25 @@
 //! The methods layer: what the `deform` program, its editor and a library caller share above
-//! the deformers, skinning and surgery. Today: the work budget that refuses oversized requests
-//! before anything is allocated ([`budget`]).
+//! the deformers, skinning and surgery:
+//! - [`method`]: the methods ([`Method`]) a mesh is posed by, and [`MethodError`];
+//! - [`named`]: every choice's names ([`named::Named`]), parsed and printed in one place;
+//! - [`settings`]: a method with its options ([`MethodSettings`]), each option named once
+//!   ([`settings::OPTIONS`]) for the program's flags, the editor's messages and the replayed
+//!   command ([`MethodSettings::args`]);
+//! - [`bound`]: a mesh bound by its settings ([`BoundMethod`]), posed from a motor per key;
+//! - [`scenes`]: the procedural scenes the demo and the editor open;
+//! - [`budget`]: the work budget that refuses oversized requests before anything is
+//!   allocated.
 //!
 //! **May use**: every layer below (mesh, operators, blend, deformers, skinning, surgery,
 //! render, input). Nothing below may use it.
 
+pub mod bound;
 pub mod budget;
+pub mod method;
+pub mod named;
+pub mod scenes;
+pub mod settings;
+
+pub use bound::BoundMethod;
+pub use method::{Method, MethodError};
+pub use settings::MethodSettings;

@@ -39,7 +39,11 @@ fn ffd_twists_a_bar_and_writes_obj_png_and_json() {
     std::fs::write(dir.join("m.json"), motors).unwrap();
     let (bar_obj, m_json) = (dir.join("bar.obj"), dir.join("m.json"));
     let (out_obj, out_png) = (dir.join("out.obj"), dir.join("out.png"));
-    for extra in [&[][..], &["--positional"][..], &["--degree", "1"][..]] {
+    for extra in [
+        &[][..],
+        &["--positional"][..],
+        &["--basis", "bspline-1"][..],
+    ] {
         let mut args = vec![
             "ffd",
             s(&bar_obj),
@@ -96,13 +100,13 @@ fn cage_identity_reproduces_the_mesh_and_a_small_cage_exits_2() {
     deform::mesh::io::write_obj(&icosphere(1.6, 1), dir.join("cage.obj")).unwrap();
     deform::mesh::io::write_obj(&icosphere(0.5, 1), dir.join("small.obj")).unwrap();
     std::fs::write(dir.join("id.json"), r#"{"*": {}}"#).unwrap();
-    for coords in ["mvc", "harmonic"] {
+    for coords in ["mean-value", "harmonic"] {
         let o = run(&[
             "cage",
             s(&dir.join("model.obj")),
             "--cage",
             s(&dir.join("cage.obj")),
-            "--coords",
+            "--coordinates",
             coords,
             "--grid",
             "24",

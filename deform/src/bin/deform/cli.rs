@@ -134,3 +134,96 @@ whole result's own vertices after refinement; holes: boundary_loops minus the bo
 loops the whole input had (over the same vertices), exact on a closed surface (a \
 through-drill of a closed limb makes 2) and an undercount where the input has open \
 boundaries of its own near the drill.";
+
+#[cfg(test)]
+mod method_flags {
+    //! The contract between the library's method settings and the flags: what
+    //! `MethodSettings::args` prints (the editor's replay command), clap parses back into
+    //! the same settings.
+    use super::{Cli, Command};
+    use clap::Parser;
+    use deform::deformers::ffd::LatticeBasis;
+    use deform::methods::named::{Coordinates, Named};
+    use deform::methods::{Method, MethodSettings};
+    use deform::BlendMethod;
+
+    /// The settings a parsed command binds by (the fields its method uses).
+    fn settings_of(c: &Command) -> MethodSettings {
+        let mut s = MethodSettings::default();
+        match c {
+            Command::Handles(a) => s.blend = a.blending.blend,
+            Command::Spline(a) => {
+                s.set_method(Method::Spline);
+                s.blend = a.blending.blend;
+            }
+            Command::Arap(a) => {
+                s.set_method(Method::Arap);
+                (s.arap.energy, s.arap.local_step) = (a.energy, a.local_step);
+            }
+            Command::Ffd(a) => {
+                s.set_method(Method::Ffd);
+                (s.lattice, s.basis) = (a.lattice, a.basis);
+                (s.blend, s.positional) = (a.form.blend, a.form.positional);
+            }
+            Command::Cage(a) => {
+                s.set_method(Method::Cage);
+                (s.coordinates, s.grid) = (a.coordinates, a.grid);
+                (s.blend, s.positional) = (a.form.blend, a.form.positional);
+            }
+            other => panic!("not a method: {other:?}"),
+        }
+        s
+    }
+
+    /// The fields `method` uses.
+    fn used(s: &MethodSettings) -> String {
+        let blend = (!s.positional && s.method.blends()).then_some(s.blend);
+        match s.method {
+            Method::Handles | Method::Spline => format!("{blend:?}"),
+            Method::Arap => format!("{:?} {:?}", s.arap.energy, s.arap.local_step),
+            Method::Ffd => format!("{blend:?} {} {:?} {:?}", s.positional, s.lattice, s.basis),
+            Method::Cage => {
+                let grid = (s.coordinates == Coordinates::Harmonic).then_some(s.grid);
+                format!("{blend:?} {} {:?} {grid:?}", s.positional, s.coordinates)
+            }
+        }
+    }
+
+    #[test]
+    fn the_printed_flags_parse_back_into_the_same_settings() {
+        let mut cases = 0;
+        for &method in Method::ALL {
+            for blend in BlendMethod::ALL {
+                for variant in 0..4 {
+                    let mut s = MethodSettings::default();
+                    s.set_method(method);
+                    s.blend = blend;
+                    if method.controls() && variant == 1 {
+                        s.set_positional(true).unwrap();
+                    }
+                    if variant == 2 {
+                        s.set("energy", "spokes").unwrap();
+                        s.set("local-step", "svd").unwrap();
+                        s.set("coordinates", "harmonic").unwrap();
+                        s.set("grid", "24").unwrap();
+                        s.set_lattice([5, 3, 2], LatticeBasis::BSpline(2)).unwrap();
+                    }
+                    if variant == 3 {
+                        s.set_lattice([2, 3, 4], LatticeBasis::Bernstein).unwrap();
+                    }
+                    let mut argv = vec!["deform".to_string(), method.name().into(), "m.obj".into()];
+                    for (flag, what) in method.inputs() {
+                        argv.extend([format!("--{flag}"), format!("{what}.json")]);
+                    }
+                    argv.extend(s.args());
+                    argv.extend(["-o".into(), "out.obj".into()]);
+                    let cli = Cli::try_parse_from(&argv)
+                        .unwrap_or_else(|e| panic!("{}: {e}", argv.join(" ")));
+                    assert_eq!(used(&settings_of(&cli.command)), used(&s), "{argv:?}");
+                    cases += 1;
+                }
+            }
+        }
+        assert_eq!(cases, Method::ALL.len() * BlendMethod::ALL.len() * 4);
+    }
+}

@@ -5,6 +5,8 @@
 use clap::builder::{PossibleValuesParser, TypedValueParser};
 use clap::{Args, ValueEnum};
 use deform::blend::control::ControlForm;
+use deform::methods::named::Named;
+use deform::methods::settings;
 use deform::operators::harmonic::HarmonicOptions;
 use deform::operators::laplacian::LaplacianKind;
 use deform::BlendMethod;
@@ -82,11 +84,16 @@ pub enum LaplacianArg {
     Cotangent,
 }
 
-/// A blend method by its library name ([`BlendMethod::name`]), parsed by its `FromStr`; the
-/// names are clap's possible values (listed in the help and in the error for any other).
+/// A choice by its library name ([`Named`]: the names the editor and the replayed command
+/// use too), parsed by the library; the names are clap's possible values (listed in the help
+/// and in the error for any other).
+pub fn named<T: Named + Clone + Send + Sync>() -> impl TypedValueParser<Value = T> {
+    PossibleValuesParser::new(T::names()).try_map(|name| T::from_name(&name))
+}
+
+/// A blend method by its library name.
 pub fn blend_method() -> impl TypedValueParser<Value = BlendMethod> {
-    PossibleValuesParser::new(BlendMethod::ALL.map(BlendMethod::name))
-        .try_map(|name| name.parse::<BlendMethod>())
+    named::<BlendMethod>()
 }
 
 /// How weights are computed and motors blended.
@@ -95,8 +102,8 @@ pub struct BlendingArgs {
     /// The Laplacian of the harmonic fields.
     #[arg(long, value_enum, default_value = "mean-value")]
     pub laplacian: LaplacianArg,
-    /// How the key motors are blended.
-    #[arg(long, value_parser = blend_method(), default_value = "motor-log")]
+    #[arg(long = settings::BLEND.name, help = settings::BLEND.help,
+          value_parser = blend_method(), default_value = "motor-log")]
     pub blend: BlendMethod,
 }
 
@@ -116,12 +123,10 @@ impl BlendingArgs {
 /// Positional or motor-valued posing of control points.
 #[derive(Args, Debug)]
 pub struct FormArgs {
-    /// Classic positional form: each control point moves by its motor, vertices follow the
-    /// weighted sum of the points.
-    #[arg(long)]
+    #[arg(long = settings::POSITIONAL.name, help = settings::POSITIONAL.help)]
     pub positional: bool,
-    /// How the motors are blended in the motor form.
-    #[arg(long, value_parser = blend_method(), default_value = "motor-log")]
+    #[arg(long = settings::BLEND.name, help = settings::BLEND.help,
+          value_parser = blend_method(), default_value = "motor-log")]
     pub blend: BlendMethod,
     /// Pose on the GPU (wgpu), in f32: needs a program built with `--features gpu`, and a GPU
     /// or Mesa's lavapipe (otherwise exit code 2); `--gpu=auto` poses on the CPU instead,
@@ -209,6 +214,7 @@ mod tests {
     fn blend_names_round_trip_and_others_are_refused() {
         for m in BlendMethod::ALL {
             assert_eq!(m.name().parse::<BlendMethod>(), Ok(m));
+            assert_eq!(BlendMethod::from_name(m.name()), Ok(m));
         }
         let e = "Matrix".parse::<BlendMethod>().unwrap_err();
         assert_eq!(e.given, "Matrix");

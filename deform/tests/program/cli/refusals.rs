@@ -100,8 +100,18 @@ fn huge_counts_and_non_finite_numbers_are_refused_before_any_work() {
     // 127 nodes a side passed the budget as 127^4 elements but took more than 6.7 GB.
     for grid in ["256", "127"] {
         let args = [
-            "cage", &mesh, "--cage", &mesh, "--coords", "harmonic", "--grid", grid, "--motors",
-            &motors, "-o", &out,
+            "cage",
+            &mesh,
+            "--cage",
+            &mesh,
+            "--coordinates",
+            "harmonic",
+            "--grid",
+            grid,
+            "--motors",
+            &motors,
+            "-o",
+            &out,
         ];
         refused(&args, "--grid", &out);
     }
@@ -473,8 +483,18 @@ fn hard_limits_are_named_before_the_budget() {
         assert!(!stderr(&run(&args)).contains("--max-work"), "{lattice}");
     }
     let args = [
-        "cage", &mesh, "--cage", &mesh, "--coords", "harmonic", "--grid", "1000", "--motors",
-        &motors, "-o", &out,
+        "cage",
+        &mesh,
+        "--cage",
+        &mesh,
+        "--coordinates",
+        "harmonic",
+        "--grid",
+        "1000",
+        "--motors",
+        &motors,
+        "-o",
+        &out,
     ];
     refused(&args, "outside 8 ..= 512", &out);
     assert!(!stderr(&run(&args)).contains("--max-work"));

@@ -9,29 +9,18 @@ use crate::overlays::centroid;
 use crate::preview::{Look, POSED_INK, REST_INK, TOOL_INK};
 use crate::progress::with_progress;
 use crate::report::Report;
-use crate::shared_args::{MeshInput, OutputArgs};
+use crate::shared_args::{named, MeshInput, OutputArgs};
 use crate::timing::ms;
 use anyhow::{bail, Context, Result};
-use clap::{Args, ValueEnum};
+use clap::Args;
 use deform::deformers::arap::{Arap, ArapEnergy, ArapOptions, LocalStep, Stop, Targets};
 use deform::input::parse_group_motors;
+use deform::methods::settings;
 use std::path::PathBuf;
 use std::time::Instant;
 
 /// Iteration cap of `--tolerance`.
 const MAX_ITERATIONS: usize = 1000;
-
-#[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
-pub enum EnergyArg {
-    SpokesAndRims,
-    Spokes,
-}
-
-#[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
-pub enum LocalStepArg {
-    Rotor,
-    Svd,
-}
 
 #[derive(Args, Debug)]
 pub struct ArapArgs {
@@ -42,18 +31,18 @@ pub struct ArapArgs {
     /// with a motor are handles moved rigidly by it; the other groups stay fixed.
     #[arg(long)]
     pub motors: PathBuf,
-    /// The rigidity energy: libigl's default, or Sorkine and Alexa's (the paper's).
-    #[arg(long, value_enum, default_value = "spokes-and-rims")]
-    pub energy: EnergyArg,
+    #[arg(long = settings::ENERGY.name, help = settings::ENERGY.help,
+          value_parser = named::<ArapEnergy>(), default_value = "spokes-and-rims")]
+    pub energy: ArapEnergy,
     /// Iterations from the rest pose (10 unless --tolerance is given).
-    #[arg(long, conflicts_with = "tolerance")]
+    #[arg(long = settings::ITERATIONS.name, conflicts_with = "tolerance")]
     pub iterations: Option<usize>,
     /// Iterate until the energy's relative change is at most this (at most 1000 iterations).
     #[arg(long, value_parser = crate::numbers::non_negative)]
     pub tolerance: Option<f64>,
-    /// The local rotation fit: the paper's rotor (Horn's 4x4 matrix) or the 3x3 SVD.
-    #[arg(long, value_enum, default_value = "rotor")]
-    pub local_step: LocalStepArg,
+    #[arg(long = settings::LOCAL_STEP.name, help = settings::LOCAL_STEP.help,
+          value_parser = named::<LocalStep>(), default_value = "rotor")]
+    pub local_step: LocalStep,
     #[command(flatten)]
     pub out: OutputArgs,
 }
@@ -110,14 +99,8 @@ pub fn run(a: &ArapArgs) -> Result<()> {
         }
     }
     let options = ArapOptions {
-        energy: match a.energy {
-            EnergyArg::SpokesAndRims => ArapEnergy::SpokesAndRims,
-            EnergyArg::Spokes => ArapEnergy::Spokes,
-        },
-        local_step: match a.local_step {
-            LocalStepArg::Rotor => LocalStep::Rotor,
-            LocalStepArg::Svd => LocalStep::Svd,
-        },
+        energy: a.energy,
+        local_step: a.local_step,
         ..ArapOptions::default()
     };
     let t = Instant::now();

@@ -8,20 +8,16 @@ use crate::overlays::{mesh_edges, moved};
 use crate::preview::{Look, POSED_INK, REST_INK};
 use crate::progress::with_progress;
 use crate::report::Report;
-use crate::shared_args::{FormArgs, OutputArgs};
+use crate::shared_args::{named, FormArgs, OutputArgs};
 use crate::timing::ms;
 use anyhow::{Context, Result};
-use clap::{Args, ValueEnum};
+use clap::Args;
 use deform::deformers::cage::{CageCoordinates, CageDeformer, CageOptions, HarmonicGrid};
 use deform::input::parse_group_motors;
+use deform::methods::named::{Coordinates, Named};
+use deform::methods::settings;
 use std::path::PathBuf;
 use std::time::Instant;
-
-#[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
-pub enum CoordsArg {
-    Mvc,
-    Harmonic,
-}
 
 #[derive(Args, Debug)]
 pub struct CageArgs {
@@ -30,11 +26,10 @@ pub struct CageArgs {
     /// The closed triangle cage around it.
     #[arg(long)]
     pub cage: PathBuf,
-    /// Mean value or harmonic coordinates.
-    #[arg(long, value_enum, default_value = "mvc")]
-    pub coords: CoordsArg,
-    /// Grid nodes along the cage's longest side (harmonic coordinates).
-    #[arg(long, default_value_t = 64)]
+    #[arg(long = settings::COORDINATES.name, help = settings::COORDINATES.help,
+          value_parser = named::<Coordinates>(), default_value = "mean-value")]
+    pub coordinates: Coordinates,
+    #[arg(long = settings::GRID.name, help = settings::GRID.help, default_value_t = 64)]
     pub grid: usize,
     /// Accept a cage whose faces cross each other (refused by default).
     #[arg(long)]
@@ -49,7 +44,7 @@ pub struct CageArgs {
 }
 
 pub fn run(a: &CageArgs) -> Result<()> {
-    if a.coords == CoordsArg::Harmonic {
+    if a.coordinates == Coordinates::Harmonic {
         // The grid's own limits first: the budget's hint to raise --max-work cannot help there.
         let grid = HarmonicGrid { resolution: a.grid };
         grid.check().context("--grid")?;
@@ -61,9 +56,9 @@ pub fn run(a: &CageArgs) -> Result<()> {
     let name = a.motors.display().to_string();
     let motors = parse_group_motors(&read_text(&a.motors)?, &name, cage.vertex_count())?;
     let options = CageOptions {
-        coordinates: match a.coords {
-            CoordsArg::Mvc => CageCoordinates::MeanValue,
-            CoordsArg::Harmonic => CageCoordinates::Harmonic(HarmonicGrid { resolution: a.grid }),
+        coordinates: match a.coordinates {
+            Coordinates::MeanValue => CageCoordinates::MeanValue,
+            Coordinates::Harmonic => CageCoordinates::Harmonic(HarmonicGrid { resolution: a.grid }),
         },
         form: a.form.form(),
         allow_self_intersecting: a.allow_self_intersecting,
@@ -95,18 +90,9 @@ pub fn run(a: &CageArgs) -> Result<()> {
     let mut report = Report::new("cage", &mesh);
     report.add("bind_ms", ms(t));
     report.add("cage_vertices", cage.vertex_count());
-    report.add(
-        "coords",
-        match a.coords {
-            CoordsArg::Mvc => "mvc",
-            CoordsArg::Harmonic => "harmonic",
-        },
-    );
+    let coords = a.coordinates.name();
+    report.add("coordinates", coords);
     report.add("form", options.form.name());
-    let coords = match a.coords {
-        CoordsArg::Mvc => "mvc",
-        CoordsArg::Harmonic => "harmonic",
-    };
     let title = format!(
         "cage  {coords}  {}  {} cage vertices",
         options.form.name(),

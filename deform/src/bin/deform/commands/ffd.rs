@@ -7,12 +7,13 @@ use crate::input_files::{read_mesh_checked, read_text};
 use crate::overlays::{lattice, moved};
 use crate::preview::{Look, POSED_INK, REST_INK};
 use crate::report::Report;
-use crate::shared_args::{FormArgs, OutputArgs};
+use crate::shared_args::{named, FormArgs, OutputArgs};
 use crate::timing::ms;
 use anyhow::{Context, Result};
 use clap::Args;
 use deform::deformers::ffd::{Ffd, FfdOptions, LatticeBasis};
 use deform::input::parse_group_motors;
+use deform::methods::settings;
 use glam::DVec3;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -21,13 +22,12 @@ use std::time::Instant;
 pub struct FfdArgs {
     /// The mesh (OBJ, OFF or MEDIT).
     pub mesh: PathBuf,
-    /// Control points per axis: LxMxN (each at least 2).
-    #[arg(long, value_parser = crate::numbers::dims)]
+    #[arg(long = settings::LATTICE.name, help = settings::LATTICE.help,
+          value_parser = crate::numbers::dims)]
     pub lattice: [usize; 3],
-    /// Clamped uniform B-spline basis of this degree (1 to 3) instead of Bernstein
-    /// polynomials of degree L-1, M-1, N-1.
-    #[arg(long)]
-    pub degree: Option<usize>,
+    #[arg(long = settings::BASIS.name, help = settings::BASIS.help,
+          value_parser = named::<LatticeBasis>(), default_value = "bernstein")]
+    pub basis: LatticeBasis,
     /// The lattice box MINX,MINY,MINZ,MAXX,MAXY,MAXZ (default: the mesh's bounding box).
     #[arg(long = "box", value_parser = crate::numbers::bounds, allow_hyphen_values = true)]
     pub bounds: Option<[f64; 6]>,
@@ -44,14 +44,12 @@ pub fn run(a: &FfdArgs) -> Result<()> {
     // The lattice's own limits first: the budget's hint to raise --max-work cannot help there.
     deform::deformers::ffd::Lattice::check_dims(a.lattice).context("--lattice")?;
     let mesh = read_mesh_checked(&a.mesh, &[a.motors.as_path()], &a.out)?;
-    crate::budget::get().ffd_lattice("--lattice", a.lattice, a.degree, mesh.vertex_count())?;
+    crate::budget::get().ffd_lattice("--lattice", a.lattice, a.basis, mesh.vertex_count())?;
     let count: usize = a.lattice.iter().product();
     let name = a.motors.display().to_string();
     let motors = parse_group_motors(&read_text(&a.motors)?, &name, count)?;
     let options = FfdOptions {
-        basis: a
-            .degree
-            .map_or(LatticeBasis::Bernstein, LatticeBasis::BSpline),
+        basis: a.basis,
         form: a.form.form(),
     };
     let bounds = a

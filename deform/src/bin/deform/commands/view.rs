@@ -7,11 +7,9 @@
 //! (tokio-tungstenite), message size limits and a small surface; the editing itself runs on
 //! plain threads, one per connection, so binds and poses never block the server.
 
-mod controls;
 mod mailbox;
 mod protocol;
 mod rig_edit;
-mod scenes;
 mod server;
 mod session;
 
@@ -19,7 +17,8 @@ use crate::input_files::{read_mesh, read_rig, read_selection};
 use crate::shared_args::RigInput;
 use anyhow::{bail, Context, Result};
 use clap::Args;
-use scenes::{demo_scenes, Content, Method, Scene};
+use deform::methods::scenes::{catalogue, Content, Scene};
+use deform::methods::Method;
 use std::hash::{BuildHasher, Hasher};
 use std::io::Write;
 use std::net::{IpAddr, Ipv4Addr, SocketAddr};
@@ -135,7 +134,7 @@ pub fn run(a: &ViewArgs) -> Result<()> {
         None if a.select.is_some() => bail!("--select needs a MODEL"),
         None => {}
     }
-    scenes.extend(demo_scenes());
+    scenes.extend(catalogue());
     let host = a.host.unwrap_or(IpAddr::V4(Ipv4Addr::LOCALHOST));
     let runtime = tokio::runtime::Builder::new_multi_thread()
         .worker_threads(2)

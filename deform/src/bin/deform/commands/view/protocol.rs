@@ -94,7 +94,7 @@ pub enum Request {
         local_step: Option<String>,
         /// The lattice's size and basis, the cage's coordinates (what is given changes).
         #[serde(default)]
-        controls: Option<super::controls::ControlRequest>,
+        controls: Option<ControlRequest>,
     },
     /// Pose the handle groups: one motor per group (the CLI's motor JSON).
     Motors {
@@ -191,6 +191,47 @@ pub struct GroupInfo {
     pub center: [f64; 3],
 }
 
+/// The lattice and cage options of a `Request::Method`; each one given replaces the
+/// session's (checked by the library's `MethodSettings`).
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ControlRequest {
+    /// Control points per axis.
+    #[serde(default)]
+    pub lattice: Option<[usize; 3]>,
+    /// The lattice basis by its name (`bernstein`, `bspline-1` .. `bspline-3`).
+    #[serde(default)]
+    pub basis: Option<String>,
+    /// The cage's coordinates by name (`mean-value`, `harmonic`).
+    #[serde(default)]
+    pub coordinates: Option<String>,
+    /// Harmonic coordinates' grid nodes along the cage's longest side.
+    #[serde(default)]
+    pub grid: Option<usize>,
+}
+
+/// The lattice and cage options of a session, by the library's names.
+#[derive(Clone, Debug, Serialize)]
+pub struct ControlInfo {
+    pub lattice: [usize; 3],
+    pub basis: &'static str,
+    pub coordinates: &'static str,
+    pub grid: usize,
+}
+
+impl ControlInfo {
+    /// The options of `s`.
+    pub fn of(s: &deform::methods::MethodSettings) -> ControlInfo {
+        use deform::methods::named::Named;
+        ControlInfo {
+            lattice: s.lattice,
+            basis: Named::name(s.basis),
+            coordinates: s.coordinates.name(),
+            grid: s.grid,
+        }
+    }
+}
+
 /// A lattice's or cage's control points at rest and the lines between them.
 #[derive(Clone, Debug, Serialize)]
 pub struct ControlsInfo {
@@ -237,7 +278,7 @@ pub struct StateInfo {
     /// The control points when the method is a lattice or a cage (then the motors are theirs).
     pub controls: Option<ControlsInfo>,
     /// The lattice and cage options.
-    pub control: super::controls::ControlChoice,
+    pub control: ControlInfo,
     pub rig: Option<RigInfo>,
     pub bind_ms: f64,
     pub vertices: usize,

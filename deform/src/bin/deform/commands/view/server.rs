@@ -4,7 +4,6 @@
 
 use super::mailbox::Mailbox;
 use super::protocol::{Reply, Request};
-use super::scenes::Scene;
 use super::session::MAX_UPLOAD;
 use super::session::{Out, Session};
 use axum::extract::ws::{Message, WebSocket, WebSocketUpgrade};
@@ -13,6 +12,7 @@ use axum::http::{header, HeaderMap, StatusCode};
 use axum::response::{IntoResponse, Response};
 use axum::routing::get;
 use axum::Router;
+use deform::methods::scenes::Scene;
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Arc;

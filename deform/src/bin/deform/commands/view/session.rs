@@ -3,7 +3,6 @@
 //! tests drive it the same way. `report` says what the page shows (state, fields), `keep` what
 //! it saves and loads, `replay` the CLI command that poses those files again, `select` the painting and lasso, `surgery` the tear and the drill.
 
-mod analysis;
 mod keep;
 mod method;
 pub use keep::MAX_UPLOAD;
@@ -12,22 +11,16 @@ mod report;
 mod select;
 mod surgery;
 
-use super::controls::{self, Controls};
 use super::protocol::{Frame, Precision, Reply, Request};
 use super::rig_edit::RigEdit;
-use super::scenes::{Content, Method, Scene};
 use crate::timing::ms;
 use anyhow::{anyhow, bail, Context, Result};
-use cga::ScaledMotor;
-use deform::blend::control::ControlForm;
-use deform::blend::control::ControlScratch;
-use deform::blend::{BoundBlend, PreparedKeys};
-use deform::deformers::arap::{Arap, ArapOptions, ArapScratch, Stop, Targets};
-use deform::deformers::handles::HandleOptions;
-use deform::deformers::spline::SplineOptions;
 use deform::input::MotorSpec;
+use deform::methods::bound::{group_centres, BoundMethod, HarmonicCache};
+use deform::methods::scenes::{Content, Scene};
+use deform::methods::MethodSettings;
 use deform::surgery::{FaceBvh, RayHit};
-use deform::{BlendMethod, Deformer, Mesh, MotorHandles, SplineDeformer};
+use deform::{BlendMethod, Mesh};
 use glam::DVec3;
 use std::time::Instant;
 
@@ -39,31 +32,6 @@ pub enum Out {
 
 /// No group.
 const NONE: u32 = u32::MAX;
-
-/// The bound method of a mesh scene.
-enum Bound {
-    /// Too few groups (or a failed bind): the rest pose.
-    None,
-    Handles {
-        handles: Box<MotorHandles>,
-        blend: Box<BoundBlend>,
-        scratch: PreparedKeys,
-    },
-    Arap {
-        arap: Box<Arap>,
-        scratch: Box<ArapScratch>,
-    },
-    Spline {
-        spline: Box<SplineDeformer>,
-        rest: Vec<ScaledMotor>,
-        scratch: PreparedKeys,
-    },
-    /// An FFD lattice or a cage: one motor per control point.
-    Control {
-        controls: Box<Controls>,
-        scratch: ControlScratch,
-    },
-}
 
 /// The field the mesh is coloured by.
 #[derive(Clone, Debug, PartialEq)]
@@ -82,24 +50,17 @@ pub struct Session {
     owner: Vec<u32>,
     groups: Vec<Vec<u32>>,
     stale: bool,
-    method: Method,
-    blend: BlendMethod,
-    iterations: usize,
-    /// ARAP's energy and local step.
-    arap: ArapOptions,
-    bound: Bound,
+    /// The method and its options.
+    settings: MethodSettings,
+    bound: BoundMethod,
     /// The scene's cage, if it has one.
     cage: Option<Mesh>,
-    /// Lattices and cages: the positional form (else the motor form with `blend`).
-    positional: bool,
-    /// The lattice's size and basis, the cage's coordinates.
-    control: controls::ControlChoice,
     bind_ms: f64,
     specs: Vec<MotorSpec>,
     rig: Option<RigEdit>,
     field: FieldChoice,
     /// The mesh's harmonic system, analysed once for every handle selection.
-    analysed: analysis::Analysed,
+    analysed: HarmonicCache,
     /// Undo and redo of selection changes.
     history: select::SelectionHistory,
     /// The precision of the positions frames the client asked for.
@@ -126,14 +87,9 @@ impl Session {
             owner: Vec::new(),
             groups: Vec::new(),
             stale: false,
-            method: Method::Handles,
-            blend: BlendMethod::MotorLog,
-            iterations: 2,
-            arap: ArapOptions::default(),
-            bound: Bound::None,
+            settings: MethodSettings::default(),
+            bound: BoundMethod::Rest { groups: 0 },
             cage: None,
-            positional: false,
-            control: controls::ControlChoice::default(),
             bind_ms: 0.0,
             specs: Vec::new(),
             rig: None,
@@ -141,7 +97,7 @@ impl Session {
                 name: "displacement".into(),
                 group: 0,
             },
-            analysed: analysis::Analysed::default(),
+            analysed: HarmonicCache::default(),
             history: Default::default(),
             precision: Precision::F64,
         };
@@ -156,7 +112,7 @@ impl Session {
             Request::Method { method, .. } => method.as_str(),
             Request::Scene { name } => name.as_str(),
             Request::Upload { name, .. } => name.as_str(),
-            _ => self.method.name(),
+            _ => deform::methods::named::Named::name(self.settings.method),
         };
         format!("{what} / {} / {method}", self.scene)
     }
@@ -303,10 +259,9 @@ impl Session {
             } => {
                 self.rig = None;
                 self.cage = cage.clone();
-                self.positional = false;
                 self.mesh = mesh.clone();
-                self.method = *method;
-                self.blend = BlendMethod::MotorLog;
+                self.settings.set_method(*method);
+                self.settings.blend = BlendMethod::MotorLog;
                 self.set_groups(groups.clone());
                 self.bvh = FaceBvh::new(&self.mesh);
                 let mut out = vec![Out::Binary(Frame::mesh(
@@ -364,25 +319,25 @@ impl Session {
     /// Bind the method to the groups; with too few groups the rest pose (and a note).
     pub(super) fn bind(&mut self) -> Result<Vec<Out>> {
         self.stale = false;
-        self.bound = Bound::None;
+        let groups = self.groups.len();
+        self.bound = BoundMethod::Rest { groups };
         self.posed = self.mesh.positions.clone();
-        let need = match self.method {
-            Method::Spline => 2,
-            Method::Ffd | Method::Cage => 0,
-            Method::Handles | Method::Arap => 1,
-        };
+        let method = self.settings.method;
+        let need = method.groups_needed();
         let mut out = Vec::new();
-        if self.groups.len() >= need {
+        if groups >= need {
             let t = Instant::now();
-            self.bound = self.bind_method().with_context(|| {
-                format!(
-                    "cannot bind {} to {} groups",
-                    self.method.name(),
-                    self.groups.len()
-                )
-            })?;
+            self.bound = BoundMethod::bind(
+                &self.mesh,
+                &self.groups,
+                self.cage.as_ref(),
+                &self.settings,
+                &crate::budget::get(),
+                &mut self.analysed,
+            )
+            .with_context(|| format!("cannot bind {} to {groups} groups", self.method_name()))?;
             self.bind_ms = ms(t);
-            let k = self.key_count();
+            let k = self.bound.key_count();
             if self.specs.len() != k {
                 self.specs = vec![MotorSpec::default(); k];
             }
@@ -390,7 +345,7 @@ impl Session {
             out.push(Out::Text(Reply::Note {
                 message: format!(
                     "{} needs {need} handle group(s) or more: paint them on the surface",
-                    self.method.name()
+                    self.method_name()
                 ),
             }));
         }
@@ -401,123 +356,23 @@ impl Session {
         Ok(out)
     }
 
-    fn bind_method(&mut self) -> Result<Bound> {
-        let sets: Vec<&[u32]> = self.groups.iter().map(Vec::as_slice).collect();
-        if self.method == Method::Handles {
-            // A weight per vertex and group: a loaded selection may have thousands of groups.
-            // (The spline's B-spline keys weigh a vertex by at most four of them.)
-            crate::budget::get().handle_groups(
-                "the selection",
-                sets.len(),
-                self.mesh.vertex_count(),
-            )?;
-        }
-        Ok(match self.method {
-            Method::Handles => {
-                let rest = vec![ScaledMotor::IDENTITY; sets.len()];
-                let options = HandleOptions {
-                    method: self.blend,
-                    ..HandleOptions::default()
-                };
-                let analysis = self.analysed.of(&self.mesh, &options.harmonic)?;
-                let handles =
-                    MotorHandles::bind_with_analysis(&self.mesh, analysis, &sets, &rest, options)?;
-                let blend = Box::new(handles.blend().clone());
-                let scratch = blend.scratch();
-                Bound::Handles {
-                    handles: Box::new(handles),
-                    blend,
-                    scratch,
-                }
-            }
-            Method::Arap => {
-                let arap = Arap::bind(&self.mesh, &[], &sets, self.arap)?;
-                let scratch = arap.scratch()?;
-                Bound::Arap {
-                    arap: Box::new(arap),
-                    scratch: Box::new(scratch),
-                }
-            }
-            Method::Spline => {
-                let rest = self.rest_keys();
-                let options = SplineOptions {
-                    method: self.blend,
-                    ..SplineOptions::default()
-                };
-                let first = sets[0];
-                let last = sets[sets.len() - 1];
-                let spline = SplineDeformer::bind(&self.mesh, first, last, &rest, options)?;
-                let scratch = spline.scratch();
-                Bound::Spline {
-                    spline: Box::new(spline),
-                    rest,
-                    scratch,
-                }
-            }
-            Method::Ffd | Method::Cage => {
-                let form = if self.positional {
-                    ControlForm::Positional
-                } else {
-                    ControlForm::Motor(self.blend)
-                };
-                let controls = match &self.cage {
-                    Some(cage) if self.method == Method::Cage => {
-                        controls::cage(&self.mesh, cage, form, &self.control)?
-                    }
-                    _ => controls::lattice(&self.mesh, form, &self.control)?,
-                };
-                let scratch = controls.deformer.scratch();
-                Bound::Control {
-                    controls: Box::new(controls),
-                    scratch,
-                }
-            }
-        })
+    /// The method's name.
+    fn method_name(&self) -> &'static str {
+        deform::methods::named::Named::name(self.settings.method)
     }
 
-    /// The number of motors a pose takes: one per control point of a lattice or cage, else
-    /// one per group.
-    fn key_count(&self) -> usize {
-        match &self.bound {
-            Bound::Control { controls, .. } => controls.points.len(),
-            _ => self.groups.len(),
-        }
-    }
-
-    /// The spline's rest keys: a translation to each group's centre.
-    fn rest_keys(&self) -> Vec<ScaledMotor> {
-        self.centres()
-            .into_iter()
-            .map(|c| ScaledMotor::from_motor(cga::Motor::from_translation(c)))
-            .collect()
-    }
-
+    /// The centre of each group at rest.
     fn centres(&self) -> Vec<DVec3> {
-        self.groups
-            .iter()
-            .map(|g| {
-                g.iter()
-                    .map(|&v| self.mesh.positions[v as usize])
-                    .sum::<DVec3>()
-                    / g.len() as f64
-            })
-            .collect()
+        group_centres(&self.mesh, &self.groups)
     }
 
-    /// A new blend method for handles or spline without solving again: the same weights.
+    /// A new blend method without solving again where the method keeps its weights apart
+    /// (handles); else a rebind.
     fn reblend(&mut self, b: BlendMethod) -> Result<Vec<Out>> {
-        self.blend = b;
+        self.settings.blend = b;
         let t = Instant::now();
-        match &mut self.bound {
-            Bound::Handles { blend, scratch, .. } => {
-                let rest = vec![ScaledMotor::IDENTITY; blend.key_count()];
-                **blend =
-                    BoundBlend::bind(&self.mesh.positions, blend.weights().clone(), &rest, b)?;
-                *scratch = blend.scratch();
-            }
-            Bound::Spline { .. } | Bound::Arap { .. } | Bound::Control { .. } | Bound::None => {
-                return self.bind()
-            }
+        if !self.bound.reblend(&self.mesh.positions, b)? {
+            return self.bind();
         }
         self.bind_ms = ms(t);
         let mut out = vec![self.state()];
@@ -529,55 +384,23 @@ impl Session {
     /// Pose the groups by `specs` (one per group).
     fn pose_motors(&mut self, seq: u32, specs: Vec<MotorSpec>) -> Result<Vec<Out>> {
         self.mesh_only("motors")?;
-        let k = self.key_count();
-        if specs.len() != k {
-            let what = if self.method.controls() && !matches!(self.bound, Bound::None) {
-                "control points"
-            } else {
-                "groups"
-            };
-            bail!("{} motors for {k} {what} (send one per key)", specs.len());
-        }
         let motors = specs
             .iter()
             .enumerate()
             .map(|(g, s)| s.to_motor().map_err(|e| anyhow!("group {g}: {e}")))
             .collect::<Result<Vec<_>>>()?;
         let t = Instant::now();
-        let mut energy = None;
-        match &mut self.bound {
+        let energy = if self.stale {
             // Painted since the last bind: the bound keys do not match the groups yet.
-            _ if self.stale => {}
-            Bound::None => self.posed.copy_from_slice(&self.mesh.positions),
-            Bound::Handles { blend, scratch, .. } => {
-                blend.pose_using(&motors, scratch, &mut self.posed)?
+            let k = self.bound.key_count();
+            if motors.len() != k {
+                bail!("{} motors for {k} groups (send one per key)", motors.len());
             }
-            Bound::Arap { arap, scratch } => {
-                let mut last = f64::NAN;
-                arap.pose_using(
-                    &Targets::Motors(&motors),
-                    Stop::Iterations(self.iterations),
-                    scratch,
-                    &mut self.posed,
-                    |_, e| last = e,
-                )?;
-                energy = Some(last);
-            }
-            Bound::Spline {
-                spline,
-                rest,
-                scratch,
-            } => {
-                let keys: Vec<ScaledMotor> =
-                    rest.iter().zip(&motors).map(|(r, m)| r.then(*m)).collect();
-                spline.pose_using(&keys, scratch, &mut self.posed)?
-            }
-            Bound::Control { controls, scratch } => {
-                controls
-                    .deformer
-                    .pose_using(&motors, scratch, &mut self.posed)?
-            }
-        }
+            None
+        } else {
+            self.bound
+                .pose(&motors, &self.mesh.positions, &mut self.posed)?
+        };
         let pose_ms = ms(t);
         self.specs = specs;
         let mut out = vec![

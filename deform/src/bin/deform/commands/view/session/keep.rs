@@ -2,11 +2,12 @@
 //! or motors through the CLI's parsers; open an uploaded model as the CLI opens one.
 
 use super::replay::{file_name, glb_name};
-use super::{Bound, Out, Session};
+use super::{Out, Session};
 use crate::commands::view::protocol::{Frame, Reply};
-use crate::commands::view::scenes::{Content, Method, Scene};
 use anyhow::{anyhow, bail, Context, Result};
 use deform::input::{parse_group_motors, parse_selection_json, MotorSpec};
+use deform::methods::scenes::Scene;
+use deform::methods::Method;
 use deform::Mesh;
 
 impl Session {
@@ -25,7 +26,7 @@ impl Session {
                 obj(&Mesh::new(self.posed.clone(), self.mesh.triangles.clone()))?,
             ),
             "rest" => (name, obj(&self.mesh)?),
-            "cage" => match (&self.cage, self.method) {
+            "cage" => match (&self.cage, self.settings.method) {
                 (Some(cage), Method::Cage) => (name, obj(cage)?),
                 _ => bail!("cage: the method is not a cage"),
             },
@@ -95,11 +96,11 @@ impl Session {
                 Ok(out)
             }
             "motors" => {
-                let motors = parse_group_motors(text, "motors", self.key_count())?;
+                let motors = parse_group_motors(text, "motors", self.bound.key_count())?;
                 // The gizmo keeps scale, rotation and translation about each key's centre.
-                let centres = match &self.bound {
-                    Bound::Control { controls, .. } => controls.points.clone(),
-                    _ => self.centres(),
+                let centres = match self.bound.controls() {
+                    Some(c) => c.points.clone(),
+                    None => self.centres(),
                 };
                 let motors = motors
                     .iter()
@@ -140,22 +141,14 @@ impl Session {
             .decode(base64)
             .map_err(|e| anyhow!("{name}: not base64 ({e})"))?;
         let lower = name.to_ascii_lowercase();
-        let content = if lower.ends_with(".glb") || lower.ends_with(".gltf") {
-            Content::Rig(Box::new(deform::skinning::parse_gltf(&bytes, &name, None)?))
+        let scene = if lower.ends_with(".glb") || lower.ends_with(".gltf") {
+            let rig = deform::skinning::parse_gltf(&bytes, &name, None)?;
+            Scene::new(&name, deform::methods::scenes::Content::Rig(Box::new(rig)))
         } else {
             let mesh = deform::mesh::io::parse_mesh(&bytes, &name)?;
             deform::mesh::validate::check_solvable(&mesh)
                 .with_context(|| format!("{name}: not a usable mesh"))?;
-            Content::Mesh {
-                mesh,
-                groups: Vec::new(),
-                method: Method::Handles,
-                cage: None,
-            }
-        };
-        let scene = Scene {
-            name,
-            content: std::sync::Arc::new(content),
+            Scene::mesh(&name, mesh)
         };
         let i = match self.scenes.iter().position(|s| s.name == scene.name) {
             Some(i) => {

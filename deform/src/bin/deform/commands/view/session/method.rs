@@ -1,12 +1,12 @@
 //! Choosing the method of a mesh scene: the method, its blend, ARAP's options and the lattice
-//! and cage options, all checked before any is taken; then a rebind, or only a re-blend when
-//! the weights stay.
+//! and cage options, all checked (by the library's [`MethodSettings`]) before any is taken;
+//! then a rebind, or only a re-blend when the weights stay.
 
 use super::{Out, Session};
-use crate::commands::view::controls::ControlRequest;
-use crate::commands::view::scenes::Method;
-use anyhow::{anyhow, bail, Result};
-use deform::deformers::arap::{ArapEnergy, LocalStep};
+use crate::commands::view::protocol::ControlRequest;
+use anyhow::{bail, Result};
+use deform::methods::named::Named;
+use deform::methods::{Method, MethodSettings};
 use deform::BlendMethod;
 
 /// ARAP's energy and local step, and the lattice and cage options, as a request gives them.
@@ -24,53 +24,44 @@ impl Session {
         iterations: Option<usize>,
         (energy, local_step, controls): MethodOptions,
     ) -> Result<Vec<Out>> {
-        let m = Method::parse(method).ok_or_else(|| anyhow!("no method {method:?}"))?;
-        if m == Method::Cage && self.cage.is_none() {
+        let mut next: MethodSettings = self.settings;
+        next.set_method(Method::from_name(method)?);
+        if next.method == Method::Cage && self.cage.is_none() {
             bail!("this scene has no cage (the demo's \"cage\" scene has one)");
         }
-        let positional = blend == "positional";
-        if positional && !m.controls() {
-            bail!("positional blending is for lattices and cages");
-        }
-        let b: BlendMethod = if positional {
-            self.blend
+        if blend == "positional" {
+            next.set_positional(true)?;
         } else {
-            blend.parse()?
-        };
-        let k = iterations.unwrap_or(self.iterations);
-        if !(1..=50).contains(&k) {
-            bail!("iterations per frame: {k} is not in 1..=50");
+            next.positional = false;
+            next.blend = BlendMethod::from_name(blend)?;
         }
-        let mut arap = self.arap;
-        if let Some(e) = energy {
-            arap.energy = match e {
-                "spokes" => ArapEnergy::Spokes,
-                "spokes-and-rims" => ArapEnergy::SpokesAndRims,
-                _ => bail!("no ARAP energy {e:?} (spokes, spokes-and-rims)"),
+        if let Some(k) = iterations {
+            next.set_iterations(k)?;
+        }
+        for (name, value) in [("energy", energy), ("local-step", local_step)] {
+            if let Some(v) = value {
+                next.set(name, v)?;
+            }
+        }
+        if let Some(r) = controls {
+            let basis = match &r.basis {
+                Some(b) => Named::from_name(b)?,
+                None => next.basis,
             };
+            next.set_lattice(r.lattice.unwrap_or(next.lattice), basis)?;
+            if let Some(c) = &r.coordinates {
+                next.set("coordinates", c)?;
+            }
+            if let Some(g) = r.grid {
+                next.set_grid(g)?;
+            }
         }
-        if let Some(l) = local_step {
-            arap.local_step = match l {
-                "rotor" => LocalStep::Rotor,
-                "svd" => LocalStep::Svd,
-                _ => bail!("no ARAP local step {l:?} (rotor, svd)"),
-            };
+        let rebind = self.settings.rebinds_for(&next);
+        let reblend = next.blend != self.settings.blend;
+        self.settings = next;
+        if !rebind && reblend {
+            return self.reblend(next.blend);
         }
-        let control = match controls {
-            Some(r) => self.control.with(r)?,
-            None => self.control,
-        };
-        let rebind = m != self.method
-            || positional != self.positional
-            || (k != self.iterations || arap != self.arap) && m == Method::Arap
-            || control != self.control && m.controls();
-        (self.iterations, self.arap, self.control) = (k, arap, control);
-        if !rebind && b != self.blend {
-            return self.reblend(b);
-        }
-        self.method = m;
-        self.blend = b;
-        self.positional = positional;
         self.bind()
     }
 }

@@ -1,12 +1,11 @@
 //! The command that replays a mesh scene's pose with the CLI, from the files the page exports
 //! (rest mesh, selection, motors, spline keys, cage), and those files' names.
 
-use super::{Bound, Session};
-use crate::commands::view::controls::Coordinates;
-use crate::commands::view::scenes::Method;
+use super::Session;
 use anyhow::{bail, Result};
-use deform::deformers::ffd::LatticeBasis;
 use deform::input::{MotorSpec, RotateSpec};
+use deform::methods::bound::BoundMethod;
+use deform::methods::named::Named;
 use glam::DVec3;
 
 /// The file each export writes for scene `scene`.
@@ -34,10 +33,9 @@ pub(super) fn glb_name(scene: &str, rig: bool) -> String {
 
 impl Session {
     /// The `deform ...` command that poses the exported rest mesh as the page shows it, written
-    /// to `{scene}-replayed.obj`. ARAP runs 1000 iterations from the rest pose: the page
-    /// iterates a few times per frame from the last frame and comes to rest there once the
-    /// drag stops (an energy tolerance stops far earlier: ARAP's energy flattens long before
-    /// its positions settle).
+    /// to `{scene}-replayed.obj`. The method's flags come from
+    /// the library's [`deform::methods::MethodSettings::args`] (ARAP: many iterations from the
+    /// rest pose, where the page iterates from its last frame).
     pub(super) fn replay(&self) -> String {
         let scene = &self.scenes[self.scene].name;
         if self.rig.is_some() {
@@ -50,58 +48,20 @@ impl Session {
             return "none yet: the groups changed since the last bind".into();
         }
         let f = |what: &str| file_name(scene, what).unwrap_or_default();
-        let blend = if self.positional {
-            " --positional".to_string()
-        } else {
-            format!(" --blend {}", self.blend.name())
-        };
-        let select = format!("--select {}", f("selection"));
-        let args = match self.method {
-            Method::Handles => format!("handles {select} --motors {}{blend}", f("motors")),
-            Method::Arap => format!(
-                "arap {select} --motors {} --energy {} --local-step {} --iterations 1000",
-                f("motors"),
-                self.arap.energy.name(),
-                self.arap.local_step.name()
-            ),
-            Method::Spline => format!(
-                "spline {select} --keys {} --rest-keys {}{blend}",
-                f("keys"),
-                f("rest-keys")
-            ),
-            Method::Ffd => {
-                let [l, m, n] = self.control.lattice;
-                let degree = match self.control.basis {
-                    LatticeBasis::Bernstein => String::new(),
-                    LatticeBasis::BSpline(d) => format!(" --degree {d}"),
-                };
-                format!(
-                    "ffd --lattice {l}x{m}x{n}{degree} --motors {}{blend}",
-                    f("motors")
-                )
-            }
-            Method::Cage => {
-                let coords = match self.control.coordinates {
-                    Coordinates::MeanValue => String::new(),
-                    Coordinates::Harmonic => {
-                        format!(" --coords harmonic --grid {}", self.control.grid)
-                    }
-                };
-                format!(
-                    "cage --cage {}{coords} --motors {}{blend}",
-                    f("cage"),
-                    f("motors")
-                )
-            }
-        };
-        let (verb, rest) = args.split_once(' ').unwrap_or((&args, ""));
-        format!("deform {verb} {} {rest} -o {scene}-replayed.obj", f("rest"))
+        let method = self.settings.method;
+        let mut words = vec![format!("deform {}", method.name()), f("rest")];
+        for (flag, what) in method.inputs() {
+            words.push(format!("--{flag} {}", f(what)));
+        }
+        words.extend(self.settings.args());
+        words.push(format!("-o {scene}-replayed.obj"));
+        words.join(" ")
     }
 
     /// The spline's keys as the CLI's `--keys` takes them: each group's motor after the
     /// translation to its centre (the rest key), as one motor.
     pub(super) fn spline_keys(&self) -> Result<(Vec<MotorSpec>, Vec<MotorSpec>)> {
-        if !matches!(self.bound, Bound::Spline { .. }) {
+        if !matches!(self.bound, BoundMethod::Spline { .. }) {
             bail!("keys: the method is not the spline (or it has fewer than two groups)");
         }
         if self.stale || self.specs.len() != self.groups.len() {

@@ -1,9 +1,13 @@
 //! What the page is shown of a session: the whole state and the colour fields.
 
-use super::{Bound, Out, Session, NONE};
-use crate::commands::view::protocol::{ControlsInfo, Frame, GroupInfo, Reply, StateInfo};
+use super::{Out, Session, NONE};
+use crate::commands::view::protocol::{
+    ControlInfo, ControlsInfo, Frame, GroupInfo, Reply, StateInfo,
+};
 use crate::commands::view::rig_edit::RigEdit;
-use crate::commands::view::scenes::Method;
+use deform::methods::bound::BoundMethod;
+use deform::methods::named::Named;
+use deform::methods::Method;
 use deform::BlendMethod;
 
 impl Session {
@@ -14,8 +18,8 @@ impl Session {
         }
         let mut f = vec!["displacement", "group"];
         match self.bound {
-            Bound::Handles { .. } => f.push("harmonic"),
-            Bound::Spline { .. } => f.push("lambda"),
+            BoundMethod::Handles { .. } => f.push("harmonic"),
+            BoundMethod::Spline { .. } => f.push("lambda"),
             _ => {}
         }
         f
@@ -36,11 +40,11 @@ impl Session {
                 .iter()
                 .map(|&g| if g == NONE { -1.0 } else { g as f64 })
                 .collect(),
-            ("harmonic", Bound::Handles { handles, .. }, _) => {
+            ("harmonic", BoundMethod::Handles { handles, .. }, _) => {
                 let j = self.field.group.min(self.groups.len().saturating_sub(1));
                 (0..n).map(|i| handles.coordinate(i, j)).collect()
             }
-            ("lambda", Bound::Spline { spline, .. }, _) => spline.lambda().to_vec(),
+            ("lambda", BoundMethod::Spline { spline, .. }, _) => spline.lambda().to_vec(),
             (name, _, Some(rig)) => rig.field(name, &self.posed)?,
             _ => displacement(),
         };
@@ -54,16 +58,16 @@ impl Session {
             scene: self.scenes[self.scene].name.clone(),
             scenes: self.scenes.iter().map(|s| s.name.clone()).collect(),
             kind: if self.rig.is_some() { "rig" } else { "mesh" },
-            method: self.method.name().into(),
+            method: self.method_name().into(),
             methods: Method::ALL
-                .into_iter()
-                .filter(|m| *m != Method::Cage || self.cage.is_some())
-                .map(Method::name)
+                .iter()
+                .filter(|m| **m != Method::Cage || self.cage.is_some())
+                .map(|m| m.name())
                 .collect(),
-            blend: if self.positional {
+            blend: if self.settings.positional {
                 "positional".into()
             } else {
-                self.blend.name().into()
+                self.settings.blend.name().into()
             },
             blends: [
                 BlendMethod::MotorLog,
@@ -73,19 +77,16 @@ impl Session {
             ]
             .map(BlendMethod::name)
             .into_iter()
-            .chain(self.method.controls().then_some("positional"))
+            .chain(self.settings.method.controls().then_some("positional"))
             .collect(),
-            controls: match &self.bound {
-                Bound::Control { controls, .. } => Some(ControlsInfo {
-                    points: controls.points.iter().map(|p| p.to_array()).collect(),
-                    edges: controls.edges.clone(),
-                }),
-                _ => None,
-            },
-            control: self.control,
-            iterations: self.iterations,
-            energy: self.arap.energy.name(),
-            local_step: self.arap.local_step.name(),
+            controls: self.bound.controls().map(|c| ControlsInfo {
+                points: c.points.iter().map(|p| p.to_array()).collect(),
+                edges: c.edges.clone(),
+            }),
+            control: ControlInfo::of(&self.settings),
+            iterations: self.settings.iterations,
+            energy: self.settings.arap.energy.name(),
+            local_step: self.settings.arap.local_step.name(),
             groups: self
                 .groups
                 .iter()

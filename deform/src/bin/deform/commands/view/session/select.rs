@@ -169,7 +169,7 @@ impl Session {
     /// `group` may be painted: an existing one or the next new one, on a handle method.
     fn check_group(&self, group: usize) -> Result<()> {
         self.mesh_only("select")?;
-        if self.method.controls() {
+        if self.settings.method.controls() {
             bail!("paint groups for handles, ARAP or the spline; a lattice or cage moves by its points");
         }
         if group > self.groups.len() || group >= 250 {
