@@ -33,6 +33,47 @@ impl Plane {
         Ok(Self::from_normal_distance(n, distance))
     }
 
+    /// The plane of the equation `normal . x = d` for a normal of any finite, non-zero length
+    /// (both sides divided by its length, scaled first so that no square overflows: a normal
+    /// of `1e308` in each component works).
+    ///
+    /// ```
+    /// use cga::Plane;
+    /// use glam::DVec3;
+    /// let p = Plane::try_from_equation(DVec3::new(0.0, 2.0, 0.0), 4.0).unwrap();
+    /// assert_eq!((p.normal(), p.distance()), (DVec3::Y, 2.0));
+    /// assert!(Plane::try_from_equation(DVec3::ZERO, 1.0).is_err());
+    /// ```
+    ///
+    /// # Errors
+    /// [`CgaError::NonFinite`] or [`CgaError::ZeroAxis`] (a zero normal).
+    pub fn try_from_equation(normal: V3, d: S) -> Result<Self> {
+        finite3(normal, "plane normal")?;
+        finite_input(&[d], "plane equation's right-hand side")?;
+        let scale = normal.abs().max_element();
+        if !(scale > 0.0) {
+            return Err(CgaError::ZeroAxis {
+                what: "plane normal",
+            });
+        }
+        let (n, d) = (normal / scale, d / scale);
+        let l = n.length();
+        Self::try_from_normal_distance(n / l, d / l)
+    }
+
+    /// Checked [`Plane::from_point_normal`].
+    ///
+    /// # Errors
+    /// [`CgaError::NonFinite`] or [`CgaError::ZeroAxis`] (a zero normal), and
+    /// [`CgaError::Overflow`] where `point . normal` overflows.
+    pub fn try_from_point_normal(point: V3, normal: V3) -> Result<Self> {
+        finite3(point, "plane point")?;
+        let n = try_unit_direction(normal, "plane normal")?;
+        let d = n.dot(point);
+        finite_result((), &[d], "plane distance")?;
+        Ok(Self::from_normal_distance(n, d))
+    }
+
     /// The plane through `point` with `normal`.
     #[must_use]
     pub fn from_point_normal(point: V3, normal: V3) -> Self {

@@ -6,6 +6,7 @@
 //!   ([`settings::OPTIONS`]) for the program's flags, the editor's messages and the replayed
 //!   command ([`MethodSettings::args`]);
 //! - [`bound`]: a mesh bound by its settings ([`BoundMethod`]), posed from a motor per key;
+//! - [`frame`]: which pose of a rig a request means, and the posed frame of a surgery tool;
 //! - [`scenes`]: the procedural scenes the demo and the editor open;
 //! - [`budget`]: the work budget that refuses oversized requests before anything is
 //!   allocated.
@@ -15,6 +16,7 @@
 
 pub mod bound;
 pub mod budget;
+pub mod frame;
 pub mod method;
 pub mod named;
 pub mod scenes;

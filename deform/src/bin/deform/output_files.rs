@@ -5,6 +5,7 @@
 use crate::obj_extras::ObjInputExtras;
 use crate::shared_args::OutputArgs;
 use anyhow::{bail, Context, Result};
+use deform::mesh::io::{write_mesh_to, MeshFormat, ObjExtras};
 use deform::Mesh;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -113,112 +114,53 @@ pub fn write_atomic(path: &Path, write: impl FnOnce(&mut dyn Write) -> Result<()
 /// Write a deformed mesh as [`write_mesh`] does; an OBJ keeps the OBJ input's texture
 /// coordinates and, where it had normals, gets this mesh's smooth normals.
 pub fn write_deformed(path: &Path, mesh: &Mesh, input: Option<&ObjInputExtras>) -> Result<()> {
-    let obj = path
-        .extension()
-        .is_none_or(|e| !(e.eq_ignore_ascii_case("ply") || e.eq_ignore_ascii_case("glb")));
-    let Some(input) = input.filter(|_| obj) else {
-        return write_mesh(path, mesh);
-    };
-    let normals = input.normals.then(|| mesh.seamless_vertex_normals());
-    let extras = deform::mesh::io::ObjExtras {
-        texture: input.texture.as_ref(),
+    let normals = input
+        .filter(|i| i.normals && MeshFormat::from_path(path).is_none_or(|f| f == MeshFormat::Obj))
+        .map(|_| mesh.seamless_vertex_normals());
+    let extras = ObjExtras {
+        texture: input.and_then(|i| i.texture.as_ref()),
         normals: normals.as_deref(),
         uvs: None,
     };
-    write_obj_with(path, mesh, extras)
+    write_mesh_with(path, mesh, extras)
 }
 
 /// The mesh formats every command that writes a mesh writes, by `-o` extension.
-pub const MESH_FORMATS: [&str; 3] = ["obj", "glb", "ply"];
+pub const MESH_FORMATS: [&str; 3] = MeshFormat::EXTENSIONS;
 
-/// Write a mesh in the format its extension names: `.glb` (a static binary glTF with smooth
-/// normals), `.ply` (binary PLY), else OBJ; the vertex order and count as given.
+/// Write a mesh in the format its extension names (the library's [`MeshFormat`]; OBJ for
+/// any other name), atomically; the vertex order and count as given.
 pub fn write_mesh(path: &Path, mesh: &Mesh) -> Result<()> {
-    let ext = path
-        .extension()
-        .map(|e| e.to_string_lossy().to_ascii_lowercase())
-        .unwrap_or_default();
-    match ext.as_str() {
-        "glb" => {
-            check_finite(path, mesh)?;
-            let bytes = deform::mesh::io::glb_bytes(mesh)?;
-            write_atomic(path, |w| {
-                w.write_all(&bytes)?;
-                Ok(())
-            })
-        }
-        "ply" => {
-            check_finite(path, mesh)?;
-            write_atomic(path, |w| {
-                deform::mesh::io::write_ply_to(mesh, w)?;
-                Ok(())
-            })
-        }
-        _ => write_obj(path, mesh),
-    }
-}
-
-/// Every command's result goes through here: a non-finite vertex, or one beyond the
-/// coordinates every reader of this program accepts (`MAX_COORDINATE`, 1e300: a result the
-/// program could not read back), is an error, never a file.
-fn check_finite(path: &Path, mesh: &Mesh) -> Result<()> {
-    if let Some(i) = mesh.positions.iter().position(|p| !p.is_finite()) {
-        bail!(
-            "{}: not written: vertex {i} of the result is not finite ({})",
-            path.display(),
-            mesh.positions[i]
-        );
-    }
-    let limit = deform::mesh::validate::MAX_COORDINATE;
-    if let Some(i) = mesh
-        .positions
-        .iter()
-        .position(|p| p.abs().max_element() > limit)
-    {
-        bail!(
-            "{}: not written: vertex {i} of the result lies beyond +-{limit:e} ({}), where no \
-             reader of this program would take it back",
-            path.display(),
-            mesh.positions[i]
-        );
-    }
-    Ok(())
-}
-
-/// Write a mesh as OBJ (the vertex order and count as given).
-pub fn write_obj(path: &Path, mesh: &Mesh) -> Result<()> {
-    write_obj_with(path, mesh, deform::mesh::io::ObjExtras::default())
+    write_mesh_with(path, mesh, ObjExtras::default())
 }
 
 /// Write a rig's mesh (rest or posed) as OBJ with the texture coordinates of its look
 /// (`TEXCOORD_0`) as `vt` and, where the model has normals, this mesh's smooth normals
 /// (seamless across UV seams) as `vn`; or, for a `.ply` or `.glb` name, as [`write_mesh`].
 pub fn write_rig_mesh(path: &Path, mesh: &Mesh, look: &deform::skinning::Look) -> Result<()> {
-    let obj = path
-        .extension()
-        .is_none_or(|e| !(e.eq_ignore_ascii_case("ply") || e.eq_ignore_ascii_case("glb")));
-    if !obj {
-        return write_mesh(path, mesh);
-    }
     let uv = look
         .attribute("TEXCOORD_0")
         .filter(|a| a.width == 2 && a.vertex_count() == mesh.vertex_count());
     let normals = look
         .attribute("NORMAL")
         .map(|_| mesh.seamless_vertex_normals());
-    let extras = deform::mesh::io::ObjExtras {
+    let extras = ObjExtras {
         uvs: uv.map(|a| &a.values[..]),
         normals: normals.as_deref(),
         texture: None,
     };
-    write_obj_with(path, mesh, extras)
+    write_mesh_with(path, mesh, extras)
 }
 
-/// Write a mesh as OBJ with texture coordinates and normals.
-fn write_obj_with(path: &Path, mesh: &Mesh, extras: deform::mesh::io::ObjExtras) -> Result<()> {
-    check_finite(path, mesh)?;
+/// Write a mesh by extension with OBJ extras; every command's result goes through here, so a
+/// non-finite vertex, or one beyond what every reader of this program accepts, is an error
+/// (the library's check), never a file.
+fn write_mesh_with(path: &Path, mesh: &Mesh, extras: ObjExtras) -> Result<()> {
+    let format = MeshFormat::from_path(path).unwrap_or(MeshFormat::Obj);
+    deform::mesh::validate::check_elements(mesh)
+        .with_context(|| format!("{}: not written: the result", path.display()))?;
     write_atomic(path, |w| {
-        deform::mesh::io::write_obj_with_to(mesh, extras, w)?;
+        write_mesh_to(mesh, format, extras, w)?;
         Ok(())
     })
 }

@@ -9,85 +9,28 @@ use crate::output_files::{
 };
 use crate::preview::{self, Focus, Look};
 use crate::report::Report;
-use crate::shared_args::{OutputArgs, RigInput, ToolFrame};
+use crate::shared_args::{OutputArgs, RigInput, ToolFrame as ToolFrameArgs};
 use crate::timing::ms;
 use anyhow::{Context, Result};
+pub use deform::methods::frame::{pose_time, ToolFrame as Posed, ToolSpace};
 use deform::render::Overlay;
-use deform::skinning::{GlbOptions, Rig, RigPart, Skinning};
-use deform::surgery::{Frame, Surgery};
-use deform::{BlendMethod, Mesh};
-use glam::{DAffine3, DVec3};
+use deform::skinning::{GlbOptions, Rig, RigPart};
+use deform::surgery::Surgery;
+use deform::Mesh;
+use glam::DVec3;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-/// The space a tool is given in.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ToolSpace {
-    /// The rest mesh's own coordinates (`--mesh-space`).
-    Mesh,
-    /// The scene's world space at the bind pose (the default).
-    BindPose,
-    /// The posed world space at `--time` of `--animation`.
-    Posed,
-}
-
-/// The posed positions and skin matrices of the frame the tool is given in (none: the rest
-/// mesh's own space).
-pub struct Posed {
-    pub positions: Vec<DVec3>,
-    pub skin: Vec<DAffine3>,
-    pub space: ToolSpace,
-}
-
-impl Posed {
-    pub fn read(rig: &Rig, f: &ToolFrame) -> Result<Option<Posed>> {
-        if f.mesh_space {
-            return Ok(None);
-        }
-        // The defaults of `skin`: --animation alone is its time 0, --time alone the first;
-        // neither, the bind pose (no animation).
-        let (animation, t, space) = match f.time.or(f.animation.as_ref().map(|_| 0.0)) {
-            None => (None, 0.0, ToolSpace::BindPose),
-            Some(t) => {
-                let animation = match &f.animation {
-                    Some(a) => Some(rig.animation_index(a)?),
-                    None => (!rig.animations.is_empty()).then_some(0),
-                };
-                (animation, t, ToolSpace::Posed)
-            }
-        };
-        let pose = rig.pose(animation, t, &[])?;
-        let lbs = Skinning::bind(rig, BlendMethod::Matrix)?;
-        let mut positions = vec![DVec3::ZERO; rig.mesh.vertex_count()];
-        lbs.pose_rig(&pose, &mut lbs.blend().scratch(), &mut positions)?;
-        Ok(Some(Posed {
-            positions,
-            skin: pose.skin_matrices.clone(),
-            space,
-        }))
+/// The frame a tool is given in, by the library's convention
+/// ([`deform::methods::frame::pose_time`]); `None` for `--mesh-space`.
+pub fn tool_frame(rig: &Rig, f: &ToolFrameArgs) -> Result<Option<Posed>> {
+    if f.mesh_space {
+        return Ok(None);
     }
-
-    pub fn frame(p: &Option<Posed>) -> Frame<'_> {
-        match p {
-            None => Frame::Rest,
-            Some(p) => Frame::Posed {
-                positions: &p.positions,
-                skin: &p.skin,
-            },
-        }
-    }
-
-    pub fn space(p: &Option<Posed>) -> ToolSpace {
-        p.as_ref().map_or(ToolSpace::Mesh, |p| p.space)
-    }
-
-    /// The bounding box of the model in the tool's space (to size what is drawn of a tool).
-    pub fn bounds(p: &Option<Posed>, rig: &Rig) -> Option<deform::mesh::Aabb> {
-        match p {
-            None => rig.mesh.bounding_box(),
-            Some(p) => Mesh::new(p.positions.clone(), Vec::new()).bounding_box(),
-        }
-    }
+    // --animation alone is its time 0 (a posed frame), as for `skin`.
+    let time = f.time.or(f.animation.as_ref().map(|_| 0.0));
+    let pose = pose_time(rig, f.animation.as_deref(), time)?;
+    Ok(Some(Posed::new(rig, pose)?))
 }
 
 /// Write the new rig (`.glb`) or its rest mesh (OBJ or PLY), and a preview of the parts moved
@@ -199,13 +142,13 @@ pub struct Prepared {
     pub index_ms: f64,
 }
 
-pub fn prepare(rig: &RigInput, frame: &ToolFrame, out: &OutputArgs) -> Result<Prepared> {
+pub fn prepare(rig: &RigInput, frame: &ToolFrameArgs, out: &OutputArgs) -> Result<Prepared> {
     let inputs = rig.paths();
     let inputs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
     check_outputs(&inputs, &out.paths())?;
     check_formats(out, &MESH_FORMATS)?;
     let rig = read_rig(rig)?;
-    let posed = Posed::read(&rig, frame)?;
+    let posed = tool_frame(&rig, frame)?;
     let t = Instant::now();
     let surgery = Surgery::new(&rig.mesh, &rig.influences)?;
     let index_ms = ms(t);

@@ -1,5 +1,5 @@
 //! Mesh and matrix files: OBJ (read, write), PLY (write), OFF, MEDIT `.mesh`, libigl DMAT and
-//! TGF.
+//! TGF; [`read_mesh`] reads and [`write_mesh_to`] writes by the file name's extension.
 
 mod bounded;
 mod dmat;
@@ -8,6 +8,7 @@ mod obj;
 mod off;
 mod ply;
 mod tgf;
+mod write;
 
 pub use bounded::{is_device, read_limited, MAX_FILE_BYTES};
 pub use dmat::{parse_dmat, read_dmat, write_dmat, Dmat};
@@ -22,6 +23,7 @@ pub use obj::{
 pub use off::{parse_off, read_off};
 pub use ply::{ply_header, write_ply, write_ply_to};
 pub use tgf::{parse_tgf, read_tgf, Skeleton};
+pub use write::{write_mesh_to, MeshFormat};
 
 use crate::mesh::Mesh;
 use crate::mesh::MeshError;

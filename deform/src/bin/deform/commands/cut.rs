@@ -8,7 +8,7 @@ use crate::report::Report;
 use crate::shared_args::{OutputArgs, RigInput, ToolFrame};
 use crate::surgery_io::{prepare, report_dropped, tool_overlay, write_result, Posed, Prepared};
 use crate::timing::ms;
-use anyhow::{bail, Result};
+use anyhow::{Context, Result};
 use clap::Args;
 use deform::skinning::RigPart;
 use deform::surgery::CutOptions;
@@ -37,17 +37,8 @@ pub struct CutArgs {
 
 pub fn run(a: &CutArgs) -> Result<()> {
     let [nx, ny, nz, d] = a.plane;
-    // Scaled by its largest component first, so that a normal like 1e308,1e308,1e308 (whose
-    // squared length overflows) is normalised too.
-    let raw = DVec3::new(nx, ny, nz);
-    let scale = raw.abs().max_element();
-    if scale.is_nan() || scale <= 0.0 {
-        bail!("--plane: the normal is zero");
-    }
-    let (normal, d) = (raw / scale, d / scale);
-    let len = normal.length();
-    let plane_d = d / len;
-    let plane = cga::Plane::from_normal_distance(normal / len, plane_d);
+    let plane = cga::Plane::try_from_equation(DVec3::new(nx, ny, nz), d).context("--plane")?;
+    let plane_d = plane.distance();
     let Prepared {
         rig,
         posed,
@@ -59,7 +50,7 @@ pub fn run(a: &CutArgs) -> Result<()> {
         snap: a.snap,
         cap: a.cap,
     };
-    let cut = surgery.cut(&plane, Posed::frame(&posed), &options)?;
+    let cut = surgery.cut(&plane, Posed::surgery_frame(&posed), &options)?;
     let cut_ms = ms(t);
     let mut report = Report::new("cut", &rig.mesh);
     report.add("index_ms", index_ms);

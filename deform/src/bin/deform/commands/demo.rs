@@ -6,7 +6,7 @@ mod scene;
 mod surgery;
 
 use crate::finish::displacement;
-use crate::output_files::{write_obj, write_png};
+use crate::output_files::{write_mesh, write_png};
 use crate::overlays::{centroid, spine};
 use crate::preview::{self, Look, POSED_INK, REST_INK, TOOL_INK};
 use crate::spline_ends::straight_chain;
@@ -158,7 +158,7 @@ pub fn run(a: &DemoArgs) -> Result<()> {
     let mut save = |row: &Row, rest: &Mesh, posed: Vec<DVec3>, scalar: &[f64], look: Look| {
         let posed = Mesh::new(posed, rest.triangles.clone());
         let name = row.name;
-        write_obj(&a.out.join(format!("{name}.obj")), &posed)?;
+        write_mesh(&a.out.join(format!("{name}.obj")), &posed)?;
         let moved = preview::max_move(rest, &posed.positions);
         let look = Look {
             title: format!("{name}  {}  {moved}", row.method),

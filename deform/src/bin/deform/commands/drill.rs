@@ -46,7 +46,7 @@ pub fn run(a: &DrillArgs) -> Result<()> {
         radius: a.radius,
     };
     let t = Instant::now();
-    let r = surgery.drill(&d, Posed::frame(&posed), &DrillOptions::default())?;
+    let r = surgery.drill(&d, Posed::surgery_frame(&posed), &DrillOptions::default())?;
     let drill_ms = ms(t);
     let mut report = Report::new("drill", &rig.mesh);
     report.add("index_ms", index_ms);

@@ -15,6 +15,7 @@ use anyhow::{bail, Context, Result};
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::{Args, ValueEnum};
 use deform::input::parse_motor;
+use deform::methods::frame::pose_time;
 use deform::skinning::{
     bake_edits, in_betweens, GlbOptions, JointEdit, KeyframeBlend, RigPose, Skinning,
 };
@@ -189,13 +190,11 @@ pub fn run(a: &SkinArgs) -> Result<()> {
     let t = Instant::now();
     let rig = read_rig(&a.rig)?;
     let load_ms = ms(t);
-    let timed = a.time.is_some() || a.range.is_some();
-    let animation = match a.animation.as_deref() {
-        Some(name) => Some(rig.animation_index(name)?),
-        // A time without a named animation means the first one, as for cut, tear and drill.
-        None if timed && a.dmat_animation.is_none() && !rig.animations.is_empty() => Some(0),
-        None => None,
-    };
+    // The library's convention, as for cut, tear and drill: a time (or a range) without a
+    // named animation is in the first one. A DMAT animation is the frames given instead.
+    let timed = a.time.or(a.range.map(|r| r.0));
+    let timed = timed.filter(|_| a.dmat_animation.is_none() || a.animation.is_some());
+    let animation = pose_time(&rig, a.animation.as_deref(), timed)?.animation;
     let time = a.time.unwrap_or(0.0);
     let mut edits = Vec::new();
     for (joint, path) in &a.edits {

@@ -52,7 +52,7 @@ pub fn run(a: &TearArgs) -> Result<()> {
         open: a.open,
         ..TearOptions::default()
     };
-    let r = surgery.tear(&blades, Posed::frame(&posed), &options)?;
+    let r = surgery.tear(&blades, Posed::surgery_frame(&posed), &options)?;
     let tear_ms = ms(t);
     let mut report = Report::new("tear", &rig.mesh);
     report.add("index_ms", index_ms);

@@ -256,11 +256,9 @@ impl RigEdit {
     /// Cut by the plane through `point` with normal `normal`, in the frame of `posed` (the
     /// last pose), and re-rig the pieces.
     pub fn cut(&mut self, point: DVec3, normal: DVec3, cap: bool, posed: &[DVec3]) -> Result<()> {
-        if !point.is_finite() || !normal.is_finite() || normal.length() < 1e-12 {
-            bail!("cut: the plane needs a finite point and a non-zero normal");
-        }
-        let n = normal.normalize();
-        let plane = cga::Plane::from_normal_distance(n, n.dot(point));
+        let plane = cga::Plane::try_from_point_normal(point, normal).map_err(|e| {
+            anyhow::anyhow!("cut: the plane needs a finite point and a non-zero normal ({e})")
+        })?;
         let options = CutOptions {
             cap,
             ..CutOptions::default()
