@@ -50,7 +50,7 @@ pub enum Error {
     Budget(#[from] crate::methods::budget::BudgetError),
     /// A method, option or pose request that cannot be taken.
     #[error(transparent)]
-    Method(#[from] crate::methods::MethodError),
+    Method(crate::methods::MethodError),
 }
 
 impl From<MeshError> for Error {
@@ -89,6 +89,24 @@ impl From<DeformError> for Error {
             DeformError::Arap(a) => Error::Arap(a),
             DeformError::Ffd(f) => Error::Ffd(f),
             DeformError::Cage(c) => Error::Cage(c),
+        }
+    }
+}
+
+impl From<crate::methods::MethodError> for Error {
+    fn from(e: crate::methods::MethodError) -> Self {
+        Error::Method(e)
+    }
+}
+
+impl From<crate::methods::MethodsError> for Error {
+    fn from(e: crate::methods::MethodsError) -> Self {
+        use crate::methods::MethodsError as M;
+        match e {
+            M::Method(m) => Error::Method(m),
+            M::Budget(b) => Error::Budget(b),
+            M::Deform(d) => d.into(),
+            M::Skin(s) => Error::Skin(s),
         }
     }
 }

@@ -10,7 +10,7 @@
 //! | [`deformers`] | the [`Deformer`] shape; spline, B-spline + FABRIK, handles, ARAP, FFD, cages | mesh, operators, blend | [`deformers::DeformError`] |
 //! | [`skinning`] | glTF and libigl rigs, animation, skinning by every blend method | mesh, operators, blend, deformers | [`skinning::SkinError`] |
 //! | [`surgery`] | cut, tear and drill that stay animatable | mesh, skinning | [`surgery::SurgeryError`] |
-//! | [`render`] | the PNG preview renderer | mesh | [`mesh::MeshError`] |
+//! | [`render`] | the PNG preview renderer, the previews every command and the demo draw ([`render::preview`]) and their overlays ([`render::tools`]) | mesh | [`mesh::MeshError`] |
 //! | [`methods`] | what the program, its editor and library callers share: the work budget | every layer | [`methods::budget::BudgetError`] |
 //! | [`input`] | motor JSON and selections, one format for every program command | mesh | [`input::InputError`] |
 //!

@@ -133,3 +133,29 @@ pub fn icosphere(radius: f64, levels: usize) -> Mesh {
     }
     mesh
 }
+
+/// The grid lines of an `L x M x N` grid of points indexed `u + L * (v + M * w)`: each pair of
+/// neighbours `[i, j]` along u, v and w.
+///
+/// ```
+/// let e = deform::mesh::shapes::grid_edges([3, 2, 2]);
+/// assert_eq!(e.len(), 2 * 2 * 2 + 3 * 1 * 2 + 3 * 2 * 1);
+/// assert!(e.contains(&[0, 1]) && e.contains(&[0, 3]) && e.contains(&[0, 6]));
+/// ```
+pub fn grid_edges(dims: [usize; 3]) -> Vec<[u32; 2]> {
+    let [a, b, c] = dims;
+    let index = |u: usize, v: usize, w: usize| (u + a * (v + b * w)) as u32;
+    let mut edges = Vec::new();
+    for w in 0..c {
+        for v in 0..b {
+            for u in 0..a {
+                for (du, dv, dw) in [(1, 0, 0), (0, 1, 0), (0, 0, 1)] {
+                    if u + du < a && v + dv < b && w + dw < c {
+                        edges.push([index(u, v, w), index(u + du, v + dv, w + dw)]);
+                    }
+                }
+            }
+        }
+    }
+    edges
+}

@@ -4,7 +4,9 @@
 //! library caller who picks the method at run time uses.
 
 use super::budget::WorkBudget;
-use super::method::{Method, MethodError};
+use super::error::MethodError;
+use super::error::MethodsError;
+use super::method::Method;
 use super::settings::MethodSettings;
 use crate::blend::control::ControlScratch;
 use crate::blend::{BlendMethod, BoundBlend, PreparedKeys};
@@ -12,10 +14,15 @@ use crate::deformers::arap::{Arap, ArapScratch, Stop, Targets};
 use crate::deformers::cage::{CageDeformer, CageOptions};
 use crate::deformers::ffd::{Ffd, FfdOptions};
 use crate::deformers::handles::HandleOptions;
+use crate::deformers::handles::MotorHandles;
+use crate::deformers::spline::SplineDeformer;
 use crate::deformers::spline::SplineOptions;
+use crate::deformers::Deformer;
 use crate::operators::harmonic::{harmonic_system, HarmonicOptions};
 use crate::operators::solve::SystemAnalysis;
-use crate::{Deformer, Mesh, MotorHandles, Result, SplineDeformer};
+
+type Result<T> = std::result::Result<T, MethodsError>;
+use crate::mesh::Mesh;
 use cga::{Motor, ScaledMotor};
 use glam::DVec3;
 use std::hash::{Hash, Hasher};

@@ -3,11 +3,14 @@
 //! animation (the rest pose for a model without one), neither is the bind pose; and the
 //! posed frame a surgery tool is given in.
 
+use super::error::MethodsError;
 use crate::blend::BlendMethod;
 use crate::mesh::Aabb;
 use crate::skinning::{Rig, SkinError, Skinning};
 use crate::surgery::Frame;
-use crate::{Mesh, Result};
+
+type Result<T> = std::result::Result<T, MethodsError>;
+use crate::mesh::Mesh;
 use glam::{DAffine3, DVec3};
 
 /// The pose a request names.

@@ -16,6 +16,7 @@
 
 pub mod bound;
 pub mod budget;
+mod error;
 pub mod frame;
 pub mod method;
 pub mod named;
@@ -23,5 +24,6 @@ pub mod scenes;
 pub mod settings;
 
 pub use bound::BoundMethod;
-pub use method::{Method, MethodError};
+pub use error::{MethodError, MethodsError};
+pub use method::Method;
 pub use settings::MethodSettings;

@@ -2,7 +2,7 @@
 //! editor's messages and in the command the editor replays. Each is parsed and printed here
 //! and nowhere else.
 
-use super::MethodError;
+use super::error::MethodError;
 use crate::blend::BlendMethod;
 use crate::deformers::arap::{ArapEnergy, LocalStep};
 use crate::deformers::ffd::LatticeBasis;

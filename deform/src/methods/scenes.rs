@@ -4,8 +4,8 @@
 
 use super::method::Method;
 use crate::mesh::shapes::{icosphere, tube, tube_ring};
+use crate::mesh::Mesh;
 use crate::skinning::{procedural_arm, Rig};
-use crate::Mesh;
 use glam::DVec3;
 use std::sync::Arc;
 

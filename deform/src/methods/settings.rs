@@ -3,7 +3,8 @@
 //! names, and [`MethodSettings::args`] prints the flags that bind the same way (the editor's
 //! replay command). The checks of each option's value live here too.
 
-use super::method::{Method, MethodError};
+use super::error::MethodError;
+use super::method::Method;
 use super::named::{Coordinates, Named};
 use crate::blend::control::ControlForm;
 use crate::blend::BlendMethod;

@@ -51,7 +51,9 @@ mod colormap;
 pub mod font;
 mod image;
 mod overlay;
+pub mod preview;
 mod raster;
+pub mod tools;
 
 pub use crate::mesh::numbers::short_number;
 pub use annotate::{annotate, text_scale, wrap, Legend, TEXT_COLOR};

@@ -174,6 +174,17 @@ impl Rig {
         })
     }
 
+    /// The rest transform of the skinned node: it places a mesh of the rest (mesh) space in
+    /// world space, as a viewer shows the model at rest, so a Z-up glTF model stands upright
+    /// like the posed meshes the skinning formula gives.
+    pub fn rest_placement(&self) -> Result<glam::DMat4, SkinError> {
+        let rest = self.pose(None, 0.0, &[])?;
+        Ok(self
+            .primitives
+            .first()
+            .map_or(glam::DMat4::IDENTITY, |p| rest.globals[p.node]))
+    }
+
     /// The index of an animation given by name or by index.
     ///
     /// # Errors

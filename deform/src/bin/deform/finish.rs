@@ -2,11 +2,11 @@
 //! write the mesh (OBJ, static `.glb` or PLY) and the preview, print the report.
 
 use crate::output_files::{write_deformed, write_png};
-use crate::preview::{self, Look};
 use crate::report::Report;
 use crate::shared_args::OutputArgs;
 use crate::timing::time_pose;
 use anyhow::{bail, Context, Result};
+use deform::render::preview::{self, Look};
 use deform::{Deformer, Mesh};
 use glam::DVec3;
 

@@ -16,8 +16,6 @@ mod interrupt;
 mod numbers;
 mod obj_extras;
 mod output_files;
-mod overlays;
-mod preview;
 mod progress;
 mod report;
 mod shared_args;

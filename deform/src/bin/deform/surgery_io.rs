@@ -7,12 +7,12 @@ use crate::input_files::read_rig;
 use crate::output_files::{
     check_formats, check_outputs, write_glb, write_png, write_rig_mesh, MESH_FORMATS,
 };
-use crate::preview::{self, Focus, Look};
 use crate::report::Report;
 use crate::shared_args::{OutputArgs, RigInput, ToolFrame as ToolFrameArgs};
 use crate::timing::ms;
 use anyhow::{Context, Result};
 pub use deform::methods::frame::{pose_time, ToolFrame as Posed, ToolSpace};
+use deform::render::preview::{self, Focus, Look};
 use deform::render::Overlay;
 use deform::skinning::{GlbOptions, Rig, RigPart};
 use deform::surgery::Surgery;
@@ -68,7 +68,7 @@ pub fn write_result(
         // Tools given in the rest mesh's space are placed as the mesh node places the mesh;
         // tools in the bind pose's world space are drawn as given.
         let place = match space {
-            ToolSpace::Mesh => preview::rest_placement(rig)?,
+            ToolSpace::Mesh => rig.rest_placement()?,
             ToolSpace::BindPose | ToolSpace::Posed => glam::DMat4::IDENTITY,
         };
         let rest_world = rig.bind_pose_positions()?;

@@ -132,23 +132,9 @@ impl Lattice {
     }
 
     /// The lattice's grid lines: each pair of neighbouring control points `[i, j]` (by
-    /// [`Lattice::index`]), along u, v and w.
+    /// [`Lattice::index`]), along u, v and w ([`crate::mesh::shapes::grid_edges`]).
     pub fn edges(&self) -> Vec<[u32; 2]> {
-        let [a, b, c] = self.dims;
-        let mut edges = Vec::new();
-        for w in 0..c {
-            for v in 0..b {
-                for u in 0..a {
-                    let i = self.index(u, v, w) as u32;
-                    for (du, dv, dw) in [(1, 0, 0), (0, 1, 0), (0, 0, 1)] {
-                        if u + du < a && v + dv < b && w + dw < c {
-                            edges.push([i, self.index(u + du, v + dv, w + dw) as u32]);
-                        }
-                    }
-                }
-            }
-        }
-        edges
+        crate::mesh::shapes::grid_edges(self.dims)
     }
 
     /// The degree along `axis`.

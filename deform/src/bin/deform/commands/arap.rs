@@ -5,8 +5,6 @@
 
 use crate::finish::{displacement, finish};
 use crate::input_files::{read_mesh_input, read_text};
-use crate::overlays::centroid;
-use crate::preview::{Look, POSED_INK, REST_INK, TOOL_INK};
 use crate::progress::with_progress;
 use crate::report::Report;
 use crate::shared_args::{named, MeshInput, OutputArgs};
@@ -16,6 +14,8 @@ use clap::Args;
 use deform::deformers::arap::{Arap, ArapEnergy, ArapOptions, LocalStep, Stop, Targets};
 use deform::input::parse_group_motors;
 use deform::methods::settings;
+use deform::render::preview::{Look, POSED_INK, REST_INK, TOOL_INK};
+use deform::render::tools::centroid;
 use std::path::PathBuf;
 use std::time::Instant;
 

@@ -4,8 +4,6 @@
 
 use crate::finish::pose_control_and_finish;
 use crate::input_files::{read_mesh, read_mesh_checked, read_text};
-use crate::overlays::{mesh_edges, moved};
-use crate::preview::{Look, POSED_INK, REST_INK};
 use crate::progress::with_progress;
 use crate::report::Report;
 use crate::shared_args::{named, FormArgs, OutputArgs};
@@ -16,6 +14,8 @@ use deform::deformers::cage::{CageCoordinates, CageDeformer, CageOptions, Harmon
 use deform::input::parse_group_motors;
 use deform::methods::named::{Coordinates, Named};
 use deform::methods::settings;
+use deform::render::preview::{Look, POSED_INK, REST_INK};
+use deform::render::tools::{mesh_edges, moved};
 use std::path::PathBuf;
 use std::time::Instant;
 

@@ -2,14 +2,14 @@
 //! stay skinned and animatable, written as `.glb` (the rig, one primitive per piece) or OBJ
 //! (the rest mesh).
 
-use crate::overlays;
-use crate::preview::{Look, TOOL_INK};
 use crate::report::Report;
 use crate::shared_args::{OutputArgs, RigInput, ToolFrame};
 use crate::surgery_io::{prepare, report_dropped, tool_overlay, write_result, Posed, Prepared};
 use crate::timing::ms;
 use anyhow::{Context, Result};
 use clap::Args;
+use deform::render::preview::{Look, TOOL_INK};
+use deform::render::tools as overlays;
 use deform::skinning::RigPart;
 use deform::surgery::CutOptions;
 use glam::DVec3;

@@ -7,8 +7,6 @@ mod surgery;
 
 use crate::finish::displacement;
 use crate::output_files::{write_mesh, write_png};
-use crate::overlays::{centroid, spine};
-use crate::preview::{self, Look, POSED_INK, REST_INK, TOOL_INK};
 use crate::spline_ends::straight_chain;
 use crate::timing::{ms, time_pose};
 use anyhow::{Context, Result};
@@ -18,6 +16,8 @@ use deform::deformers::fabrik::FabrikOptions;
 use deform::deformers::handles::HandleOptions;
 use deform::deformers::spline::{SplineOptions, WeightScheme};
 use deform::mesh::shapes::{icosphere, tube, tube_ring};
+use deform::render::preview::{self, Look, POSED_INK, REST_INK, TOOL_INK};
+use deform::render::tools::{centroid, spine};
 use deform::{BlendMethod, ChainDeformer, Mesh, MotorHandles, SplineDeformer};
 use glam::{DQuat, DVec3};
 use std::f64::consts::PI;

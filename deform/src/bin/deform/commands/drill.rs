@@ -1,15 +1,15 @@
 //! `deform drill`: drill a hole with a finite cylinder (the second paper's Algorithm 3); the
 //! result stays skinned and animatable, written as `.glb` or OBJ.
 
-use crate::overlays::circle;
-use crate::preview::{Look, TOOL_INK};
 use crate::report::Report;
 use crate::shared_args::{OutputArgs, RigInput, ToolFrame};
 use crate::surgery_io::{prepare, report_dropped, tool_overlay, write_one, Posed, Prepared};
 use crate::timing::ms;
 use anyhow::Result;
 use clap::Args;
+use deform::render::preview::{Look, TOOL_INK};
 use deform::render::short_number;
+use deform::render::tools::circle;
 use glam::DVec3;
 use std::time::Instant;
 

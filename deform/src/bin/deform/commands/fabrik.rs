@@ -4,7 +4,6 @@
 
 use crate::finish::finish;
 use crate::input_files::{read_mesh_input, read_text};
-use crate::preview::{Look, POSED_INK, REST_INK, TOOL_INK};
 use crate::progress::with_progress;
 use crate::report::Report;
 use crate::shared_args::{MeshInput, OutputArgs};
@@ -14,6 +13,7 @@ use anyhow::{bail, Context, Result};
 use clap::Args;
 use deform::deformers::fabrik::FabrikOptions;
 use deform::deformers::spline::SplineOptions;
+use deform::render::preview::{Look, POSED_INK, REST_INK, TOOL_INK};
 use deform::ChainDeformer;
 use glam::DVec3;
 use std::path::{Path, PathBuf};

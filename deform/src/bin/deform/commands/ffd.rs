@@ -4,8 +4,6 @@
 
 use crate::finish::pose_control_and_finish;
 use crate::input_files::{read_mesh_checked, read_text};
-use crate::overlays::{lattice, moved};
-use crate::preview::{Look, POSED_INK, REST_INK};
 use crate::report::Report;
 use crate::shared_args::{named, FormArgs, OutputArgs};
 use crate::timing::ms;
@@ -14,6 +12,8 @@ use clap::Args;
 use deform::deformers::ffd::{Ffd, FfdOptions, LatticeBasis};
 use deform::input::parse_group_motors;
 use deform::methods::settings;
+use deform::render::preview::{Look, POSED_INK, REST_INK};
+use deform::render::tools::{lattice, moved};
 use glam::DVec3;
 use std::path::PathBuf;
 use std::time::Instant;

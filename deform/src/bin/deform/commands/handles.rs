@@ -3,8 +3,6 @@
 
 use crate::finish::pose_and_finish;
 use crate::input_files::{read_mesh_input, read_text};
-use crate::overlays::{centroid, moved};
-use crate::preview::{Look, POSED_INK, REST_INK, TOOL_INK};
 use crate::progress::with_progress;
 use crate::report::Report;
 use crate::shared_args::{BlendingArgs, MeshInput, OutputArgs};
@@ -13,6 +11,8 @@ use anyhow::{Context, Result};
 use clap::Args;
 use deform::deformers::handles::HandleOptions;
 use deform::input::parse_group_motors;
+use deform::render::preview::{Look, POSED_INK, REST_INK, TOOL_INK};
+use deform::render::tools::{centroid, moved};
 use deform::MotorHandles;
 use glam::DVec3;
 use std::path::PathBuf;

@@ -7,7 +7,6 @@ use crate::input_files::{read_rig, read_text};
 use crate::output_files::{
     check_formats, check_outputs, write_glb, write_png, write_rig_mesh, MESH_FORMATS,
 };
-use crate::preview;
 use crate::report::Report;
 use crate::shared_args::{OutputArgs, RigInput};
 use crate::timing::{ms, time_pose, time_rig_pose};
@@ -16,6 +15,7 @@ use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::{Args, ValueEnum};
 use deform::input::parse_motor;
 use deform::methods::frame::pose_time;
+use deform::render::preview;
 use deform::skinning::{
     bake_edits, in_betweens, GlbOptions, JointEdit, KeyframeBlend, RigPose, Skinning,
 };

@@ -3,8 +3,6 @@
 
 use crate::finish::finish;
 use crate::input_files::{read_mesh_input, read_text};
-use crate::overlays::{centroid, spine};
-use crate::preview::{Look, POSED_INK, REST_INK};
 use crate::progress::with_progress;
 use crate::report::Report;
 use crate::shared_args::{BlendingArgs, MeshInput, OutputArgs};
@@ -14,6 +12,8 @@ use anyhow::{bail, Context, Result};
 use clap::{Args, ValueEnum};
 use deform::deformers::spline::{SplineOptions, WeightScheme};
 use deform::input::parse_key_list;
+use deform::render::preview::{Look, POSED_INK, REST_INK};
+use deform::render::tools::{centroid, spine};
 use deform::SplineDeformer;
 use glam::DVec3;
 use std::path::PathBuf;

@@ -3,13 +3,13 @@
 //! written as `.glb` or OBJ.
 
 use crate::numbers::point;
-use crate::preview::{Look, TOOL_INK};
 use crate::report::Report;
 use crate::shared_args::{OutputArgs, RigInput, ToolFrame};
 use crate::surgery_io::{prepare, report_dropped, tool_overlay, write_one, Posed, Prepared};
 use crate::timing::ms;
 use anyhow::Result;
 use clap::Args;
+use deform::render::preview::{Look, TOOL_INK};
 use deform::render::short_number;
 use glam::DVec3;
 use std::time::Instant;

@@ -5,8 +5,6 @@
 
 use super::scene::DemoScene;
 use crate::finish::displacement;
-use crate::overlays::{self, mesh_edges, moved};
-use crate::preview::{Look, POSED_INK};
 use crate::timing::{ms, time_pose};
 use anyhow::Result;
 use cga::ScaledMotor;
@@ -14,6 +12,8 @@ use deform::blend::control::{ControlForm, ControlScratch};
 use deform::deformers::cage::{CageDeformer, CageOptions};
 use deform::deformers::ffd::{Ffd, FfdOptions};
 use deform::mesh::shapes::tube;
+use deform::render::preview::{Look, POSED_INK};
+use deform::render::tools::{self, mesh_edges, moved};
 use deform::{BlendMethod, Deformer, Mesh};
 use glam::{DQuat, DVec3};
 use std::time::Instant;
@@ -84,7 +84,7 @@ pub fn scenes(length: f64) -> Result<Vec<DemoScene>> {
                     deform::deformers::ffd::LatticeBasis::Bernstein,
                 )?;
                 let points = moved(&lattice.rest_points(), &keys);
-                overlays::lattice(&mut look.posed, &points, [2, 2, 2], POSED_INK);
+                tools::lattice(&mut look.posed, &points, [2, 2, 2], POSED_INK);
                 look
             },
         )?);

@@ -1,6 +1,6 @@
 //! One demo scene's result, as the lattice and surgery scenes hand it to the demo.
 
-use crate::preview::Look;
+use deform::render::preview::Look;
 use deform::Mesh;
 use glam::DVec3;
 

@@ -5,10 +5,10 @@
 
 use super::scene::DemoScene;
 use crate::finish::displacement;
-use crate::preview::{Focus, Look};
 use crate::timing::{ms, time_pose};
 use anyhow::Result;
 use cga::ScaledMotor;
+use deform::render::preview::{Focus, Look};
 use deform::skinning::{procedural_arm, write_glb, GlbOptions, JointEdit, Rig, Skinning};
 use deform::surgery::{
     CutOptions, Drill, DrillOptions, Frame, Scalpel, Surgery, TearOptions, VertexOrigin,

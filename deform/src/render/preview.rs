@@ -1,17 +1,15 @@
-//! PNG previews, one convention for every command: world space (a rig's rest mesh placed by
+//! PNG previews, one convention for the `deform` program's commands, its demo and a library
+//! caller: world space (a rig's rest mesh placed by
 //! its node, as `skin` draws it), the model's up axis (+Y) up, one camera framing the rest
 //! mesh, the result and the overlays; the rest mesh plain beside the result coloured by a
 //! per-vertex scalar; a title (command, method, key figures) above and a colour legend
 //! below; tools, cages, lattices, chains and handles drawn over both; and where the change
 //! is small, a third view zoomed on the vertices it made.
 
-use anyhow::Result;
-use deform::mesh::Aabb;
-use deform::render::{
+use super::{
     annotate, render_with_camera, Camera, Coloring, Image, Legend, Overlay, RenderOptions,
 };
-use deform::skinning::Rig;
-use deform::Mesh;
+use crate::mesh::{Aabb, Mesh, MeshError, Result};
 use glam::DVec3;
 
 const BACKGROUND: [u8; 3] = [235, 235, 235];
@@ -37,7 +35,9 @@ const FOCUS_INK: [u8; 3] = [255, 140, 0];
 /// A part of the result to show zoomed in: vertices of the result mesh, seen along
 /// `direction` (default: the preview's view).
 pub struct Focus {
+    /// The vertices of the result to frame.
     pub vertices: Vec<u32>,
+    /// The direction to look along (default: the preview's view).
     pub direction: Option<DVec3>,
 }
 
@@ -89,11 +89,13 @@ fn bounds(meshes: &[&Mesh], points: &[DVec3]) -> Result<Aabb> {
     let mut b: Option<Aabb> = None;
     for m in meshes {
         let Some(mb) = m.bounding_box() else {
-            anyhow::bail!("cannot preview an empty mesh");
+            return Err(MeshError::InvalidArgument(
+                "cannot preview an empty mesh".into(),
+            ));
         };
         b = Some(b.map_or(mb, |a| union(&a, &mb)));
     }
-    let mut b = b.ok_or_else(|| anyhow::anyhow!("cannot preview no mesh"))?;
+    let mut b = b.ok_or_else(|| MeshError::InvalidArgument("cannot preview no mesh".into()))?;
     for p in all.by_ref() {
         b = union(&b, &Aabb { min: p, max: p });
     }
@@ -224,17 +226,6 @@ pub fn tile(rest: &Mesh, posed: &Mesh, scalar: &[f64], look: &Look) -> Result<Im
 /// A grid of images.
 pub fn sheet(images: &[Image], columns: usize) -> Image {
     Image::contact_sheet(images, columns, BACKGROUND)
-}
-
-/// The rest transform of `rig`'s skinned node: it places a mesh of the rig's rest (mesh) space
-/// in world space, as a viewer shows the model at rest, so a Z-up glTF model stands upright
-/// like the posed meshes the skinning formula gives.
-pub fn rest_placement(rig: &Rig) -> Result<glam::DMat4> {
-    let rest = rig.pose(None, 0.0, &[])?;
-    Ok(rig
-        .primitives
-        .first()
-        .map_or(glam::DMat4::IDENTITY, |p| rest.globals[p.node]))
 }
 
 #[cfg(test)]

@@ -1,10 +1,12 @@
-//! What previews draw over the meshes, built from what the commands have: handle centroids,
+//! What previews draw over the meshes (tools, cages, lattices, chains, handles), built from
+//! what a deformer has: handle centroids,
 //! points moved by their motors, a cage's edges, a lattice's grid lines, a spline's spine,
 //! a plane, a cylinder's rims.
 
+use super::Overlay;
+use crate::mesh::shapes::grid_edges;
+use crate::mesh::Mesh;
 use cga::ScaledMotor;
-use deform::render::Overlay;
-use deform::Mesh;
 use glam::DVec3;
 
 /// The mean of `positions` at `vertices` (the origin for none).
@@ -26,41 +28,24 @@ pub fn moved(points: &[DVec3], motors: &[ScaledMotor]) -> Vec<DVec3> {
         .collect()
 }
 
-/// Every edge of `mesh` once, with its positions replaced by `positions`.
-pub fn mesh_edges(o: &mut Overlay, mesh: &Mesh, positions: &[DVec3], color: [u8; 3]) {
-    let mut edges: Vec<(u32, u32)> = mesh
-        .triangles
-        .iter()
-        .flat_map(|t| [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])])
-        .map(|(a, b)| (a.min(b), a.max(b)))
-        .collect();
-    edges.sort_unstable();
-    edges.dedup();
-    for (a, b) in edges {
+/// Each pair `[a, b]` of `edges` as a line between `positions[a]` and `positions[b]`.
+pub fn edges(o: &mut Overlay, positions: &[DVec3], edges: &[[u32; 2]], color: [u8; 3]) {
+    for &[a, b] in edges {
         o.line(positions[a as usize], positions[b as usize], color);
     }
 }
 
-/// The grid lines of a lattice of `dims` points indexed `u + L * (v + M * w)`, and a dot on
-/// each point.
+/// Every edge of `mesh` once, with its positions replaced by `positions`.
+pub fn mesh_edges(o: &mut Overlay, mesh: &Mesh, positions: &[DVec3], color: [u8; 3]) {
+    edges(o, positions, &mesh.edges().edges, color);
+}
+
+/// The grid lines of a lattice of `dims` points indexed `u + L * (v + M * w)`
+/// ([`grid_edges`]), and a dot on each point.
 pub fn lattice(o: &mut Overlay, points: &[DVec3], dims: [usize; 3], color: [u8; 3]) {
-    let [l, m, n] = dims;
-    let at = |u: usize, v: usize, w: usize| points[u + l * (v + m * w)];
-    for w in 0..n {
-        for v in 0..m {
-            for u in 0..l {
-                if u + 1 < l {
-                    o.line(at(u, v, w), at(u + 1, v, w), color);
-                }
-                if v + 1 < m {
-                    o.line(at(u, v, w), at(u, v + 1, w), color);
-                }
-                if w + 1 < n {
-                    o.line(at(u, v, w), at(u, v, w + 1), color);
-                }
-                o.dot(at(u, v, w), 2, color);
-            }
-        }
+    edges(o, points, &grid_edges(dims), color);
+    for &p in points {
+        o.dot(p, 2, color);
     }
 }
 
