@@ -74,6 +74,14 @@ pub fn sphere_with_caps() -> (Mesh, Vec<Vec<u32>>) {
     (ball, caps.to_vec())
 }
 
+/// A hexagonal beam of radius 1 and length 10 along +x (41 rings) and its two end rings.
+pub fn beam_with_ends() -> (Mesh, Vec<Vec<u32>>) {
+    (
+        tube(1.0, 10.0, 6, 41),
+        vec![tube_ring(6, 0), tube_ring(6, 40)],
+    )
+}
+
 /// A round bar of radius 1 and length 10 along +x (16 sides, 41 rings).
 pub fn bar() -> Mesh {
     tube(1.0, 10.0, 16, 41)
@@ -96,14 +104,11 @@ pub fn catalogue() -> Vec<Scene> {
         method,
         cage,
     };
-    let beam_ends = vec![tube_ring(6, 0), tube_ring(6, 40)];
+    let (beam, beam_ends) = beam_with_ends();
     let bar_keys = vec![tube_ring(16, 0), tube_ring(16, 20), tube_ring(16, 40)];
     vec![
         Scene::new("sphere", mesh(ball, caps, Method::Handles, None)),
-        Scene::new(
-            "beam",
-            mesh(tube(1.0, 10.0, 6, 41), beam_ends, Method::Arap, None),
-        ),
+        Scene::new("beam", mesh(beam, beam_ends, Method::Arap, None)),
         Scene::new("bar", mesh(bar(), bar_keys, Method::Spline, None)),
         Scene::new("lattice", mesh(bar(), Vec::new(), Method::Ffd, None)),
         Scene::new(

@@ -3,6 +3,7 @@
 
 mod lattice;
 mod scene;
+use scene::DemoScene;
 mod surgery;
 
 use crate::finish::displacement;
@@ -12,10 +13,12 @@ use crate::timing::{ms, time_pose};
 use anyhow::{Context, Result};
 use cga::{Motor, ScaledMotor};
 use clap::Args;
+use deform::deformers::arap::{Arap, ArapOptions, Stop, Targets};
 use deform::deformers::fabrik::FabrikOptions;
 use deform::deformers::handles::HandleOptions;
 use deform::deformers::spline::{SplineOptions, WeightScheme};
-use deform::mesh::shapes::{icosphere, tube, tube_ring};
+use deform::mesh::shapes::{tube, tube_ring};
+use deform::methods::scenes::{beam_with_ends, sphere_with_caps};
 use deform::render::preview::{self, Look, POSED_INK, REST_INK, TOOL_INK};
 use deform::render::tools::{centroid, spine};
 use deform::{BlendMethod, ChainDeformer, Mesh, MotorHandles, SplineDeformer};
@@ -69,7 +72,7 @@ struct SplineScene {
     keys: Vec<ScaledMotor>,
 }
 
-fn spline_scenes() -> Vec<SplineScene> {
+fn spline_keys() -> Vec<SplineScene> {
     let theta = PI / 2.0;
     let r = LENGTH / theta;
     let bend = about(
@@ -151,31 +154,58 @@ fn spline_scenes() -> Vec<SplineScene> {
 pub fn run(a: &DemoArgs) -> Result<()> {
     std::fs::create_dir_all(&a.out)
         .with_context(|| format!("{}: cannot create", a.out.display()))?;
+    let mut scenes = spline_scenes()?;
+    scenes.push(fabrik_scene()?);
+    // FFD twists (motor vs positional lattice) and a bar bent by motors on its cage's
+    // vertices (demo/lattice.rs).
+    scenes.extend(lattice::scenes(LENGTH)?);
+    scenes.push(handles_scene()?);
+    scenes.push(arap_scene()?);
+    // Skinning, then cutting, tearing and drilling the rigged arm, re-animated after each
+    // (demo/surgery.rs); every rig is also written as .glb.
+    scenes.extend(surgery::scenes(&a.out)?);
     let mut rows = Vec::new();
     let mut images = Vec::new();
-    // One OBJ, one before-and-after PNG and one tile of the sheet per scene, titled with the
-    // scene, its method and how far it moved.
-    let mut save = |row: &Row, rest: &Mesh, posed: Vec<DVec3>, scalar: &[f64], look: Look| {
-        let posed = Mesh::new(posed, rest.triangles.clone());
-        let name = row.name;
-        write_mesh(&a.out.join(format!("{name}.obj")), &posed)?;
-        let moved = preview::max_move(rest, &posed.positions);
-        let look = Look {
-            title: format!("{name}  {}  {moved}", row.method),
-            ..look
-        };
-        write_png(
-            &a.out.join(format!("{name}.png")),
-            &preview::before_after(rest, &posed, scalar, &look)?,
-        )?;
-        images.push(preview::tile(rest, &posed, scalar, &look)?);
-        rows.push(row.clone());
-        anyhow::Ok(())
-    };
+    for scene in scenes {
+        rows.push(Row {
+            name: scene.name,
+            method: scene.method.clone(),
+            vertices: scene.rest.vertex_count(),
+            bind_ms: scene.bind_ms,
+            pose_ms: scene.pose_ms,
+        });
+        images.push(save(a, scene)?);
+    }
+    let sheet = preview::sheet(&images, 4);
+    let sheet_path = a.out.join("contact-sheet.png");
+    write_png(&sheet_path, &sheet)?;
+    print_table(&rows, a, &sheet_path);
+    Ok(())
+}
 
+/// One OBJ and one before-and-after PNG of `s`, titled with the scene, its method and how far
+/// it moved; returns its tile of the contact sheet.
+fn save(a: &DemoArgs, s: DemoScene) -> Result<deform::render::Image> {
+    let posed = Mesh::new(s.posed.clone(), s.rest.triangles.clone());
+    let name = s.name;
+    write_mesh(&a.out.join(format!("{name}.obj")), &posed)?;
+    let moved = preview::max_move(&s.rest, &posed.positions);
+    let look = Look {
+        title: format!("{name}  {}  {moved}", s.method),
+        ..s.look
+    };
+    let (rest, scalar) = (&s.rest, &s.scalar);
+    let image = preview::before_after(rest, &posed, scalar, &look)?;
+    write_png(&a.out.join(format!("{name}.png")), &image)?;
+    Ok(preview::tile(rest, &posed, scalar, &look)?)
+}
+
+/// The spline scenes on the square bar.
+fn spline_scenes() -> Result<Vec<DemoScene>> {
     let bar = tube(1.0, LENGTH, SIDES, RINGS);
     let (h1, hn) = (tube_ring(SIDES, 0), tube_ring(SIDES, RINGS - 1));
-    for s in spline_scenes() {
+    let mut scenes = Vec::new();
+    for s in spline_keys() {
         let options = SplineOptions {
             scheme: s.scheme,
             method: s.method,
@@ -186,20 +216,25 @@ pub fn run(a: &DemoArgs) -> Result<()> {
         let bind_ms = ms(t);
         let mut out = vec![DVec3::ZERO; bar.vertex_count()];
         let pose_ms = time_pose(&d, &s.keys, &mut out)?;
-        let row = Row {
-            name: s.name,
-            method: format!("{} / {}", s.scheme.name(), s.method.name()),
-            vertices: bar.vertex_count(),
-            bind_ms,
-            pose_ms,
-        };
         let mut look = Look::new("", "lambda");
         look.posed
             .polyline(&spine(&out, d.lambda(), 24), false, POSED_INK);
-        save(&row, &bar, out, d.lambda(), look)?;
+        scenes.push(DemoScene {
+            name: s.name,
+            method: format!("{} / {}", s.scheme.name(), s.method.name()),
+            rest: bar.clone(),
+            posed: out,
+            scalar: d.lambda().to_vec(),
+            bind_ms,
+            pose_ms,
+            look,
+        });
     }
+    Ok(scenes)
+}
 
-    // FABRIK: a round bar follows a chain whose end effector is pulled up and back.
+/// FABRIK: a round bar follows a chain whose end effector is pulled up and back.
+fn fabrik_scene() -> Result<DemoScene> {
     let rod = tube(1.0, LENGTH, 24, RINGS);
     let (r1, rn) = (tube_ring(24, 0), tube_ring(24, RINGS - 1));
     let joints = straight_chain(&rod, &r1, &rn, 6);
@@ -211,54 +246,33 @@ pub fn run(a: &DemoArgs) -> Result<()> {
     let target = DVec3::new(5.0, 6.0, 2.0);
     let r = chain.pose_to_target(target, &FabrikOptions::default(), &mut out)?;
     let pose_ms = ms(t);
-    let row = Row {
-        name: "fabrik-chain",
-        method: format!(
-            "FABRIK ({} passes) + B-spline fit / motor-log",
-            r.solution.iterations
-        ),
-        vertices: rod.vertex_count(),
-        bind_ms,
-        pose_ms,
-    };
     let mut look = Look::new("", "lambda");
     look.posed.polyline(&r.solution.joints, false, POSED_INK);
     for &j in &r.solution.joints {
         look.posed.dot(j, 3, POSED_INK);
     }
     look.posed.dot(target, 5, TOOL_INK);
-    save(&row, &rod, out, chain.spline().lambda(), look)?;
+    let passes = r.solution.iterations;
+    Ok(DemoScene {
+        name: "fabrik-chain",
+        method: format!("FABRIK ({passes} passes) + B-spline fit / motor-log"),
+        scalar: chain.spline().lambda().to_vec(),
+        rest: rod,
+        posed: out,
+        bind_ms,
+        pose_ms,
+        look,
+    })
+}
 
-    // FFD twists (motor vs positional lattice) and a bar bent by motors on its cage's
-    // vertices (demo/lattice.rs).
-    for s in lattice::scenes(LENGTH)? {
-        let row = Row {
-            name: s.name,
-            method: s.method,
-            vertices: s.rest.vertex_count(),
-            bind_ms: s.bind_ms,
-            pose_ms: s.pose_ms,
-        };
-        save(&row, &s.rest, s.posed, &s.scalar, s.look)?;
-    }
-
-    // Motor handles on a sphere: the bottom cap stays, the top cap lifts and grows, a side
-    // cap turns.
-    let ball = icosphere(1.0, 4);
-    let cap = |dir: DVec3| -> Vec<u32> {
-        (0..ball.vertex_count() as u32)
-            .filter(|&v| ball.positions[v as usize].dot(dir) > 0.85)
-            .collect()
-    };
-    let sets = [cap(-DVec3::Y), cap(DVec3::Y), cap(DVec3::X)];
+/// Motor handles on the catalogue's sphere: the bottom cap stays, the top cap lifts and
+/// grows, a side cap turns.
+fn handles_scene() -> Result<DemoScene> {
+    let (ball, sets) = sphere_with_caps();
     let slices: Vec<&[u32]> = sets.iter().map(Vec::as_slice).collect();
     let t = Instant::now();
-    let handles = MotorHandles::bind_with(
-        &ball,
-        &slices,
-        &[ScaledMotor::IDENTITY; 3],
-        HandleOptions::default(),
-    )?;
+    let rest = [ScaledMotor::IDENTITY; 3];
+    let handles = MotorHandles::bind_with(&ball, &slices, &rest, HandleOptions::default())?;
     let bind_ms = ms(t);
     let keys = [
         ScaledMotor::IDENTITY,
@@ -272,88 +286,59 @@ pub fn run(a: &DemoArgs) -> Result<()> {
     ];
     let mut out = vec![DVec3::ZERO; ball.vertex_count()];
     let pose_ms = time_pose(&handles, &keys, &mut out)?;
-    let moved = displacement(&ball, &out);
-    let row = Row {
-        name: "handles-sphere",
-        method: "3 harmonic handles / motor-log".into(),
-        vertices: ball.vertex_count(),
-        bind_ms,
-        pose_ms,
-    };
     let mut look = Look::new("", "displacement");
     for (set, key) in sets.iter().zip(&keys) {
-        look.posed.dot(
-            key.transform_point(centroid(&ball.positions, set)),
-            4,
-            POSED_INK,
-        );
+        let centre = key.transform_point(centroid(&ball.positions, set));
+        look.posed.dot(centre, 4, POSED_INK);
     }
-    save(&row, &ball, out, &moved, look)?;
+    Ok(DemoScene {
+        name: "handles-sphere",
+        method: "3 harmonic handles / motor-log".into(),
+        scalar: displacement(&ball, &out),
+        rest: ball,
+        posed: out,
+        bind_ms,
+        pose_ms,
+        look,
+    })
+}
 
-    // ARAP with rotors: a square bar, its left end fixed, its right end lifted and turned by
-    // a motor; a few iterations of the spokes-and-rims energy from the rest pose.
-    {
-        use deform::deformers::arap::{Arap, ArapOptions, Stop, Targets};
-        let (sides, rings) = (6, 41);
-        let beam = tube(1.0, LENGTH, sides, rings);
-        let (fixed, end) = (tube_ring(sides, 0), tube_ring(sides, rings - 1));
-        let t = Instant::now();
-        let arap = Arap::bind(&beam, &fixed, &[&end], ArapOptions::default())?;
-        let bind_ms = ms(t);
-        let tip = DVec3::new(LENGTH, 0.0, 0.0);
-        let key = about(
-            tip,
-            1.0,
-            DQuat::from_rotation_z(PI / 2.0) * DQuat::from_rotation_x(PI / 3.0),
-            DVec3::new(-4.0, 5.0, 0.0),
-        );
-        let iterations = 8;
-        let mut out = beam.positions.clone();
-        let t = Instant::now();
-        let report = arap.pose(
-            &Targets::Motors(&[key]),
-            Stop::Iterations(iterations),
-            &mut out,
-        )?;
-        let pose_ms = ms(t);
-        let moved = displacement(&beam, &out);
-        let row = Row {
-            name: "arap-beam",
-            method: format!(
-                "ARAP {} / rotor, {iterations} iterations (E {:.3})",
-                arap.options().energy.name(),
-                report.energies.last().copied().unwrap_or(f64::NAN)
-            ),
-            vertices: beam.vertex_count(),
-            bind_ms,
-            pose_ms,
-        };
-        let mut look = Look::new("", "displacement");
-        look.posed
-            .dot(centroid(&beam.positions, &fixed), 4, REST_INK);
-        let end_centre = key.transform_point(centroid(&beam.positions, &end));
-        look.posed.dot(end_centre, 4, POSED_INK);
-        save(&row, &beam, out, &moved, look)?;
-    }
-
-    // Skinning, then cutting, tearing and drilling the rigged arm, re-animated after each
-    // (demo/surgery.rs); every rig is also written as .glb.
-    for s in surgery::scenes(&a.out)? {
-        let row = Row {
-            name: s.name,
-            method: s.method,
-            vertices: s.rest.vertex_count(),
-            bind_ms: s.bind_ms,
-            pose_ms: s.pose_ms,
-        };
-        save(&row, &s.rest, s.posed, &s.scalar, s.look)?;
-    }
-
-    let sheet = preview::sheet(&images, 4);
-    let sheet_path = a.out.join("contact-sheet.png");
-    write_png(&sheet_path, &sheet)?;
-    print_table(&rows, a, &sheet_path);
-    Ok(())
+/// ARAP with rotors on the catalogue's beam: its left end fixed, its right end lifted and
+/// turned by a motor; a few iterations of the spokes-and-rims energy from the rest pose.
+fn arap_scene() -> Result<DemoScene> {
+    let (beam, ends) = beam_with_ends();
+    let (fixed, end) = (&ends[0], &ends[1]);
+    let t = Instant::now();
+    let arap = Arap::bind(&beam, fixed, &[end], ArapOptions::default())?;
+    let bind_ms = ms(t);
+    let tip = DVec3::new(LENGTH, 0.0, 0.0);
+    let turn = DQuat::from_rotation_z(PI / 2.0) * DQuat::from_rotation_x(PI / 3.0);
+    let key = about(tip, 1.0, turn, DVec3::new(-4.0, 5.0, 0.0));
+    let iterations = 8;
+    let mut out = beam.positions.clone();
+    let t = Instant::now();
+    let targets = Targets::Motors(&[key]);
+    let report = arap.pose(&targets, Stop::Iterations(iterations), &mut out)?;
+    let pose_ms = ms(t);
+    let mut look = Look::new("", "displacement");
+    look.posed
+        .dot(centroid(&beam.positions, fixed), 4, REST_INK);
+    let end_centre = key.transform_point(centroid(&beam.positions, end));
+    look.posed.dot(end_centre, 4, POSED_INK);
+    let energy = report.energies.last().copied().unwrap_or(f64::NAN);
+    Ok(DemoScene {
+        name: "arap-beam",
+        method: format!(
+            "ARAP {} / rotor, {iterations} iterations (E {energy:.3})",
+            arap.options().energy.name(),
+        ),
+        scalar: displacement(&beam, &out),
+        rest: beam,
+        posed: out,
+        bind_ms,
+        pose_ms,
+        look,
+    })
 }
 
 fn print_table(rows: &[Row], a: &DemoArgs, sheet: &std::path::Path) {

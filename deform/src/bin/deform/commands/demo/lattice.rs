@@ -91,14 +91,13 @@ pub fn scenes(length: f64) -> Result<Vec<DemoScene>> {
     }
     // Cage: a square tube cage of 6 rings around a round bar; the vertices at x turn about
     // the axis through (0, r, 0) along z by 90 degrees * x / length (an arc of radius r).
-    let bar = tube(1.0, length, 16, 41);
+    // The catalogue's bar and cage (the editor's "cage" scene), `length` long.
+    let (bar, cage) = (
+        deform::methods::scenes::bar(),
+        deform::methods::scenes::bar_cage(),
+    );
     let theta = std::f64::consts::FRAC_PI_2;
     let center = DVec3::new(0.0, length / theta, 0.0);
-    let cage = {
-        let mut c = tube(1.6, length + 2.0, 4, 6);
-        c.positions.iter_mut().for_each(|p| p.x -= 1.0);
-        c
-    };
     let keys: Vec<ScaledMotor> = cage
         .positions
         .iter()
