@@ -104,6 +104,65 @@ fn compact_influences(rig: &Rig) -> (usize, Vec<[u16; 8]>, Vec<[f32; 8]>) {
 /// node that is two joints (bound by several skins with different inverse bind matrices) or
 /// `node_transforms` of the wrong length.
 pub fn glb_bytes(rig: &Rig, options: &GlbOptions) -> Result<Vec<u8>> {
+    let locals = check_writable(rig, options)?;
+    let look = &rig.look;
+    let mut bin = GlbBuilder::default();
+    let influences = compact_influences(rig);
+    let normals: Vec<[f32; 3]> = match look.attribute("NORMAL").filter(|a| a.width == 3) {
+        Some(a) => a
+            .values
+            .chunks_exact(3)
+            .map(|c| [c[0], c[1], c[2]])
+            .collect(),
+        None => unit_normals(&rig.mesh),
+    };
+    let primitives = (0..rig.primitives.len())
+        .map(|index| write_primitive(rig, index, &influences, &normals, &mut bin))
+        .collect::<Result<Vec<_>>>()?;
+    let mut mesh = json!({"name": "skin", "primitives": primitives});
+    if !look.morph_weights.is_empty() {
+        mesh["weights"] = json!(look.morph_weights);
+    }
+    let ibm: Vec<f32> = rig
+        .inverse_bind
+        .iter()
+        .flat_map(|m| m.as_mat4().to_cols_array())
+        .collect();
+    let ibm = floats(
+        &mut bin,
+        &ibm,
+        16,
+        "MAT4",
+        None,
+        false,
+        "inverse bind matrices",
+    )?;
+    let (nodes, roots) = node_tree(rig, &locals);
+    let animations = if options.without_animations {
+        Vec::new()
+    } else {
+        write_animations(rig, &mut bin)?
+    };
+    let images = image_views(look, &mut bin);
+    let mut doc = json!({
+        "asset": {"version": "2.0", "generator": "deform (cga mesh deformers)"},
+        "scene": 0,
+        "scenes": [{"nodes": roots}],
+        "nodes": nodes,
+        "meshes": [mesh],
+        "skins": [{"joints": rig.joints, "inverseBindMatrices": ibm}],
+    });
+    if !animations.is_empty() {
+        doc["animations"] = json!(animations);
+    }
+    write_look(look, images, &mut doc);
+    bin.finish(doc).map_err(SkinError::InvalidArgument)
+}
+
+/// What glTF (and this writer) cannot hold, refused before anything is written: no
+/// triangles, more than 2^16 joints, a joint of several skins, node transforms of another
+/// count, a look of another size. Returns each node's local transform.
+fn check_writable(rig: &Rig, options: &GlbOptions) -> Result<Vec<Trs>> {
     if rig.mesh.triangle_count() == 0 {
         return Err(SkinError::InvalidArgument(
             "the rig's mesh has no triangles: nothing to write".into(),
@@ -137,131 +196,91 @@ pub fn glb_bytes(rig: &Rig, options: &GlbOptions) -> Result<Vec<u8>> {
         Some(t) => t.clone(),
         None => rig.nodes.iter().map(|n| n.rest).collect(),
     };
-    let look = &rig.look;
     check_look(rig)?;
-    let mut bin = GlbBuilder::default();
-    let (width, joints, weights) = compact_influences(rig);
-    let normals: Vec<[f32; 3]> = match look.attribute("NORMAL").filter(|a| a.width == 3) {
-        Some(a) => a
-            .values
-            .chunks_exact(3)
-            .map(|c| [c[0], c[1], c[2]])
-            .collect(),
-        None => unit_normals(&rig.mesh),
-    };
-    let mut primitives = Vec::new();
-    for (index, p) in rig.primitives.iter().enumerate() {
-        let range = p.vertex_offset..p.vertex_offset + p.vertex_count;
-        // The base shape: the rest shape without the morph targets' default weights.
-        let mut base = rig.mesh.positions[range.clone()].to_vec();
-        let targets: Vec<VertexAttribute> = look
-            .attributes
-            .iter()
-            .filter(|a| parse_target_attribute(&a.name).is_some())
-            .map(|a| a.rows(range.clone()))
-            .collect();
-        morph::displace(&mut base, &targets, &look.morph_weights, -1.0);
-        let pos: Vec<f32> = base.iter().flat_map(|x| x.as_vec3().to_array()).collect();
-        let position = floats(&mut bin, &pos, 3, "VEC3", Some(34962), true, "POSITION")?;
-        let idx: Vec<u8> = rig.mesh.triangles
-            [p.triangle_offset..p.triangle_offset + p.triangle_count]
-            .iter()
-            .flatten()
-            .flat_map(|&i| (i - p.vertex_offset as u32).to_le_bytes())
-            .collect();
-        let indices = bin.push(
-            &idx,
-            Some(34963),
-            json!({"componentType": 5125, "count": 3 * p.triangle_count, "type": "SCALAR"}),
-        );
-        let mut attributes = json!({ "POSITION": position });
-        if !look.flat {
-            let nrm: Vec<f32> = normals[range.clone()].iter().flatten().copied().collect();
-            attributes["NORMAL"] = json!(floats(
-                &mut bin,
-                &nrm,
-                3,
-                "VEC3",
-                Some(34962),
-                false,
-                "NORMAL"
-            )?);
-        }
-        let plain =
-            |a: &&VertexAttribute| a.name != "NORMAL" && parse_target_attribute(&a.name).is_none();
-        for a in look.attributes.iter().filter(plain) {
-            let values = &a.values[range.start * a.width..range.end * a.width];
-            let kind = ["SCALAR", "VEC2", "VEC3", "VEC4"][a.width - 1];
-            attributes[a.name.as_str()] = json!(floats(
-                &mut bin,
-                values,
-                a.width,
-                kind,
-                Some(34962),
-                false,
-                &a.name
-            )?);
-        }
-        for set in 0..width / 4 {
-            let j: Vec<u8> = joints[range.clone()]
-                .iter()
-                .flat_map(|r| r[4 * set..4 * set + 4].iter().flat_map(|x| x.to_le_bytes()))
-                .collect();
-            let w: Vec<f32> = weights[range.clone()]
-                .iter()
-                .flat_map(|r| r[4 * set..4 * set + 4].to_vec())
-                .collect();
-            attributes[format!("JOINTS_{set}")] = json!(bin.push(
-                &j,
-                Some(34962),
-                json!({"componentType": 5123, "count": p.vertex_count, "type": "VEC4"})
-            ));
-            attributes[format!("WEIGHTS_{set}")] = json!(floats(
-                &mut bin,
-                &w,
-                4,
-                "VEC4",
-                Some(34962),
-                false,
-                "WEIGHTS"
-            )?);
-        }
-        let mut primitive = json!({"attributes": attributes, "indices": indices, "mode": 4});
-        if !look.morph_weights.is_empty() {
-            primitive["targets"] = json!(write_targets(
-                &mut bin,
-                &targets,
-                look.morph_weights.len(),
-                !look.flat
-            )?);
-        }
-        if let Some(m) = look.primitive_materials.get(index).copied().flatten() {
-            primitive["material"] = json!(m);
-        }
-        primitives.push(primitive);
-    }
-    let mut mesh = json!({"name": "skin", "primitives": primitives});
-    if !look.morph_weights.is_empty() {
-        mesh["weights"] = json!(look.morph_weights);
-    }
-    let ibm: Vec<f32> = rig
-        .inverse_bind
+    Ok(locals)
+}
+
+/// Primitive `index` of the rig: its base positions (the rest shape without the morph
+/// targets' default weights), indices, normals, the look's other attributes, joint and
+/// weight sets, morph targets and material.
+fn write_primitive(
+    rig: &Rig,
+    index: usize,
+    (width, joints, weights): &(usize, Vec<[u16; 8]>, Vec<[f32; 8]>),
+    normals: &[[f32; 3]],
+    bin: &mut GlbBuilder,
+) -> Result<Value> {
+    let (look, p) = (&rig.look, &rig.primitives[index]);
+    let range = p.vertex_offset..p.vertex_offset + p.vertex_count;
+    let mut base = rig.mesh.positions[range.clone()].to_vec();
+    let targets: Vec<VertexAttribute> = look
+        .attributes
         .iter()
-        .flat_map(|m| m.as_mat4().to_cols_array())
+        .filter(|a| parse_target_attribute(&a.name).is_some())
+        .map(|a| a.rows(range.clone()))
         .collect();
-    let ibm = floats(
-        &mut bin,
-        &ibm,
-        16,
-        "MAT4",
-        None,
-        false,
-        "inverse bind matrices",
-    )?;
+    morph::displace(&mut base, &targets, &look.morph_weights, -1.0);
+    let pos: Vec<f32> = base.iter().flat_map(|x| x.as_vec3().to_array()).collect();
+    let position = floats(bin, &pos, 3, "VEC3", Some(34962), true, "POSITION")?;
+    let idx: Vec<u8> = rig.mesh.triangles[p.triangle_offset..p.triangle_offset + p.triangle_count]
+        .iter()
+        .flatten()
+        .flat_map(|&i| (i - p.vertex_offset as u32).to_le_bytes())
+        .collect();
+    let indices = bin.push(
+        &idx,
+        Some(34963),
+        json!({"componentType": 5125, "count": 3 * p.triangle_count, "type": "SCALAR"}),
+    );
+    let mut attributes = json!({ "POSITION": position });
+    let vertex_data = |bin: &mut GlbBuilder, values: &[f32], width: usize, name: &str| {
+        let kind = ["SCALAR", "VEC2", "VEC3", "VEC4"][width - 1];
+        floats(bin, values, width, kind, Some(34962), false, name)
+    };
+    if !look.flat {
+        let nrm: Vec<f32> = normals[range.clone()].iter().flatten().copied().collect();
+        attributes["NORMAL"] = json!(vertex_data(bin, &nrm, 3, "NORMAL")?);
+    }
+    let plain =
+        |a: &&VertexAttribute| a.name != "NORMAL" && parse_target_attribute(&a.name).is_none();
+    for a in look.attributes.iter().filter(plain) {
+        let values = &a.values[range.start * a.width..range.end * a.width];
+        attributes[a.name.as_str()] = json!(vertex_data(bin, values, a.width, &a.name)?);
+    }
+    for set in 0..width / 4 {
+        let j: Vec<u8> = joints[range.clone()]
+            .iter()
+            .flat_map(|r| r[4 * set..4 * set + 4].iter().flat_map(|x| x.to_le_bytes()))
+            .collect();
+        let w: Vec<f32> = weights[range.clone()]
+            .iter()
+            .flat_map(|r| r[4 * set..4 * set + 4].to_vec())
+            .collect();
+        attributes[format!("JOINTS_{set}")] = json!(bin.push(
+            &j,
+            Some(34962),
+            json!({"componentType": 5123, "count": p.vertex_count, "type": "VEC4"})
+        ));
+        attributes[format!("WEIGHTS_{set}")] = json!(vertex_data(bin, &w, 4, "WEIGHTS")?);
+    }
+    let mut primitive = json!({"attributes": attributes, "indices": indices, "mode": 4});
+    if !look.morph_weights.is_empty() {
+        let count = look.morph_weights.len();
+        primitive["targets"] = json!(write_targets(bin, &targets, count, !look.flat)?);
+    }
+    if let Some(m) = look.primitive_materials.get(index).copied().flatten() {
+        primitive["material"] = json!(m);
+    }
+    Ok(primitive)
+}
+
+/// The rig's nodes with their local transforms and children, and the skinned mesh's node;
+/// and the scene's roots.
+fn node_tree(rig: &Rig, locals: &[Trs]) -> (Vec<Value>, Vec<usize>) {
     let mut nodes: Vec<Value> = rig
         .nodes
         .iter()
-        .zip(&locals)
+        .zip(locals)
         .map(|(n, t)| {
             json!({
                 "name": n.name,
@@ -287,54 +306,45 @@ pub fn glb_bytes(rig: &Rig, options: &GlbOptions) -> Result<Vec<u8>> {
         .filter(|&i| rig.nodes[i].parent.is_none())
         .chain([mesh_node])
         .collect();
-    let animations = if options.without_animations {
-        Vec::new()
-    } else {
-        rig.animations
-            .iter()
-            .map(|a| {
-                let mut samplers = Vec::new();
-                let mut channels = Vec::new();
-                for c in &a.channels {
-                    let times: Vec<f32> = c.times.iter().map(|&t| t as f32).collect();
-                    let input = floats(&mut bin, &times, 1, "SCALAR", None, true, "animation times")?;
-                    let (dim, kind, path) = match c.property {
-                        Property::Translation => (3, "VEC3", "translation"),
-                        Property::Rotation => (4, "VEC4", "rotation"),
-                        Property::Scale => (3, "VEC3", "scale"),
-                    };
-                    let values: Vec<f32> = c
-                        .values
-                        .iter()
-                        .flat_map(|v| v.as_vec4().to_array()[..dim].to_vec())
-                        .collect();
-                    let output = floats(&mut bin, &values, dim, kind, None, false, "animation values")?;
-                    let interpolation = match c.interpolation {
-                        Interpolation::Linear => "LINEAR",
-                        Interpolation::Step => "STEP",
-                        Interpolation::CubicSpline => "CUBICSPLINE",
-                    };
-                    channels.push(json!({"sampler": samplers.len(), "target": {"node": c.node, "path": path}}));
-                    samplers.push(json!({"input": input, "output": output, "interpolation": interpolation}));
-                }
-                Ok(json!({"name": a.name, "channels": channels, "samplers": samplers}))
-            })
-            .collect::<Result<Vec<_>>>()?
-    };
-    let images = image_views(look, &mut bin);
-    let mut doc = json!({
-        "asset": {"version": "2.0", "generator": "deform (cga mesh deformers)"},
-        "scene": 0,
-        "scenes": [{"nodes": roots}],
-        "nodes": nodes,
-        "meshes": [mesh],
-        "skins": [{"joints": rig.joints, "inverseBindMatrices": ibm}],
-    });
-    if !animations.is_empty() {
-        doc["animations"] = json!(animations);
-    }
-    write_look(look, images, &mut doc);
-    bin.finish(doc).map_err(SkinError::InvalidArgument)
+    (nodes, roots)
+}
+
+/// Every animation: a sampler (times, values, interpolation) and a channel per animated
+/// property.
+fn write_animations(rig: &Rig, bin: &mut GlbBuilder) -> Result<Vec<Value>> {
+    rig.animations
+        .iter()
+        .map(|a| {
+            let mut samplers = Vec::new();
+            let mut channels = Vec::new();
+            for c in &a.channels {
+                let times: Vec<f32> = c.times.iter().map(|&t| t as f32).collect();
+                let input = floats(bin, &times, 1, "SCALAR", None, true, "animation times")?;
+                let (dim, kind, path) = match c.property {
+                    Property::Translation => (3, "VEC3", "translation"),
+                    Property::Rotation => (4, "VEC4", "rotation"),
+                    Property::Scale => (3, "VEC3", "scale"),
+                };
+                let values: Vec<f32> = c
+                    .values
+                    .iter()
+                    .flat_map(|v| v.as_vec4().to_array()[..dim].to_vec())
+                    .collect();
+                let output = floats(bin, &values, dim, kind, None, false, "animation values")?;
+                let interpolation = match c.interpolation {
+                    Interpolation::Linear => "LINEAR",
+                    Interpolation::Step => "STEP",
+                    Interpolation::CubicSpline => "CUBICSPLINE",
+                };
+                let target = json!({"node": c.node, "path": path});
+                channels.push(json!({"sampler": samplers.len(), "target": target}));
+                samplers.push(
+                    json!({"input": input, "output": output, "interpolation": interpolation}),
+                );
+            }
+            Ok(json!({"name": a.name, "channels": channels, "samplers": samplers}))
+        })
+        .collect()
 }
 
 /// One primitive's morph targets (`count` of them, from its rows of the target attributes):

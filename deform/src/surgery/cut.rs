@@ -3,7 +3,7 @@
 use super::cap::ear_clip;
 use super::split::{assemble, local_loops, new_vertex_data, Assembled, FaceFate, Splitter};
 use super::weld::{canonical_ids, share_copies};
-use super::{check_snap, Frame, SkinnedMesh, Surgery, SurgeryError, VertexOrigin};
+use super::{check_snap, FaceBvh, Frame, SkinnedMesh, Surgery, SurgeryError, VertexOrigin};
 use crate::mesh::numbers::{short_number, short_point};
 use cga::Plane;
 use glam::DVec3;
@@ -108,7 +108,56 @@ impl Surgery {
         let n = src.mesh.vertex_count();
         let resolved = self.resolve(frame)?;
         let (positions, bvh) = (resolved.positions, &*resolved.bvh);
-        // Classify by the CGA predicate X . pi = x . n - d.
+        let side = self.classify(plane, positions, bvh, options.snap);
+        let s = &side.s;
+        if !(s.iter().any(|&x| x > 0.0) && s.iter().any(|&x| x < 0.0)) {
+            return Err(SurgeryError::Misses {
+                vertices: n,
+                where_: plane_whereabouts(s, positions),
+            });
+        }
+        let mut split = self.split_faces(&side, positions);
+        let split_faces = split.changed.len();
+        // Unchanged faces with an edge on the plane (snapped vertices included): that edge may
+        // now be a boundary.
+        let near_snapped = if side.snap_margin > side.tiny {
+            bvh.faces_near_plane(nrm, d, side.snap_margin * 1.01)
+        } else {
+            side.candidates.clone()
+        };
+        let seeds: Vec<u32> = near_snapped
+            .iter()
+            .copied()
+            .filter(|&f| {
+                let t = src.mesh.triangles[f as usize];
+                t.iter().filter(|&&v| s[v as usize] == 0.0).count() >= 2
+            })
+            .collect();
+        let pieces = self.cut_pieces(&mut split, &side, &seeds, frame, positions, nrm, options)?;
+        // Vertices on both sides but every face on one: nothing was cut (an empty piece would
+        // also be an empty glTF primitive, which the format does not allow).
+        if pieces.iter().any(|p| p.mesh.mesh.triangle_count() == 0) {
+            return Err(SurgeryError::Misses {
+                vertices: n,
+                where_: "; every face lies on one side of the plane".into(),
+            });
+        }
+        Ok(CutResult {
+            pieces,
+            new_vertices: split.splitter.new_edges.len(),
+            split_faces,
+            snapped_vertices: side.snap.len(),
+            faces_examined: side.candidates.len(),
+        })
+    }
+
+    /// Classify the vertices by the CGA predicate `X . pi = x . n - d`, coincident vertices as
+    /// one, vertices within `snap` of a crossing edge's end (or within rounding of the plane)
+    /// snapped onto it.
+    fn classify(&self, plane: &Plane, positions: &[DVec3], bvh: &FaceBvh, snap: f64) -> Sides {
+        let (nrm, d) = (plane.normal(), plane.distance());
+        let src = &self.mesh;
+        let n = src.mesh.vertex_count();
         let mut s: Vec<f64> = positions
             .iter()
             .map(|&p| plane.signed_distance(p))
@@ -124,64 +173,71 @@ impl Surgery {
         }
         let tiny = 1e-12 * self.diagonal;
         let candidates = bvh.faces_near_plane(nrm, d, tiny);
-        let mut snap = Vec::new();
+        let mut snapped = Vec::new();
         for &f in &candidates {
             let t = src.mesh.triangles[f as usize];
             for k in 0..3 {
                 let (i, j) = (t[k] as usize, t[(k + 1) % 3] as usize);
                 for v in [i, j] {
                     if s[v] != 0.0 && s[v].abs() <= tiny {
-                        snap.push(v);
+                        snapped.push(v);
                     }
                 }
                 if s[i] * s[j] < 0.0 {
                     let a = s[i] / (s[i] - s[j]);
-                    if a < options.snap {
-                        snap.push(i);
+                    if a < snap {
+                        snapped.push(i);
                     }
-                    if 1.0 - a < options.snap {
-                        snap.push(j);
+                    if 1.0 - a < snap {
+                        snapped.push(j);
                     }
                 }
             }
         }
-        snap.sort_unstable();
-        snap.dedup();
-        let snap_margin = snap.iter().map(|&v| s[v].abs()).fold(tiny, f64::max);
-        for &v in &snap {
+        snapped.sort_unstable();
+        snapped.dedup();
+        let snap_margin = snapped.iter().map(|&v| s[v].abs()).fold(tiny, f64::max);
+        for &v in &snapped {
             s[v] = 0.0;
         }
         if let Some(w) = weld {
             // A snapped vertex snaps its coincident copies (whose own edges may not have).
-            for &v in &snap {
+            for &v in &snapped {
                 s[w.canon[v] as usize] = 0.0;
             }
             for v in 0..n {
                 s[v] = s[w.canon[v] as usize];
             }
         }
-        if !(s.iter().any(|&x| x > 0.0) && s.iter().any(|&x| x < 0.0)) {
-            return Err(SurgeryError::Misses {
-                vertices: n,
-                where_: plane_whereabouts(&s, positions),
-            });
+        Sides {
+            s,
+            own,
+            snap: snapped,
+            snap_margin,
+            tiny,
+            candidates,
         }
-        // Split: faces of each side over input vertices, then new ones.
+    }
+
+    /// Each face kept on its side or split along the plane.
+    fn split_faces<'a>(&self, side: &Sides, positions: &'a [DVec3]) -> SplitFaces<'a> {
+        let (s, own) = (&side.s, &side.own);
         let mut splitter = Splitter::new(positions);
         let root = |a: u32, b: u32| {
-            let (sa, sb) = match &own {
+            let (sa, sb) = match own {
                 Some(o) if o[a as usize] * o[b as usize] < 0.0 => (o[a as usize], o[b as usize]),
                 _ => (s[a as usize], s[b as usize]),
             };
             sa / (sa - sb)
         };
-        let f = src.mesh.triangle_count();
+        let triangles = &self.mesh.mesh.triangles;
+        let f = triangles.len();
         let mut faces: [Vec<[u32; 3]>; 2] = [Vec::with_capacity(f), Vec::with_capacity(f)];
         let mut from: [Vec<u32>; 2] = [Vec::with_capacity(f), Vec::with_capacity(f)];
-        let mut fate = Vec::with_capacity(src.mesh.triangle_count());
+        let mut fate = Vec::with_capacity(f);
         let mut changed = Vec::new();
         let mut produced = Vec::new();
-        for (fi, t) in src.mesh.triangles.iter().enumerate() {
+        for (fi, t) in triangles.iter().enumerate() {
             let g = t.map(|v| sign(s[v as usize]));
             let (pos, neg) = (g.contains(&1), g.contains(&-1));
             if !neg || !pos {
@@ -199,22 +255,32 @@ impl Surgery {
                 });
             }
         }
-        let split_faces = changed.len();
-        // Unchanged faces with an edge on the plane (snapped vertices included): that edge may
-        // now be a boundary.
-        let near_snapped = if snap_margin > tiny {
-            bvh.faces_near_plane(nrm, d, snap_margin * 1.01)
-        } else {
-            candidates.clone()
-        };
-        let seeds: Vec<u32> = near_snapped
-            .iter()
-            .copied()
-            .filter(|&f| {
-                let t = src.mesh.triangles[f as usize];
-                t.iter().filter(|&&v| s[v as usize] == 0.0).count() >= 2
-            })
-            .collect();
+        SplitFaces {
+            splitter,
+            faces,
+            from,
+            fate,
+            changed,
+            produced,
+        }
+    }
+
+    /// Both pieces of `split`: their new vertices' data, boundary loops (over welded
+    /// vertices when coincident ones exist) and caps.
+    #[allow(clippy::too_many_arguments)]
+    fn cut_pieces(
+        &self,
+        split: &mut SplitFaces,
+        side: &Sides,
+        seeds: &[u32],
+        frame: Frame,
+        positions: &[DVec3],
+        nrm: DVec3,
+        options: &CutOptions,
+    ) -> Result<[CutPiece; 2], SurgeryError> {
+        let src = &self.mesh;
+        let n = src.mesh.vertex_count();
+        let (s, weld, splitter) = (&side.s, self.weld.as_ref(), &split.splitter);
         let mut new = new_vertex_data(src, &splitter.new_edges, frame, positions)?;
         let on_plane = |g: u32| (g as usize) >= n || s[g as usize] == 0.0;
         // Loops are found over welded vertices when coincident ones exist.
@@ -222,6 +288,7 @@ impl Surgery {
         if let Some(c) = &canon {
             share_copies(&c[n..], n, &mut new.influences, &mut new.mesh.positions);
         }
+        let produced = std::mem::take(&mut split.produced);
         let (topology, triangles, produced) = match (weld, &canon) {
             (Some(w), Some(c)) => (
                 &w.topology,
@@ -233,16 +300,17 @@ impl Surgery {
             ),
             _ => (&self.topology, &src.mesh.triangles[..], produced),
         };
-        let [f0, f1] = faces;
-        let [o0, o1] = from;
-        let pieces = [(f0, o0, 0u8), (f1, o1, 1u8)].map(|(f, o, side)| {
-            let a = assemble(src, f, &splitter, &new);
+        let [f0, f1] = std::mem::take(&mut split.faces);
+        let [o0, o1] = std::mem::take(&mut split.from);
+        let (fate, changed) = (&split.fate, &split.changed);
+        Ok([(f0, o0, 0u8), (f1, o1, 1u8)].map(|(f, o, side)| {
+            let a = assemble(src, f, splitter, &new);
             let loops = local_loops(
                 topology,
                 triangles,
                 |f| fate[f as usize],
-                &changed,
-                &seeds,
+                changed,
+                seeds,
                 &produced,
                 side,
             );
@@ -256,23 +324,31 @@ impl Surgery {
                 nrm,
                 options.cap,
             )
-        });
-        // Vertices on both sides but every face on one: nothing was cut (an empty piece would
-        // also be an empty glTF primitive, which the format does not allow).
-        if pieces.iter().any(|p| p.mesh.mesh.triangle_count() == 0) {
-            return Err(SurgeryError::Misses {
-                vertices: n,
-                where_: "; every face lies on one side of the plane".into(),
-            });
-        }
-        Ok(CutResult {
-            pieces,
-            new_vertices: splitter.new_edges.len(),
-            split_faces,
-            snapped_vertices: snap.len(),
-            faces_examined: candidates.len(),
-        })
+        }))
     }
+}
+
+/// The vertices' sides of the plane (`s`: signed distances, 0 on or snapped onto it; `own`:
+/// each coincident copy's own distance where vertices were welded), the snapped vertices,
+/// the largest distance snapped, rounding's width and the faces near the plane.
+struct Sides {
+    s: Vec<f64>,
+    own: Option<Vec<f64>>,
+    snap: Vec<usize>,
+    snap_margin: f64,
+    tiny: f64,
+    candidates: Vec<u32>,
+}
+
+/// The faces of each side (`faces`, each from input face `from`), each input face's fate,
+/// the changed faces and the faces their split produced.
+struct SplitFaces<'a> {
+    splitter: Splitter<'a>,
+    faces: [Vec<[u32; 3]>; 2],
+    from: [Vec<u32>; 2],
+    fate: Vec<FaceFate>,
+    changed: Vec<u32>,
+    produced: Vec<([u32; 3], u8)>,
 }
 
 /// One side: caps, boundary loops (`loops` over global vertices, or over their canonical ids
