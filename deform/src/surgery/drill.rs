@@ -18,6 +18,7 @@ use super::weld::{canonical_ids, share_copies};
 use super::{check_snap, Frame, SkinnedMesh, Surgery, SurgeryError, VertexOrigin};
 use crate::mesh::numbers::{short_number, short_point};
 use crate::mesh::Mesh;
+use crate::skinning::Influences;
 use glam::DVec3;
 
 /// A drill: a cylinder from its `tip` to its `end`, of `radius`.
@@ -198,7 +199,6 @@ impl Surgery {
             r: drill.radius,
         };
         let src = &self.mesh;
-        let n0 = src.mesh.vertex_count();
         let resolved = self.resolve(frame)?;
         let (frame_positions, skin) = (resolved.positions, resolved.skin);
         let mut work: Option<Work> = None;
@@ -249,151 +249,193 @@ impl Surgery {
                 }
             }
             if plan.removed == 0 {
-                let axis = nearest_to_segment(tris, fpos, drill.tip, drill.end);
-                // An axis through the surface (not one that grazes it): the drill is too thin.
-                if let Some(n) = axis.filter(|n| n.distance < 0.5 * drill.radius) {
-                    return Err(SurgeryError::BadTool(format!(
-                        "the drill (radius {}) meets the surface near {} but removes no vertex, \
-                         even after {} rounds of refinement around it: it is too thin for the \
-                         mesh there; widen it (`DrillOptions::max_refinements` allows more \
-                         refinement)",
-                        short_number(drill.radius),
-                        short_point(n.surface),
-                        options.max_refinements,
-                    )));
-                }
-                // The model's own vertex count: `rest` may hold the vertices refinement added.
-                return Err(SurgeryError::Misses {
-                    vertices: src.mesh.vertex_count(),
-                    where_: axis.map_or(String::new(), |n| {
-                        format!(
-                            "; the drill's axis (radius {}): {}",
-                            short_number(drill.radius),
-                            n.describe()
-                        )
-                    }),
-                });
+                return Err(self.removes_nothing(drill, tris, fpos, options));
             }
-            // Split and keep the outside.
-            let owned;
-            let sub = match &work {
-                None => &self.mesh,
-                Some(w) => {
-                    owned = SkinnedMesh {
-                        mesh: Mesh::new(rest.to_vec(), Vec::new()),
-                        influences: inf.clone(),
-                        sources: w.sources.clone(),
-                    };
-                    &owned
-                }
+            let sources = work.as_ref().map(|w| &w.sources);
+            let round = Round {
+                rest,
+                fpos,
+                influences: inf,
+                tris,
+                sources,
             };
-            let mut splitter = Splitter::new(fpos);
-            let root = |a: u32, b: u32| {
-                let (pa, pb) = (fpos[a as usize], fpos[b as usize]);
-                let (lo, hi) = cyl.clip(pa, pb).unwrap_or((0.0, 1.0));
-                if plan.sign[a as usize] < 0 {
-                    hi
-                } else {
-                    lo
-                }
-            };
-            // Only faces near the drill can change (a face with a vertex inside meets its box).
-            let mut changed: Vec<u32> = near
-                .iter()
-                .copied()
-                .filter(|&f| tris[f as usize].iter().any(|&v| plan.sign[v as usize] < 0))
-                .collect();
-            changed.sort_unstable();
-            let mut produced = Vec::new();
-            for &f in &changed {
-                let t = tris[f as usize];
-                let g = t.map(|v| plan.sign[v as usize]);
-                if g.contains(&1) {
-                    splitter.split(t, g, &root, |side, tri| {
-                        if side == 0 {
-                            produced.push((tri, 0u8));
-                        }
-                    });
-                }
-            }
-            let mut kept = Vec::with_capacity(tris.len() + produced.len());
-            let mut next = changed.iter().peekable();
-            for (fi, t) in tris.iter().enumerate() {
-                if next.peek() == Some(&&(fi as u32)) {
-                    next.next();
-                } else {
-                    kept.push(*t);
-                }
-            }
-            kept.extend(produced.iter().map(|p| p.0));
-            let fate = |f: u32| {
-                if changed.binary_search(&f).is_ok() {
-                    FaceFate::Changed
-                } else {
-                    FaceFate::Kept(0)
-                }
-            };
-            let removed = changed.len();
-            if kept.is_empty() {
-                return Err(SurgeryError::BadTool(
-                    "the drill removes the whole mesh".into(),
-                ));
-            }
-            let posed_frame = frame.with_positions(fpos);
-            // Over the welded surface when coincident vertices exist and the input's topology
-            // applies (no refinement), as the cut counts: glTF's seam copies are one vertex,
-            // and the new vertices on the copies of a seam edge coincide exactly.
-            let weld = self.weld.as_ref().filter(|_| work.is_none());
-            let canon = weld.map(|w| canonical_ids(&w.canon, &splitter.new_edges));
-            let mut new = new_vertex_data(sub, &splitter.new_edges, posed_frame, fpos)?;
-            if let Some(c) = &canon {
-                share_copies(&c[n0..], n0, &mut new.influences, &mut new.mesh.positions);
-            }
-            let a = assemble(sub, kept, &splitter, &new);
-            let origin = a
-                .origin
-                .iter()
-                .map(|o| match *o {
-                    VertexOrigin::Original(i) if i as usize >= n0 => VertexOrigin::Refined,
-                    other => other,
-                })
-                .collect();
-            let (boundary_loops, loops_before) = match (weld, &canon) {
-                (Some(w), Some(c)) => {
-                    let produced: Vec<([u32; 3], u8)> = produced
-                        .iter()
-                        .map(|(t, k)| (t.map(|v| c[v as usize]), *k))
-                        .collect();
-                    let loops =
-                        local_loops(&w.topology, &w.triangles, fate, &changed, &[], &produced, 0);
-                    (loops.len(), w.topology.loops)
-                }
-                _ if work.is_none() => {
-                    let loops =
-                        local_loops(&self.topology, tris, fate, &changed, &[], &produced, 0);
-                    (loops.len(), self.topology.loops)
-                }
-                // Refined: the input's topology does not apply.
-                _ => {
-                    let loops = crate::mesh::adjacency::boundary_loops(
-                        &a.mesh.mesh.triangles,
-                        a.mesh.mesh.vertex_count(),
-                    );
-                    (loops.len(), self.topology.loops)
-                }
-            };
-            return Ok(DrillResult {
-                mesh: a.mesh,
-                origin,
-                new_vertices: splitter.new_edges.len(),
-                removed_faces: removed,
-                refined_faces,
-                boundary_loops,
-                holes: boundary_loops.saturating_sub(loops_before),
-            });
+            let mut r = self.drill_out(&cyl, &plan, &near, &round, frame)?;
+            r.refined_faces = refined_faces;
+            return Ok(r);
         }
         unreachable!("the last round always returns")
     }
+
+    /// Why a drill that removes no vertex is refused: an axis through the surface means a
+    /// drill too thin for the mesh there; else it misses, saying where its axis passes.
+    fn removes_nothing(
+        &self,
+        drill: &Drill,
+        tris: &[[u32; 3]],
+        fpos: &[DVec3],
+        options: &DrillOptions,
+    ) -> SurgeryError {
+        let axis = nearest_to_segment(tris, fpos, drill.tip, drill.end);
+        // An axis through the surface (not one that grazes it): the drill is too thin.
+        if let Some(n) = axis.filter(|n| n.distance < 0.5 * drill.radius) {
+            return SurgeryError::BadTool(format!(
+                "the drill (radius {}) meets the surface near {} but removes no vertex, \
+                 even after {} rounds of refinement around it: it is too thin for the \
+                 mesh there; widen it (`DrillOptions::max_refinements` allows more \
+                 refinement)",
+                short_number(drill.radius),
+                short_point(n.surface),
+                options.max_refinements,
+            ));
+        }
+        // The model's own vertex count: `rest` may hold the vertices refinement added.
+        SurgeryError::Misses {
+            vertices: self.mesh.mesh.vertex_count(),
+            where_: axis.map_or(String::new(), |n| {
+                format!(
+                    "; the drill's axis (radius {}): {}",
+                    short_number(drill.radius),
+                    n.describe()
+                )
+            }),
+        }
+    }
+
+    /// Split the faces the drill changes and keep the outside: the new mesh, where each
+    /// vertex comes from, and the boundary loops it made (over the welded surface when
+    /// coincident vertices exist and the input's topology applies, as the cut counts).
+    fn drill_out(
+        &self,
+        cyl: &Cylinder,
+        plan: &Plan,
+        near: &[u32],
+        round: &Round,
+        frame: Frame,
+    ) -> Result<DrillResult, SurgeryError> {
+        let (fpos, tris) = (round.fpos, round.tris);
+        let n0 = self.mesh.mesh.vertex_count();
+        let owned;
+        let sub = match round.sources {
+            None => &self.mesh,
+            Some(sources) => {
+                owned = SkinnedMesh {
+                    mesh: Mesh::new(round.rest.to_vec(), Vec::new()),
+                    influences: round.influences.clone(),
+                    sources: sources.clone(),
+                };
+                &owned
+            }
+        };
+        let mut splitter = Splitter::new(fpos);
+        let root = |a: u32, b: u32| {
+            let (pa, pb) = (fpos[a as usize], fpos[b as usize]);
+            let (lo, hi) = cyl.clip(pa, pb).unwrap_or((0.0, 1.0));
+            if plan.sign[a as usize] < 0 {
+                hi
+            } else {
+                lo
+            }
+        };
+        // Only faces near the drill can change (a face with a vertex inside meets its box).
+        let mut changed: Vec<u32> = near
+            .iter()
+            .copied()
+            .filter(|&f| tris[f as usize].iter().any(|&v| plan.sign[v as usize] < 0))
+            .collect();
+        changed.sort_unstable();
+        let mut produced = Vec::new();
+        for &f in &changed {
+            let t = tris[f as usize];
+            let g = t.map(|v| plan.sign[v as usize]);
+            if g.contains(&1) {
+                splitter.split(t, g, &root, |side, tri| {
+                    if side == 0 {
+                        produced.push((tri, 0u8));
+                    }
+                });
+            }
+        }
+        let mut kept = Vec::with_capacity(tris.len() + produced.len());
+        let mut next = changed.iter().peekable();
+        for (fi, t) in tris.iter().enumerate() {
+            if next.peek() == Some(&&(fi as u32)) {
+                next.next();
+            } else {
+                kept.push(*t);
+            }
+        }
+        kept.extend(produced.iter().map(|p| p.0));
+        let fate = |f: u32| {
+            if changed.binary_search(&f).is_ok() {
+                FaceFate::Changed
+            } else {
+                FaceFate::Kept(0)
+            }
+        };
+        if kept.is_empty() {
+            return Err(SurgeryError::BadTool(
+                "the drill removes the whole mesh".into(),
+            ));
+        }
+        let posed_frame = frame.with_positions(fpos);
+        // glTF's seam copies are one vertex, and the new vertices on the copies of a seam
+        // edge coincide exactly.
+        let unrefined = round.sources.is_none();
+        let weld = self.weld.as_ref().filter(|_| unrefined);
+        let canon = weld.map(|w| canonical_ids(&w.canon, &splitter.new_edges));
+        let mut new = new_vertex_data(sub, &splitter.new_edges, posed_frame, fpos)?;
+        if let Some(c) = &canon {
+            share_copies(&c[n0..], n0, &mut new.influences, &mut new.mesh.positions);
+        }
+        let a = assemble(sub, kept, &splitter, &new);
+        let origin = a
+            .origin
+            .iter()
+            .map(|o| match *o {
+                VertexOrigin::Original(i) if i as usize >= n0 => VertexOrigin::Refined,
+                other => other,
+            })
+            .collect();
+        // The input's loops over the same vertices: welded when the result's are.
+        let loops_before = weld.map_or(self.topology.loops, |w| w.topology.loops);
+        let boundary_loops = match (weld, &canon) {
+            (Some(w), Some(c)) => {
+                let produced: Vec<([u32; 3], u8)> = produced
+                    .iter()
+                    .map(|(t, k)| (t.map(|v| c[v as usize]), *k))
+                    .collect();
+                local_loops(&w.topology, &w.triangles, fate, &changed, &[], &produced, 0).len()
+            }
+            _ if unrefined => {
+                local_loops(&self.topology, tris, fate, &changed, &[], &produced, 0).len()
+            }
+            // Refined: the input's topology does not apply.
+            _ => crate::mesh::adjacency::boundary_loops(
+                &a.mesh.mesh.triangles,
+                a.mesh.mesh.vertex_count(),
+            )
+            .len(),
+        };
+        Ok(DrillResult {
+            mesh: a.mesh,
+            origin,
+            new_vertices: splitter.new_edges.len(),
+            removed_faces: changed.len(),
+            refined_faces: 0,
+            boundary_loops,
+            holes: boundary_loops.saturating_sub(loops_before),
+        })
+    }
+}
+
+/// The working mesh of one round: rest and frame positions, influences, triangles, and the
+/// sources of its vertices once refinement made its own copy (`None`: the surgery's mesh).
+struct Round<'a> {
+    rest: &'a [DVec3],
+    fpos: &'a [DVec3],
+    influences: &'a Influences,
+    tris: &'a [[u32; 3]],
+    sources: Option<&'a Influences>,
 }
 
 /// Faces whose boxes meet the drill's box: from the face index when there is one for these
