@@ -2,24 +2,22 @@
 //! its animations, with joint edits, by any skinning backend; write OBJ (one file, or a
 //! sequence for a time range or generated in-betweens) or the whole rig as `.glb`.
 
+mod frames;
+
 use crate::finish::displacement;
 use crate::input_files::{read_rig, read_text};
-use crate::output_files::{
-    check_formats, check_outputs, write_glb, write_png, write_rig_mesh, MESH_FORMATS,
-};
+use crate::output_files::{check_formats, check_outputs, write_glb, write_png, MESH_FORMATS};
 use crate::report::Report;
 use crate::shared_args::{OutputArgs, RigInput};
-use crate::timing::{ms, time_pose, time_rig_pose};
+use crate::timing::ms;
 use anyhow::{bail, Context, Result};
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::{Args, ValueEnum};
 use deform::input::parse_motor;
 use deform::methods::frame::pose_time;
 use deform::render::preview;
-use deform::skinning::{
-    bake_edits, in_betweens, GlbOptions, JointEdit, KeyframeBlend, RigPose, Skinning,
-};
-use deform::{BlendMethod, Deformer, Mesh};
+use deform::skinning::{bake_edits, in_betweens, GlbOptions, JointEdit, KeyframeBlend, Skinning};
+use deform::{BlendMethod, Mesh};
 use glam::DVec3;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -226,36 +224,116 @@ pub fn run(a: &SkinArgs) -> Result<()> {
     for note in &rig.report.notes {
         report.add("note", note.as_str());
     }
-    let mut gpu = crate::gpu_pose::GpuPoser::choose(a.gpu, &mut report, a.out.quiet, || {
+    let gpu = crate::gpu_pose::GpuPoser::choose(a.gpu, &mut report, a.out.quiet, || {
         crate::gpu_pose::GpuPoser::open(bound.blend())
     })?;
     report.add("load_ms", load_ms);
     report.add("bind_ms", bind_ms);
-    let dmat = match &a.dmat_animation {
-        None => None,
-        Some(path) => {
-            if !edits.is_empty() || a.animation.is_some() {
-                bail!(
-                    "--dmat-animation poses the bones directly: no --edit or --animation with it"
-                );
-            }
-            let m = deform::mesh::io::read_dmat(path)?;
-            let anim = deform::skinning::read_libigl_animation(&m, rig.joints.len())
-                .with_context(|| format!("{}: not an animation of this rig", path.display()))?;
-            report.add("frames_in_animation", anim.frames.len());
-            Some(anim)
-        }
+    let dmat = read_dmat_animation(a, &rig, &edits, &mut report)?;
+    let frames = frame_list(a, &edits, time, rig.mesh.vertex_count())?;
+    let sequence = frames.len() > 1;
+    if glb && sequence {
+        bail!("a frame sequence is written as OBJ files, not .glb");
+    }
+    if sequence {
+        // The generated names, as a set, before anything is written: none may name an input.
+        let names: Vec<PathBuf> = (0..frames.len())
+            .map(|k| numbered(&a.out.output, k))
+            .collect();
+        let mut outputs: Vec<&Path> = names.iter().map(PathBuf::as_path).collect();
+        outputs.extend(a.out.png.as_deref());
+        check_outputs(&inputs, &outputs)?;
+    }
+    let mut posing = frames::Posing {
+        rig: &rig,
+        bound: &bound,
+        other: a
+            .compare
+            .map(|b| Skinning::bind(&rig, b.method))
+            .transpose()?,
+        gpu,
+        dmat: dmat.as_ref(),
+        animation,
+        keyframes: match a.keyframes {
+            Keyframes::Gltf => KeyframeBlend::Gltf,
+            Keyframes::MotorLog => KeyframeBlend::MotorLog,
+        },
     };
-    // The frames: (time, edits) pairs.
-    // Each frame is a file written: a tiny rig cannot ask for a million of them.
-    let vertices = rig.mesh.vertex_count();
+    let posed = posing.pose_frames(a, &frames, !glb)?;
+    if !glb {
+        frames::write_frames(&posed.finished, sequence, &rig)?;
+    }
+    report.add("frames", frames.len());
+    if let Some(b) = a.compare {
+        let diag = diagonal(&posed.last);
+        // The --compare name as given, in the --backend vocabulary.
+        report.add("compared_with", b.name);
+        report.add(
+            "linf_difference_percent_of_diagonal",
+            100.0 * posed.linf / diag,
+        );
+    }
+    report.add("pose_ms", posed.pose_ms / frames.len() as f64);
+    let world_diagonal = diagonal(&posed.last);
+    posed
+        .approximation
+        .report(&rig, world_diagonal, &mut report);
+    if let Some(baked) = &baked {
+        write_glb(&a.out.output, baked, &GlbOptions::default())?;
+    }
+    report.add("output", a.out.output.display().to_string());
+    if let Some(png) = &a.out.png {
+        let t = frames.last().map_or(time, |f| f.0);
+        write_preview(a, &rig, &posed, t, edits.len(), png)?;
+        report.add("png", png.display().to_string());
+    }
+    report.print(&a.out);
+    Ok(())
+}
+
+/// The bounding-box diagonal of `positions`.
+fn diagonal(positions: &[DVec3]) -> f64 {
+    Mesh::new(positions.to_vec(), Vec::new())
+        .bounding_box()
+        .map_or(f64::NAN, |b| b.diagonal())
+}
+
+/// `--dmat-animation`: libigl's bone transforms per frame (no edits or glTF animation with
+/// them).
+fn read_dmat_animation(
+    a: &SkinArgs,
+    rig: &deform::Rig,
+    edits: &[JointEdit],
+    report: &mut Report,
+) -> Result<Option<deform::skinning::LibiglAnimation>> {
+    let Some(path) = &a.dmat_animation else {
+        return Ok(None);
+    };
+    if !edits.is_empty() || a.animation.is_some() {
+        bail!("--dmat-animation poses the bones directly: no --edit or --animation with it");
+    }
+    let m = deform::mesh::io::read_dmat(path)?;
+    let anim = deform::skinning::read_libigl_animation(&m, rig.joints.len())
+        .with_context(|| format!("{}: not an animation of this rig", path.display()))?;
+    report.add("frames_in_animation", anim.frames.len());
+    Ok(Some(anim))
+}
+
+/// The frames to pose, (time, edits) each: one, a `--range` of times, or `--in-betweens` of
+/// the edits. Each frame is a file written: a tiny rig cannot ask for a million of them.
+fn frame_list(
+    a: &SkinArgs,
+    edits: &[JointEdit],
+    time: f64,
+    vertices: usize,
+) -> Result<Vec<(f64, Vec<JointEdit>)>> {
     if let Some((_, _, n)) = a.range {
         crate::budget::get().frames_written("--range", n, vertices)?;
     }
     if let Some(n) = a.in_betweens {
         crate::budget::get().frames_written("--in-betweens", n, vertices)?;
     }
-    let frames: Vec<(f64, Vec<JointEdit>)> = match (a.range, a.in_betweens) {
+    Ok(match (a.range, a.in_betweens) {
         (Some(_), Some(_)) => bail!("--range and --in-betweens cannot be combined"),
         (Some((t0, t1, n)), None) => (0..n)
             .map(|k| {
@@ -264,7 +342,7 @@ pub fn run(a: &SkinArgs) -> Result<()> {
                 } else {
                     k as f64 / (n - 1) as f64
                 };
-                (t0 + (t1 - t0) * s, edits.clone())
+                (t0 + (t1 - t0) * s, edits.to_vec())
             })
             .collect(),
         (None, Some(n)) => {
@@ -284,168 +362,36 @@ pub fn run(a: &SkinArgs) -> Result<()> {
                 .map(|k| (time, steps.iter().map(|s| s[k]).collect()))
                 .collect()
         }
-        (None, None) => vec![(time, edits.clone())],
-    };
-    let mut posed = vec![DVec3::ZERO; rig.mesh.vertex_count()];
-    let mut pose_ms = 0.0;
-    let sequence = frames.len() > 1;
-    if glb && sequence {
-        bail!("a frame sequence is written as OBJ files, not .glb");
-    }
-    if sequence {
-        // The generated names, as a set, before anything is written: none may name an input.
-        let names: Vec<PathBuf> = (0..frames.len())
-            .map(|k| numbered(&a.out.output, k))
-            .collect();
-        let mut outputs: Vec<&Path> = names.iter().map(PathBuf::as_path).collect();
-        outputs.extend(a.out.png.as_deref());
-        check_outputs(&inputs, &outputs)?;
-    }
-    let other = a
-        .compare
-        .map(|b| Skinning::bind(&rig, b.method))
-        .transpose()?;
-    let mut other_posed = vec![DVec3::ZERO; rig.mesh.vertex_count()];
-    let mut linf: f64 = 0.0;
-    let blend = match a.keyframes {
-        Keyframes::Gltf => KeyframeBlend::Gltf,
-        Keyframes::MotorLog => KeyframeBlend::MotorLog,
-    };
-    let mut pose = RigPose::default();
-    let mut approximation = crate::similarity_report::Approximation::default();
-    let mut finished: Vec<(PathBuf, Vec<DVec3>)> = Vec::with_capacity(frames.len());
-    let progress = crate::progress::frames(frames.len(), sequence && !a.out.quiet);
-    for (k, (time, frame_edits)) in frames.iter().enumerate() {
-        if let Some(bar) = &progress {
-            bar.set_position(k as u64);
-        }
-        let frame_motors;
-        let (motors, matrices) = match &dmat {
-            Some(anim) => {
-                let flag = if a.range.is_some() {
-                    "--range"
-                } else {
-                    "--time"
-                };
-                let count = anim.frames.len();
-                if !(*time >= 0.0 && time.fract() == 0.0 && *time < count as f64) {
-                    bail!(
-                        "{flag}: frame {}: with --dmat-animation times are frame indices, \
-                         0 to {} for this animation of {count} frame{}",
-                        deform::render::short_number(*time),
-                        count.saturating_sub(1),
-                        if count == 1 { "" } else { "s" }
-                    );
-                }
-                frame_motors = anim.skin_motors(*time as usize)?;
-                (&frame_motors[..], None)
-            }
-            None => {
-                rig.pose_into(animation, *time, blend, frame_edits, &mut pose)?;
-                // The motor backends (and the GPU, which takes motors) take each joint's
-                // nearest similarity: how far that moves the mesh is measured and reported.
-                let motors_used = !bound.blends_matrices()
-                    || gpu.is_some()
-                    || other.as_ref().is_some_and(|o| !o.blends_matrices());
-                if motors_used {
-                    approximation.add(&rig, &pose);
-                }
-                (pose.skin_motors()?, Some(&pose))
-            }
-        };
-        pose_ms += match (&mut gpu, matrices) {
-            (Some(g), _) => g.pose(motors, &mut posed)?,
-            (None, Some(p)) => time_rig_pose(&bound, p, &mut posed)?,
-            (None, None) => time_pose(&bound, motors, &mut posed)?,
-        };
-        if let Some(o) = &other {
-            match matrices {
-                Some(p) => o.pose_rig(p, &mut o.blend().scratch(), &mut other_posed)?,
-                None => o.pose(motors, &mut other_posed)?,
-            }
-            linf = posed
-                .iter()
-                .zip(&other_posed)
-                .map(|(p, q)| (*p - *q).abs().max_element())
-                .fold(linf, f64::max);
-        }
-        if let Some(i) = posed.iter().position(|p| !p.is_finite()) {
-            bail!("vertex {i}: skinning produced a non-finite position");
-        }
-        if !glb {
-            let path = if sequence {
-                numbered(&a.out.output, k)
-            } else {
-                a.out.output.clone()
-            };
-            finished.push((path, posed.clone()));
-        }
-    }
-    // Written only once every frame is posed (a failing frame leaves no partial sequence);
-    // a failed write removes the frames this run wrote before it.
-    if let Some(bar) = progress {
-        bar.finish_and_clear();
-    }
-    let mut unfinished = crate::interrupt::pending(&[]);
-    for (k, (path, positions)) in finished.iter().enumerate() {
-        let mesh = Mesh::new(positions.clone(), rig.mesh.triangles.clone());
-        if sequence {
-            unfinished.add(path);
-        }
-        if let Err(e) = write_rig_mesh(path, &mesh, &rig.look) {
-            for (written, _) in &finished[..k] {
-                let _ = std::fs::remove_file(written);
-            }
-            return Err(e);
-        }
-    }
-    drop(unfinished); // the sequence is complete
-    report.add("frames", frames.len());
+        (None, None) => vec![(time, edits.to_vec())],
+    })
+}
+
+/// The preview: the rest in the scene's world space at the bind pose (armature transforms,
+/// unit scale and up axis applied), where the posed mesh is, beside the last frame.
+fn write_preview(
+    a: &SkinArgs,
+    rig: &deform::Rig,
+    posed: &frames::Posed,
+    time: f64,
+    edits: usize,
+    png: &Path,
+) -> Result<()> {
+    let rest_mesh = Mesh::new(rig.bind_pose_positions()?, rig.mesh.triangles.clone());
+    let moved = displacement(&rest_mesh, &posed.last);
+    let mut title = format!(
+        "skin  {}  t {}  {edits} edit(s)  {}",
+        a.backend.name,
+        deform::render::short_number(time),
+        preview::max_move(&rest_mesh, &posed.last)
+    );
     if let Some(b) = a.compare {
-        let diag = Mesh::new(posed.clone(), Vec::new())
-            .bounding_box()
-            .map_or(f64::NAN, |b| b.diagonal());
-        // The --compare name as given, in the --backend vocabulary.
-        report.add("compared_with", b.name);
-        report.add("linf_difference_percent_of_diagonal", 100.0 * linf / diag);
+        let diag = rest_mesh.bounding_box().map_or(f64::NAN, |b| b.diagonal());
+        let percent = deform::render::short_number(100.0 * posed.linf / diag);
+        title.push_str(&format!("  vs {}: {percent}% of diag", b.name));
     }
-    report.add("pose_ms", pose_ms / frames.len() as f64);
-    let world_diagonal = Mesh::new(posed.clone(), Vec::new())
-        .bounding_box()
-        .map_or(f64::NAN, |b| b.diagonal());
-    approximation.report(&rig, world_diagonal, &mut report);
-    if let Some(baked) = &baked {
-        write_glb(&a.out.output, baked, &GlbOptions::default())?;
-    }
-    report.add("output", a.out.output.display().to_string());
-    if let Some(png) = &a.out.png {
-        // The rest in the scene's world space at the bind pose (armature transforms, unit
-        // scale and up axis applied), where the posed mesh is.
-        let rest_mesh = Mesh::new(rig.bind_pose_positions()?, rig.mesh.triangles.clone());
-        let moved = displacement(&rest_mesh, &posed);
-        let mut title = format!(
-            "skin  {}  t {}  {} edit(s)  {}",
-            a.backend.name,
-            deform::render::short_number(frames.last().map_or(time, |f| f.0)),
-            edits.len(),
-            preview::max_move(&rest_mesh, &posed)
-        );
-        if let Some(b) = a.compare {
-            let diag = rest_mesh.bounding_box().map_or(f64::NAN, |b| b.diagonal());
-            let percent = deform::render::short_number(100.0 * linf / diag);
-            title.push_str(&format!("  vs {}: {percent}% of diag", b.name));
-        }
-        let mut look = preview::Look::new(title, "displacement");
-        look.view = a.out.view();
-        let image = preview::before_after(
-            &rest_mesh,
-            &Mesh::new(posed, rig.mesh.triangles.clone()),
-            &moved,
-            &look,
-        )?;
-        write_png(png, &image)?;
-        report.add("png", png.display().to_string());
-    }
-    report.print(&a.out);
-    Ok(())
+    let mut look = preview::Look::new(title, "displacement");
+    look.view = a.out.view();
+    let posed_mesh = Mesh::new(posed.last.clone(), rig.mesh.triangles.clone());
+    let image = preview::before_after(&rest_mesh, &posed_mesh, &moved, &look)?;
+    write_png(png, &image)
 }
