@@ -73,29 +73,55 @@ pub fn harmonic_cage_coordinates(
     grid: HarmonicGrid,
 ) -> Result<Vec<f64>> {
     grid.check()?;
-    let m = cage.vertex_count();
     let b = cage
         .bounding_box()
         .ok_or_else(|| CageError::Grid("empty cage".into()))?;
     let h = b.size().max_element() / (grid.resolution - 1) as f64;
     let margin = 3;
-    let origin = b.min - DVec3::splat(margin as f64 * h);
-    let dims: [usize; 3] =
-        std::array::from_fn(|a| (b.size()[a] / h).ceil() as usize + 1 + 2 * margin);
-    let node = |x: usize, y: usize, z: usize| x + dims[0] * (y + dims[1] * z);
-    let total = dims[0] * dims[1] * dims[2];
-    let at = |i: usize| {
-        let (x, y, z) = (
-            i % dims[0],
-            (i / dims[0]) % dims[1],
-            i / (dims[0] * dims[1]),
-        );
-        origin + h * DVec3::new(x as f64, y as f64, z as f64)
+    let g = Lattice {
+        origin: b.min - DVec3::splat(margin as f64 * h),
+        h,
+        dims: std::array::from_fn(|a| (b.size()[a] / h).ceil() as usize + 1 + 2 * margin),
     };
+    let closest = boundary_band(cage, &g);
+    let class = classify(cage, &g, &closest);
+    let field = solve_field(cage, &g, &class, &closest)?;
+    lookup(points, &g, &field, cage.vertex_count())
+}
 
-    // Boundary band: closest cage point within sqrt(3) h; store (distance, face, barycentric).
+/// The grid: nodes `origin + h (x, y, z)` for `(x, y, z) < dims`, indexed `x + X (y + Y z)`.
+struct Lattice {
+    origin: DVec3,
+    h: f64,
+    dims: [usize; 3],
+}
+
+impl Lattice {
+    fn total(&self) -> usize {
+        self.dims.iter().product()
+    }
+
+    fn node(&self, x: usize, y: usize, z: usize) -> usize {
+        x + self.dims[0] * (y + self.dims[1] * z)
+    }
+
+    fn xyz(&self, i: usize) -> (usize, usize, usize) {
+        let d = self.dims;
+        (i % d[0], (i / d[0]) % d[1], i / (d[0] * d[1]))
+    }
+
+    fn at(&self, i: usize) -> DVec3 {
+        let (x, y, z) = self.xyz(i);
+        self.origin + self.h * DVec3::new(x as f64, y as f64, z as f64)
+    }
+}
+
+/// For each node within `sqrt(3) h` of the cage: its distance, the closest face and the
+/// barycentric coordinates there (infinite distance elsewhere).
+fn boundary_band(cage: &Mesh, g: &Lattice) -> Vec<(f64, u32, DVec3)> {
+    let (origin, h, dims) = (g.origin, g.h, g.dims);
     let band = 3f64.sqrt() * h;
-    let mut closest: Vec<(f64, u32, DVec3)> = vec![(f64::INFINITY, 0, DVec3::ZERO); total];
+    let mut closest: Vec<(f64, u32, DVec3)> = vec![(f64::INFINITY, 0, DVec3::ZERO); g.total()];
     for f in 0..cage.triangle_count() {
         let c = cage.corners(f);
         let lo = c[0].min(c[1]).min(c[2]) - DVec3::splat(band);
@@ -107,9 +133,9 @@ pub fn harmonic_cage_coordinates(
         for z in r0[2]..=r1[2] {
             for y in r0[1]..=r1[1] {
                 for x in r0[0]..=r1[0] {
-                    let i = node(x, y, z);
-                    let (q, bary) = closest_on_triangle(at(i), c);
-                    let d = q.distance(at(i));
+                    let i = g.node(x, y, z);
+                    let (q, bary) = closest_on_triangle(g.at(i), c);
+                    let d = q.distance(g.at(i));
                     if d <= band && d < closest[i].0 {
                         closest[i] = (d, f as u32, bary);
                     }
@@ -117,28 +143,30 @@ pub fn harmonic_cage_coordinates(
             }
         }
     }
-    // Band nodes inside the cage are unknowns too: only the outer half of the band is fixed.
+    closest
+}
+
+/// Each node outside, interior or boundary: band nodes inside the cage are unknowns too (only
+/// the outer half of the band is fixed), and the outside is flooded from the grid's corner
+/// (the margin is outside the band).
+fn classify(cage: &Mesh, g: &Lattice, closest: &[(f64, u32, DVec3)]) -> Vec<u8> {
     let sign = super::orientation(cage);
     let mut class: Vec<u8> = closest
         .par_iter()
         .enumerate()
         .map(|(i, c)| {
-            if c.0.is_finite() && sign * super::winding_number(cage, at(i)) < super::ENCLOSED {
+            if c.0.is_finite() && sign * super::winding_number(cage, g.at(i)) < super::ENCLOSED {
                 BOUNDARY
             } else {
                 INTERIOR
             }
         })
         .collect();
-    // Flood the outside from the grid's corner (the margin is outside the band).
+    let dims = g.dims;
     let mut stack = vec![0usize];
     class[0] = OUTSIDE;
     while let Some(i) = stack.pop() {
-        let (x, y, z) = (
-            i % dims[0],
-            (i / dims[0]) % dims[1],
-            i / (dims[0] * dims[1]),
-        );
+        let (x, y, z) = g.xyz(i);
         let mut visit = |j: usize| {
             if class[j] == INTERIOR {
                 class[j] = OUTSIDE;
@@ -164,11 +192,30 @@ pub fn harmonic_cage_coordinates(
             visit(i + dims[0] * dims[1]);
         }
     }
+    class
+}
 
-    // Active nodes (interior and boundary) get compact indices.
-    let mut compact = vec![u32::MAX; total];
+/// The harmonic field of every cage vertex on the active nodes (interior and boundary, in
+/// compact order): the grid Laplacian solved with the boundary nodes fixed at the
+/// barycentric coordinates of their closest cage point.
+struct Field {
+    /// Each node's compact index (`u32::MAX` outside).
+    compact: Vec<u32>,
+    /// Field of cage vertex `j` at active node `k`: `values[j * active + k]`.
+    values: Vec<f64>,
+    active: usize,
+}
+
+fn solve_field(
+    cage: &Mesh,
+    g: &Lattice,
+    class: &[u8],
+    closest: &[(f64, u32, DVec3)],
+) -> Result<Field> {
+    let (m, dims) = (cage.vertex_count(), g.dims);
+    let mut compact = vec![u32::MAX; g.total()];
     let mut active = Vec::new();
-    for i in 0..total {
+    for i in 0..g.total() {
         if class[i] != OUTSIDE {
             compact[i] = active.len() as u32;
             active.push(i);
@@ -220,9 +267,18 @@ pub fn harmonic_cage_coordinates(
             boundary[t[c] as usize * nc + r] += bary[c];
         }
     }
-    let field = solver.solve(&boundary, m)?;
+    let values = solver.solve(&boundary, m)?;
+    Ok(Field {
+        compact,
+        values,
+        active: n,
+    })
+}
 
-    // Trilinear lookup.
+/// Each point's `m` coordinates by trilinear lookup in `field`, clamped to `[0, 1]` and
+/// normalised; a point in a cell with a node outside the cage is an error.
+fn lookup(points: &[DVec3], g: &Lattice, field: &Field, m: usize) -> Result<Vec<f64>> {
+    let (origin, h, dims, n) = (g.origin, g.h, g.dims, field.active);
     let mut out = vec![0.0; points.len() * m];
     let failed = out
         .par_chunks_mut(m)
@@ -241,15 +297,15 @@ pub fn harmonic_cage_coordinates(
             let f = s - c;
             for corner in 0..8 {
                 let o = [corner & 1, (corner >> 1) & 1, corner >> 2];
-                let g = compact[node(base[0] + o[0], base[1] + o[1], base[2] + o[2])];
-                if g == u32::MAX {
+                let k = field.compact[g.node(base[0] + o[0], base[1] + o[1], base[2] + o[2])];
+                if k == u32::MAX {
                     return Some(i);
                 }
                 let wt = (0..3)
                     .map(|a| if o[a] == 1 { f[a] } else { 1.0 - f[a] })
                     .product::<f64>();
                 for (j, r) in row.iter_mut().enumerate() {
-                    *r += wt * field[j * n + g as usize];
+                    *r += wt * field.values[j * n + k as usize];
                 }
             }
             row.iter_mut().for_each(|x| *x = x.clamp(0.0, 1.0));
