@@ -152,31 +152,21 @@ const SPEC_KEYS: [&str; 5] = ["name", "doc", "basis", "metric", "diagonal"];
 
 impl Parse for Input {
     fn parse(input: ParseStream) -> syn::Result<Input> {
-        let mut raw = RawSpec::default();
-        let mut spans = Spans::default();
-        let mut scalar = None;
-        let mut runtime = None;
-        let mut require_exp_log = false;
-        let mut path: Option<LitStr> = None;
-        // Keys seen, with the range of the key, for "given twice" and "not with `path`".
-        let mut seen: Vec<(String, Range)> = Vec::new();
-        let mut items: Option<Range> = None;
-
+        let mut p = Parsed::default();
         // `//! ...` at the start: the algebra's documentation.
         let inner = input.call(Attribute::parse_inner)?;
         if let Some((doc, range)) = doc_of(&inner)? {
-            raw.doc = Some(doc);
-            seen.push(("doc".to_string(), range));
+            p.raw.doc = Some(doc);
+            p.seen.push(("doc".to_string(), range));
         }
-
         while !input.is_empty() {
             let attrs = input.call(Attribute::parse_outer)?;
             let doc = doc_of(&attrs)?;
             if input.peek(Token![type]) {
                 let (t, s) = parse_type(input, doc.map(|d| d.0))?;
-                items.get_or_insert(s.name);
-                raw.types.push(t);
-                spans.types.push(s);
+                p.items.get_or_insert(s.name);
+                p.raw.types.push(t);
+                p.spans.types.push(s);
                 if input.peek(Token![;]) {
                     input.parse::<Token![;]>()?;
                 } else if input.peek(Token![,]) {
@@ -196,98 +186,13 @@ impl Parse for Input {
             }
             let key = input.call(Ident::parse_any)?;
             let key_range = Range::one(key.span());
-            let k = key.unraw().to_string();
-            if k == "sandwich" {
+            if key.unraw() == "sandwich" {
                 let (s, r) = parse_sandwich(input, key_range)?;
-                items.get_or_insert(r.whole);
-                raw.sandwich.push(s);
-                spans.sandwiches.push(r);
+                p.items.get_or_insert(r.whole);
+                p.raw.sandwich.push(s);
+                p.spans.sandwiches.push(r);
             } else {
-                if let Some((_, first)) = seen.iter().find(|(s, _)| *s == k) {
-                    let mut e = error_at(key_range, format!("`{k}` given twice"));
-                    e.combine(error_at(*first, format!("`{k}` first given here")));
-                    return Err(e);
-                }
-                let other = match k.as_str() {
-                    "metric" => Some("diagonal"),
-                    "diagonal" => Some("metric"),
-                    _ => None,
-                };
-                if let Some((o, first)) = seen.iter().find(|(s, _)| Some(s.as_str()) == other) {
-                    let mut e = error_at(
-                        key_range,
-                        "give only one of `metric` (the full matrix) and `diagonal` (the squares)",
-                    );
-                    e.combine(error_at(*first, format!("`{o}` given here")));
-                    return Err(e);
-                }
-                input.parse::<Token![=]>()?;
-                match k.as_str() {
-                    "name" => raw.name = Some(input.parse::<LitStr>()?.value()),
-                    "doc" => raw.doc = Some(input.parse::<LitStr>()?.value()),
-                    "basis" => {
-                        let (names, whole) = parse_list(input, parse_name)?;
-                        spans.basis_list = Some(whole);
-                        for (n, r) in names {
-                            raw.basis.push(n);
-                            spans.basis.push(r);
-                        }
-                    }
-                    "metric" => {
-                        let (rows, whole) = parse_list(input, |i| parse_list(i, parse_number))?;
-                        let mut m = Matrix {
-                            whole,
-                            rows: Vec::new(),
-                            entries: Vec::new(),
-                        };
-                        let mut values = Vec::new();
-                        for (row, r) in rows {
-                            m.rows.push(r);
-                            values.push(row.iter().map(|e| e.0).collect());
-                            m.entries.push(row.iter().map(|e| e.1).collect());
-                        }
-                        raw.metric = Some(values);
-                        spans.metric = Some(m);
-                    }
-                    "diagonal" => {
-                        let (entries, whole) = parse_list(input, parse_number)?;
-                        raw.diagonal = Some(entries.iter().map(|e| e.0).collect());
-                        spans.diagonal = Some(List {
-                            whole,
-                            entries: entries.iter().map(|e| e.1).collect(),
-                        });
-                    }
-                    "scalar" => {
-                        let t: Ident = input.parse()?;
-                        scalar = Some(match t.to_string().as_str() {
-                            "f64" => ScalarType::F64,
-                            "f32" => ScalarType::F32,
-                            _ => return Err(syn::Error::new(t.span(), "expected `f32` or `f64`")),
-                        });
-                    }
-                    "runtime" => runtime = Some(parse_runtime(input)?),
-                    "exp_log" => {
-                        let t: Ident = input.parse()?;
-                        require_exp_log = match t.to_string().as_str() {
-                            "required" => true,
-                            "optional" => false,
-                            _ => {
-                                return Err(syn::Error::new(
-                                    t.span(),
-                                    "expected `required` or `optional`",
-                                ))
-                            }
-                        };
-                    }
-                    "path" => path = Some(input.parse()?),
-                    _ => {
-                        return Err(syn::Error::new(
-                            key.span(),
-                            format!("unknown key `{k}`: {EXPECTED_ITEM}"),
-                        ))
-                    }
-                }
-                seen.push((k, key_range));
+                p.key_value(input, &key)?;
             }
             if input.is_empty() {
                 break;
@@ -300,14 +205,135 @@ impl Parse for Input {
                 return Err(input.error("expected `;`"));
             }
         }
+        p.finish()
+    }
+}
 
-        let scalar = scalar.unwrap_or(ScalarType::F64);
-        if let Some(path) = path {
-            let clash = seen
+/// What the macro's input has given so far.
+#[derive(Default)]
+struct Parsed {
+    raw: RawSpec,
+    spans: Spans,
+    scalar: Option<ScalarType>,
+    runtime: Option<String>,
+    require_exp_log: bool,
+    path: Option<LitStr>,
+    /// Keys seen, with the range of the key, for "given twice" and "not with `path`".
+    seen: Vec<(String, Range)>,
+    /// The first `type` or `sandwich` item.
+    items: Option<Range>,
+}
+
+impl Parsed {
+    /// `key = value`: refused when given twice, or beside the other of `metric` and
+    /// `diagonal`.
+    fn key_value(&mut self, input: ParseStream, key: &Ident) -> syn::Result<()> {
+        let key_range = Range::one(key.span());
+        let k = key.unraw().to_string();
+        if let Some((_, first)) = self.seen.iter().find(|(s, _)| *s == k) {
+            let mut e = error_at(key_range, format!("`{k}` given twice"));
+            e.combine(error_at(*first, format!("`{k}` first given here")));
+            return Err(e);
+        }
+        let other = match k.as_str() {
+            "metric" => Some("diagonal"),
+            "diagonal" => Some("metric"),
+            _ => None,
+        };
+        if let Some((o, first)) = self.seen.iter().find(|(s, _)| Some(s.as_str()) == other) {
+            let mut e = error_at(
+                key_range,
+                "give only one of `metric` (the full matrix) and `diagonal` (the squares)",
+            );
+            e.combine(error_at(*first, format!("`{o}` given here")));
+            return Err(e);
+        }
+        input.parse::<Token![=]>()?;
+        let (raw, spans) = (&mut self.raw, &mut self.spans);
+        match k.as_str() {
+            "name" => raw.name = Some(input.parse::<LitStr>()?.value()),
+            "doc" => raw.doc = Some(input.parse::<LitStr>()?.value()),
+            "basis" => {
+                let (names, whole) = parse_list(input, parse_name)?;
+                spans.basis_list = Some(whole);
+                for (n, r) in names {
+                    raw.basis.push(n);
+                    spans.basis.push(r);
+                }
+            }
+            "metric" => {
+                let (rows, whole) = parse_list(input, |i| parse_list(i, parse_number))?;
+                let mut m = Matrix {
+                    whole,
+                    rows: Vec::new(),
+                    entries: Vec::new(),
+                };
+                let mut values = Vec::new();
+                for (row, r) in rows {
+                    m.rows.push(r);
+                    values.push(row.iter().map(|e| e.0).collect());
+                    m.entries.push(row.iter().map(|e| e.1).collect());
+                }
+                raw.metric = Some(values);
+                spans.metric = Some(m);
+            }
+            "diagonal" => {
+                let (entries, whole) = parse_list(input, parse_number)?;
+                raw.diagonal = Some(entries.iter().map(|e| e.0).collect());
+                spans.diagonal = Some(List {
+                    whole,
+                    entries: entries.iter().map(|e| e.1).collect(),
+                });
+            }
+            "scalar" => {
+                let t: Ident = input.parse()?;
+                self.scalar = Some(match t.to_string().as_str() {
+                    "f64" => ScalarType::F64,
+                    "f32" => ScalarType::F32,
+                    _ => return Err(syn::Error::new(t.span(), "expected `f32` or `f64`")),
+                });
+            }
+            "runtime" => self.runtime = Some(parse_runtime(input)?),
+            "exp_log" => {
+                let t: Ident = input.parse()?;
+                self.require_exp_log = match t.to_string().as_str() {
+                    "required" => true,
+                    "optional" => false,
+                    _ => {
+                        return Err(syn::Error::new(
+                            t.span(),
+                            "expected `required` or `optional`",
+                        ))
+                    }
+                };
+            }
+            "path" => self.path = Some(input.parse()?),
+            _ => {
+                return Err(syn::Error::new(
+                    key.span(),
+                    format!("unknown key `{k}`: {EXPECTED_ITEM}"),
+                ))
+            }
+        }
+        self.seen.push((k, key_range));
+        Ok(())
+    }
+
+    /// The input: a spec file (`path`, with only `scalar`, `runtime` and `exp_log` beside
+    /// it) or the inline spec (which needs a basis).
+    fn finish(self) -> syn::Result<Input> {
+        let scalar = self.scalar.unwrap_or(ScalarType::F64);
+        let (runtime, require_exp_log) = (self.runtime, self.require_exp_log);
+        if let Some(path) = self.path {
+            let clash = self
+                .seen
                 .iter()
                 .find(|(k, _)| SPEC_KEYS.contains(&k.as_str()))
                 .map(|(k, r)| (format!("`{k}`"), *r))
-                .or_else(|| items.map(|r| ("`type` and `sandwich` items".to_string(), r)));
+                .or_else(|| {
+                    self.items
+                        .map(|r| ("`type` and `sandwich` items".to_string(), r))
+                });
             if let Some((what, range)) = clash {
                 return Err(error_at(
                     range,
@@ -324,12 +350,13 @@ impl Parse for Input {
                 require_exp_log,
             });
         }
-        if spans.basis_list.is_none() {
+        if self.spans.basis_list.is_none() {
             return Err(error_at(
                 Range::call_site(),
                 "missing `basis = [...]` (or `path = \"spec.toml\"` to read the spec from a file)",
             ));
         }
+        let (raw, spans) = (self.raw, self.spans);
         Ok(Input {
             source: Source::Inline(Box::new(Inline { raw, spans })),
             scalar,
