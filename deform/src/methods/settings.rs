@@ -95,6 +95,20 @@ pub const OPTIONS: [OptionInfo; 9] = [
     GRID,
 ];
 
+/// The names an option takes, for the choices among named values (`None` for numbers, the
+/// lattice's `LxMxN` and the `positional` switch).
+pub fn option_values(name: &str) -> Option<Vec<&'static str>> {
+    use crate::deformers::arap::{ArapEnergy, LocalStep};
+    match name {
+        "blend" => Some(BlendMethod::names()),
+        "energy" => Some(ArapEnergy::names()),
+        "local-step" => Some(LocalStep::names()),
+        "basis" => Some(LatticeBasis::names()),
+        "coordinates" => Some(Coordinates::names()),
+        _ => None,
+    }
+}
+
 /// ARAP iterations per pose the editor runs (from the last pose, once per frame).
 pub const ITERATIONS_PER_POSE: RangeInclusive<usize> = 1..=50;
 /// Control points per axis of an interactive lattice.

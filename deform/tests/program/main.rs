@@ -7,4 +7,5 @@ mod common;
 mod cli;
 mod cli_fuzz;
 mod lattice_cli;
+mod pose_cli;
 mod render;

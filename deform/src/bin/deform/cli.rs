@@ -4,7 +4,7 @@
 //! `-o`, `--png`, `--json` and `--quiet`.
 
 use crate::commands::{
-    arap, cage, cut, demo, drill, fabrik, ffd, handles, skin, spline, tear, view,
+    arap, cage, cut, demo, drill, fabrik, ffd, handles, pose, skin, spline, tear, view,
 };
 use clap::{Parser, Subcommand};
 
@@ -58,6 +58,11 @@ pub enum Command {
     /// in --motors are handles moved rigidly by it, the other groups stay fixed; iterates
     /// from the rest pose and prints the energy after each iteration.
     Arap(arap::ArapArgs),
+    /// Any method of the library's catalogue by name (handles, arap, spline, ffd, cage),
+    /// bound and posed as the editor does, with the option flags the library describes: one
+    /// motor per group (or per control point of a lattice or cage). ARAP runs --iterations
+    /// (1 to 50) from the rest pose.
+    Pose(pose::PoseArgs),
     /// Skinning: pose a rigged model (glTF, or a mesh with --skeleton TGF and --weights DMAT)
     /// at --time of --animation, with joint edits, by any --backend; write OBJ (world space by
     /// the glTF skinning formula, one vertex per glTF vertex, primitives concatenated in
@@ -92,6 +97,7 @@ impl Command {
             Command::Ffd(a) => ffd::run(a),
             Command::Cage(a) => cage::run(a),
             Command::Arap(a) => arap::run(a),
+            Command::Pose(a) => pose::run(a),
             Command::Skin(a) => skin::run(a),
             Command::Cut(a) => cut::run(a),
             Command::Drill(a) => drill::run(a),

@@ -9,6 +9,7 @@ pub mod drill;
 pub mod fabrik;
 pub mod ffd;
 pub mod handles;
+pub mod pose;
 pub mod skin;
 pub mod spline;
 pub mod tear;
