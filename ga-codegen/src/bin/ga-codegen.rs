@@ -202,6 +202,7 @@ fn main() -> ExitCode {
         library: args.library,
         require_exp_log: args.exp_log,
         wide: args.wide,
+        output: args.out.as_ref().map(|p| p.display().to_string()),
         ..EmitOptions::default()
     };
     if let Some(r) = args.runtime {
