@@ -123,6 +123,10 @@
 pub mod error;
 pub use error::{CgaError, Result};
 
+/// The `glam` this crate is built on (`DVec3`, `DQuat`, `DMat4`, ... in its API). Depend on the
+/// same version (`glam = "0.34"`), or name its types through `cga::glam` so they always match.
+pub use glam;
+
 /// The generated G(4,1) types with `f64` coefficients, plus the hand-written objects and
 /// `DualQuat` on glam's `f64` types.
 pub mod f64 {
