@@ -89,6 +89,18 @@ fn the_header_names_every_flag_given() {
         file.display()
     );
     assert_eq!(second, want);
+    // WGSL too.
+    let wgsl = dir.join("g3.wgsl");
+    let out = run(&["algebras/g3.toml", "--wgsl", "-o", wgsl.to_str().unwrap()]);
+    assert!(out.status.success());
+    let code = std::fs::read_to_string(&wgsl).unwrap();
+    assert_eq!(
+        code.lines().nth(1).unwrap(),
+        format!(
+            "// `ga-codegen algebras/g3.toml -o '{}' --wgsl`.",
+            wgsl.display()
+        )
+    );
     // A signature is named as it was given, and defaults add nothing.
     let out = run(&["--signature", "2,0,1"]);
     let code = String::from_utf8(out.stdout).unwrap();

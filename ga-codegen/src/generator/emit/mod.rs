@@ -39,7 +39,7 @@ mod wgsl;
 pub use exp_log::decompose::Refusal;
 pub use exp_log::refusals;
 pub use render::snake;
-pub use wgsl::generate_wgsl;
+pub use wgsl::{generate_wgsl, generate_wgsl_to};
 
 use crate::generator::spec::Spec;
 use crate::generator::symbolic::BladeTable;
