@@ -1,16 +1,18 @@
-//! Generates the G(4,1) types from `algebras/cga.toml` at build time, in f64 and f32, and as
-//! WGSL.
+//! Generates the G(4,1) types from `cga.toml` (this crate's own copy of the spec, so the
+//! packaged crate builds alone; the workspace's `algebras/cga.toml` is a link to it) at build
+//! time, in f64 and f32, and as WGSL.
 
 use ga_codegen::{generate, EmitOptions, ScalarType, Spec};
 use std::path::PathBuf;
 
 fn main() {
     let manifest = PathBuf::from(std::env::var("CARGO_MANIFEST_DIR").expect("cargo sets this"));
-    let spec_path = manifest.join("../algebras/cga.toml");
+    let spec_path = manifest.join("cga.toml");
     println!("cargo:rerun-if-changed={}", spec_path.display());
     let text = std::fs::read_to_string(&spec_path)
         .unwrap_or_else(|e| panic!("cannot read {}: {e}", spec_path.display()));
-    // Name the spec as the CLI user does, so the generated header matches `ga-codegen algebras/cga.toml`.
+    // Name the spec as the CLI user in the workspace does, so the generated header is the
+    // command that prints this file: `ga-codegen algebras/cga.toml --library --wide`.
     let spec = Spec::from_toml(&text, "algebras/cga.toml").unwrap_or_else(|e| panic!("{e}"));
     let out = PathBuf::from(std::env::var("OUT_DIR").expect("cargo sets this"));
     for (scalar, file) in [

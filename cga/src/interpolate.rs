@@ -137,6 +137,14 @@ impl Motor {
     }
 
     /// `exp(sum_i w_i log M_i)` with principal logarithms. Zips the slices (empty: identity).
+    ///
+    /// Not the same as [`Motor::interpolate`] in general: `blend_log(&[a, b], &[1 - t, t])`
+    /// equals `interpolate(a, b, t)` only when `a` and `b` commute (the same screw axis: two
+    /// rotations about one axis, two translations, a rotation and a translation along its
+    /// axis). For motors that do not commute, `log a + log b` is not `log(a b)`, and the log
+    /// blend, a weighted mean of logarithms taken about the identity rather than along the
+    /// screw from `a` to `b`, takes another path between them (still `a` at `t = 0` and `+-b`
+    /// at `t = 1`); `cga/examples/motors_and_matrices.rs` shows both cases.
     #[must_use]
     pub fn blend_log(motors: &[Motor], weights: &[S]) -> Motor {
         Bivector::weighted_sum(motors.iter().map(|m| m.log()), weights).exp_motor()
@@ -153,7 +161,8 @@ impl Motor {
     }
 
     /// Screw interpolation `a exp(t log(~a b))`: `a` at `t = 0`, `+-b` at `t = 1`, constant
-    /// rotational and translational speed along the screw between them.
+    /// rotational and translational speed along the screw between them. Equals
+    /// [`Motor::blend_log`] with weights `[1 - t, t]` only for commuting `a` and `b` (see there).
     #[must_use]
     pub fn interpolate(a: Motor, b: Motor, t: S) -> Motor {
         a * (a.rev() * b).log().mul_scalar(t).exp_motor()
@@ -175,6 +184,8 @@ impl Motor {
 
 impl ScaledMotor {
     /// `exp(sum_i w_i log S_i)`: blends rotation, translation and log-scale. Zips the slices.
+    /// Equals [`ScaledMotor::interpolate`] with weights `[1 - t, t]` only when the two commute
+    /// (as for [`Motor::blend_log`]).
     #[must_use]
     pub fn blend_log(motors: &[ScaledMotor], weights: &[S]) -> ScaledMotor {
         Bivector::weighted_sum(motors.iter().map(|m| m.log()), weights).exp_scaled()

@@ -388,17 +388,17 @@ proptest! {
     #[test]
     fn objects(a in hv3(), b in hv3(), c in hv3(), d in hv3(), r in hostile(), k in hostile()) {
         if let Ok(s) = Sphere::try_new(a, r) {
-            prop_assert!(finite(&s.dual.to_array()) && s.dual.eo == 1.0);
+            prop_assert!(finite(&s.dual_vector.to_array()) && s.dual_vector.eo == 1.0);
         }
         if let Ok(s) = Sphere::through_points(a, b, c, d) {
-            prop_assert!(finite(&s.dual.to_array()) && s.dual.eo == 1.0);
+            prop_assert!(finite(&s.dual_vector.to_array()) && s.dual_vector.eo == 1.0);
         }
         if let Ok(p) = Plane::try_from_normal_distance(a, k) {
-            prop_assert!(finite(&p.dual.to_array()));
+            prop_assert!(finite(&p.dual_vector.to_array()));
             prop_assert!((p.normal().length() - 1.0).abs() < 1e-12);
         }
         if let Ok(p) = Plane::through_points(a, b, c) {
-            prop_assert!(finite(&p.dual.to_array()));
+            prop_assert!(finite(&p.dual_vector.to_array()));
             prop_assert!((p.normal().length() - 1.0).abs() < 1e-12);
         }
         if let Ok(l) = Line::through_points(a, b) {

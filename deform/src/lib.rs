@@ -74,3 +74,10 @@ pub use deformers::{Deformer, Poser};
 pub use error::{Error, Result};
 pub use mesh::Mesh;
 pub use skinning::{Rig, Skinning};
+
+/// The `cga` crate this one is built on (motors, rotors, points): `deform::cga::Motor` is the
+/// type every deformer takes, whatever version of `cga` the caller depends on.
+pub use cga;
+/// The `glam` crate of this crate's API (`DVec3`, `DQuat`, `DMat4`): the same as
+/// `deform::cga::glam`, for callers who do not depend on glam themselves or whose glam differs.
+pub use glam;

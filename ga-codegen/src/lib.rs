@@ -22,6 +22,22 @@
 //! generator's `runtime` path must provide them), and, with `codegen`, `Spec`, `SpecError`,
 //! `generate`, `generate_wgsl`, `EmitOptions`, `ScalarType` and `GenError`. Lane forms name
 //! their lane types by their one path under `{runtime}::runtime`.
+//!
+//! ## Using generated code
+//!
+//! A module written by the `ga-codegen` binary (`ga-codegen SPEC.toml -o src/my_algebra.rs`)
+//! or expanded by `ga-macros`' `algebra!` names this crate as `::ga_codegen`, so the crate that
+//! compiles it depends on the runtime part alone:
+//!
+//! ```toml
+//! [dependencies]
+//! ga-codegen = { version = "0.1", default-features = false }
+//! ```
+//!
+//! Declare the file as a public module of a library (`pub mod my_algebra;`); `--library`
+//! output also wants the features `serde` and `bytemuck` declared (optional dependencies of
+//! those names), and without them has neither impl. The file's header is the command that
+//! regenerates it, every flag included. `tests/cli_flow.rs` does all of this in a fresh crate.
 
 #![warn(missing_docs)]
 // Matrices and blade tables are indexed by position on purpose: the index loops read like the

@@ -59,6 +59,58 @@ fn writes_a_file_and_f32() {
     let _ = std::fs::remove_dir_all(dir);
 }
 
+/// The header's "regenerate with" command is the command that was run: every flag given,
+/// `-o` included (issue 46: it dropped `--wide`, `--runtime`, `--exp-log` and `-o`).
+#[test]
+fn the_header_names_every_flag_given() {
+    let dir = scratch("header flags");
+    let file = dir.join("g3 f32.rs");
+    let out = run(&[
+        "algebras/g3.toml",
+        "--wide",
+        "--exp-log",
+        "--library",
+        "--runtime",
+        "crate::rt",
+        "--scalar",
+        "f32",
+        "-o",
+        file.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let code = std::fs::read_to_string(&file).unwrap();
+    let second = code.lines().nth(1).unwrap();
+    let want = format!(
+        "// `ga-codegen algebras/g3.toml -o '{}' --scalar f32 --runtime crate::rt --library --exp-log --wide`.",
+        file.display()
+    );
+    assert_eq!(second, want);
+    // WGSL too.
+    let wgsl = dir.join("g3.wgsl");
+    let out = run(&["algebras/g3.toml", "--wgsl", "-o", wgsl.to_str().unwrap()]);
+    assert!(out.status.success());
+    let code = std::fs::read_to_string(&wgsl).unwrap();
+    assert_eq!(
+        code.lines().nth(1).unwrap(),
+        format!(
+            "// `ga-codegen algebras/g3.toml -o '{}' --wgsl`.",
+            wgsl.display()
+        )
+    );
+    // A signature is named as it was given, and defaults add nothing.
+    let out = run(&["--signature", "2,0,1"]);
+    let code = String::from_utf8(out.stdout).unwrap();
+    assert_eq!(
+        code.lines().nth(1).unwrap(),
+        "// `ga-codegen --signature 2,0,1`."
+    );
+    let _ = std::fs::remove_dir_all(dir);
+}
+
 #[test]
 fn signature_generates_default_spec() {
     let out = run(&["--signature", "3,0,1", "--summary"]);

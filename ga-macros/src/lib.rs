@@ -20,6 +20,11 @@
 //! If the runtime is reachable under another path (re-exported by another crate), say so with
 //! `runtime = some::path`.
 //!
+//! `examples/pga.rs` (G(3,0,1): points, planes, rotors, translators, motors) and
+//! `examples/sta.rs` (G(1,3): boosts and rotations) are runnable checks to start from
+//! (`cargo run -p ga-macros --example pga`); they also state the sign conventions of those
+//! algebras.
+//!
 //! ## Use
 //!
 //! The macro expands to items (constants, structs, impls, the `Sandwich` trait), as the binary

@@ -33,7 +33,7 @@ impl Circle {
         let v = (self.direct ^ EI).dual();
         let l = V3::new(v.e1, v.e2, v.e3).length();
         Plane {
-            dual: Vector::new(0.0, v.e1, v.e2, v.e3, v.ei) / l,
+            dual_vector: Vector::new(0.0, v.e1, v.e2, v.e3, v.ei) / l,
         }
     }
 

@@ -7,7 +7,11 @@ use super::*;
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Plane {
     /// The dual vector (`eo = 0`, `|(e1, e2, e3)| = 1`).
-    pub dual: Vector,
+    ///
+    /// Named `dual_vector`, not `dual`: the generated `.dual()` method of every type is the
+    /// algebraic dual (times the inverse pseudoscalar), while this field is the object's dual
+    /// (inner product null space) *representation*; `self.dual_vector.dual()` is its direct form.
+    pub dual_vector: Vector,
 }
 
 impl Plane {
@@ -18,7 +22,7 @@ impl Plane {
         let l = normal.length();
         let n = normal / l;
         Plane {
-            dual: Vector::new(0.0, n.x, n.y, n.z, distance),
+            dual_vector: Vector::new(0.0, n.x, n.y, n.z, distance),
         }
     }
 
@@ -112,39 +116,47 @@ impl Plane {
             1.0
         };
         let dual = Vector::new(0.0, v.e1 / l, v.e2 / l, v.e3 / l, v.ei / l) * sign;
-        finite_result(Plane { dual }, &dual.to_array(), "plane (normalisation)")
+        finite_result(
+            Plane { dual_vector: dual },
+            &dual.to_array(),
+            "plane (normalisation)",
+        )
     }
 
     /// The direct form, a quadvector `X1 ^ X2 ^ X3 ^ ei` (up to scale).
     #[must_use]
     pub fn direct(&self) -> Quadvector {
-        self.dual.dual()
+        self.dual_vector.dual()
     }
 
     /// The unit normal.
     #[must_use]
     pub fn normal(&self) -> V3 {
-        V3::new(self.dual.e1, self.dual.e2, self.dual.e3)
+        V3::new(
+            self.dual_vector.e1,
+            self.dual_vector.e2,
+            self.dual_vector.e3,
+        )
     }
 
     /// The signed distance of the plane from the origin along its normal.
     #[must_use]
     pub fn distance(&self) -> S {
-        self.dual.ei
+        self.dual_vector.ei
     }
 
     /// The signed distance of `x` from the plane: `X.pi = x.n - d` (positive on the normal's
     /// side).
     #[must_use]
     pub fn signed_distance(&self, x: V3) -> S {
-        Point::from_vec3(x).dot_vector(self.dual)
+        Point::from_vec3(x).dot_vector(self.dual_vector)
     }
 
     /// The meet with a line, `pi . L` (a flat point); `None` when the line is parallel to the
     /// plane (within a relative tolerance).
     #[must_use]
     pub fn meet_line(&self, line: &Line) -> Option<FlatPoint> {
-        let f = self.dual | line.direct;
+        let f = self.dual_vector | line.direct;
         let u = line.direction();
         if !(f.eoi.abs() > TOL * u.length()) {
             return None;
@@ -181,7 +193,7 @@ impl Plane {
             return None;
         }
         Some(Line {
-            direct: (self.dual ^ other.dual).dual(),
+            direct: (self.dual_vector ^ other.dual_vector).dual(),
         })
     }
 

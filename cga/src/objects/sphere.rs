@@ -7,7 +7,11 @@ use super::*;
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Sphere {
     /// The dual (inner product null space) vector, with `eo` coefficient 1.
-    pub dual: Vector,
+    ///
+    /// Named `dual_vector`, not `dual`: the generated `.dual()` method of every type is the
+    /// algebraic dual (times the inverse pseudoscalar), while this field is the object's dual
+    /// (inner product null space) *representation*; `self.dual_vector.dual()` is its direct form.
+    pub dual_vector: Vector,
 }
 
 impl Sphere {
@@ -16,7 +20,7 @@ impl Sphere {
     pub fn new(center: V3, radius: S) -> Self {
         let c = Point::from_vec3(center);
         Sphere {
-            dual: Vector::new(1.0, c.e1, c.e2, c.e3, c.ei - 0.5 * radius * radius),
+            dual_vector: Vector::new(1.0, c.e1, c.e2, c.e3, c.ei - 0.5 * radius * radius),
         }
     }
 
@@ -34,7 +38,11 @@ impl Sphere {
             });
         }
         let s = Self::new(center, radius);
-        finite_result(s, &s.dual.to_array(), "sphere (centre or radius too large)")
+        finite_result(
+            s,
+            &s.dual_vector.to_array(),
+            "sphere (centre or radius too large)",
+        )
     }
 
     /// The sphere through four points: `(X1 ^ X2 ^ X3 ^ X4)*`, normalised.
@@ -54,26 +62,34 @@ impl Sphere {
         }
         let w = s.eo;
         let dual = Vector::new(1.0, s.e1 / w, s.e2 / w, s.e3 / w, s.ei / w);
-        finite_result(Sphere { dual }, &dual.to_array(), "sphere (normalisation)")
+        finite_result(
+            Sphere { dual_vector: dual },
+            &dual.to_array(),
+            "sphere (normalisation)",
+        )
     }
 
     /// The direct (outer product null space) form: a quadvector.
     #[must_use]
     pub fn direct(&self) -> Quadvector {
         // dual() maps quadvectors to vectors and back up to sign; the sign is irrelevant.
-        self.dual.dual()
+        self.dual_vector.dual()
     }
 
     /// The centre.
     #[must_use]
     pub fn center(&self) -> V3 {
-        V3::new(self.dual.e1, self.dual.e2, self.dual.e3)
+        V3::new(
+            self.dual_vector.e1,
+            self.dual_vector.e2,
+            self.dual_vector.e3,
+        )
     }
 
     /// The squared radius `sigma.sigma` (negative for an imaginary sphere).
     #[must_use]
     pub fn radius_squared(&self) -> S {
-        self.dual.dot(self.dual)
+        self.dual_vector.dot(self.dual_vector)
     }
 
     /// The radius (NaN for an imaginary sphere).
@@ -85,7 +101,7 @@ impl Sphere {
     /// `X.sigma = 0.5 (r^2 - |x - c|^2)`: positive inside, zero on, negative outside.
     #[must_use]
     pub fn power(&self, x: V3) -> S {
-        Point::from_vec3(x).dot_vector(self.dual)
+        Point::from_vec3(x).dot_vector(self.dual_vector)
     }
 
     /// Whether `x` is inside or on the sphere.
@@ -105,7 +121,7 @@ impl Sphere {
     #[must_use]
     pub fn meet_plane(&self, plane: &Plane) -> Option<Circle> {
         let c = Circle {
-            direct: (self.dual ^ plane.dual).dual(),
+            direct: (self.dual_vector ^ plane.dual_vector).dual(),
         };
         (c.radius_squared() >= 0.0).then_some(c)
     }
@@ -114,7 +130,7 @@ impl Sphere {
     #[must_use]
     pub fn meet_line(&self, line: &Line) -> Option<PointPair> {
         let p = PointPair {
-            direct: self.dual | line.direct,
+            direct: self.dual_vector | line.direct,
         };
         p.points().map(|_| p)
     }

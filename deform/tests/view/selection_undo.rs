@@ -111,15 +111,14 @@ fn a_stroke_is_one_undo_step_and_an_undo_rebinds() {
 
 #[test]
 fn a_lasso_takes_the_vertices_seen_inside_it_and_not_those_behind() {
-    use glam::DMat4;
     let server = Server::start(&[]);
     let mut c = server.connect(None).expect("connects");
     c.state();
     c.send(json!({"op": "clear-groups"}));
     c.state();
     let eye = DVec3::new(0.0, 0.0, 5.0);
-    let m = DMat4::perspective_rh_gl(0.8, 1.0, 0.1, 100.0)
-        * DMat4::look_at_rh(eye, DVec3::ZERO, DVec3::Y);
+    let m = glam::dcamera::rh::proj::opengl::perspective(0.8, 1.0, 0.1, 100.0)
+        * glam::dcamera::rh::view::look_at_mat4(eye, DVec3::ZERO, DVec3::Y);
     let polygon = json!([[-0.1, -0.1], [0.1, -0.1], [0.1, 0.1], [-0.1, 0.1]]);
     c.send(
         json!({"op": "lasso", "eye": eye.to_array(), "view_proj": m.to_cols_array(),

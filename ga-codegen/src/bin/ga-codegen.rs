@@ -202,6 +202,7 @@ fn main() -> ExitCode {
         library: args.library,
         require_exp_log: args.exp_log,
         wide: args.wide,
+        output: args.out.as_ref().map(|p| p.display().to_string()),
         ..EmitOptions::default()
     };
     if let Some(r) = args.runtime {
@@ -254,7 +255,8 @@ fn main() -> ExitCode {
 
 /// `--wgsl`: the WGSL source to `out` or stdout.
 fn write_wgsl(spec: &Spec, out: Option<&std::path::Path>, start: Instant) -> ExitCode {
-    let code = match ga_codegen::generate_wgsl(spec) {
+    let named = out.map(|p| p.display().to_string());
+    let code = match ga_codegen::generator::emit::generate_wgsl_to(spec, named.as_deref()) {
         Ok(c) => c,
         Err(e) => {
             eprintln!("error: {e}");

@@ -1,7 +1,9 @@
 //! Items for a module that is a library's public API ([`super::EmitOptions::library`]):
 //! `serde` and `bytemuck` impls behind cargo features of those names, and a `types` module
 //! listing every generated type for re-export. Written here from the spec, so adding a type to
-//! the spec cannot leave a hand-written list stale.
+//! the spec cannot leave a hand-written list stale. A crate that includes such a module should
+//! declare the features `serde` and `bytemuck` (optional dependencies of those names); one that
+//! does not gets neither impl, and no warning about the unknown `cfg` values.
 
 use super::render::{ident, int};
 use super::{Gen, Op};
@@ -14,10 +16,11 @@ impl Gen<'_> {
     /// The feature-gated impls of every type, then the `types` module.
     pub(super) fn library_items(&mut self) {
         let s = self.s.clone();
+        let mut gated = proc_macro2::TokenStream::new();
         for t in &self.spec.types {
             let (name, n) = (ident(&t.name), int(t.fields.len()));
             if t.fields.len() <= SERDE_MAX_LEN {
-                self.out.extend(quote! {
+                gated.extend(quote! {
                     #[cfg(feature = "serde")]
                     impl ::serde::Serialize for #name {
                         fn serialize<Z: ::serde::Serializer>(&self, z: Z) -> ::core::result::Result<Z::Ok, Z::Error> {
@@ -34,7 +37,7 @@ impl Gen<'_> {
             }
             // `#[repr(C)]`, `Copy`, every field the same float type: no padding (checked by
             // the assertion), every bit pattern valid, zero a valid value.
-            self.out.extend(quote! {
+            gated.extend(quote! {
                 #[cfg(feature = "bytemuck")]
                 unsafe impl ::bytemuck::Zeroable for #name {}
                 #[cfg(feature = "bytemuck")]
@@ -43,6 +46,14 @@ impl Gen<'_> {
                 const _: () = assert!(::core::mem::size_of::<#name>() == #name::LEN * ::core::mem::size_of::<Scalar>());
             });
         }
+        // In one anonymous const, whose `allow` covers the `cfg`s inside: a crate that
+        // includes the module without declaring the features `serde` and `bytemuck` gets no
+        // `unexpected_cfgs` warning per impl (an `allow` on the gated item itself does not
+        // reach its own `cfg`), just no impls. Trait impls in a const block are global.
+        self.out.extend(quote! {
+            #[allow(unexpected_cfgs)]
+            const _: () = { #gated };
+        });
         let types = self.spec.types.iter().map(|t| ident(&t.name));
         let matrices = self
             .ops
