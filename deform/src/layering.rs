@@ -29,6 +29,20 @@ const LAYERS: &[(&str, &[&str])] = &[
             "input",
         ],
     ),
+    (
+        "editor",
+        &[
+            "mesh",
+            "operators",
+            "blend",
+            "deformers",
+            "skinning",
+            "surgery",
+            "render",
+            "input",
+            "methods",
+        ],
+    ),
 ];
 
 fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {

@@ -48,6 +48,7 @@
 
 pub mod blend;
 pub mod deformers;
+pub mod editor;
 mod error;
 #[cfg(feature = "gpu")]
 pub mod gpu;

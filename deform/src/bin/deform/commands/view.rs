@@ -8,10 +8,7 @@
 //! plain threads, one per connection, so binds and poses never block the server.
 
 mod mailbox;
-mod protocol;
-mod rig_edit;
 mod server;
-mod session;
 
 use crate::input_files::{read_mesh, read_rig, read_selection};
 use crate::shared_args::RigInput;

@@ -2,7 +2,7 @@
 //! replaces one of its kind not yet taken: while a bind or a slow pose runs, edits coalesce
 //! and the latest wins, so the server never falls behind a drag.
 
-use super::protocol::Request;
+use deform::editor::protocol::Request;
 use std::collections::VecDeque;
 use std::sync::{Condvar, Mutex};
 

@@ -3,15 +3,14 @@
 //! through a [`Mailbox`] where a newer pose replaces one not yet made.
 
 use super::mailbox::Mailbox;
-use super::protocol::{Reply, Request};
-use super::session::MAX_UPLOAD;
-use super::session::{Out, Session};
 use axum::extract::ws::{Message, WebSocket, WebSocketUpgrade};
 use axum::extract::{Query, State};
 use axum::http::{header, HeaderMap, StatusCode};
 use axum::response::{IntoResponse, Response};
 use axum::routing::get;
 use axum::Router;
+use deform::editor::protocol::{Reply, Request};
+use deform::editor::{Out, Session, MAX_UPLOAD};
 use deform::methods::scenes::Scene;
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -193,7 +192,7 @@ fn run_session(scenes: Vec<Scene>, mailbox: &Mailbox, tx: &mpsc::Sender<Out>) {
             message: format!("{e:#}"),
         }))
     };
-    let opened = std::panic::catch_unwind(|| Session::new(scenes));
+    let opened = std::panic::catch_unwind(|| Session::new(scenes, crate::budget::get()));
     let mut session = match opened {
         Ok(Ok((s, out))) => {
             if !out.into_iter().all(send) {
@@ -202,7 +201,7 @@ fn run_session(scenes: Vec<Scene>, mailbox: &Mailbox, tx: &mpsc::Sender<Out>) {
             s
         }
         Ok(Err(e)) => {
-            report(e);
+            report(e.into());
             return;
         }
         Err(_) => {
@@ -234,7 +233,7 @@ fn run_session(scenes: Vec<Scene>, mailbox: &Mailbox, tx: &mpsc::Sender<Out>) {
             Ok(Ok(out)) => {
                 out.into_iter().all(send) && (slow.is_none() || send(Out::Text(Reply::Idle)))
             }
-            Ok(Err(e)) => report(e) && (slow.is_none() || send(Out::Text(Reply::Idle))),
+            Ok(Err(e)) => report(e.into()) && (slow.is_none() || send(Out::Text(Reply::Idle))),
             Err(_) => {
                 report(anyhow::anyhow!(
                     "internal error: this session ends (reload the page)"

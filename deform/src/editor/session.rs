@@ -5,33 +5,40 @@
 
 mod keep;
 mod method;
-pub use keep::MAX_UPLOAD;
 mod replay;
 mod report;
 mod select;
 mod surgery;
 
-use super::protocol::{Frame, Precision, Reply, Request};
-use super::rig_edit::RigEdit;
-use crate::timing::ms;
-use anyhow::{anyhow, bail, Context, Result};
-use deform::input::MotorSpec;
-use deform::methods::bound::{group_centres, BoundMethod, HarmonicCache};
-use deform::methods::scenes::{Content, Scene};
-use deform::methods::MethodSettings;
-use deform::surgery::{FaceBvh, RayHit};
-use deform::{BlendMethod, Mesh};
+use crate::blend::BlendMethod;
+use crate::editor::error::{bail, refused, Context, Result};
+use crate::editor::ms;
+use crate::editor::protocol::{Frame, Precision, Reply, Request};
+use crate::editor::rig_edit::RigEdit;
+use crate::input::MotorSpec;
+use crate::mesh::Mesh;
+use crate::methods::bound::{group_centres, BoundMethod, HarmonicCache};
+use crate::methods::budget::WorkBudget;
+use crate::methods::scenes::{Content, Scene};
+use crate::methods::MethodSettings;
+use crate::surgery::{FaceBvh, RayHit};
 use glam::DVec3;
 use std::time::Instant;
 
 /// What the server sends back: a text frame or a binary one.
 pub enum Out {
+    /// A JSON text frame.
     Text(Reply),
+    /// A binary frame.
     Binary(Frame),
 }
 
 /// No group.
 const NONE: u32 = u32::MAX;
+
+/// The most bytes an uploaded model may have (the page checks first; the socket's message
+/// limit bounds what reaches the server).
+pub const MAX_UPLOAD: usize = 16 << 20;
 
 /// The field the mesh is coloured by.
 #[derive(Clone, Debug, PartialEq)]
@@ -65,6 +72,8 @@ pub struct Session {
     history: select::SelectionHistory,
     /// The precision of the positions frames the client asked for.
     precision: Precision,
+    /// What a bind may come to.
+    budget: WorkBudget,
 }
 
 fn v3(a: [f64; 3]) -> DVec3 {
@@ -72,8 +81,9 @@ fn v3(a: [f64; 3]) -> DVec3 {
 }
 
 impl Session {
-    /// A session on `scenes[0]`, with its opening frames.
-    pub fn new(scenes: Vec<Scene>) -> Result<(Session, Vec<Out>)> {
+    /// A session on `scenes[0]`, with its opening frames; every bind is checked against
+    /// `budget`.
+    pub fn new(scenes: Vec<Scene>, budget: WorkBudget) -> Result<(Session, Vec<Out>)> {
         if scenes.is_empty() {
             bail!("no scene to open");
         }
@@ -100,6 +110,7 @@ impl Session {
             analysed: HarmonicCache::default(),
             history: Default::default(),
             precision: Precision::F64,
+            budget,
         };
         let out = s.open(0)?;
         Ok((s, out))
@@ -112,7 +123,7 @@ impl Session {
             Request::Method { method, .. } => method.as_str(),
             Request::Scene { name } => name.as_str(),
             Request::Upload { name, .. } => name.as_str(),
-            _ => deform::methods::named::Named::name(self.settings.method),
+            _ => crate::methods::named::Named::name(self.settings.method),
         };
         format!("{what} / {} / {method}", self.scene)
     }
@@ -126,7 +137,7 @@ impl Session {
                     .scenes
                     .iter()
                     .position(|s| s.name == name)
-                    .ok_or_else(|| anyhow!("no scene {name:?}"))?;
+                    .ok_or_else(|| refused!("no scene {name:?}"))?;
                 self.open(i)
             }
             Request::Paint {
@@ -186,7 +197,7 @@ impl Session {
                 let rig = self
                     .rig
                     .as_mut()
-                    .ok_or_else(|| anyhow!("this scene has no rig"))?;
+                    .ok_or_else(|| refused!("this scene has no rig"))?;
                 rig.compare = self.field.name == "dqs-difference";
                 let reply = rig.pose(seq, animation, time, &backend, &edits, &mut self.posed)?;
                 let mut out = vec![Out::Text(reply)];
@@ -210,7 +221,7 @@ impl Session {
                 let rig = self
                     .rig
                     .as_mut()
-                    .ok_or_else(|| anyhow!("this scene has no rig to cut"))?;
+                    .ok_or_else(|| refused!("this scene has no rig to cut"))?;
                 rig.cut(v3(point), v3(normal), cap, &self.posed)?;
                 self.load_rig_mesh()
             }
@@ -332,7 +343,7 @@ impl Session {
                 &self.groups,
                 self.cage.as_ref(),
                 &self.settings,
-                &crate::budget::get(),
+                &self.budget,
                 &mut self.analysed,
             )
             .with_context(|| format!("cannot bind {} to {groups} groups", self.method_name()))?;
@@ -358,7 +369,7 @@ impl Session {
 
     /// The method's name.
     fn method_name(&self) -> &'static str {
-        deform::methods::named::Named::name(self.settings.method)
+        crate::methods::named::Named::name(self.settings.method)
     }
 
     /// The centre of each group at rest.
@@ -387,7 +398,7 @@ impl Session {
         let motors = specs
             .iter()
             .enumerate()
-            .map(|(g, s)| s.to_motor().map_err(|e| anyhow!("group {g}: {e}")))
+            .map(|(g, s)| s.to_motor().map_err(|e| refused!("group {g}: {e}")))
             .collect::<Result<Vec<_>>>()?;
         let t = Instant::now();
         let energy = if self.stale {

@@ -1,17 +1,18 @@
 //! A rig in the editor: animation and joint edits posed by a chosen backend, the per-vertex
 //! difference to dual-quaternion skinning, and cuts, tears and drills with undo and redo.
 
-use super::protocol::{AnimationInfo, EditSpec, Reply, RigInfo};
-use crate::timing::ms;
-use anyhow::{anyhow, bail, Result};
-use deform::blend::PreparedKeys;
-use deform::skinning::{
+use crate::blend::BlendMethod;
+use crate::blend::PreparedKeys;
+use crate::editor::error::{bail, refused, Result};
+use crate::editor::ms;
+use crate::editor::protocol::{AnimationInfo, EditSpec, Reply, RigInfo};
+use crate::mesh::Mesh;
+use crate::skinning::{
     bake_edits, glb_bytes, GlbOptions, JointEdit, KeyframeBlend, Rig, RigPart, RigPose, Skinning,
 };
-use deform::surgery::{
+use crate::surgery::{
     CutOptions, Drill, DrillOptions, Frame, Scalpel, Surgery, TearOptions, VertexOrigin,
 };
-use deform::BlendMethod;
 use glam::DVec3;
 use std::time::Instant;
 
@@ -45,7 +46,7 @@ pub struct RigEdit {
     dqs_posed: Vec<DVec3>,
     /// Pose the dual-quaternion comparison with every frame.
     pub compare: bool,
-    edits: Vec<(usize, deform::input::MotorSpec)>,
+    edits: Vec<(usize, crate::input::MotorSpec)>,
     /// What the page has not been told yet: that this backend approximates joints.
     note: Option<String>,
     /// The approximation was told for the current backend.
@@ -110,7 +111,7 @@ impl RigEdit {
         edits: &[EditSpec],
         posed: &mut Vec<DVec3>,
     ) -> Result<Reply> {
-        let backend: BlendMethod = backend.parse()?;
+        let backend = <BlendMethod as crate::methods::named::Named>::from_name(backend)?;
         if !BACKENDS.contains(&backend) {
             bail!("backend {} is not offered here", backend.name());
         }
@@ -126,7 +127,7 @@ impl RigEdit {
             let motor = e
                 .motor
                 .to_motor()
-                .map_err(|m| anyhow!("joint {}: {m}", e.joint))?;
+                .map_err(|m| refused!("joint {}: {m}", e.joint))?;
             joint_edits.push(JointEdit {
                 joint: e.joint,
                 motor,
@@ -161,7 +162,7 @@ impl RigEdit {
                 .map(|(j, _)| rig.nodes[rig.joints[j]].name.clone())
                 .collect();
             let world = rig.bind_pose_positions()?;
-            let diagonal = deform::Mesh::new(world, Vec::new())
+            let diagonal = Mesh::new(world, Vec::new())
                 .bounding_box()
                 .map_or(f64::NAN, |b| b.diagonal());
             let percent = 100.0 * rig.similarity_shift(&self.pose) / diagonal;
@@ -171,7 +172,7 @@ impl RigEdit {
                  them exactly",
                 backend.name(),
                 joints.join(", "),
-                deform::render::short_number(percent)
+                crate::render::short_number(percent)
             ));
         }
         self.edits = edits.iter().map(|e| (e.joint, e.motor.clone())).collect();
@@ -257,7 +258,7 @@ impl RigEdit {
     /// last pose), and re-rig the pieces.
     pub fn cut(&mut self, point: DVec3, normal: DVec3, cap: bool, posed: &[DVec3]) -> Result<()> {
         let plane = cga::Plane::try_from_point_normal(point, normal).map_err(|e| {
-            anyhow::anyhow!("cut: the plane needs a finite point and a non-zero normal ({e})")
+            refused!("cut: the plane needs a finite point and a non-zero normal ({e})")
         })?;
         let options = CutOptions {
             cap,
@@ -297,7 +298,7 @@ impl RigEdit {
     }
 
     pub fn redo(&mut self) -> Result<()> {
-        let v = self.redo.pop().ok_or_else(|| anyhow!("nothing to redo"))?;
+        let v = self.redo.pop().ok_or_else(|| refused!("nothing to redo"))?;
         self.history.push(v);
         self.rebind(self.backend)
     }
@@ -366,7 +367,7 @@ impl RigEdit {
             .map(|(j, m)| {
                 Ok(JointEdit {
                     joint: *j,
-                    motor: m.to_motor().map_err(|e| anyhow!(e))?,
+                    motor: m.to_motor().map_err(|e| refused!("{e}"))?,
                 })
             })
             .collect::<Result<_>>()?;

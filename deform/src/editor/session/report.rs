@@ -1,14 +1,12 @@
 //! What the page is shown of a session: the whole state and the colour fields.
 
 use super::{Out, Session, NONE};
-use crate::commands::view::protocol::{
-    ControlInfo, ControlsInfo, Frame, GroupInfo, Reply, StateInfo,
-};
-use crate::commands::view::rig_edit::RigEdit;
-use deform::methods::bound::BoundMethod;
-use deform::methods::named::Named;
-use deform::methods::Method;
-use deform::BlendMethod;
+use crate::blend::BlendMethod;
+use crate::editor::protocol::{ControlInfo, ControlsInfo, Frame, GroupInfo, Reply, StateInfo};
+use crate::editor::rig_edit::RigEdit;
+use crate::methods::bound::BoundMethod;
+use crate::methods::named::Named;
+use crate::methods::Method;
 
 impl Session {
     /// The fields this scene can be coloured by.

@@ -2,9 +2,9 @@
 //! it meets, a click drills where its ray meets it; both sized by the mesh, in the posed frame.
 
 use super::{v3, Out, Session};
-use crate::commands::view::protocol::Request;
-use anyhow::{anyhow, bail, Result};
-use deform::surgery::{Drill, Scalpel};
+use crate::editor::error::{bail, refused, Result};
+use crate::editor::protocol::Request;
+use crate::surgery::{Drill, Scalpel};
 
 impl Session {
     /// Tear along the surface under a stroke (rays from the eye), or drill where a ray meets it.
@@ -50,7 +50,7 @@ impl Session {
                 let d = v3(direction).normalize_or_zero();
                 let h = self
                     .hit(v3(origin), d)
-                    .ok_or_else(|| anyhow!("drill: aim at the surface"))?;
+                    .ok_or_else(|| refused!("drill: aim at the surface"))?;
                 let drill = Drill {
                     tip: h.point - 0.25 * depth * size * d,
                     end: h.point + depth * size * d,

@@ -2,10 +2,10 @@
 //! vertices seen inside a screen polygon.
 
 use super::{Out, Session, NONE};
-use crate::commands::view::protocol::Frame;
-use anyhow::{bail, Result};
-use deform::input::MotorSpec;
-use deform::Mesh;
+use crate::editor::error::{bail, Result};
+use crate::editor::protocol::Frame;
+use crate::input::MotorSpec;
+use crate::mesh::Mesh;
 use glam::{DMat4, DVec3};
 
 /// Whether `p` is inside `polygon` (even-odd rule).
@@ -33,7 +33,7 @@ type Selection = Vec<Vec<u32>>;
 /// Undo and redo of selection changes (paint strokes, lassos, clearing, loading), as the
 /// groups before each. The motors stay with the group numbers, as the page's gizmos do.
 #[derive(Debug, Default)]
-pub(in crate::commands::view) struct SelectionHistory {
+pub(in crate::editor) struct SelectionHistory {
     undo: Vec<Selection>,
     redo: Vec<Selection>,
     /// Kept when a change begins, pushed once it changes something.
@@ -41,11 +41,11 @@ pub(in crate::commands::view) struct SelectionHistory {
 }
 
 impl SelectionHistory {
-    pub(in crate::commands::view) fn undo_count(&self) -> usize {
+    pub(in crate::editor) fn undo_count(&self) -> usize {
         self.undo.len()
     }
 
-    pub(in crate::commands::view) fn redo_count(&self) -> usize {
+    pub(in crate::editor) fn redo_count(&self) -> usize {
         self.redo.len()
     }
 }

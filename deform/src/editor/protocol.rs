@@ -14,15 +14,19 @@
 //! compare them with its own pose bit for bit); the page, which draws in f32, asks for kind 5
 //! ([`Request::Precision`]): half the bytes per pose (1.2 MB -> 0.6 MB on a 50k mesh).
 
-use deform::input::MotorSpec;
+use crate::input::MotorSpec;
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
 /// Frame kinds of the binary frames.
 pub const MESH: u32 = 1;
+/// Kind 2: posed positions in f64.
 pub const POSITIONS: u32 = 2;
+/// Kind 3: a scalar per vertex.
 pub const FIELD: u32 = 3;
+/// Kind 4: each vertex's group.
 pub const GROUPS: u32 = 4;
+/// Kind 5: posed positions in f32.
 pub const POSITIONS_F32: u32 = 5;
 
 /// The precision of the positions frames.
@@ -40,7 +44,9 @@ pub enum Precision {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct EditSpec {
+    /// The joint (index into the rig's joints).
     pub joint: usize,
+    /// The motor, in the joint's own frame.
     pub motor: MotorSpec,
 }
 
@@ -50,15 +56,21 @@ pub struct EditSpec {
 pub enum Request {
     /// Open a scene by name (one of [`Reply::State`]'s `scenes`).
     Scene {
+        /// The scene's name.
         name: String,
     },
     /// Paint: the vertices within `radius` of where the ray first meets the posed surface join
     /// group `group` (`group == groups` starts a new one), or leave their group (`erase`).
     Paint {
+        /// The ray's origin (world space).
         origin: [f64; 3],
+        /// The ray's direction.
         direction: [f64; 3],
+        /// The brush radius (world units).
         radius: f64,
+        /// The group painted.
         group: usize,
+        /// Take the vertices out of their group instead.
         #[serde(default)]
         erase: bool,
         /// The first dab of a stroke: the selection before it is what an undo returns to.
@@ -68,10 +80,15 @@ pub enum Request {
     /// Lasso: the vertices seen from `eye` whose projection by `view_proj` (column-major 4x4)
     /// falls inside `polygon` (normalised device coordinates) join `group` (or leave it).
     Lasso {
+        /// The camera's position (world space).
         eye: [f64; 3],
+        /// The view-projection matrix, column-major.
         view_proj: [f64; 16],
+        /// The lasso, in normalised device coordinates.
         polygon: Vec<[f64; 2]>,
+        /// The group the vertices join.
         group: usize,
+        /// Take the vertices out of their group instead.
         #[serde(default)]
         erase: bool,
     },
@@ -82,8 +99,11 @@ pub enum Request {
     /// Choose the method (`handles`, `arap`, `spline`), its blend and ARAP's iterations per
     /// frame; rebinds.
     Method {
+        /// The method by the library's name.
         method: String,
+        /// The blend method by name, or `positional` for lattices and cages.
         blend: String,
+        /// ARAP iterations per frame.
         #[serde(default)]
         iterations: Option<usize>,
         /// ARAP's energy: `spokes` or `spokes-and-rims`.
@@ -98,68 +118,93 @@ pub enum Request {
     },
     /// Pose the handle groups: one motor per group (the CLI's motor JSON).
     Motors {
+        /// The pose's sequence number (echoed in the reply).
         seq: u32,
+        /// One motor per key.
         motors: Vec<MotorSpec>,
     },
     /// Pose the rig at `time` of `animation` (none: rest) with joint edits, by `backend`.
     Rig {
+        /// The pose's sequence number (echoed in the reply).
         seq: u32,
+        /// The animation (none: the rest pose).
         animation: Option<usize>,
+        /// The time in seconds.
         time: f64,
+        /// The skinning backend by blend method name.
         backend: String,
+        /// Joint edits.
         #[serde(default)]
         edits: Vec<EditSpec>,
     },
     /// Colour by a field (one of the state's `fields`); `group` for per-group fields.
     Field {
+        /// The field's name.
         name: String,
+        /// The group of a per-group field.
         #[serde(default)]
         group: usize,
     },
     /// Cut the rig by the plane through `point` with normal `normal`, in the posed frame.
     Cut {
+        /// A point on the plane (posed frame).
         point: [f64; 3],
+        /// The plane's normal.
         normal: [f64; 3],
+        /// Close the pieces with caps (default).
         #[serde(default = "yes")]
         cap: bool,
     },
     /// Tear the rig's skin along the surface under a stroke: one ray (origin, direction) per
     /// sample, in the posed frame; `open` pulls the lips apart.
     Tear {
+        /// One ray (origin, direction) per sample of the stroke.
         rays: Vec<[[f64; 3]; 2]>,
+        /// How far the lips are pulled apart.
         #[serde(default)]
         open: f64,
     },
     /// Drill where the ray meets the posed surface: `radius` and `depth` are fractions of the
     /// mesh's size.
     Drill {
+        /// The ray's origin (world space).
         origin: [f64; 3],
+        /// The ray's direction.
         direction: [f64; 3],
+        /// The drill's radius, a fraction of the mesh's size.
         radius: f64,
+        /// The drill's depth, a fraction of the mesh's size.
         depth: f64,
     },
     /// Undo or redo the last surgery (a rig) or selection change (a mesh scene: a paint
     /// stroke, a lasso, clearing or loading the groups).
     Undo,
+    /// Redo what [`Request::Undo`] undid.
     Redo,
     /// A file of the current state: `obj`, `motors`, `selection`, `edits`.
     Export {
+        /// What to export.
         what: String,
     },
     /// Load a selection (`selection`, the CLI's JSON) or motors (`motors`).
     Load {
+        /// What the text is: `selection` or `motors`.
         what: String,
+        /// The file's text.
         text: String,
     },
     /// Open a model the page read from a file (OBJ, OFF, MEDIT, `.glb`, `.gltf` with its
     /// buffers embedded), as the CLI reads one: `name` chooses the format, `base64` holds
     /// its bytes.
     Upload {
+        /// The file's name (its extension chooses the format).
         name: String,
+        /// The file's bytes, base64.
         base64: String,
     },
     /// Send the positions of every later pose in this precision (no reply).
     Precision {
+        /// The precision.
         positions: Precision,
     },
 }
@@ -186,6 +231,7 @@ fn yes() -> bool {
 /// One handle group as the page draws it.
 #[derive(Clone, Debug, Serialize)]
 pub struct GroupInfo {
+    /// Its vertex count.
     pub vertices: usize,
     /// Its centroid at rest.
     pub center: [f64; 3],
@@ -213,16 +259,20 @@ pub struct ControlRequest {
 /// The lattice and cage options of a session, by the library's names.
 #[derive(Clone, Debug, Serialize)]
 pub struct ControlInfo {
+    /// Control points per axis.
     pub lattice: [usize; 3],
+    /// The lattice basis by name.
     pub basis: &'static str,
+    /// The cage coordinates by name.
     pub coordinates: &'static str,
+    /// Harmonic grid nodes along the cage's longest side.
     pub grid: usize,
 }
 
 impl ControlInfo {
     /// The options of `s`.
-    pub fn of(s: &deform::methods::MethodSettings) -> ControlInfo {
-        use deform::methods::named::Named;
+    pub fn of(s: &crate::methods::MethodSettings) -> ControlInfo {
+        use crate::methods::named::Named;
         ControlInfo {
             lattice: s.lattice,
             basis: Named::name(s.basis),
@@ -235,58 +285,84 @@ impl ControlInfo {
 /// A lattice's or cage's control points at rest and the lines between them.
 #[derive(Clone, Debug, Serialize)]
 pub struct ControlsInfo {
+    /// The control points at rest.
     pub points: Vec<[f64; 3]>,
+    /// Pairs of points joined by a line.
     pub edges: Vec<[u32; 2]>,
 }
 
 /// An animation of the rig.
 #[derive(Clone, Debug, Serialize)]
 pub struct AnimationInfo {
+    /// Its name.
     pub name: String,
+    /// Its first key time, seconds.
     pub start: f64,
+    /// Its last key time, seconds.
     pub end: f64,
 }
 
 /// What the page needs of a rig.
 #[derive(Clone, Debug, Serialize)]
 pub struct RigInfo {
+    /// The animations.
     pub animations: Vec<AnimationInfo>,
+    /// The joints' names.
     pub joints: Vec<String>,
     /// Each joint's nearest ancestor that is a joint (-1: none), for drawing the skeleton.
     pub parents: Vec<i64>,
+    /// The skinning backends by name.
     pub backends: Vec<&'static str>,
+    /// Surgeries that can be undone.
     pub undo: usize,
+    /// Surgeries that can be redone.
     pub redo: usize,
 }
 
 /// The whole editing state, as [`Reply::State`] sends it.
 #[derive(Clone, Debug, Serialize)]
 pub struct StateInfo {
+    /// The open scene.
     pub scene: String,
+    /// Every scene's name.
     pub scenes: Vec<String>,
     /// `mesh` (handles, ARAP, spline) or `rig`.
     pub kind: &'static str,
+    /// The method by name.
     pub method: String,
+    /// The methods this scene offers.
     pub methods: Vec<&'static str>,
+    /// The blend by name (`positional` for the positional form).
     pub blend: String,
+    /// The blends this method offers.
     pub blends: Vec<&'static str>,
+    /// ARAP iterations per frame.
     pub iterations: usize,
+    /// ARAP's energy by name.
     pub energy: &'static str,
+    /// ARAP's local step by name.
     pub local_step: &'static str,
+    /// The handle groups.
     pub groups: Vec<GroupInfo>,
+    /// The fields the mesh can be coloured by.
     pub fields: Vec<&'static str>,
     /// The control points when the method is a lattice or a cage (then the motors are theirs).
     pub controls: Option<ControlsInfo>,
     /// The lattice and cage options.
     pub control: ControlInfo,
+    /// The rig, for a rig scene.
     pub rig: Option<RigInfo>,
+    /// The last bind's time.
     pub bind_ms: f64,
+    /// The mesh's vertex count.
     pub vertices: usize,
+    /// The mesh's triangle count.
     pub triangles: usize,
     /// Whether the groups changed since the last bind.
     pub stale: bool,
     /// Selection changes that can be undone and redone (mesh scenes).
     pub selection_undo: usize,
+    /// Selection changes that can be redone.
     pub selection_redo: usize,
     /// The `deform ...` command that replays the pose from the exported files.
     pub replay: String,
@@ -303,19 +379,29 @@ pub enum Reply {
     /// the same kind took on the same scene with the same method (an estimate, so the page
     /// can draw a fraction).
     Binding {
+        /// What is being done.
         what: String,
+        /// How long the last such request took.
         #[serde(skip_serializing_if = "Option::is_none")]
         expect_ms: Option<f64>,
     },
     /// The slow request announced by [`Reply::Binding`] is done (its results were sent).
     Idle,
     /// A pose was not made, or a request was refused, and why.
-    Error { message: String },
+    Error {
+        /// Why.
+        message: String,
+    },
     /// Something the page should say that is not an error (what to do next).
-    Note { message: String },
+    Note {
+        /// What to say.
+        message: String,
+    },
     /// Per-pose figures beside the positions frame.
     Posed {
+        /// The request's sequence number.
         seq: u32,
+        /// The pose's time.
         pose_ms: f64,
         /// ARAP's energy after the frame's iterations.
         energy: Option<f64>,
@@ -324,17 +410,26 @@ pub enum Reply {
     },
     /// A file for the page to save (`.glb` as base64).
     File {
+        /// The file's name.
         name: String,
+        /// Its content (base64 when `base64`).
         text: String,
+        /// Whether `text` is base64.
         base64: bool,
     },
     /// Motors loaded from a file, as scale, rotation (`x y z w`) and translation about each
     /// group's rest centre.
-    Motors { motors: Vec<[f64; 8]> },
+    Motors {
+        /// Per key: scale, rotation and translation.
+        motors: Vec<[f64; 8]>,
+    },
 }
 
 /// A binary frame: kind, then the payload words.
-pub struct Frame(pub Vec<u8>);
+pub struct Frame(
+    /// The frame's bytes.
+    pub Vec<u8>,
+);
 
 impl Frame {
     fn new(kind: u32, capacity: usize) -> Frame {

@@ -2,13 +2,13 @@
 //! or motors through the CLI's parsers; open an uploaded model as the CLI opens one.
 
 use super::replay::{file_name, glb_name};
-use super::{Out, Session};
-use crate::commands::view::protocol::{Frame, Reply};
-use anyhow::{anyhow, bail, Context, Result};
-use deform::input::{parse_group_motors, parse_selection_json, MotorSpec};
-use deform::methods::scenes::Scene;
-use deform::methods::Method;
-use deform::Mesh;
+use super::{Out, Session, MAX_UPLOAD};
+use crate::editor::error::{bail, refused, Context, Result};
+use crate::editor::protocol::{Frame, Reply};
+use crate::input::{parse_group_motors, parse_selection_json, MotorSpec};
+use crate::mesh::Mesh;
+use crate::methods::scenes::Scene;
+use crate::methods::Method;
 
 impl Session {
     /// A file of the current state.
@@ -16,7 +16,7 @@ impl Session {
         let name = file_name(&self.scenes[self.scene].name, what)?;
         let obj = |mesh: &Mesh| -> Result<String> {
             let mut bytes = Vec::new();
-            deform::mesh::io::write_obj_to(mesh, &mut bytes)?;
+            crate::mesh::io::write_obj_to(mesh, &mut bytes)?;
             Ok(String::from_utf8(bytes)?)
         };
         let json_list = |specs: &[MotorSpec]| serde_json::to_string_pretty(specs);
@@ -60,7 +60,7 @@ impl Session {
                     Some(rig) => rig.glb()?,
                     None => {
                         let posed = Mesh::new(self.posed.clone(), self.mesh.triangles.clone());
-                        deform::mesh::io::glb_bytes(&posed)?
+                        crate::mesh::io::glb_bytes(&posed)?
                     }
                 };
                 let name = glb_name(scene, self.rig.is_some());
@@ -73,7 +73,7 @@ impl Session {
                 let rig = self
                     .rig
                     .as_ref()
-                    .ok_or_else(|| anyhow!("edits: this scene has no rig"))?;
+                    .ok_or_else(|| refused!("edits: this scene has no rig"))?;
                 (name, rig.edits_json()?)
             }
             _ => bail!("cannot export {what:?}"),
@@ -118,10 +118,6 @@ impl Session {
     }
 }
 
-/// The most bytes an uploaded model may have (the page checks first; the socket's message
-/// limit bounds what reaches the server).
-pub const MAX_UPLOAD: usize = 16 << 20;
-
 impl Session {
     /// Open a model the page uploaded: its bytes go through the CLI's readers and checks
     /// (a mesh must be solvable; a glTF may not name files outside itself). It joins this
@@ -133,20 +129,20 @@ impl Session {
             .file_name()
             .map(|n| n.to_string_lossy().into_owned())
             .filter(|n| !n.is_empty())
-            .ok_or_else(|| anyhow!("an upload needs a file name"))?;
+            .ok_or_else(|| refused!("an upload needs a file name"))?;
         if base64.len() > MAX_UPLOAD.div_ceil(3) * 4 {
             bail!("{name}: larger than {} MiB", MAX_UPLOAD >> 20);
         }
         let bytes = base64::engine::general_purpose::STANDARD
             .decode(base64)
-            .map_err(|e| anyhow!("{name}: not base64 ({e})"))?;
+            .map_err(|e| refused!("{name}: not base64 ({e})"))?;
         let lower = name.to_ascii_lowercase();
         let scene = if lower.ends_with(".glb") || lower.ends_with(".gltf") {
-            let rig = deform::skinning::parse_gltf(&bytes, &name, None)?;
-            Scene::new(&name, deform::methods::scenes::Content::Rig(Box::new(rig)))
+            let rig = crate::skinning::parse_gltf(&bytes, &name, None)?;
+            Scene::new(&name, crate::methods::scenes::Content::Rig(Box::new(rig)))
         } else {
-            let mesh = deform::mesh::io::parse_mesh(&bytes, &name)?;
-            deform::mesh::validate::check_solvable(&mesh)
+            let mesh = crate::mesh::io::parse_mesh(&bytes, &name)?;
+            crate::mesh::validate::check_solvable(&mesh)
                 .with_context(|| format!("{name}: not a usable mesh"))?;
             Scene::mesh(&name, mesh)
         };

@@ -3,14 +3,14 @@
 //! then a rebind, or only a re-blend when the weights stay.
 
 use super::{Out, Session};
-use crate::commands::view::protocol::ControlRequest;
-use anyhow::{bail, Result};
-use deform::methods::named::Named;
-use deform::methods::{Method, MethodSettings};
-use deform::BlendMethod;
+use crate::blend::BlendMethod;
+use crate::editor::error::{bail, Result};
+use crate::editor::protocol::ControlRequest;
+use crate::methods::named::Named;
+use crate::methods::{Method, MethodSettings};
 
 /// ARAP's energy and local step, and the lattice and cage options, as a request gives them.
-pub(in crate::commands::view) type MethodOptions<'a> =
+pub(in crate::editor) type MethodOptions<'a> =
     (Option<&'a str>, Option<&'a str>, Option<&'a ControlRequest>);
 
 impl Session {

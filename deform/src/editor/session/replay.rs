@@ -2,10 +2,10 @@
 //! (rest mesh, selection, motors, spline keys, cage), and those files' names.
 
 use super::Session;
-use anyhow::{bail, Result};
-use deform::input::{MotorSpec, RotateSpec};
-use deform::methods::bound::BoundMethod;
-use deform::methods::named::Named;
+use crate::editor::error::{bail, Result};
+use crate::input::{MotorSpec, RotateSpec};
+use crate::methods::bound::BoundMethod;
+use crate::methods::named::Named;
 use glam::DVec3;
 
 /// The file each export writes for scene `scene`.
@@ -34,7 +34,7 @@ pub(super) fn glb_name(scene: &str, rig: bool) -> String {
 impl Session {
     /// The `deform ...` command that poses the exported rest mesh as the page shows it, written
     /// to `{scene}-replayed.obj`. The method's flags come from
-    /// the library's [`deform::methods::MethodSettings::args`] (ARAP: many iterations from the
+    /// the library's [`crate::methods::MethodSettings::args`] (ARAP: many iterations from the
     /// rest pose, where the page iterates from its last frame).
     pub(super) fn replay(&self) -> String {
         let scene = &self.scenes[self.scene].name;
