@@ -107,6 +107,7 @@ impl From<crate::methods::MethodsError> for Error {
             M::Budget(b) => Error::Budget(b),
             M::Deform(d) => d.into(),
             M::Skin(s) => Error::Skin(s),
+            M::Surgery(s) => Error::Surgery(s),
         }
     }
 }

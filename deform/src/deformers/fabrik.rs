@@ -306,3 +306,24 @@ impl ChainDeformer {
 }
 
 deformer_via_blend!(ChainDeformer, spline, crate::blend::PreparedKeys);
+
+/// A straight chain of `n` joints (at least 2) from the centroid of vertices `a` of `mesh` to
+/// the centroid of `b`: the chain a FABRIK deformer starts from when none is given.
+///
+/// ```
+/// use deform::deformers::fabrik::straight_chain;
+/// let bar = deform::mesh::shapes::tube(1.0, 10.0, 4, 3);
+/// let (a, b) = (deform::mesh::shapes::tube_ring(4, 0), deform::mesh::shapes::tube_ring(4, 2));
+/// let chain = straight_chain(&bar, &a, &b, 3);
+/// assert!((chain[1] - glam::DVec3::new(5.0, 0.0, 0.0)).length() < 1e-12);
+/// ```
+pub fn straight_chain(mesh: &Mesh, a: &[u32], b: &[u32], n: usize) -> Vec<DVec3> {
+    let centroid = |s: &[u32]| {
+        s.iter().map(|&v| mesh.positions[v as usize]).sum::<DVec3>() / s.len().max(1) as f64
+    };
+    let (p, q) = (centroid(a), centroid(b));
+    let n = n.max(2);
+    (0..n)
+        .map(|i| p.lerp(q, i as f64 / (n - 1) as f64))
+        .collect()
+}

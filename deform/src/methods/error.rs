@@ -83,6 +83,9 @@ pub enum MethodsError {
     /// A rig that cannot be posed.
     #[error(transparent)]
     Skin(#[from] crate::skinning::SkinError),
+    /// A cut, tear or drill that cannot be made.
+    #[error(transparent)]
+    Surgery(#[from] crate::surgery::SurgeryError),
 }
 
 impl From<crate::mesh::MeshError> for MethodsError {

@@ -8,6 +8,7 @@
 //! - [`bound`]: a mesh bound by its settings ([`BoundMethod`]), posed from a motor per key;
 //! - [`frame`]: which pose of a rig a request means, and the posed frame of a surgery tool;
 //! - [`scenes`]: the procedural scenes the demo and the editor open;
+//! - [`showcase`]: every method of both papers posed on them, as the demo writes them;
 //! - [`budget`]: the work budget that refuses oversized requests before anything is
 //!   allocated.
 //!
@@ -22,6 +23,7 @@ pub mod method;
 pub mod named;
 pub mod scenes;
 pub mod settings;
+pub mod showcase;
 
 pub use bound::BoundMethod;
 pub use error::{MethodError, MethodsError};

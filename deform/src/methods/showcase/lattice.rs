@@ -3,18 +3,17 @@
 //! a tube-shaped cage bent a quarter turn by motors on the cage vertices that turn each ring
 //! about a common axis (motor-valued mean value coordinates).
 
-use super::scene::DemoScene;
-use crate::finish::displacement;
-use crate::timing::{ms, time_pose};
-use anyhow::Result;
+use super::{displacement, ms, time_pose, PosedScene, Result};
+use crate::blend::control::{ControlForm, ControlScratch};
+use crate::blend::BlendMethod;
+use crate::deformers::cage::{CageDeformer, CageOptions};
+use crate::deformers::ffd::{Ffd, FfdOptions};
+use crate::deformers::Deformer;
+use crate::mesh::shapes::tube;
+use crate::mesh::Mesh;
+use crate::render::preview::{Look, POSED_INK};
+use crate::render::tools::{self, mesh_edges, moved};
 use cga::ScaledMotor;
-use deform::blend::control::{ControlForm, ControlScratch};
-use deform::deformers::cage::{CageDeformer, CageOptions};
-use deform::deformers::ffd::{Ffd, FfdOptions};
-use deform::mesh::shapes::tube;
-use deform::render::preview::{Look, POSED_INK};
-use deform::render::tools::{self, mesh_edges, moved};
-use deform::{BlendMethod, Deformer, Mesh};
 use glam::{DQuat, DVec3};
 use std::time::Instant;
 
@@ -26,16 +25,16 @@ fn run(
     name: &'static str,
     method: String,
     rest: &Mesh,
-    bind: impl FnOnce() -> deform::Result<Box<dyn Deformer<Scratch = ControlScratch>>>,
+    bind: impl FnOnce() -> Result<Box<dyn Deformer<Scratch = ControlScratch>>>,
     keys: &[ScaledMotor],
     look: Look,
-) -> Result<DemoScene> {
+) -> Result<PosedScene> {
     let t = Instant::now();
     let d = bind()?;
     let bind_ms = ms(t);
     let mut posed = vec![DVec3::ZERO; rest.vertex_count()];
     let pose_ms = time_pose(d.as_ref(), keys, &mut posed)?;
-    Ok(DemoScene {
+    Ok(PosedScene {
         name,
         method,
         scalar: displacement(rest, &posed),
@@ -44,11 +43,12 @@ fn run(
         bind_ms,
         pose_ms,
         look,
+        rig: None,
     })
 }
 
 /// The FFD twists and the cage bend.
-pub fn scenes(length: f64) -> Result<Vec<DemoScene>> {
+pub fn scenes(length: f64) -> Result<Vec<PosedScene>> {
     let mut out = Vec::new();
     // FFD: a 2x2x2 lattice whose u = 0 layer turns -90 degrees and u = 1 layer +90 degrees
     // about the bar's axis.
@@ -77,11 +77,11 @@ pub fn scenes(length: f64) -> Result<Vec<DemoScene>> {
             {
                 // The lattice moved by its motors.
                 let mut look = Look::new("", "displacement");
-                let lattice = deform::deformers::ffd::Lattice::new(
+                let lattice = crate::deformers::ffd::Lattice::new(
                     [2, 2, 2],
                     bounds.0,
                     bounds.1,
-                    deform::deformers::ffd::LatticeBasis::Bernstein,
+                    crate::deformers::ffd::LatticeBasis::Bernstein,
                 )?;
                 let points = moved(&lattice.rest_points(), &keys);
                 tools::lattice(&mut look.posed, &points, [2, 2, 2], POSED_INK);
@@ -93,8 +93,8 @@ pub fn scenes(length: f64) -> Result<Vec<DemoScene>> {
     // the axis through (0, r, 0) along z by 90 degrees * x / length (an arc of radius r).
     // The catalogue's bar and cage (the editor's "cage" scene), `length` long.
     let (bar, cage) = (
-        deform::methods::scenes::bar(),
-        deform::methods::scenes::bar_cage(),
+        crate::methods::scenes::bar(),
+        crate::methods::scenes::bar_cage(),
     );
     let theta = std::f64::consts::FRAC_PI_2;
     let center = DVec3::new(0.0, length / theta, 0.0);

@@ -1,30 +1,26 @@
 //! The demo's skinning and surgery scenes (second paper): a procedural rigged arm animated
 //! and its elbow dilated by equation (17); then cut (capped), torn (three scalpel steps,
 //! opened) and drilled, each result re-animated at the end of the arm's animation. Every rig
-//! is also written as `.glb` (mesh, skin, animations), so any glTF viewer replays it.
+//! is kept with its scene (the demo writes it as `.glb`: mesh, skin, animations).
 
-use super::scene::DemoScene;
-use crate::finish::displacement;
-use crate::timing::{ms, time_pose};
-use anyhow::Result;
-use cga::ScaledMotor;
-use deform::render::preview::{Focus, Look};
-use deform::skinning::{procedural_arm, write_glb, GlbOptions, JointEdit, Rig, Skinning};
-use deform::surgery::{
+use super::{displacement, ms, time_pose, PosedScene, Result};
+use crate::blend::BlendMethod;
+use crate::mesh::Mesh;
+use crate::render::preview::{Focus, Look};
+use crate::skinning::{procedural_arm, JointEdit, Rig, Skinning};
+use crate::surgery::{
     CutOptions, Drill, DrillOptions, Frame, Scalpel, Surgery, TearOptions, VertexOrigin,
 };
-use deform::{BlendMethod, Mesh};
+use cga::ScaledMotor;
 use glam::{DQuat, DVec3};
-use std::path::Path;
 use std::time::Instant;
 
-/// Pose `rig` at `t` of its animation (with `edits`) by equation (17); write it as .glb.
-fn animate(rig: &Rig, t: f64, edits: &[JointEdit], glb: &Path) -> Result<(Vec<DVec3>, f64)> {
+/// Pose `rig` at `t` of its animation (with `edits`) by equation (17).
+fn animate(rig: &Rig, t: f64, edits: &[JointEdit]) -> Result<(Vec<DVec3>, f64)> {
     let skin = Skinning::bind(rig, BlendMethod::Conformal)?;
     let pose = rig.pose(Some(0), t, edits)?;
     let mut out = vec![DVec3::ZERO; rig.mesh.vertex_count()];
     let pose_ms = time_pose(&skin, pose.skin_motors()?, &mut out)?;
-    write_glb(rig, &GlbOptions::default(), glb)?;
     Ok((out, pose_ms))
 }
 
@@ -51,7 +47,8 @@ fn zoomed(origin: &[VertexOrigin], direction: DVec3) -> Look {
     look
 }
 
-pub fn scenes(out: &Path) -> Result<Vec<DemoScene>> {
+/// The skin and surgery scenes.
+pub fn scenes() -> Result<Vec<PosedScene>> {
     let rig = procedural_arm(24, 81);
     let mut scenes = Vec::new();
 
@@ -60,9 +57,9 @@ pub fn scenes(out: &Path) -> Result<Vec<DemoScene>> {
         motor: ScaledMotor::from_scale_rotation_translation(1.3, DQuat::IDENTITY, DVec3::ZERO),
     }];
     let t = Instant::now();
-    let (posed, pose_ms) = animate(&rig, 2.0, &edit, &out.join("skin-arm.glb"))?;
+    let (posed, pose_ms) = animate(&rig, 2.0, &edit)?;
     let moved = displacement(&rig.mesh, &posed);
-    scenes.push(DemoScene {
+    scenes.push(PosedScene {
         name: "skin-arm",
         method: "3-joint rig, animation + dilated elbow / equation (17)".into(),
         rest: rig.mesh.clone(),
@@ -71,6 +68,7 @@ pub fn scenes(out: &Path) -> Result<Vec<DemoScene>> {
         bind_ms: ms(t) - pose_ms,
         pose_ms,
         look: Look::new("", "displacement"),
+        rig: Some(rig.clone()),
     });
 
     let surgery = Surgery::new(&rig.mesh, &rig.influences)?;
@@ -88,13 +86,13 @@ pub fn scenes(out: &Path) -> Result<Vec<DemoScene>> {
     let cut_ms = ms(t);
     let parts: Vec<_> = cut.pieces.iter().map(|p| p.mesh.part()).collect();
     let cut_rig = rig.with_parts(&parts)?;
-    let (posed, pose_ms) = animate(&cut_rig, 2.0, &[], &out.join("cut-arm.glb"))?;
+    let (posed, pose_ms) = animate(&cut_rig, 2.0, &[])?;
     let side: Vec<f64> = cut_rig
         .primitives
         .iter()
         .flat_map(|p| std::iter::repeat_n(p.primitive as f64, p.vertex_count))
         .collect();
-    scenes.push(DemoScene {
+    scenes.push(PosedScene {
         name: "cut-arm",
         method: format!(
             "cut + caps ({} new vertices) / re-animated",
@@ -106,6 +104,7 @@ pub fn scenes(out: &Path) -> Result<Vec<DemoScene>> {
         bind_ms: cut_ms,
         pose_ms,
         look: Look::new("", "piece"),
+        rig: Some(cut_rig),
     });
 
     // Tear along the forearm's front (+z, towards the camera) in three scalpel steps, opened.
@@ -124,8 +123,8 @@ pub fn scenes(out: &Path) -> Result<Vec<DemoScene>> {
     )?;
     let tear_ms = ms(t);
     let torn = rig.with_parts(&[tear.mesh.part()])?;
-    let (posed, pose_ms) = animate(&torn, 2.0, &[], &out.join("tear-arm.glb"))?;
-    scenes.push(DemoScene {
+    let (posed, pose_ms) = animate(&torn, 2.0, &[])?;
+    scenes.push(PosedScene {
         name: "tear-arm",
         method: format!(
             "tear, 2 steps, opened ({} incision vertices) / re-animated",
@@ -137,6 +136,7 @@ pub fn scenes(out: &Path) -> Result<Vec<DemoScene>> {
         bind_ms: tear_ms,
         pose_ms,
         look: zoomed(&tear.origin, DVec3::NEG_Z),
+        rig: Some(torn),
     });
 
     // Drill through the upper arm.
@@ -152,8 +152,8 @@ pub fn scenes(out: &Path) -> Result<Vec<DemoScene>> {
     )?;
     let drill_ms = ms(t);
     let drilled = rig.with_parts(&[drill.mesh.part()])?;
-    let (posed, pose_ms) = animate(&drilled, 2.0, &[], &out.join("drill-arm.glb"))?;
-    scenes.push(DemoScene {
+    let (posed, pose_ms) = animate(&drilled, 2.0, &[])?;
+    scenes.push(PosedScene {
         name: "drill-arm",
         method: format!("drill, {} holes / re-animated", drill.holes),
         rest: Mesh::new(
@@ -165,6 +165,7 @@ pub fn scenes(out: &Path) -> Result<Vec<DemoScene>> {
         bind_ms: drill_ms,
         pose_ms,
         look: zoomed(&drill.origin, DVec3::Z),
+        rig: Some(drilled),
     });
     Ok(scenes)
 }
