@@ -6,6 +6,8 @@
 use super::error::MethodsError;
 use crate::blend::BlendMethod;
 use crate::mesh::Aabb;
+use crate::render::preview::{before_after, Focus, Look};
+use crate::render::Image;
 use crate::skinning::{Rig, SkinError, Skinning};
 use crate::surgery::Frame;
 
@@ -118,4 +120,81 @@ impl ToolFrame {
             Some(p) => Mesh::new(p.positions.clone(), Vec::new()).bounding_box(),
         }
     }
+}
+
+/// How [`parts_preview`] shows a rig's parts: the space the tool was given in, the vertices a
+/// tool made (`marks`, one value per vertex of the parts in order, else each vertex coloured
+/// by its part), the direction to zoom on them along, and the view.
+pub struct PartsView {
+    /// Where the tool (and the overlays) were given.
+    pub space: ToolSpace,
+    /// A value per vertex of the parts (the vertices a tool made), or `None`.
+    pub marks: Option<Vec<f64>>,
+    /// The direction to look at the marked vertices along, zoomed.
+    pub focus: Option<DVec3>,
+    /// The preview's yaw and pitch.
+    pub view: (f64, f64),
+}
+
+/// The preview of `rig` made into `result` (its vertices traced back to the parts' by
+/// `trace`, as [`Rig::with_parts_traced`] gives): the rest in the scene's world space at the
+/// bind pose beside each part skinned at the rest pose and pulled apart by `away(part)`,
+/// coloured by part or by the marks; `look`'s overlays, given in the tool's space, are drawn
+/// in world space.
+pub fn parts_preview(
+    rig: &Rig,
+    result: &Rig,
+    trace: &[usize],
+    away: &dyn Fn(usize) -> DVec3,
+    shown: PartsView,
+    look: Look,
+) -> Result<Image> {
+    // Tools given in the rest mesh's space are placed as the mesh node places the mesh;
+    // tools in the bind pose's world space are drawn as given.
+    let place = match shown.space {
+        ToolSpace::Mesh => rig.rest_placement()?,
+        ToolSpace::BindPose | ToolSpace::Posed => glam::DMat4::IDENTITY,
+    };
+    let rest_world = rig.bind_pose_positions()?;
+    let mut parts = Mesh::new(result.bind_pose_positions()?, result.mesh.triangles.clone());
+    let mut part_of = vec![0.0; parts.vertex_count()];
+    for p in &result.primitives {
+        // The part a primitive belongs to (a part with several materials has several).
+        let k = p.primitive;
+        let shift = place.transform_vector3(away(k));
+        let r = p.vertex_offset..p.vertex_offset + p.vertex_count;
+        parts.positions[r.clone()]
+            .iter_mut()
+            .for_each(|x| *x += shift);
+        part_of[r].iter_mut().for_each(|x| *x = k as f64);
+    }
+    // The marks follow the vertices into the rig's order (regrouped by primitive).
+    let marks = shown
+        .marks
+        .map(|m| trace.iter().map(|&v| m[v]).collect::<Vec<f64>>());
+    let mut look = look;
+    if let (Some(m), Some(direction)) = (&marks, shown.focus) {
+        let vertices: Vec<u32> = (0..m.len() as u32)
+            .filter(|&v| m[v as usize] > 0.0)
+            .collect();
+        if !vertices.is_empty() {
+            look.focus = Some(Focus {
+                vertices,
+                direction: Some(direction),
+            });
+        }
+    }
+    let scalar = marks.unwrap_or(part_of);
+    let look = Look {
+        rest: look.rest.placed(&place),
+        posed: look.posed.placed(&place),
+        focus: look.focus.map(|f| Focus {
+            direction: f.direction.map(|d| place.transform_vector3(d)),
+            ..f
+        }),
+        view: shown.view,
+        ..look
+    };
+    let rest = Mesh::new(rest_world, rig.mesh.triangles.clone());
+    Ok(before_after(&rest, &parts, &scalar, &look)?)
 }

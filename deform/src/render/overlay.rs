@@ -103,6 +103,20 @@ impl Overlay {
         self.dots.extend_from_slice(&other.dots);
     }
 
+    /// This overlay with every point moved by `place` (an affine map).
+    #[must_use]
+    pub fn placed(&self, place: &glam::DMat4) -> Overlay {
+        let mut o = self.clone();
+        for s in &mut o.segments {
+            s.a = place.transform_point3(s.a);
+            s.b = place.transform_point3(s.b);
+        }
+        for d in &mut o.dots {
+            d.p = place.transform_point3(d.p);
+        }
+        o
+    }
+
     /// Every point of the overlay (segment ends and dot centres), for framing.
     #[must_use]
     pub fn points(&self) -> Vec<DVec3> {

@@ -11,12 +11,13 @@ use crate::report::Report;
 use crate::shared_args::{OutputArgs, RigInput, ToolFrame as ToolFrameArgs};
 use crate::timing::ms;
 use anyhow::{Context, Result};
-pub use deform::methods::frame::{pose_time, ToolFrame as Posed, ToolSpace};
-use deform::render::preview::{self, Focus, Look};
+pub use deform::methods::frame::{
+    parts_preview, pose_time, PartsView, ToolFrame as Posed, ToolSpace,
+};
+use deform::render::preview::Look;
 use deform::render::Overlay;
 use deform::skinning::{GlbOptions, Rig, RigPart};
 use deform::surgery::Surgery;
-use deform::Mesh;
 use glam::DVec3;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -63,59 +64,16 @@ pub fn write_result(
     }
     report.add("output", out.output.display().to_string());
     if let Some(png) = &out.png {
-        // In the scene's world space at the bind pose, as `skin` draws the rest: each part
-        // skinned at the rest pose, then pulled apart.
-        // Tools given in the rest mesh's space are placed as the mesh node places the mesh;
-        // tools in the bind pose's world space are drawn as given.
-        let place = match space {
-            ToolSpace::Mesh => rig.rest_placement()?,
-            ToolSpace::BindPose | ToolSpace::Posed => glam::DMat4::IDENTITY,
-        };
-        let rest_world = rig.bind_pose_positions()?;
-        let mut shown = Mesh::new(result.bind_pose_positions()?, result.mesh.triangles.clone());
-        let mut part_of = vec![0.0; shown.vertex_count()];
-        for p in &result.primitives {
-            // The part a primitive belongs to (a part with several materials has several).
-            let k = p.primitive;
-            let shift = place.transform_vector3(away(k));
-            let r = p.vertex_offset..p.vertex_offset + p.vertex_count;
-            shown.positions[r.clone()]
-                .iter_mut()
-                .for_each(|x| *x += shift);
-            part_of[r].iter_mut().for_each(|x| *x = k as f64);
-        }
-        // The marks follow the vertices into the rig's order (regrouped by primitive).
-        let marks = marks.map(|m| trace.iter().map(|&v| m[v]).collect::<Vec<f64>>());
-        let mut look = look;
-        if let (Some(m), Some(direction)) = (&marks, focus) {
-            let vertices: Vec<u32> = (0..m.len() as u32)
-                .filter(|&v| m[v as usize] > 0.0)
-                .collect();
-            if !vertices.is_empty() {
-                look.focus = Some(Focus {
-                    vertices,
-                    direction: Some(direction),
-                });
-            }
-        }
-        let scalar = marks.unwrap_or(part_of);
-        let look = Look {
-            rest: placed_overlay(&look.rest, &place),
-            posed: placed_overlay(&look.posed, &place),
-            focus: look.focus.map(|f| Focus {
-                direction: f.direction.map(|d| place.transform_vector3(d)),
-                ..f
-            }),
+        let shown = PartsView {
+            space,
+            marks,
+            focus,
             view: out.view(),
-            ..look
         };
-        let image = preview::before_after(
-            &Mesh::new(rest_world, rig.mesh.triangles.clone()),
-            &shown,
-            &scalar,
-            &look,
+        write_png(
+            png,
+            &parts_preview(rig, &result, &trace, &away, shown, look)?,
         )?;
-        write_png(png, &image)?;
         report.add("png", png.display().to_string());
     }
     report.print(out);
@@ -197,19 +155,6 @@ pub fn tool_overlay(posed: &Option<Posed>, draw: impl FnOnce(&mut Overlay)) -> O
     let mut o = Overlay::new(2);
     if Posed::space(posed) != ToolSpace::Posed {
         draw(&mut o);
-    }
-    o
-}
-
-/// `o` moved by `place`.
-fn placed_overlay(o: &Overlay, place: &glam::DMat4) -> Overlay {
-    let mut o = o.clone();
-    for s in &mut o.segments {
-        s.a = place.transform_point3(s.a);
-        s.b = place.transform_point3(s.b);
-    }
-    for d in &mut o.dots {
-        d.p = place.transform_point3(d.p);
     }
     o
 }
