@@ -5,10 +5,12 @@
 //! **May use**: the mesh foundation (selection files in DMAT). **Must not use**: any other
 //! layer or the crate-level `Error`; its error is [`InputError`].
 
+mod files;
 mod json;
 mod motors;
 mod selection;
 
+pub use files::{read_document, read_selection, MAX_DOCUMENT_BYTES};
 pub use motors::{parse_group_motors, parse_key_list, parse_motor, MotorSpec, RotateSpec};
 pub use selection::{parse_selection_json, selection_from_dmat, Selection};
 

@@ -29,6 +29,7 @@
 
 mod accessor;
 mod animation;
+mod approximation;
 mod bake;
 mod compressed;
 mod edit;
@@ -50,6 +51,7 @@ mod trs;
 
 pub use accessor::GltfReadOptions;
 pub use animation::{Animation, Channel, Interpolation, KeyframeBlend, Property};
+pub use approximation::Approximation;
 pub use bake::bake_edits;
 pub use edit::{in_betweens, JointEdit};
 pub use glb_write::{glb_bytes, write_glb, GlbOptions};

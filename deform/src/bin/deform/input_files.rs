@@ -2,11 +2,11 @@
 //! the checks every command makes before reading (no output names an input, each output
 //! names a format the command writes).
 
-use crate::obj_extras::ObjInputExtras;
 use crate::output_files::{check_formats, check_outputs, MESH_FORMATS};
 use crate::shared_args::{MeshInput, OutputArgs, RigInput};
 use anyhow::{bail, Context, Result};
-use deform::input::{parse_selection_json, selection_from_dmat, Selection};
+use deform::input::Selection;
+use deform::mesh::io::ObjInputExtras;
 use deform::skinning::{libigl_rig, read_gltf_with, GltfReadOptions, Rig};
 use deform::Mesh;
 use std::path::Path;
@@ -23,38 +23,14 @@ fn usable(path: &Path, mesh: Mesh) -> Result<Mesh> {
     Ok(mesh)
 }
 
-/// Read a selection: `.dmat` (libigl) or `.json`.
+/// Read a selection by its extension (the library's reader).
 pub fn read_selection(path: &Path, vertex_count: usize) -> Result<Selection> {
-    let name = path.display().to_string();
-    let ext = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase);
-    let sel = match ext.as_deref() {
-        Some("dmat") => {
-            let m = deform::mesh::io::read_dmat(path)?;
-            selection_from_dmat(&m, vertex_count, &name)?
-        }
-        Some("json") => {
-            let text = read_text(path)?;
-            parse_selection_json(&text, vertex_count, &name)?
-        }
-        _ => bail!("{name}: a selection is a .dmat (libigl) or .json file"),
-    };
-    Ok(sel)
+    Ok(deform::input::read_selection(path, vertex_count)?)
 }
 
-/// The largest JSON document (motors, keys, selections, animations) a command reads: 1 GiB,
-/// room for a selection of every vertex of a 50-million-vertex mesh. A file or pipe that
-/// gives more is refused before it fills memory.
-pub const MAX_DOCUMENT_BYTES: u64 = 1 << 30;
-
-/// Read a text file (or pipe) of at most [`MAX_DOCUMENT_BYTES`].
+/// Read a text file (or pipe) of at most `deform::input::MAX_DOCUMENT_BYTES`.
 pub fn read_text(path: &Path) -> Result<String> {
-    let shown = path.display();
-    let bytes = deform::mesh::io::read_limited(path, MAX_DOCUMENT_BYTES)
-        .with_context(|| format!("{shown}: cannot read"))?;
-    String::from_utf8(bytes).with_context(|| format!("{shown}: not UTF-8 text"))
+    Ok(deform::input::read_document(path)?)
 }
 
 /// Read the rig: glTF by extension, else a libigl mesh with skeleton and weights.

@@ -14,7 +14,6 @@ mod gpu_pose;
 mod input_files;
 mod interrupt;
 mod numbers;
-mod obj_extras;
 mod output_files;
 mod progress;
 mod report;

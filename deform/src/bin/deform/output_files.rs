@@ -2,9 +2,9 @@
 //! in a format the command writes, and every file is written to a temporary file beside it
 //! and renamed, so a failure never leaves a half-written file.
 
-use crate::obj_extras::ObjInputExtras;
 use crate::shared_args::OutputArgs;
 use anyhow::{bail, Context, Result};
+use deform::mesh::io::ObjInputExtras;
 use deform::mesh::io::{write_mesh_to, MeshFormat, ObjExtras};
 use deform::Mesh;
 use std::io::Write;

@@ -39,7 +39,7 @@ pub struct OutputArgs {
     /// What an OBJ input had beside positions and faces, kept for an OBJ output (set when the
     /// input is read).
     #[arg(skip)]
-    pub input_extras: std::cell::OnceCell<crate::obj_extras::ObjInputExtras>,
+    pub input_extras: std::cell::OnceCell<deform::mesh::io::ObjInputExtras>,
 }
 
 /// `YAW,PITCH`, finite degrees.

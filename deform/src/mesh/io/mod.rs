@@ -5,6 +5,7 @@ mod bounded;
 mod dmat;
 mod medit;
 mod obj;
+mod obj_input;
 mod off;
 mod ply;
 mod tgf;
@@ -20,6 +21,7 @@ pub use obj::{
     parse_obj, parse_obj_textured, read_obj, write_obj, write_obj_to, write_obj_with_to, ObjExtras,
     ObjTexture,
 };
+pub use obj_input::ObjInputExtras;
 pub use off::{parse_off, read_off};
 pub use ply::{ply_header, write_ply, write_ply_to};
 pub use tgf::{parse_tgf, read_tgf, Skeleton};

@@ -275,9 +275,7 @@ pub fn run(a: &SkinArgs) -> Result<()> {
     }
     report.add("pose_ms", posed.pose_ms / frames.len() as f64);
     let world_diagonal = diagonal(&posed.last);
-    posed
-        .approximation
-        .report(&rig, world_diagonal, &mut report);
+    crate::similarity_report::report(&posed.approximation, &rig, world_diagonal, &mut report);
     if let Some(baked) = &baked {
         write_glb(&a.out.output, baked, &GlbOptions::default())?;
     }

@@ -4,9 +4,9 @@
 use super::{numbered, SkinArgs};
 use crate::gpu_pose::GpuPoser;
 use crate::output_files::write_rig_mesh;
-use crate::similarity_report::Approximation;
 use crate::timing::{time_pose, time_rig_pose};
 use anyhow::{bail, Result};
+use deform::skinning::Approximation;
 use deform::skinning::{JointEdit, KeyframeBlend, LibiglAnimation, RigPose, Skinning};
 use deform::{Deformer, Mesh, Rig};
 use glam::DVec3;
