@@ -11,7 +11,8 @@
 //! | [`skinning`] | glTF and libigl rigs, animation, skinning by every blend method | mesh, operators, blend, deformers | [`skinning::SkinError`] |
 //! | [`surgery`] | cut, tear and drill that stay animatable | mesh, skinning | [`surgery::SurgeryError`] |
 //! | [`render`] | the PNG preview renderer, the previews every command and the demo draw ([`render::preview`]) and their overlays ([`render::tools`]) | mesh | [`mesh::MeshError`] |
-//! | [`methods`] | what the program, its editor and library callers share: the work budget | every layer | [`methods::budget::BudgetError`] |
+//! | [`methods`] | what the program, its editor and library callers share: each method described once ([`methods::MethodSettings`]), bound and posed ([`methods::BoundMethod`]), the scene catalogue, the showcase the demo writes, the rig frame convention, the work budget | every layer | [`methods::MethodError`], [`methods::MethodsError`] |
+//! | [`editor`] | the editor's model: an editing [`editor::Session`] driven by requests, no I/O | every layer | [`editor::EditError`] |
 //! | [`input`] | motor JSON and selections, one format for every program command | mesh | [`input::InputError`] |
 //!
 //! Every layer's error converts into [`Error`] with `?`. Deformers bind once and pose many

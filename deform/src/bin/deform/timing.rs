@@ -17,14 +17,7 @@ pub fn time_pose<D: Deformer + ?Sized>(
     keys: &[cga::ScaledMotor],
     out: &mut [DVec3],
 ) -> Result<f64> {
-    let mut poser = Poser::new(d);
-    let mut best = f64::INFINITY;
-    for _ in 0..5 {
-        let t = Instant::now();
-        poser.pose(keys, out)?;
-        best = best.min(ms(t));
-    }
-    Ok(best)
+    Ok(Poser::new(d).best_time_ms(keys, out, 5)?)
 }
 
 /// [`time_pose`] of a posed rig ([`deform::skinning::Skinning::pose_rig`]: the skin matrices

@@ -76,14 +76,7 @@ fn ms(t: Instant) -> f64 {
 
 /// The best of five poses with one scratch, in milliseconds.
 fn time_pose<D: Deformer + ?Sized>(d: &D, keys: &[ScaledMotor], out: &mut [DVec3]) -> Result<f64> {
-    let mut poser = Poser::new(d);
-    let mut best = f64::INFINITY;
-    for _ in 0..5 {
-        let t = Instant::now();
-        poser.pose(keys, out)?;
-        best = best.min(ms(t));
-    }
-    Ok(best)
+    Ok(Poser::new(d).best_time_ms(keys, out, 5)?)
 }
 
 /// How far each vertex moved from `rest` to `posed`.
