@@ -20,6 +20,22 @@ impl Selection {
         self.groups.iter().map(Vec::as_slice).collect()
     }
 
+    /// The first and last groups (a spline's ends, H_1 and H_n); `name` names the file in
+    /// the error for fewer than two groups.
+    pub fn ends(&self, name: &str) -> Result<(&[u32], &[u32]), InputError> {
+        match self.groups.as_slice() {
+            [first, .., last] => Ok((first, last)),
+            _ => Err(InputError::new(
+                name,
+                "groups",
+                format!(
+                    "a spline needs at least two groups (0 = H_1, highest = H_n), found {}",
+                    self.groups.len()
+                ),
+            )),
+        }
+    }
+
     /// Check ranges, duplicates and empty groups.
     fn checked(groups: Vec<Vec<u32>>, vertex_count: usize, name: &str) -> Result<Self, InputError> {
         let mut owner = vec![usize::MAX; vertex_count];

@@ -7,7 +7,7 @@ use crate::shared_args::{MeshInput, OutputArgs, RigInput};
 use anyhow::{bail, Context, Result};
 use deform::input::Selection;
 use deform::mesh::io::ObjInputExtras;
-use deform::skinning::{libigl_rig, read_gltf_with, GltfReadOptions, Rig};
+use deform::skinning::{GltfReadOptions, Rig};
 use deform::Mesh;
 use std::path::Path;
 
@@ -33,32 +33,15 @@ pub fn read_text(path: &Path) -> Result<String> {
     Ok(deform::input::read_document(path)?)
 }
 
-/// Read the rig: glTF by extension, else a libigl mesh with skeleton and weights.
+/// Read the rig by the library's reader: glTF by extension, else a libigl mesh with
+/// `--skeleton` and `--weights`.
 pub fn read_rig(input: &RigInput) -> Result<Rig> {
-    let ext = input
-        .model
-        .extension()
-        .and_then(|e| e.to_str())
-        .unwrap_or("")
-        .to_ascii_lowercase();
-    if ext == "gltf" || ext == "glb" {
-        let options = GltfReadOptions {
-            allow_external: input.allow_external,
-            ..GltfReadOptions::default()
-        };
-        return Ok(read_gltf_with(&input.model, &options)?);
-    }
-    let (Some(s), Some(w)) = (&input.skeleton, &input.weights) else {
-        bail!(
-            "{}: a mesh model needs --skeleton and --weights (or give a .gltf/.glb)",
-            input.model.display()
-        );
+    let options = GltfReadOptions {
+        allow_external: input.allow_external,
+        ..GltfReadOptions::default()
     };
-    let mesh = read_mesh(&input.model)?;
-    let skeleton = deform::mesh::io::read_tgf(s)?;
-    let weights = deform::mesh::io::read_dmat(w)?;
-    libigl_rig(mesh, &skeleton, &weights)
-        .with_context(|| format!("{}: cannot rig", input.model.display()))
+    let libigl = input.skeleton.as_deref().zip(input.weights.as_deref());
+    Ok(deform::skinning::read_rig(&input.model, libigl, &options)?)
 }
 
 /// Refuse outputs that are inputs (`mesh` and `extra`) or not in

@@ -19,7 +19,6 @@ mod progress;
 mod report;
 mod shared_args;
 mod similarity_report;
-mod spline_ends;
 mod surgery_io;
 mod timing;
 

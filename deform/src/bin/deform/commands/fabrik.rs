@@ -7,7 +7,6 @@ use crate::input_files::{read_mesh_input, read_text};
 use crate::progress::with_progress;
 use crate::report::Report;
 use crate::shared_args::{MeshInput, OutputArgs};
-use crate::spline_ends::ends;
 use crate::timing::ms;
 use anyhow::{bail, Context, Result};
 use clap::Args;
@@ -51,7 +50,8 @@ pub struct FabrikArgs {
 pub fn run(a: &FabrikArgs) -> Result<()> {
     let extra: Vec<&Path> = a.chain.iter().map(|p| p.as_path()).collect();
     let (mesh, sel) = read_mesh_input(&a.input, &extra, &a.out)?;
-    let (first, last) = ends(&sel, &a.input.select)?;
+    let (first, last) = sel.ends(&a.input.select.display().to_string())?;
+    let (first, last) = (first.to_vec(), last.to_vec());
     let joints: Vec<DVec3> = match &a.chain {
         Some(path) => {
             let text = read_text(path)?;

@@ -6,7 +6,6 @@ use crate::input_files::{read_mesh_input, read_text};
 use crate::progress::with_progress;
 use crate::report::Report;
 use crate::shared_args::{BlendingArgs, MeshInput, OutputArgs};
-use crate::spline_ends::ends;
 use crate::timing::{ms, time_pose};
 use anyhow::{bail, Context, Result};
 use clap::{Args, ValueEnum};
@@ -63,7 +62,8 @@ pub fn run(a: &SplineArgs) -> Result<()> {
         extra.push(r.as_path());
     }
     let (mesh, sel) = read_mesh_input(&a.input, &extra, &a.out)?;
-    let (first, last) = ends(&sel, &a.input.select)?;
+    let (first, last) = sel.ends(&a.input.select.display().to_string())?;
+    let (first, last) = (first.to_vec(), last.to_vec());
     let name = a.keys.display().to_string();
     let keys = parse_key_list(&read_text(&a.keys)?, &name)?;
     let rest = match &a.rest_keys {
