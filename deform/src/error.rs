@@ -108,6 +108,7 @@ impl From<crate::methods::MethodsError> for Error {
             M::Deform(d) => d.into(),
             M::Skin(s) => Error::Skin(s),
             M::Surgery(s) => Error::Surgery(s),
+            M::Input(i) => Error::Input(i),
         }
     }
 }

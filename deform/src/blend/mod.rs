@@ -569,3 +569,21 @@ impl BoundBlend {
         finite_pose(finite, out)
     }
 }
+
+#[cfg(test)]
+mod name_tests {
+    use super::*;
+
+    #[test]
+    fn blend_names_round_trip_and_others_are_refused() {
+        for m in BlendMethod::ALL {
+            assert_eq!(m.name().parse::<BlendMethod>(), Ok(m));
+        }
+        let e = "Matrix".parse::<BlendMethod>().unwrap_err();
+        assert_eq!(e.given, "Matrix");
+        let message = e.to_string();
+        for m in BlendMethod::ALL {
+            assert!(message.contains(m.name()), "{message}");
+        }
+    }
+}

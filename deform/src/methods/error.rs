@@ -45,6 +45,9 @@ pub enum MethodError {
         /// The method's name.
         method: &'static str,
     },
+    /// A request that does not fit (a selection given with a rig).
+    #[error("{0}")]
+    Refused(String),
     /// Fewer handle groups than the method binds to.
     #[error("{method} needs {need} handle group(s) or more, got {have}")]
     TooFewGroups {
@@ -86,6 +89,9 @@ pub enum MethodsError {
     /// A cut, tear or drill that cannot be made.
     #[error(transparent)]
     Surgery(#[from] crate::surgery::SurgeryError),
+    /// A bad motor or selection file.
+    #[error(transparent)]
+    Input(#[from] crate::input::InputError),
 }
 
 impl From<crate::mesh::MeshError> for MethodsError {

@@ -2,6 +2,7 @@
 //! handle groups and the method it starts with, or a rigged arm. The demo poses its own keys
 //! on the same meshes.
 
+use super::error::{MethodError, MethodsError};
 use super::method::Method;
 use crate::mesh::shapes::{icosphere, tube, tube_ring};
 use crate::mesh::Mesh;
@@ -57,6 +58,52 @@ impl Scene {
                 cage,
             },
         )
+    }
+}
+
+impl Scene {
+    /// The scene of a model file, named by its file name: a rig for glTF (`.gltf`, `.glb`,
+    /// buffers inside its folder) or a mesh with `libigl`'s skeleton and weights; else a mesh
+    /// (checked for deformation) with the handle groups of `select`, opened with motor
+    /// handles.
+    ///
+    /// # Errors
+    /// What the readers refuse, naming the file; a selection given with a rig.
+    pub fn from_model(
+        path: &std::path::Path,
+        libigl: Option<(&std::path::Path, &std::path::Path)>,
+        select: Option<&std::path::Path>,
+    ) -> Result<Scene, MethodsError> {
+        let name = path
+            .file_name()
+            .map_or("model".into(), |n| n.to_string_lossy().into_owned());
+        let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("");
+        let gltf = ext.eq_ignore_ascii_case("gltf") || ext.eq_ignore_ascii_case("glb");
+        if gltf || libigl.is_some() {
+            if select.is_some() {
+                let message = "a selection is for a mesh; a rig's joints are its handles";
+                return Err(MethodError::Refused(message.into()).into());
+            }
+            let options = crate::skinning::GltfReadOptions::default();
+            let rig = crate::skinning::read_rig(path, libigl, &options)?;
+            return Ok(Scene::new(&name, Content::Rig(Box::new(rig))));
+        }
+        let mesh = crate::mesh::io::read_mesh(path)?;
+        crate::mesh::validate::check_solvable(&mesh)?;
+        let groups = match select {
+            Some(s) => crate::input::read_selection(s, mesh.vertex_count())?.groups,
+            None => Vec::new(),
+        };
+        let (method, cage) = (Method::Handles, None);
+        Ok(Scene::new(
+            &name,
+            Content::Mesh {
+                mesh,
+                groups,
+                method,
+                cage,
+            },
+        ))
     }
 }
 

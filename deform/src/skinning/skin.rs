@@ -105,6 +105,27 @@ impl Skinning {
         };
         posed.map_err(|e| SkinError::Pose(e.to_string()))
     }
+
+    /// The best of `runs` [`Skinning::pose_rig`]s (at least one) in milliseconds, with one
+    /// scratch, as [`crate::deformers::Poser::best_time_ms`] times a pose.
+    ///
+    /// # Errors
+    /// As [`Skinning::pose_rig`].
+    pub fn best_rig_time_ms(
+        &self,
+        pose: &RigPose,
+        out: &mut [DVec3],
+        runs: usize,
+    ) -> std::result::Result<f64, SkinError> {
+        let mut scratch = self.blend.scratch();
+        let mut best = f64::INFINITY;
+        for _ in 0..runs.max(1) {
+            let t = std::time::Instant::now();
+            self.pose_rig(pose, &mut scratch, out)?;
+            best = best.min(t.elapsed().as_secs_f64() * 1e3);
+        }
+        Ok(best)
+    }
 }
 
 deformer_via_blend!(Skinning, blend, crate::blend::PreparedKeys);

@@ -4,10 +4,9 @@
 use crate::output_files::{write_deformed, write_png};
 use crate::report::Report;
 use crate::shared_args::OutputArgs;
-use crate::timing::time_pose;
 use anyhow::{bail, Context, Result};
 use deform::render::preview::{self, Look};
-use deform::{Deformer, Mesh};
+use deform::{Deformer, Mesh, Poser};
 use glam::DVec3;
 
 /// Write the posed mesh and its preview (the posed mesh coloured by `scalar`, `look`'s title
@@ -84,7 +83,9 @@ pub fn pose_and_finish(
     mut report: Report,
 ) -> Result<()> {
     let mut posed = vec![DVec3::ZERO; mesh.vertex_count()];
-    let pose_ms = time_pose(d, motors, &mut posed).context("cannot pose")?;
+    let pose_ms = Poser::new(d)
+        .best_time_ms(motors, &mut posed, 5)
+        .context("cannot pose")?;
     report.add("pose_ms", pose_ms);
     let moved = displacement(mesh, &posed);
     finish(mesh, posed, &moved, look, out, &mut report)

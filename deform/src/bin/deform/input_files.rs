@@ -4,7 +4,7 @@
 
 use crate::output_files::{check_formats, check_outputs, MESH_FORMATS};
 use crate::shared_args::{MeshInput, OutputArgs, RigInput};
-use anyhow::{bail, Context, Result};
+use anyhow::{Context, Result};
 use deform::input::Selection;
 use deform::mesh::io::ObjInputExtras;
 use deform::skinning::{GltfReadOptions, Rig};

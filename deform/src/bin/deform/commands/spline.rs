@@ -6,14 +6,14 @@ use crate::input_files::{read_mesh_input, read_text};
 use crate::progress::with_progress;
 use crate::report::Report;
 use crate::shared_args::{BlendingArgs, MeshInput, OutputArgs};
-use crate::timing::{ms, time_pose};
+use crate::timing::ms;
 use anyhow::{bail, Context, Result};
 use clap::{Args, ValueEnum};
 use deform::deformers::spline::{SplineOptions, WeightScheme};
 use deform::input::parse_key_list;
 use deform::render::preview::{Look, POSED_INK, REST_INK};
 use deform::render::tools::{centroid, spine};
-use deform::SplineDeformer;
+use deform::{Poser, SplineDeformer};
 use glam::DVec3;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -89,8 +89,9 @@ pub fn run(a: &SplineArgs) -> Result<()> {
     .with_context(|| format!("{}: cannot bind", a.input.mesh.display()))?;
     let bind_ms = ms(t);
     let mut posed = vec![DVec3::ZERO; mesh.vertex_count()];
-    let pose_ms =
-        time_pose(&d, &keys, &mut posed).with_context(|| format!("{name}: cannot pose"))?;
+    let pose_ms = Poser::new(&d)
+        .best_time_ms(&keys, &mut posed, 5)
+        .with_context(|| format!("{name}: cannot pose"))?;
     let mut report = Report::new("spline", &mesh);
     report.add("scheme", options.scheme.name());
     report.add("blend", options.method.name());

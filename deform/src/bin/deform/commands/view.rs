@@ -10,12 +10,9 @@
 mod mailbox;
 mod server;
 
-use crate::input_files::{read_mesh, read_rig, read_selection};
-use crate::shared_args::RigInput;
 use anyhow::{bail, Context, Result};
 use clap::Args;
-use deform::methods::scenes::{catalogue, Content, Scene};
-use deform::methods::Method;
+use deform::methods::scenes::{catalogue, Scene};
 use std::hash::{BuildHasher, Hasher};
 use std::io::Write;
 use std::net::{IpAddr, Ipv4Addr, SocketAddr};
@@ -74,37 +71,11 @@ fn model_scene(a: &ViewArgs, path: &Path) -> Result<Scene> {
     if gltf && a.skeleton.is_some() {
         bail!("--skeleton and --weights make a mesh a rig; a glTF model has its own");
     }
-    let content = if gltf || a.skeleton.is_some() {
-        if a.select.is_some() {
-            bail!("--select is for a mesh; a rig's joints are its handles");
-        }
-        let rig = read_rig(&RigInput {
-            model: path.to_path_buf(),
-            skeleton: a.skeleton.clone(),
-            weights: a.weights.clone(),
-            allow_external: false,
-        })?;
-        Content::Rig(Box::new(rig))
-    } else {
-        let mesh = read_mesh(path)?;
-        let groups = match &a.select {
-            Some(s) => read_selection(s, mesh.vertex_count())?.groups,
-            None => Vec::new(),
-        };
-        Content::Mesh {
-            mesh,
-            groups,
-            method: Method::Handles,
-            cage: None,
-        }
-    };
-    let name = path
-        .file_name()
-        .map_or("model".into(), |n| n.to_string_lossy().into_owned());
-    Ok(Scene {
-        name,
-        content: Arc::new(content),
-    })
+    if (gltf || a.skeleton.is_some()) && a.select.is_some() {
+        bail!("--select is for a mesh; a rig's joints are its handles");
+    }
+    let libigl = a.skeleton.as_deref().zip(a.weights.as_deref());
+    Ok(Scene::from_model(path, libigl, a.select.as_deref())?)
 }
 
 /// The page: HTML with its style and script put in.

@@ -4,11 +4,10 @@
 use super::{numbered, SkinArgs};
 use crate::gpu_pose::GpuPoser;
 use crate::output_files::write_rig_mesh;
-use crate::timing::{time_pose, time_rig_pose};
 use anyhow::{bail, Result};
 use deform::skinning::Approximation;
 use deform::skinning::{JointEdit, KeyframeBlend, LibiglAnimation, RigPose, Skinning};
-use deform::{Deformer, Mesh, Rig};
+use deform::{Deformer, Mesh, Poser, Rig};
 use glam::DVec3;
 use std::path::PathBuf;
 
@@ -92,8 +91,8 @@ impl Posing<'_> {
             let posed = &mut out.last;
             out.pose_ms += match (&mut self.gpu, matrices) {
                 (Some(g), _) => g.pose(motors, posed)?,
-                (None, Some(p)) => time_rig_pose(self.bound, p, posed)?,
-                (None, None) => time_pose(self.bound, motors, posed)?,
+                (None, Some(p)) => self.bound.best_rig_time_ms(p, posed, 5)?,
+                (None, None) => Poser::new(self.bound).best_time_ms(motors, posed, 5)?,
             };
             if let Some(o) = &self.other {
                 match matrices {
