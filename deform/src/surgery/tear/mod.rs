@@ -32,7 +32,7 @@ mod walk;
 use super::nearest::nearest_to_segment;
 use super::soup::Soup;
 use super::split::{local_loops, FaceFate};
-use super::{check_snap, Frame, SkinnedMesh, Surgery, SurgeryError, VertexOrigin};
+use super::{check_snap, FaceBvh, Frame, SkinnedMesh, Surgery, SurgeryError, VertexOrigin};
 use crate::mesh::numbers::short_point;
 use crate::mesh::Mesh;
 use entry::{first_hit, insert_point};
@@ -136,52 +136,13 @@ impl Surgery {
         frame: Frame,
         options: &TearOptions,
     ) -> Result<TearResult, SurgeryError> {
-        if scalpel.len() < 2 {
-            return Err(SurgeryError::BadTool(
-                "a tear needs at least two scalpel positions".into(),
-            ));
-        }
-        if let Some(i) = scalpel
-            .iter()
-            .position(|s| !(s.a.is_finite() && s.b.is_finite()) || s.a == s.b)
-        {
-            return Err(SurgeryError::BadTool(format!(
-                "scalpel {i} is not a finite, non-empty segment"
-            )));
-        }
-        check_snap(options.snap)?;
-        // Even without snapping, a point within rounding of a corner or an edge is on it.
-        let snap = options.snap.max(ROUNDING_SNAP);
-        if !options.open.is_finite() {
-            return Err(SurgeryError::BadTool("the opening is not finite".into()));
-        }
-        // An opening far beyond the model's size would only push the lips out of range (and
-        // past what f64 and the f32 of a .glb hold); the model's scale bounds it.
-        if options.open.abs() > MAX_OPEN_PER_DIAGONAL * self.diagonal {
-            return Err(SurgeryError::BadTool(format!(
-                "the opening {:.3e} is over {MAX_OPEN_PER_DIAGONAL} times the model's size \
-                 (bounding-box diagonal {:.3e})",
-                options.open, self.diagonal
-            )));
-        }
+        let snap = self.check_tear(scalpel, options)?;
         let src = &self.mesh;
         let n0 = src.mesh.vertex_count();
         let resolved = self.resolve(frame)?;
         let (positions, skin, bvh) = (resolved.positions, resolved.skin, &*resolved.bvh);
         // Where each blade enters the skin, on the input mesh.
-        let mut hits = Vec::with_capacity(scalpel.len());
-        for (i, s) in scalpel.iter().enumerate() {
-            let Some(hit) = first_hit(bvh, &src.mesh.triangles, positions, s.a, s.b) else {
-                let whereabouts = nearest_to_segment(&src.mesh.triangles, positions, s.a, s.b)
-                    .map_or(String::new(), |n| format!(": {}", n.describe()));
-                return Err(SurgeryError::BadTool(format!(
-                    "scalpel {i}, the blade from {} to {}, does not touch the surface{whereabouts}",
-                    short_point(s.a),
-                    short_point(s.b)
-                )));
-            };
-            hits.push(hit);
-        }
+        let hits = blade_hits(scalpel, bvh, &src.mesh.triangles, positions)?;
         let mut soup = Soup::new(
             &src.mesh.triangles,
             &self.topology.neighbors,
@@ -268,6 +229,65 @@ impl Surgery {
             boundary_loops,
         })
     }
+}
+
+impl Surgery {
+    /// The tools of a tear, checked: at least two finite, non-empty scalpel positions, a snap
+    /// fraction in range, a finite opening within the model's scale. Returns the snap used
+    /// (at least [`ROUNDING_SNAP`]: a point within rounding of a corner or an edge is on it).
+    fn check_tear(&self, scalpel: &[Scalpel], options: &TearOptions) -> Result<f64, SurgeryError> {
+        if scalpel.len() < 2 {
+            return Err(SurgeryError::BadTool(
+                "a tear needs at least two scalpel positions".into(),
+            ));
+        }
+        if let Some(i) = scalpel
+            .iter()
+            .position(|s| !(s.a.is_finite() && s.b.is_finite()) || s.a == s.b)
+        {
+            return Err(SurgeryError::BadTool(format!(
+                "scalpel {i} is not a finite, non-empty segment"
+            )));
+        }
+        check_snap(options.snap)?;
+        if !options.open.is_finite() {
+            return Err(SurgeryError::BadTool("the opening is not finite".into()));
+        }
+        // An opening far beyond the model's size would only push the lips out of range (and
+        // past what f64 and the f32 of a .glb hold); the model's scale bounds it.
+        if options.open.abs() > MAX_OPEN_PER_DIAGONAL * self.diagonal {
+            return Err(SurgeryError::BadTool(format!(
+                "the opening {:.3e} is over {MAX_OPEN_PER_DIAGONAL} times the model's size \
+                 (bounding-box diagonal {:.3e})",
+                options.open, self.diagonal
+            )));
+        }
+        Ok(options.snap.max(ROUNDING_SNAP))
+    }
+}
+
+/// Where each blade first enters the surface (face and point), or which blade misses and
+/// where it passes.
+fn blade_hits(
+    scalpel: &[Scalpel],
+    bvh: &FaceBvh,
+    triangles: &[[u32; 3]],
+    positions: &[DVec3],
+) -> Result<Vec<(u32, DVec3)>, SurgeryError> {
+    let mut hits = Vec::with_capacity(scalpel.len());
+    for (i, s) in scalpel.iter().enumerate() {
+        let Some(hit) = first_hit(bvh, triangles, positions, s.a, s.b) else {
+            let whereabouts = nearest_to_segment(triangles, positions, s.a, s.b)
+                .map_or(String::new(), |n| format!(": {}", n.describe()));
+            return Err(SurgeryError::BadTool(format!(
+                "scalpel {i}, the blade from {} to {}, does not touch the surface{whereabouts}",
+                short_point(s.a),
+                short_point(s.b)
+            )));
+        };
+        hits.push(hit);
+    }
+    Ok(hits)
 }
 
 impl Surgery {
