@@ -535,6 +535,25 @@ fn read_primitive(
         triangle_offset,
         triangle_count: indices.len() / 3,
     };
+    let influences = read_influences(p, buffers, name, remap, offset, count)?;
+    Ok((info, influences))
+}
+
+/// The primitive's skin influences (its `count` vertices from `offset` in the rig): up to
+/// two JOINTS/WEIGHTS sets, joints remapped to the rig's list; a primitive without joints on
+/// a node of one joint is bound rigidly to it.
+fn read_influences(
+    p: &gltf::Primitive,
+    buffers: &Buffers,
+    name: &str,
+    remap: &[u32],
+    offset: usize,
+    count: usize,
+) -> Result<Influences, SkinError> {
+    let data = |message: String| SkinError::Data {
+        name: name.to_string(),
+        message,
+    };
     let rigid = p.get(&gltf::Semantic::Joints(0)).is_none() && remap.len() == 1;
     if rigid {
         let influences = Influences {
@@ -542,7 +561,7 @@ fn read_primitive(
             joints: vec![remap[0]; count],
             weights: vec![1.0; count],
         };
-        return Ok((info, influences));
+        return Ok(influences);
     }
     let sets: Vec<(Vec<f64>, Vec<f64>)> = (0..2)
         .map_while(|s| {
@@ -595,7 +614,7 @@ fn read_primitive(
             }
         }
     }
-    Ok((info, influences))
+    Ok(influences)
 }
 
 /// Every animation's node channels.
