@@ -597,3 +597,30 @@ fn help_explains_every_option() {
         assert!(line.split_whitespace().count() > 2, "{line}");
     }
 }
+
+/// A reader that stops early (`ga-codegen spec.toml | head`) ends the program quietly with
+/// success, as `cat` does (it panicked with "Broken pipe").
+#[test]
+fn a_reader_that_stops_early_is_not_an_error() {
+    use std::io::Read;
+    use std::process::Stdio;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_ga-codegen"))
+        .arg("algebras/pga3d.toml")
+        .current_dir(workspace())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("run ga-codegen");
+    let mut first = [0u8; 64];
+    child
+        .stdout
+        .take()
+        .expect("piped")
+        .read_exact(&mut first)
+        .expect("the start of the module");
+    // The read end is dropped here: the rest of the module meets a closed pipe.
+    let out = child.wait_with_output().expect("wait");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{:?}: {stderr}", out.status);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+}

@@ -225,13 +225,15 @@ fn main() -> ExitCode {
     };
     let elapsed = start.elapsed();
     if args.summary {
-        println!(
-            "algebra `{}` from {} ({} basis vectors)",
+        let header = format!(
+            "algebra `{}` from {} ({} basis vectors)\n",
             spec.name,
             spec.source,
             spec.metric.dim()
         );
-        print!("{}", generated.summary());
+        if let Err(code) = to_stdout(&(header + &generated.summary())) {
+            return code;
+        }
         eprintln!("generated in {:.1} ms", elapsed.as_secs_f64() * 1e3);
     }
     match &args.out {
@@ -247,10 +249,29 @@ fn main() -> ExitCode {
                 elapsed.as_secs_f64() * 1e3
             );
         }
-        None if !args.summary => print!("{code}"),
+        None if !args.summary => {
+            if let Err(code) = to_stdout(&code) {
+                return code;
+            }
+        }
         None => {}
     }
     ExitCode::SUCCESS
+}
+
+/// Write `text` to standard output. A reader that stops early (`| head`) is not an error:
+/// the program stops quietly with success, as `cat` does; any other write error is exit 2.
+fn to_stdout(text: &str) -> Result<(), ExitCode> {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
+        Ok(()) => Ok(()),
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Err(ExitCode::SUCCESS),
+        Err(e) => {
+            eprintln!("error: cannot write to standard output: {e}");
+            Err(ExitCode::from(2))
+        }
+    }
 }
 
 /// `--wgsl`: the WGSL source to `out` or stdout.
@@ -276,7 +297,11 @@ fn write_wgsl(spec: &Spec, out: Option<&std::path::Path>, start: Instant) -> Exi
                 code.lines().count()
             );
         }
-        None => print!("{code}"),
+        None => {
+            if let Err(code) = to_stdout(&code) {
+                return code;
+            }
+        }
     }
     ExitCode::SUCCESS
 }
