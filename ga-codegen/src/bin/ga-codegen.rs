@@ -250,7 +250,7 @@ fn main() -> ExitCode {
             );
         }
         None if !args.summary => {
-            if let Err(code) = to_stdout(&code) {
+            if let Err(code) = to_stdout(code) {
                 return code;
             }
         }
