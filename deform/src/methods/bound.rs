@@ -73,6 +73,8 @@ pub enum BoundMethod {
         rest: Vec<ScaledMotor>,
         /// The pose's scratch.
         scratch: PreparedKeys,
+        /// The posed keys (each motor after its rest key), kept between poses.
+        keys: Vec<ScaledMotor>,
     },
     /// An FFD lattice or a cage: one motor per control point.
     Control {
@@ -187,6 +189,7 @@ impl BoundMethod {
                 let scratch = spline.scratch();
                 BoundMethod::Spline {
                     spline: Box::new(spline),
+                    keys: Vec::with_capacity(rest.len()),
                     rest,
                     scratch,
                 }
@@ -311,10 +314,11 @@ impl BoundMethod {
                 spline,
                 rest,
                 scratch,
+                keys,
             } => {
-                let keys: Vec<ScaledMotor> =
-                    rest.iter().zip(motors).map(|(r, m)| r.then(*m)).collect();
-                spline.pose_using(&keys, scratch, out)?
+                keys.clear();
+                keys.extend(rest.iter().zip(motors).map(|(r, m)| r.then(*m)));
+                spline.pose_using(keys, scratch, out)?
             }
             BoundMethod::Control {
                 deformer, scratch, ..

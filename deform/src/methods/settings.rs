@@ -198,7 +198,16 @@ impl MethodSettings {
         };
         match name {
             "blend" => self.blend = BlendMethod::from_name(value)?,
-            "positional" => self.set_positional(value == "true")?,
+            "positional" => match value {
+                "true" | "false" => self.set_positional(value == "true")?,
+                _ => {
+                    return Err(MethodError::UnknownName {
+                        what: "positional switch",
+                        given: value.to_string(),
+                        expected: "true, false".into(),
+                    })
+                }
+            },
             "iterations" => self.set_iterations(number("iterations")?)?,
             "energy" => self.arap.energy = Named::from_name(value)?,
             "local-step" => self.arap.local_step = Named::from_name(value)?,
@@ -392,6 +401,7 @@ mod tests {
             ("grid", "8"),
             ("energy", "rims"),
             ("positional", "true"),
+            ("positional", "yes"),
             ("no-such-option", "1"),
         ] {
             assert!(s.set(name, value).is_err(), "{name} {value}");

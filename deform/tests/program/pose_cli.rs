@@ -181,4 +181,16 @@ fn option_values_are_the_library_names() {
     let e = String::from_utf8_lossy(&out.stderr);
     assert!(e.contains("--energy is for arap, not ffd"), "{e}");
     assert!(!std::path::Path::new(o).exists());
+    // A method's inputs left out are named.
+    for (method, flag) in [
+        ("cage", "--cage"),
+        ("spline", "--select"),
+        ("arap", "--select"),
+    ] {
+        let out = run(&["pose", method, m, "--motors", mj, "-o", o]);
+        assert_eq!(out.status.code(), Some(2));
+        let e = String::from_utf8_lossy(&out.stderr);
+        assert!(e.contains(flag), "{method}: {e}");
+    }
+    assert!(!std::path::Path::new(o).exists());
 }

@@ -119,6 +119,12 @@ pub fn settings_of(method: Method, flags: &MethodFlags) -> Result<MethodSettings
 pub fn run(a: &PoseArgs) -> Result<()> {
     let method = a.method;
     let settings = settings_of(method, &a.options)?;
+    if method == Method::Cage && a.cage.is_none() {
+        anyhow::bail!("cage: give the cage with --cage CAGE.obj");
+    }
+    if method.groups_needed() > 0 && a.select.is_none() {
+        anyhow::bail!("{}: give the handle groups with --select", method.name());
+    }
     let mut extra: Vec<&std::path::Path> = vec![a.motors.as_path()];
     extra.extend(a.select.as_deref());
     extra.extend(a.cage.as_deref());
