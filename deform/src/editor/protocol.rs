@@ -15,8 +15,10 @@
 //! ([`Request::Precision`]): half the bytes per pose (1.2 MB -> 0.6 MB on a 50k mesh).
 
 use crate::input::MotorSpec;
+use crate::methods::option::{OptionKind, OptionSpec, OptionValue};
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
 
 /// Frame kinds of the binary frames.
 pub const MESH: u32 = 1;
@@ -96,25 +98,17 @@ pub enum Request {
     ClearGroups,
     /// Bind the method to the current groups (after a paint stroke).
     Bind,
-    /// Choose the method (`handles`, `arap`, `spline`), its blend and ARAP's iterations per
-    /// frame; rebinds.
+    /// Choose the method (any of the state's `methods`), its blend and its options; rebinds
+    /// when the weights change.
     Method {
         /// The method by the library's name.
         method: String,
         /// The blend method by name, or `positional` for lattices and cages.
         blend: String,
-        /// ARAP iterations per frame.
+        /// Options by name (the state's `option_specs`): a name, a number, `[l, m, n]` for
+        /// points per axis; what is given changes, all checked together.
         #[serde(default)]
-        iterations: Option<usize>,
-        /// ARAP's energy: `spokes` or `spokes-and-rims`.
-        #[serde(default)]
-        energy: Option<String>,
-        /// ARAP's local step: `rotor` (the paper's) or `svd`.
-        #[serde(default)]
-        local_step: Option<String>,
-        /// The lattice's size and basis, the cage's coordinates (what is given changes).
-        #[serde(default)]
-        controls: Option<ControlRequest>,
+        options: BTreeMap<String, serde_json::Value>,
     },
     /// Pose the handle groups: one motor per group (the CLI's motor JSON).
     Motors {
@@ -237,47 +231,39 @@ pub struct GroupInfo {
     pub center: [f64; 3],
 }
 
-/// The lattice and cage options of a `Request::Method`; each one given replaces the
-/// session's (checked by the library's `MethodSettings`).
-#[derive(Clone, Debug, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ControlRequest {
-    /// Control points per axis.
-    #[serde(default)]
-    pub lattice: Option<[usize; 3]>,
-    /// The lattice basis by its name (`bernstein`, `bspline-1` .. `bspline-3`).
-    #[serde(default)]
-    pub basis: Option<String>,
-    /// The cage's coordinates by name (`mean-value`, `harmonic`).
-    #[serde(default)]
-    pub coordinates: Option<String>,
-    /// Harmonic coordinates' grid nodes along the cage's longest side.
-    #[serde(default)]
-    pub grid: Option<usize>,
-}
-
-/// The lattice and cage options of a session, by the library's names.
+/// One option of the current method, for the page's panel.
 #[derive(Clone, Debug, Serialize)]
-pub struct ControlInfo {
-    /// Control points per axis.
-    pub lattice: [usize; 3],
-    /// The lattice basis by name.
-    pub basis: &'static str,
-    /// The cage coordinates by name.
-    pub coordinates: &'static str,
-    /// Harmonic grid nodes along the cage's longest side.
-    pub grid: usize,
+pub struct OptionSpecInfo {
+    /// Its name (the request's and the state's key, the program's flag).
+    pub name: &'static str,
+    /// One line of help.
+    pub help: &'static str,
+    /// `choice`, `number`, `dims` (points per axis) or `switch`.
+    pub kind: &'static str,
+    /// The names a choice takes.
+    pub values: Option<Vec<&'static str>>,
+    /// The least number (of each axis).
+    pub min: Option<usize>,
+    /// The greatest number (of each axis).
+    pub max: Option<usize>,
 }
 
-impl ControlInfo {
-    /// The options of `s`.
-    pub fn of(s: &crate::methods::MethodSettings) -> ControlInfo {
-        use crate::methods::named::Named;
-        ControlInfo {
-            lattice: s.lattice,
-            basis: Named::name(s.basis),
-            coordinates: s.coordinates.name(),
-            grid: s.grid,
+impl OptionSpecInfo {
+    /// The page's description of `spec`.
+    pub fn of(spec: &OptionSpec) -> OptionSpecInfo {
+        let kind = match spec.kind {
+            OptionKind::Choice { .. } => "choice",
+            OptionKind::Number(_) => "number",
+            OptionKind::Dims(_) => "dims",
+            OptionKind::Switch => "switch",
+        };
+        OptionSpecInfo {
+            name: spec.name,
+            help: spec.help,
+            kind,
+            values: spec.values(),
+            min: spec.range().map(|r| *r.start()),
+            max: spec.range().map(|r| *r.end()),
         }
     }
 }
@@ -336,20 +322,19 @@ pub struct StateInfo {
     pub blend: String,
     /// The blends this method offers.
     pub blends: Vec<&'static str>,
-    /// ARAP iterations per frame.
-    pub iterations: usize,
-    /// ARAP's energy by name.
-    pub energy: &'static str,
-    /// ARAP's local step by name.
-    pub local_step: &'static str,
+    /// Every method's options by name, with their values (a name, a number, `[l, m, n]`).
+    pub options: BTreeMap<&'static str, OptionValue>,
+    /// The current method's options, for the page's panel.
+    pub option_specs: Vec<OptionSpecInfo>,
+    /// What the current method's command reads besides the mesh (`selection`, `motors`,
+    /// `keys`, `rest-keys`, `cage`): the page's exports for its replay.
+    pub inputs: Vec<&'static str>,
     /// The handle groups.
     pub groups: Vec<GroupInfo>,
     /// The fields the mesh can be coloured by.
     pub fields: Vec<&'static str>,
     /// The control points when the method is a lattice or a cage (then the motors are theirs).
     pub controls: Option<ControlsInfo>,
-    /// The lattice and cage options.
-    pub control: ControlInfo,
     /// The rig, for a rig scene.
     pub rig: Option<RigInfo>,
     /// The last bind's time.

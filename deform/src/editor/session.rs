@@ -176,15 +176,10 @@ impl Session {
             Request::Method {
                 method,
                 blend,
-                iterations,
-                energy,
-                local_step,
-                controls,
+                options,
             } => {
                 self.mesh_only("a method")?;
-                let (energy, local_step) = (energy.as_deref(), local_step.as_deref());
-                let options = (energy, local_step, controls.as_ref());
-                self.set_method(&method, &blend, iterations, options)
+                self.set_method(&method, &blend, &options)
             }
             Request::Motors { seq, motors } => self.pose_motors(seq, motors),
             Request::Rig {

@@ -6,24 +6,17 @@
 use super::budget::WorkBudget;
 use super::error::MethodError;
 use super::error::MethodsError;
-use super::method::Method;
+use super::kind::{BindInput, PoseMethod};
 use super::settings::MethodSettings;
 use crate::blend::control::ControlScratch;
-use crate::blend::{BlendMethod, BoundBlend, PreparedKeys};
-use crate::deformers::arap::{Arap, ArapScratch, Stop, Targets};
-use crate::deformers::cage::{CageDeformer, CageOptions};
-use crate::deformers::ffd::{Ffd, FfdOptions};
-use crate::deformers::handles::HandleOptions;
-use crate::deformers::handles::MotorHandles;
-use crate::deformers::spline::SplineDeformer;
-use crate::deformers::spline::SplineOptions;
+use crate::blend::BlendMethod;
 use crate::deformers::Deformer;
 use crate::operators::harmonic::{harmonic_system, HarmonicOptions};
 use crate::operators::solve::SystemAnalysis;
 
 type Result<T> = std::result::Result<T, MethodsError>;
 use crate::mesh::Mesh;
-use cga::{Motor, ScaledMotor};
+use cga::ScaledMotor;
 use glam::DVec3;
 use std::hash::{Hash, Hasher};
 
@@ -37,7 +30,8 @@ pub struct ControlPoints {
     pub edges: Vec<[u32; 2]>,
 }
 
-/// The bound method of a mesh.
+/// The bound method of a mesh: the rest pose until it is bound, then the method's own
+/// [`PoseMethod`].
 pub enum BoundMethod {
     /// Not bound (too few groups, or nothing to bind to yet): the rest pose, one motor per
     /// group.
@@ -45,46 +39,42 @@ pub enum BoundMethod {
         /// The groups a pose takes motors for.
         groups: usize,
     },
-    /// Motor handles: the blend is kept apart so another blend method reuses the weights.
-    Handles {
-        /// The bound handles (coordinates per group).
-        handles: Box<MotorHandles>,
-        /// The weights bound with the current blend method.
-        blend: Box<BoundBlend>,
-        /// The pose's scratch.
-        scratch: PreparedKeys,
-    },
-    /// ARAP with the groups as handles.
-    Arap {
-        /// The bound ARAP.
-        arap: Box<Arap>,
-        /// The pose's scratch (it keeps the last pose: the next starts there).
-        scratch: Box<ArapScratch>,
-        /// Iterations per pose.
-        iterations: usize,
-        /// The handle groups.
-        groups: usize,
-    },
-    /// The spline through the groups' centres.
-    Spline {
-        /// The bound spline.
-        spline: Box<SplineDeformer>,
-        /// The rest keys: a translation to each group's centre; a pose's motor follows it.
-        rest: Vec<ScaledMotor>,
-        /// The pose's scratch.
-        scratch: PreparedKeys,
-        /// The posed keys (each motor after its rest key), kept between poses.
-        keys: Vec<ScaledMotor>,
-    },
-    /// An FFD lattice or a cage: one motor per control point.
-    Control {
-        /// The bound lattice or cage.
-        deformer: Box<dyn Deformer<Scratch = ControlScratch>>,
-        /// Its control points and lines.
-        controls: ControlPoints,
-        /// The pose's scratch.
-        scratch: ControlScratch,
-    },
+    /// Bound by its method.
+    Bound(Box<dyn PoseMethod>),
+}
+
+/// A lattice or cage bound as a [`PoseMethod`]: one motor per control point.
+pub struct ControlBound<D: Deformer<Scratch = ControlScratch>> {
+    deformer: D,
+    controls: ControlPoints,
+    scratch: ControlScratch,
+}
+
+impl<D: Deformer<Scratch = ControlScratch>> ControlBound<D> {
+    /// `deformer` with its control points (its scratch made here).
+    pub fn new(deformer: D, controls: ControlPoints) -> Self {
+        let scratch = deformer.scratch();
+        ControlBound {
+            deformer,
+            controls,
+            scratch,
+        }
+    }
+}
+
+impl<D: Deformer<Scratch = ControlScratch> + 'static> PoseMethod for ControlBound<D> {
+    fn key_count(&self) -> usize {
+        self.controls.points.len()
+    }
+
+    fn controls(&self) -> Option<&ControlPoints> {
+        Some(&self.controls)
+    }
+
+    fn pose(&mut self, motors: &[ScaledMotor], out: &mut [DVec3]) -> Result<Option<f64>> {
+        self.deformer.pose_using(motors, &mut self.scratch, out)?;
+        Ok(None)
+    }
 }
 
 /// The harmonic system's analysis of one mesh, kept while the mesh and options stay the same,
@@ -139,135 +129,68 @@ impl BoundMethod {
         budget: &WorkBudget,
         cache: &mut HarmonicCache,
     ) -> Result<BoundMethod> {
-        let method = settings.method;
-        let need = method.groups_needed();
+        let kind = settings.method.kind();
+        let need = kind.groups_needed();
         if groups.len() < need {
-            let (method, have) = (super::named::Named::name(method), groups.len());
+            let (method, have) = (kind.name(), groups.len());
             return Err(MethodError::TooFewGroups { method, need, have }.into());
         }
-        let sets: Vec<&[u32]> = groups.iter().map(Vec::as_slice).collect();
-        Ok(match method {
-            Method::Handles => {
-                budget.handle_groups("the selection", sets.len(), mesh.vertex_count())?;
-                let rest = vec![ScaledMotor::IDENTITY; sets.len()];
-                let options = HandleOptions {
-                    method: settings.blend,
-                    ..HandleOptions::default()
-                };
-                let analysis = cache.of(mesh, &options.harmonic)?;
-                let handles =
-                    MotorHandles::bind_with_analysis(mesh, analysis, &sets, &rest, options)?;
-                let blend = Box::new(handles.blend().clone());
-                let scratch = blend.scratch();
-                BoundMethod::Handles {
-                    handles: Box::new(handles),
-                    blend,
-                    scratch,
-                }
-            }
-            Method::Arap => {
-                let arap = Arap::bind(mesh, &[], &sets, settings.arap)?;
-                let scratch = Box::new(arap.scratch()?);
-                BoundMethod::Arap {
-                    arap: Box::new(arap),
-                    scratch,
-                    iterations: settings.iterations,
-                    groups: sets.len(),
-                }
-            }
-            Method::Spline => {
-                let rest: Vec<ScaledMotor> = group_centres(mesh, groups)
-                    .into_iter()
-                    .map(|c| ScaledMotor::from_motor(Motor::from_translation(c)))
-                    .collect();
-                let options = SplineOptions {
-                    method: settings.blend,
-                    ..SplineOptions::default()
-                };
-                let (first, last) = (sets[0], sets[sets.len() - 1]);
-                let spline = SplineDeformer::bind(mesh, first, last, &rest, options)?;
-                let scratch = spline.scratch();
-                BoundMethod::Spline {
-                    spline: Box::new(spline),
-                    keys: Vec::with_capacity(rest.len()),
-                    rest,
-                    scratch,
-                }
-            }
-            Method::Ffd => {
-                let options = FfdOptions {
-                    form: settings.form(),
-                    basis: settings.basis,
-                };
-                let ffd = Ffd::bind(mesh, settings.lattice, None, options)?;
-                let controls = ControlPoints {
-                    points: ffd.lattice().rest_points(),
-                    edges: ffd.lattice().edges(),
-                };
-                BoundMethod::control(Box::new(ffd), controls)
-            }
-            Method::Cage => {
-                let cage = cage.ok_or(MethodError::NoCage)?;
-                let options = CageOptions {
-                    form: settings.form(),
-                    coordinates: settings.cage_coordinates(),
-                    ..CageOptions::default()
-                };
-                let deformer = CageDeformer::bind(mesh, cage, options)?;
-                let controls = ControlPoints {
-                    points: cage.positions.clone(),
-                    edges: cage.edges().edges,
-                };
-                BoundMethod::control(Box::new(deformer), controls)
-            }
-        })
-    }
-
-    fn control(
-        deformer: Box<dyn Deformer<Scratch = ControlScratch>>,
-        controls: ControlPoints,
-    ) -> BoundMethod {
-        let scratch = deformer.scratch();
-        BoundMethod::Control {
-            deformer,
-            controls,
-            scratch,
-        }
+        let input = BindInput {
+            mesh,
+            groups,
+            cage,
+            budget,
+            cache,
+        };
+        Ok(BoundMethod::Bound(kind.bind(input, settings)?))
     }
 
     /// The motors a pose takes: one per control point of a lattice or cage, else one per
     /// group.
     pub fn key_count(&self) -> usize {
         match self {
-            BoundMethod::Control { controls, .. } => controls.points.len(),
-            BoundMethod::Handles { blend, .. } => blend.key_count(),
-            BoundMethod::Spline { rest, .. } => rest.len(),
-            BoundMethod::Arap { groups, .. } | BoundMethod::Rest { groups } => *groups,
+            BoundMethod::Rest { groups } => *groups,
+            BoundMethod::Bound(b) => b.key_count(),
         }
     }
 
     /// The control points of a lattice or cage.
     pub fn controls(&self) -> Option<&ControlPoints> {
         match self {
-            BoundMethod::Control { controls, .. } => Some(controls),
-            _ => None,
+            BoundMethod::Rest { .. } => None,
+            BoundMethod::Bound(b) => b.controls(),
         }
     }
 
     /// Another blend method with the same weights, where the method keeps them apart
     /// (handles); `false` where it must be bound again.
     pub fn reblend(&mut self, positions: &[DVec3], method: BlendMethod) -> Result<bool> {
-        let BoundMethod::Handles { blend, scratch, .. } = self else {
-            return Ok(false);
-        };
-        let rest = vec![ScaledMotor::IDENTITY; blend.key_count()];
-        **blend = BoundBlend::bind(positions, blend.weights().clone(), &rest, method)?;
-        *scratch = blend.scratch();
-        Ok(true)
+        match self {
+            BoundMethod::Rest { .. } => Ok(false),
+            BoundMethod::Bound(b) => b.reblend(positions, method),
+        }
+    }
+
+    /// The fields of the bound method's own the mesh can be coloured by.
+    pub fn fields(&self) -> &'static [&'static str] {
+        match self {
+            BoundMethod::Rest { .. } => &[],
+            BoundMethod::Bound(b) => b.fields(),
+        }
+    }
+
+    /// One value per vertex of the bound method's field `name` (`group` for a per-group
+    /// field).
+    pub fn field(&self, name: &str, group: usize) -> Option<Vec<f64>> {
+        match self {
+            BoundMethod::Rest { .. } => None,
+            BoundMethod::Bound(b) => b.field(name, group),
+        }
     }
 
     /// Pose by one motor per key into `out` (`rest`, the mesh's positions, for
-    /// [`BoundMethod::Rest`]); ARAP runs its iterations from its last pose and returns its energy.
+    /// [`BoundMethod::Rest`]); a method that minimises an energy (ARAP, from its last pose)
+    /// returns its value.
     pub fn pose(
         &mut self,
         motors: &[ScaledMotor],
@@ -290,40 +213,11 @@ impl BoundMethod {
             .into());
         }
         match self {
-            BoundMethod::Rest { .. } => out.copy_from_slice(rest),
-            BoundMethod::Handles { blend, scratch, .. } => {
-                blend.pose_using(motors, scratch, out)?
+            BoundMethod::Rest { .. } => {
+                out.copy_from_slice(rest);
+                Ok(None)
             }
-            BoundMethod::Arap {
-                arap,
-                scratch,
-                iterations,
-                ..
-            } => {
-                let mut last = f64::NAN;
-                arap.pose_using(
-                    &Targets::Motors(motors),
-                    Stop::Iterations(*iterations),
-                    scratch,
-                    out,
-                    |_, e| last = e,
-                )?;
-                return Ok(Some(last));
-            }
-            BoundMethod::Spline {
-                spline,
-                rest,
-                scratch,
-                keys,
-            } => {
-                keys.clear();
-                keys.extend(rest.iter().zip(motors).map(|(r, m)| r.then(*m)));
-                spline.pose_using(keys, scratch, out)?
-            }
-            BoundMethod::Control {
-                deformer, scratch, ..
-            } => deformer.pose_using(motors, scratch, out)?,
+            BoundMethod::Bound(b) => b.pose(motors, out),
         }
-        Ok(None)
     }
 }

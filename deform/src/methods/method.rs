@@ -1,11 +1,14 @@
 //! The deformation methods a mesh and its handle groups (or control points) can be posed by.
 
+use super::kind::MethodKind;
+use super::kinds::{arap, cage, ffd, handles, spline};
 use super::named::Named;
+use super::option::OptionSpec;
 
 /// How a mesh is deformed from motors: one per handle group, or one per control point of a
-/// lattice or cage. Adding a method is a variant here, its options in
-/// [`super::settings::MethodSettings`] and its bind and pose in [`super::bound`]; the editor
-/// and the program take every method from here.
+/// lattice or cage. Each variant names a [`MethodKind`], one file in [`super::kinds`] that
+/// describes, binds and poses it; adding a method is that file, a variant here and its line in
+/// [`Method::kind`] and [`Named::ALL`]. The editor and the program take every method from here.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Method {
     /// Motor handles on harmonic coordinates (the first paper's section V).
@@ -20,6 +23,49 @@ pub enum Method {
     Cage,
 }
 
+impl Method {
+    /// The method's description and bind.
+    pub fn kind(self) -> &'static dyn MethodKind {
+        match self {
+            Method::Handles => &handles::HandlesMethod,
+            Method::Arap => &arap::ArapMethod,
+            Method::Spline => &spline::SplineMethod,
+            Method::Ffd => &ffd::FfdMethod,
+            Method::Cage => &cage::CageMethod,
+        }
+    }
+
+    /// Whether its keys are control points (a lattice's or a cage's), not handle groups.
+    pub fn controls(self) -> bool {
+        self.kind().controls()
+    }
+
+    /// The fewest handle groups it binds to (the spline needs its two ends).
+    pub fn groups_needed(self) -> usize {
+        self.kind().groups_needed()
+    }
+
+    /// The files its command reads besides the mesh ([`MethodKind::inputs`]).
+    pub fn inputs(self) -> &'static [(&'static str, &'static str)] {
+        self.kind().inputs()
+    }
+
+    /// Whether its command reads a file holding `what` (`selection`, `keys`, `cage`, ...).
+    pub fn reads(self, what: &str) -> bool {
+        self.inputs().iter().any(|(_, w)| *w == what)
+    }
+
+    /// Whether it blends key motors by a [`crate::BlendMethod`] (ARAP solves instead).
+    pub fn blends(self) -> bool {
+        self.kind().blends()
+    }
+
+    /// Its own options.
+    pub fn options(self) -> &'static [OptionSpec] {
+        self.kind().options()
+    }
+}
+
 impl Named for Method {
     const ALL: &'static [Self] = &[
         Method::Handles,
@@ -31,49 +77,6 @@ impl Named for Method {
     const WHAT: &'static str = "method";
     /// The name, which is also the program's subcommand.
     fn name(self) -> &'static str {
-        match self {
-            Method::Handles => "handles",
-            Method::Arap => "arap",
-            Method::Spline => "spline",
-            Method::Ffd => "ffd",
-            Method::Cage => "cage",
-        }
-    }
-}
-
-impl Method {
-    /// Whether its keys are control points (a lattice's or a cage's), not handle groups.
-    pub fn controls(self) -> bool {
-        matches!(self, Method::Ffd | Method::Cage)
-    }
-
-    /// The fewest handle groups it binds to (the spline needs its two ends).
-    pub fn groups_needed(self) -> usize {
-        match self {
-            Method::Spline => 2,
-            Method::Ffd | Method::Cage => 0,
-            Method::Handles | Method::Arap => 1,
-        }
-    }
-
-    /// The files its command reads besides the mesh, in order: each flag's name and what
-    /// the file holds (`selection`: the handle groups; `motors`: a motor per key; `keys` and
-    /// `rest-keys`: the spline's posed and rest keys; `cage`: the cage mesh).
-    pub fn inputs(self) -> &'static [(&'static str, &'static str)] {
-        match self {
-            Method::Handles | Method::Arap => &[("select", "selection"), ("motors", "motors")],
-            Method::Spline => &[
-                ("select", "selection"),
-                ("keys", "keys"),
-                ("rest-keys", "rest-keys"),
-            ],
-            Method::Ffd => &[("motors", "motors")],
-            Method::Cage => &[("cage", "cage"), ("motors", "motors")],
-        }
-    }
-
-    /// Whether it blends key motors by a [`crate::BlendMethod`] (ARAP solves instead).
-    pub fn blends(self) -> bool {
-        self != Method::Arap
+        self.kind().name()
     }
 }

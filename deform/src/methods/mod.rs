@@ -2,9 +2,11 @@
 //! the deformers, skinning and surgery:
 //! - [`method`]: the methods ([`Method`]) a mesh is posed by, and [`MethodError`];
 //! - [`named`]: every choice's names ([`named::Named`]), parsed and printed in one place;
-//! - [`settings`]: a method with its options ([`MethodSettings`]), each option named once
-//!   ([`settings::OPTIONS`]) for the program's flags, the editor's messages and the replayed
-//!   command ([`MethodSettings::args`]);
+//! - [`kind`]: what a method is ([`MethodKind`]: its description and bind) and a mesh bound
+//!   by it ([`PoseMethod`]); [`kinds`]: one file per method;
+//! - [`option`]: an option described once ([`option::OptionSpec`]: name, help, values,
+//!   default) for the program's flags, the editor's panel and the replayed command;
+//! - [`settings`]: a method with its options' values ([`MethodSettings`]);
 //! - [`bound`]: a mesh bound by its settings ([`BoundMethod`]), posed from a motor per key;
 //! - [`frame`]: which pose of a rig a request means, and the posed frame of a surgery tool;
 //! - [`scenes`]: the procedural scenes the demo and the editor open;
@@ -19,13 +21,17 @@ pub mod bound;
 pub mod budget;
 mod error;
 pub mod frame;
+pub mod kind;
+pub mod kinds;
 pub mod method;
 pub mod named;
+pub mod option;
 pub mod scenes;
 pub mod settings;
 pub mod showcase;
 
 pub use bound::BoundMethod;
 pub use error::{MethodError, MethodsError};
+pub use kind::{BindInput, MethodKind, PoseMethod};
 pub use method::Method;
 pub use settings::MethodSettings;

@@ -1,131 +1,84 @@
-//! A method with every option it binds by, each option named once: [`OPTIONS`] lists the
-//! names, the program's flags are `--` and the name, the editor's messages carry the same
-//! names, and [`MethodSettings::args`] prints the flags that bind the same way (the editor's
-//! replay command). The checks of each option's value live here too.
+//! A method with every option it binds by, each option described once ([`OptionSpec`]): the
+//! blend and the positional form here, every other in its method's file
+//! ([`super::MethodKind::options`]). The program's flags are `--` and the name, the editor's
+//! messages carry the same names, and [`MethodSettings::args`] prints the flags that bind the
+//! same way (the editor's replay command).
 
 use super::error::MethodError;
 use super::method::Method;
-use super::named::{Coordinates, Named};
+use super::named::Named;
+use super::option::{OptionKind, OptionSpec, OptionValue};
 use crate::blend::control::ControlForm;
 use crate::blend::BlendMethod;
-use crate::deformers::arap::ArapOptions;
-use crate::deformers::cage::{CageCoordinates, HarmonicGrid};
-use crate::deformers::ffd::LatticeBasis;
-use std::ops::RangeInclusive;
+use std::collections::BTreeMap;
 
-/// One option: its name (the flag is `--name`) and what it does, for help texts.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct OptionInfo {
-    /// The name.
-    pub name: &'static str,
-    /// One line of help.
-    pub help: &'static str,
-    /// The methods it applies to.
-    pub methods: &'static [Method],
-}
-
-/// How key motors are blended ([`BlendMethod`]'s names).
-pub const BLEND: OptionInfo = OptionInfo {
+/// How key motors are blended ([`BlendMethod`]'s names; methods that blend).
+pub const BLEND: OptionSpec = OptionSpec {
     name: "blend",
     help: "How the key motors are blended.",
-    methods: &[Method::Handles, Method::Spline, Method::Ffd, Method::Cage],
+    kind: OptionKind::choice::<BlendMethod>(),
+    default: OptionValue::Name("motor-log"),
+    replay: None,
 };
 /// Lattices and cages: the classic positional form instead of blended motors.
-pub const POSITIONAL: OptionInfo = OptionInfo {
+pub const POSITIONAL: OptionSpec = OptionSpec {
     name: "positional",
     help: "Classic positional form: each control point moves by its motor, vertices follow the \
            weighted sum of the points.",
-    methods: &[Method::Ffd, Method::Cage],
-};
-/// ARAP iterations.
-pub const ITERATIONS: OptionInfo = OptionInfo {
-    name: "iterations",
-    help: "ARAP iterations (local and global steps).",
-    methods: &[Method::Arap],
-};
-/// ARAP's rigidity energy.
-pub const ENERGY: OptionInfo = OptionInfo {
-    name: "energy",
-    help: "The rigidity energy: each cell a vertex's spokes (the paper's) or its triangles' \
-           spokes and rims (libigl's default).",
-    methods: &[Method::Arap],
-};
-/// ARAP's local fit.
-pub const LOCAL_STEP: OptionInfo = OptionInfo {
-    name: "local-step",
-    help: "The local fit: the paper's rotor or Sorkine and Alexa's SVD.",
-    methods: &[Method::Arap],
-};
-/// Control points per axis of an FFD lattice.
-pub const LATTICE: OptionInfo = OptionInfo {
-    name: "lattice",
-    help: "Control points per axis: LxMxN (each at least 2).",
-    methods: &[Method::Ffd],
-};
-/// The lattice's basis.
-pub const BASIS: OptionInfo = OptionInfo {
-    name: "basis",
-    help: "The lattice's basis: Bernstein polynomials of degree L-1, M-1, N-1, or clamped \
-           uniform B-splines of degree 1 to 3.",
-    methods: &[Method::Ffd],
-};
-/// A cage's coordinates.
-pub const COORDINATES: OptionInfo = OptionInfo {
-    name: "coordinates",
-    help: "The cage's coordinates: mean value or harmonic.",
-    methods: &[Method::Cage],
-};
-/// Harmonic coordinates' grid.
-pub const GRID: OptionInfo = OptionInfo {
-    name: "grid",
-    help: "Grid nodes along the cage's longest side (harmonic coordinates).",
-    methods: &[Method::Cage],
+    kind: OptionKind::Switch,
+    default: OptionValue::Switch(false),
+    replay: None,
 };
 
-/// Every option, in the order help lists them.
-pub const OPTIONS: [OptionInfo; 9] = [
-    BLEND,
-    POSITIONAL,
-    ITERATIONS,
-    ENERGY,
-    LOCAL_STEP,
-    LATTICE,
-    BASIS,
-    COORDINATES,
-    GRID,
-];
-
-/// The names an option takes, for the choices among named values (`None` for numbers, the
-/// lattice's `LxMxN` and the `positional` switch).
-pub fn option_values(name: &str) -> Option<Vec<&'static str>> {
-    use crate::deformers::arap::{ArapEnergy, LocalStep};
-    match name {
-        "blend" => Some(BlendMethod::names()),
-        "energy" => Some(ArapEnergy::names()),
-        "local-step" => Some(LocalStep::names()),
-        "basis" => Some(LatticeBasis::names()),
-        "coordinates" => Some(Coordinates::names()),
-        _ => None,
-    }
+/// One option and the methods it applies to.
+#[derive(Clone, Debug)]
+pub struct OptionInfo {
+    /// The option.
+    pub spec: &'static OptionSpec,
+    /// The methods it applies to.
+    pub methods: Vec<Method>,
 }
 
-/// ARAP iterations per pose the editor runs (from the last pose, once per frame).
-pub const ITERATIONS_PER_POSE: RangeInclusive<usize> = 1..=50;
-/// Control points per axis of an interactive lattice.
-pub const LATTICE_AXIS: RangeInclusive<usize> = 2..=8;
-/// At most this many control points in an interactive Bernstein lattice, where every point
-/// moves every vertex (B-splines blend at most `(degree + 1)^3` per vertex).
-pub const MAX_BERNSTEIN_POINTS: usize = 64;
-/// Harmonic grid nodes of an interactive cage.
-pub const GRID_NODES: RangeInclusive<usize> = 16..=64;
-/// ARAP iterations [`MethodSettings::args`] asks for: the editor iterates a few times per
-/// frame from the last frame and comes to rest once the drag stops, where a run from the rest
-/// pose needs many (ARAP's energy flattens long before its positions settle).
-pub const REPLAY_ARAP_ITERATIONS: usize = 1000;
+/// Every option: the blend, the positional form, then each method's own in [`Named::ALL`]'s
+/// order (an option two methods share is listed once, with both).
+pub fn all_options() -> Vec<OptionInfo> {
+    let methods = |f: fn(Method) -> bool| Method::ALL.iter().copied().filter(|m| f(*m)).collect();
+    let mut all = vec![
+        OptionInfo {
+            spec: &BLEND,
+            methods: methods(Method::blends),
+        },
+        OptionInfo {
+            spec: &POSITIONAL,
+            methods: methods(Method::controls),
+        },
+    ];
+    for &m in Method::ALL {
+        for spec in m.options() {
+            match all.iter_mut().find(|o| o.spec.name == spec.name) {
+                Some(o) => o.methods.push(m),
+                None => all.push(OptionInfo {
+                    spec,
+                    methods: vec![m],
+                }),
+            }
+        }
+    }
+    all
+}
 
-/// A method and every option it binds by. The interactive limits (the ranges above) are
-/// checked by the setters; [`Default`] is handles with the paper's log blend.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// The option of some method named `name` (not the blend or the positional form).
+fn method_option(name: &str) -> Option<&'static OptionSpec> {
+    Method::ALL
+        .iter()
+        .flat_map(|m| m.options())
+        .find(|o| o.name == name)
+}
+
+/// A method and every option it binds by. Each value is checked when it is set, alone by its
+/// [`OptionSpec`] and together by its method's [`super::MethodKind::check`]; an option not
+/// set has its default. [`Default`] is handles with the paper's log blend.
+#[derive(Clone, Debug, PartialEq)]
 pub struct MethodSettings {
     /// The method.
     pub method: Method,
@@ -133,18 +86,8 @@ pub struct MethodSettings {
     pub blend: BlendMethod,
     /// Lattices and cages: the positional form instead of `blend`.
     pub positional: bool,
-    /// ARAP iterations per pose.
-    pub iterations: usize,
-    /// ARAP's energy, local step and solver.
-    pub arap: ArapOptions,
-    /// Control points per axis of an FFD lattice.
-    pub lattice: [usize; 3],
-    /// The lattice's basis.
-    pub basis: LatticeBasis,
-    /// The cage's coordinates.
-    pub coordinates: Coordinates,
-    /// Harmonic coordinates' grid nodes along the cage's longest side.
-    pub grid: usize,
+    /// The options set, by name (any method's: they are kept when the method changes).
+    values: BTreeMap<&'static str, OptionValue>,
 }
 
 impl Default for MethodSettings {
@@ -153,29 +96,9 @@ impl Default for MethodSettings {
             method: Method::Handles,
             blend: BlendMethod::MotorLog,
             positional: false,
-            iterations: 2,
-            arap: ArapOptions::default(),
-            lattice: [4, 3, 3],
-            basis: LatticeBasis::Bernstein,
-            coordinates: Coordinates::MeanValue,
-            grid: 32,
+            values: BTreeMap::new(),
         }
     }
-}
-
-fn in_range(
-    option: &'static str,
-    value: usize,
-    range: &RangeInclusive<usize>,
-) -> Result<(), MethodError> {
-    if range.contains(&value) {
-        return Ok(());
-    }
-    Err(MethodError::OutOfRange {
-        option,
-        value: value.to_string(),
-        range: format!("{}..={}", range.start(), range.end()),
-    })
 }
 
 impl MethodSettings {
@@ -186,55 +109,46 @@ impl MethodSettings {
     }
 
     /// Set the option `name` from its text, as the program and the editor give it: a name
-    /// for the choices, a number, `LxMxN` for the lattice, `true`/`false` for `positional`.
+    /// for the choices, a number, `LxMxN` for a lattice, `true`/`false` for `positional`.
     /// Unchanged on an error.
     pub fn set(&mut self, name: &str, value: &str) -> Result<(), MethodError> {
-        let number = |option: &'static str| {
-            value.parse::<usize>().map_err(|_| MethodError::OutOfRange {
-                option,
-                value: value.to_string(),
-                range: "the whole numbers".into(),
-            })
-        };
-        match name {
-            "blend" => self.blend = BlendMethod::from_name(value)?,
-            "positional" => match value {
-                "true" | "false" => self.set_positional(value == "true")?,
+        self.set_all(&[(name, value)])
+    }
+
+    /// Set several options at once, checked together (a lattice's size and basis):
+    /// unchanged when any is refused.
+    pub fn set_all(&mut self, options: &[(&str, &str)]) -> Result<(), MethodError> {
+        let mut next = self.clone();
+        for &(name, text) in options {
+            match name {
+                "blend" => next.blend = BlendMethod::from_name(text)?,
+                "positional" => match POSITIONAL.parse(text)? {
+                    OptionValue::Switch(on) => next.set_positional(on)?,
+                    _ => unreachable!("a switch parses to a switch"),
+                },
                 _ => {
-                    return Err(MethodError::UnknownName {
-                        what: "positional switch",
-                        given: value.to_string(),
-                        expected: "true, false".into(),
-                    })
+                    let spec = method_option(name).ok_or_else(|| MethodError::UnknownName {
+                        what: "option",
+                        given: name.to_string(),
+                        expected: all_options()
+                            .iter()
+                            .map(|o| o.spec.name)
+                            .collect::<Vec<_>>()
+                            .join(", "),
+                    })?;
+                    next.values.insert(spec.name, spec.parse(text)?);
                 }
-            },
-            "iterations" => self.set_iterations(number("iterations")?)?,
-            "energy" => self.arap.energy = Named::from_name(value)?,
-            "local-step" => self.arap.local_step = Named::from_name(value)?,
-            "lattice" => {
-                let dims: Vec<usize> = value
-                    .split('x')
-                    .map(|n| n.parse().map_err(|_| ()))
-                    .collect::<Result<_, ()>>()
-                    .unwrap_or_default();
-                let dims: [usize; 3] = dims.try_into().map_err(|_| MethodError::OutOfRange {
-                    option: "lattice",
-                    value: value.to_string(),
-                    range: "LxMxN".into(),
-                })?;
-                self.set_lattice(dims, self.basis)?
-            }
-            "basis" => self.set_lattice(self.lattice, Named::from_name(value)?)?,
-            "coordinates" => self.coordinates = Named::from_name(value)?,
-            "grid" => self.set_grid(number("grid")?)?,
-            _ => {
-                return Err(MethodError::UnknownName {
-                    what: "option",
-                    given: name.to_string(),
-                    expected: OPTIONS.map(|o| o.name).join(", "),
-                })
             }
         }
+        for &m in Method::ALL {
+            if m.options()
+                .iter()
+                .any(|o| options.iter().any(|(n, _)| *n == o.name))
+            {
+                m.kind().check(&next)?;
+            }
+        }
+        *self = next;
         Ok(())
     }
 
@@ -249,40 +163,53 @@ impl MethodSettings {
         Ok(())
     }
 
-    /// ARAP iterations per pose, in [`ITERATIONS_PER_POSE`].
-    pub fn set_iterations(&mut self, k: usize) -> Result<(), MethodError> {
-        in_range("iterations per pose", k, &ITERATIONS_PER_POSE)?;
-        self.iterations = k;
-        Ok(())
+    /// The value of `option` (its default where none was set).
+    pub fn value(&self, option: &OptionSpec) -> OptionValue {
+        self.values
+            .get(option.name)
+            .copied()
+            .unwrap_or(option.default)
     }
 
-    /// The lattice and its basis: each axis in [`LATTICE_AXIS`], a Bernstein lattice of at
-    /// most [`MAX_BERNSTEIN_POINTS`].
-    pub fn set_lattice(
-        &mut self,
-        dims: [usize; 3],
-        basis: LatticeBasis,
-    ) -> Result<(), MethodError> {
-        for n in dims {
-            in_range("control points on a lattice axis", n, &LATTICE_AXIS)?;
-        }
-        let points: usize = dims.iter().product();
-        if basis == LatticeBasis::Bernstein && points > MAX_BERNSTEIN_POINTS {
-            return Err(MethodError::BernsteinTooLarge {
-                dims,
-                points,
-                max: MAX_BERNSTEIN_POINTS,
-            });
-        }
-        (self.lattice, self.basis) = (dims, basis);
-        Ok(())
+    /// The choice `option` names, as its type `T`.
+    pub fn choice<T: Named>(&self, option: &OptionSpec) -> T {
+        let named = |v: OptionValue| match v {
+            OptionValue::Name(n) => T::from_name(n).ok(),
+            _ => None,
+        };
+        named(self.value(option))
+            .or_else(|| named(option.default))
+            .unwrap_or(T::ALL[0])
     }
 
-    /// Harmonic grid nodes, in [`GRID_NODES`].
-    pub fn set_grid(&mut self, nodes: usize) -> Result<(), MethodError> {
-        in_range("harmonic grid nodes per side", nodes, &GRID_NODES)?;
-        self.grid = nodes;
-        Ok(())
+    /// The number `option` holds.
+    pub fn number(&self, option: &OptionSpec) -> usize {
+        match (self.value(option), option.default) {
+            (OptionValue::Number(n), _) | (_, OptionValue::Number(n)) => n,
+            _ => 0,
+        }
+    }
+
+    /// The points per axis `option` holds.
+    pub fn dims(&self, option: &OptionSpec) -> [usize; 3] {
+        match (self.value(option), option.default) {
+            (OptionValue::Dims(d), _) | (_, OptionValue::Dims(d)) => d,
+            _ => [0; 3],
+        }
+    }
+
+    /// Every option of every method with its value, in [`all_options`]' order (the blend and
+    /// the positional form left out: they are fields).
+    pub fn values(&self) -> Vec<(&'static str, OptionValue)> {
+        Method::ALL
+            .iter()
+            .flat_map(|m| m.options())
+            .fold(Vec::new(), |mut all, o| {
+                if !all.iter().any(|(n, _)| *n == o.name) {
+                    all.push((o.name, self.value(o)));
+                }
+                all
+            })
     }
 
     /// The form lattices and cages pose in.
@@ -294,64 +221,30 @@ impl MethodSettings {
         }
     }
 
-    /// The cage coordinates these settings name.
-    pub fn cage_coordinates(&self) -> CageCoordinates {
-        match self.coordinates {
-            Coordinates::MeanValue => CageCoordinates::MeanValue,
-            Coordinates::Harmonic => CageCoordinates::Harmonic(HarmonicGrid {
-                resolution: self.grid,
-            }),
-        }
-    }
-
     /// Whether going from `self` to `next` needs the weights bound again; `false` where only
     /// the blend changed (or an option the method does not use).
     pub fn rebinds_for(&self, next: &MethodSettings) -> bool {
         let m = next.method;
         m != self.method
             || next.positional != self.positional
-            || m == Method::Arap && (next.iterations != self.iterations || next.arap != self.arap)
-            || m == Method::Ffd && (next.lattice, next.basis) != (self.lattice, self.basis)
-            || m == Method::Cage && (next.coordinates, next.grid) != (self.coordinates, self.grid)
+            || m.options().iter().any(|o| next.value(o) != self.value(o))
     }
 
     /// The program's flags that bind this method the same way (the subcommand is
-    /// [`Method`]'s name), each option printed by its name from [`OPTIONS`]. ARAP asks for
-    /// [`REPLAY_ARAP_ITERATIONS`]; options at their defaults are printed too, except a lattice's
-    /// Bernstein basis and a cage's mean value coordinates.
+    /// [`Method`]'s name): every option of the method by its name and value (its
+    /// [`OptionSpec::replay`] value where it has one), then the positional form or the blend.
     pub fn args(&self) -> Vec<String> {
         let mut a: Vec<String> = Vec::new();
-        let mut flag = |o: OptionInfo, v: String| {
+        for o in self.method.options() {
+            let value = o.replay.unwrap_or(self.value(o));
             a.push(format!("--{}", o.name));
-            if !v.is_empty() {
-                a.push(v);
-            }
-        };
-        match self.method {
-            Method::Arap => {
-                flag(ENERGY, self.arap.energy.name().into());
-                flag(LOCAL_STEP, self.arap.local_step.name().into());
-                flag(ITERATIONS, REPLAY_ARAP_ITERATIONS.to_string());
-            }
-            Method::Ffd => {
-                let [l, m, n] = self.lattice;
-                flag(LATTICE, format!("{l}x{m}x{n}"));
-                if self.basis != LatticeBasis::Bernstein {
-                    flag(BASIS, Named::name(self.basis).into());
-                }
-            }
-            Method::Cage => {
-                if self.coordinates != Coordinates::MeanValue {
-                    flag(COORDINATES, self.coordinates.name().into());
-                    flag(GRID, self.grid.to_string());
-                }
-            }
-            Method::Handles | Method::Spline => {}
+            a.push(value.to_string());
         }
         if self.positional {
-            flag(POSITIONAL, String::new());
+            a.push(format!("--{}", POSITIONAL.name));
         } else if self.method.blends() {
-            flag(BLEND, self.blend.name().into());
+            a.push(format!("--{}", BLEND.name));
+            a.push(self.blend.name().into());
         }
         a
     }
@@ -360,6 +253,10 @@ impl MethodSettings {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::deformers::arap::{ArapEnergy, ArapOptions, LocalStep};
+    use crate::deformers::ffd::LatticeBasis;
+    use crate::methods::kinds::{arap, cage, ffd};
+    use crate::methods::named::Coordinates;
 
     #[test]
     fn every_option_name_is_set_by_name() {
@@ -380,18 +277,48 @@ mod tests {
         ] {
             s.set(name, value).unwrap();
         }
-        assert_eq!(OPTIONS.len(), 9);
+        assert_eq!(all_options().len(), 9);
         assert_eq!(s.blend, BlendMethod::DualQuaternion);
         assert!(s.positional);
-        assert_eq!((s.iterations, s.grid, s.lattice), (7, 20, [3, 3, 3]));
-        assert_eq!(s.basis, LatticeBasis::BSpline(2));
-        assert_eq!(s.coordinates, Coordinates::Harmonic);
+        let (iterations, grid) = (s.number(&arap::ITERATIONS), s.number(&cage::GRID));
+        assert_eq!(
+            (iterations, grid, s.dims(&ffd::LATTICE)),
+            (7, 20, [3, 3, 3])
+        );
+        assert_eq!(
+            s.choice::<LatticeBasis>(&ffd::BASIS),
+            LatticeBasis::BSpline(2)
+        );
+        assert_eq!(
+            s.choice::<Coordinates>(&cage::COORDINATES),
+            Coordinates::Harmonic
+        );
+        assert_eq!(s.choice::<ArapEnergy>(&arap::ENERGY), ArapEnergy::Spokes);
+        assert_eq!(s.choice::<LocalStep>(&arap::LOCAL_STEP), LocalStep::Svd);
+    }
+
+    #[test]
+    fn every_default_is_a_value_its_option_takes() {
+        for o in all_options() {
+            let d = o.spec.default;
+            assert_eq!(o.spec.parse(&d.to_string()).unwrap(), d, "{}", o.spec.name);
+            assert!(!o.methods.is_empty(), "{}", o.spec.name);
+        }
+        // The defaults are the library's own.
+        let s = MethodSettings::default();
+        let library = ArapOptions::default();
+        assert_eq!(s.choice::<ArapEnergy>(&arap::ENERGY), library.energy);
+        assert_eq!(s.choice::<LocalStep>(&arap::LOCAL_STEP), library.local_step);
+        assert_eq!(
+            BlendMethod::from_name(&BLEND.default.to_string()).unwrap(),
+            s.blend
+        );
     }
 
     #[test]
     fn bad_values_leave_the_settings_as_they_were() {
         let s0 = MethodSettings::default();
-        let mut s = s0;
+        let mut s = s0.clone();
         for (name, value) in [
             ("iterations", "0"),
             ("iterations", "51"),
@@ -407,21 +334,47 @@ mod tests {
             assert!(s.set(name, value).is_err(), "{name} {value}");
             assert_eq!(s, s0);
         }
-        // A B-spline basis takes the 125 points a Bernstein lattice may not.
-        s.set("basis", "bspline-3").unwrap();
-        s.set("lattice", "5x5x5").unwrap();
+        // A B-spline basis takes the 125 points a Bernstein lattice may not, set together or
+        // one after the other; back to Bernstein is refused.
+        s.set_all(&[("lattice", "5x5x5"), ("basis", "bspline-3")])
+            .unwrap();
+        let s1 = s.clone();
+        assert!(s.set("basis", "bernstein").is_err());
+        assert_eq!(s, s1);
+        s.set("lattice", "4x4x4").unwrap();
+        s.set("basis", "bernstein").unwrap();
     }
 
     #[test]
     fn only_options_the_method_uses_rebind() {
         let s = MethodSettings::default();
-        let mut blend = s;
+        let mut blend = s.clone();
         blend.blend = BlendMethod::Matrix;
         assert!(!s.rebinds_for(&blend));
-        let mut energy = s;
-        energy.arap.energy = crate::deformers::arap::ArapEnergy::Spokes;
+        let mut energy = s.clone();
+        energy.set("energy", "spokes").unwrap();
         assert!(!s.rebinds_for(&energy), "handles do not use ARAP's energy");
         energy.method = Method::Arap;
         assert!(s.rebinds_for(&energy));
+    }
+
+    #[test]
+    fn args_print_every_option_of_the_method() {
+        let mut s = MethodSettings::default();
+        s.set_method(Method::Ffd);
+        s.set("lattice", "5x3x2").unwrap();
+        assert_eq!(
+            s.args().join(" "),
+            "--lattice 5x3x2 --basis bernstein --blend motor-log"
+        );
+        s.set_method(Method::Arap);
+        let replayed = "--iterations 1000 --energy spokes-and-rims --local-step rotor";
+        assert_eq!(s.args().join(" "), replayed);
+        s.set_method(Method::Cage);
+        s.set_positional(true).unwrap();
+        assert_eq!(
+            s.args().join(" "),
+            "--coordinates mean-value --grid 32 --positional"
+        );
     }
 }

@@ -146,7 +146,7 @@ try {
   await page.fill('#lattice-x', '6');
   await page.dispatchEvent('#lattice-x', 'change');
   await page.selectOption('#basis', 'bspline-2');
-  await until(page, () => editor.state && editor.state.control.basis === 'bspline-2' && editor.state.controls.points.length === 54, null, 'the 6x3x3 B-spline lattice');
+  await until(page, () => editor.state && editor.state.options.basis === 'bspline-2' && editor.state.controls.points.length === 54, null, 'the 6x3x3 B-spline lattice');
   await settled(page);
   check(await page.evaluate(() => editor.groups.length) === 54, 'the page keeps a gizmo per point of the new lattice');
   await shot('lattice-6x3x3');

@@ -120,7 +120,7 @@ fn lattice_size_basis_and_cage_coordinates_are_chosen_from_the_page() {
     ] {
         c.send(
             json!({"op": "method", "method": "ffd", "blend": "motor-log",
-            "controls": {"lattice": dims, "basis": basis}}),
+            "options": {"lattice": dims, "basis": basis}}),
         );
         let s = check(&mut c, dims.iter().product(), &|keys| {
             let options = FfdOptions {
@@ -132,12 +132,11 @@ fn lattice_size_basis_and_cage_coordinates_are_chosen_from_the_page() {
             ffd.pose(keys, &mut want).unwrap();
             want
         });
-        assert_eq!(s["control"]["lattice"], json!(dims));
-        assert_eq!(s["control"]["basis"], basis);
+        assert_eq!(s["options"]["lattice"], json!(dims));
+        assert_eq!(s["options"]["basis"], basis);
     }
-    // Refused: an axis out of range, a dense Bernstein lattice, unknown names; the session
-    // keeps its 8x4x4 B-spline lattice. (An unknown option is a malformed message: it closes
-    // the connection, as `hostile.rs` checks for every request.)
+    // Refused: an axis out of range, a dense Bernstein lattice, unknown names and options, a
+    // value of the wrong shape; the session keeps its 8x4x4 B-spline lattice.
     for bad in [
         json!({"lattice": [1, 3, 3]}),
         json!({"lattice": [9, 3, 3]}),
@@ -145,15 +144,19 @@ fn lattice_size_basis_and_cage_coordinates_are_chosen_from_the_page() {
         json!({"basis": "bspline-4"}),
         json!({"coordinates": "green"}),
         json!({"grid": 4}),
+        json!({"colour": "red"}),
+        json!({"lattice": [4, 4]}),
+        json!({"lattice": [4.5, 4, 4]}),
+        json!({"grid": {"nodes": 24}}),
     ] {
-        c.send(json!({"op": "method", "method": "ffd", "blend": "motor-log", "controls": bad}));
+        c.send(json!({"op": "method", "method": "ffd", "blend": "motor-log", "options": bad}));
         let e = c.error();
         assert!(!e.is_empty(), "{bad} refused");
         // The same method without options: the state as it was.
         c.send(json!({"op": "method", "method": "ffd", "blend": "motor-log"}));
         let s = c.state();
-        assert_eq!(s["control"]["lattice"], json!([8, 4, 4]), "{bad}: {e}");
-        assert_eq!(s["control"]["basis"], "bspline-3", "{bad}: {e}");
+        assert_eq!(s["options"]["lattice"], json!([8, 4, 4]), "{bad}: {e}");
+        assert_eq!(s["options"]["basis"], "bspline-3", "{bad}: {e}");
         assert_eq!(s["controls"]["points"].as_array().unwrap().len(), 128);
     }
     // The cage with harmonic coordinates on a 24-node grid.
@@ -161,7 +164,7 @@ fn lattice_size_basis_and_cage_coordinates_are_chosen_from_the_page() {
     c.state();
     c.send(
         json!({"op": "method", "method": "cage", "blend": "motor-log",
-        "controls": {"coordinates": "harmonic", "grid": 24}}),
+        "options": {"coordinates": "harmonic", "grid": 24}}),
     );
     let mut cage = tube(1.6, 12.0, 4, 6);
     cage.positions.iter_mut().for_each(|p| p.x -= 1.0);
@@ -175,6 +178,6 @@ fn lattice_size_basis_and_cage_coordinates_are_chosen_from_the_page() {
         d.pose(keys, &mut want).unwrap();
         want
     });
-    assert_eq!(s["control"]["coordinates"], "harmonic");
-    assert_eq!(s["control"]["grid"], 24);
+    assert_eq!(s["options"]["coordinates"], "harmonic");
+    assert_eq!(s["options"]["grid"], 24);
 }

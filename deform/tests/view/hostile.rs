@@ -120,7 +120,7 @@ fn refused_requests_are_errors_and_the_session_goes_on() {
             "no method",
         ),
         (
-            json!({"op": "method", "method": "arap", "blend": "motor-log", "iterations": 0}),
+            json!({"op": "method", "method": "arap", "blend": "motor-log", "options": {"iterations": 0}}),
             "iterations",
         ),
         (
@@ -230,7 +230,7 @@ fn mutated_requests_never_stop_the_server() {
         json!({"op": "paint", "origin": [0, 0, 5], "direction": [0, 0, -1], "radius": 0.2, "group": 1}),
         json!({"op": "bind"}),
         json!({"op": "motors", "seq": 1, "motors": [{}, {"scale": 1.2, "center": [0, 1, 0]}, {"rotate": {"axis": [1, 0, 0], "degrees": 30}}]}),
-        json!({"op": "method", "method": "arap", "blend": "motor-linear", "iterations": 2}),
+        json!({"op": "method", "method": "arap", "blend": "motor-linear", "options": {"iterations": 2}}),
         json!({"op": "field", "name": "harmonic", "group": 1}),
         json!({"op": "export", "what": "motors"}),
         json!({"op": "load", "what": "selection", "text": "{\"0\": [1, 2, 3], \"1\": [40, 41]}"}),

@@ -393,12 +393,15 @@ fn arap_energy_and_local_step_are_the_library_options() {
     c.send(json!({"op": "motors", "seq": 1, "motors": [{}, end]}));
     c.positions(1);
     c.send(
-        json!({"op": "method", "method": "arap", "blend": "motor-log", "iterations": 3,
-        "energy": "spokes", "local_step": "svd"}),
+        json!({"op": "method", "method": "arap", "blend": "motor-log", "options":
+        {"iterations": 3, "energy": "spokes", "local-step": "svd"}}),
     );
     let s = c.state();
     assert_eq!(
-        (s["energy"].as_str(), s["local_step"].as_str()),
+        (
+            s["options"]["energy"].as_str(),
+            s["options"]["local-step"].as_str()
+        ),
         (Some("spokes"), Some("svd"))
     );
     // The rebind poses the current motors from the rest pose.
@@ -423,7 +426,7 @@ fn arap_energy_and_local_step_are_the_library_options() {
     )
     .unwrap();
     assert!(worst(&got, &out) <= 1e-12, "{}", worst(&got, &out));
-    c.send(json!({"op": "method", "method": "arap", "blend": "motor-log", "energy": "elastic"}));
+    c.send(json!({"op": "method", "method": "arap", "blend": "motor-log", "options": {"energy": "elastic"}}));
     assert!(c.error().contains("no ARAP energy"));
 }
 

@@ -114,7 +114,7 @@ fn the_replay_line_poses_the_exported_files_as_the_server_posed_them() {
 
     // ARAP: the page iterates twice per frame from the last frame; after enough frames of one
     // drag it rests where the CLI's run to convergence ends.
-    c.send(json!({"op": "method", "method": "arap", "blend": "motor-log", "iterations": 50}));
+    c.send(json!({"op": "method", "method": "arap", "blend": "motor-log", "options": {"iterations": 50}}));
     let s = c.state();
     let mut got = pose(&mut c, &specs);
     for _ in 0..20 {
@@ -129,7 +129,7 @@ fn the_replay_line_poses_the_exported_files_as_the_server_posed_them() {
     c.state();
     c.send(
         json!({"op": "method", "method": "ffd", "blend": "motor-linear",
-        "controls": {"lattice": [5, 3, 3], "basis": "bspline-2"}}),
+        "options": {"lattice": [5, 3, 3], "basis": "bspline-2"}}),
     );
     let s = c.state();
     let bar = deform::mesh::shapes::tube(1.0, 10.0, 16, 41).positions;
@@ -158,7 +158,7 @@ fn the_replay_line_poses_the_exported_files_as_the_server_posed_them() {
     c.state();
     c.send(
         json!({"op": "method", "method": "cage", "blend": "positional",
-        "controls": {"coordinates": "harmonic", "grid": 24}}),
+        "options": {"coordinates": "harmonic", "grid": 24}}),
     );
     let s = c.state();
     assert!(s["replay"].as_str().unwrap().contains("--grid 24"));

@@ -148,14 +148,17 @@ mod method_flags {
     //! the same settings.
     use super::{Cli, Command};
     use clap::Parser;
-    use deform::deformers::ffd::LatticeBasis;
-    use deform::methods::named::{Coordinates, Named};
+    use deform::methods::named::Named;
     use deform::methods::{Method, MethodSettings};
     use deform::BlendMethod;
 
-    /// The settings a parsed command binds by (the fields its method uses).
+    /// The settings a parsed command binds by (the options its method uses).
     fn settings_of(c: &Command) -> MethodSettings {
         let mut s = MethodSettings::default();
+        let mut set = |s: &mut MethodSettings, name: &str, value: String| {
+            s.set(name, &value)
+                .unwrap_or_else(|e| panic!("{name} {value}: {e}"));
+        };
         match c {
             Command::Handles(a) => s.blend = a.blending.blend,
             Command::Spline(a) => {
@@ -164,16 +167,23 @@ mod method_flags {
             }
             Command::Arap(a) => {
                 s.set_method(Method::Arap);
-                (s.arap.energy, s.arap.local_step) = (a.energy, a.local_step);
+                set(&mut s, "energy", a.energy.name().into());
+                set(&mut s, "local-step", a.local_step.name().into());
+                // The replayed run from rest: more iterations than the editor's per frame.
+                assert_eq!(a.iterations, Some(1000));
             }
             Command::Ffd(a) => {
                 s.set_method(Method::Ffd);
-                (s.lattice, s.basis) = (a.lattice, a.basis);
+                let [l, m, n] = a.lattice;
+                let lattice = format!("{l}x{m}x{n}");
+                s.set_all(&[("lattice", &lattice), ("basis", Named::name(a.basis))])
+                    .unwrap();
                 (s.blend, s.positional) = (a.form.blend, a.form.positional);
             }
             Command::Cage(a) => {
                 s.set_method(Method::Cage);
-                (s.coordinates, s.grid) = (a.coordinates, a.grid);
+                set(&mut s, "coordinates", a.coordinates.name().into());
+                set(&mut s, "grid", a.grid.to_string());
                 (s.blend, s.positional) = (a.form.blend, a.form.positional);
             }
             other => panic!("not a method: {other:?}"),
@@ -181,18 +191,15 @@ mod method_flags {
         s
     }
 
-    /// The fields `method` uses.
+    /// What `method` uses of the settings: the blend (where it blends), the positional form
+    /// and every option of its own but those replayed with another value.
     fn used(s: &MethodSettings) -> String {
         let blend = (!s.positional && s.method.blends()).then_some(s.blend);
-        match s.method {
-            Method::Handles | Method::Spline => format!("{blend:?}"),
-            Method::Arap => format!("{:?} {:?}", s.arap.energy, s.arap.local_step),
-            Method::Ffd => format!("{blend:?} {} {:?} {:?}", s.positional, s.lattice, s.basis),
-            Method::Cage => {
-                let grid = (s.coordinates == Coordinates::Harmonic).then_some(s.grid);
-                format!("{blend:?} {} {:?} {grid:?}", s.positional, s.coordinates)
-            }
-        }
+        let options: Vec<String> = (s.method.options().iter())
+            .filter(|o| o.replay.is_none())
+            .map(|o| format!("{}={}", o.name, s.value(o)))
+            .collect();
+        format!("{blend:?} {} {}", s.positional, options.join(" "))
     }
 
     #[test]
@@ -212,10 +219,12 @@ mod method_flags {
                         s.set("local-step", "svd").unwrap();
                         s.set("coordinates", "harmonic").unwrap();
                         s.set("grid", "24").unwrap();
-                        s.set_lattice([5, 3, 2], LatticeBasis::BSpline(2)).unwrap();
+                        s.set_all(&[("lattice", "5x3x2"), ("basis", "bspline-2")])
+                            .unwrap();
                     }
                     if variant == 3 {
-                        s.set_lattice([2, 3, 4], LatticeBasis::Bernstein).unwrap();
+                        s.set_all(&[("lattice", "2x3x4"), ("basis", "bernstein")])
+                            .unwrap();
                     }
                     let mut argv = vec!["deform".to_string(), method.name().into(), "m.obj".into()];
                     for (flag, what) in method.inputs() {

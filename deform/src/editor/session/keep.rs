@@ -8,7 +8,6 @@ use crate::editor::protocol::{Frame, Reply};
 use crate::input::{parse_group_motors, parse_selection_json, MotorSpec};
 use crate::mesh::Mesh;
 use crate::methods::scenes::Scene;
-use crate::methods::Method;
 
 impl Session {
     /// A file of the current state.
@@ -26,8 +25,8 @@ impl Session {
                 obj(&Mesh::new(self.posed.clone(), self.mesh.triangles.clone()))?,
             ),
             "rest" => (name, obj(&self.mesh)?),
-            "cage" => match (&self.cage, self.settings.method) {
-                (Some(cage), Method::Cage) => (name, obj(cage)?),
+            "cage" => match &self.cage {
+                Some(cage) if self.settings.method.reads("cage") => (name, obj(cage)?),
                 _ => bail!("cage: the method is not a cage"),
             },
             "motors" => {

@@ -1,32 +1,50 @@
-//! Choosing the method of a mesh scene: the method, its blend, ARAP's options and the lattice
-//! and cage options, all checked (by the library's [`MethodSettings`]) before any is taken;
-//! then a rebind, or only a re-blend when the weights stay.
+//! Choosing the method of a mesh scene: the method, its blend and its options, all checked
+//! (by the library's [`MethodSettings`]) before any is taken; then a rebind, or only a
+//! re-blend when the weights stay.
 
 use super::{Out, Session};
 use crate::blend::BlendMethod;
 use crate::editor::error::{bail, Result};
-use crate::editor::protocol::ControlRequest;
 use crate::methods::named::Named;
 use crate::methods::{Method, MethodSettings};
+use serde_json::Value;
+use std::collections::BTreeMap;
 
-/// ARAP's energy and local step, and the lattice and cage options, as a request gives them.
-pub(in crate::editor) type MethodOptions<'a> =
-    (Option<&'a str>, Option<&'a str>, Option<&'a ControlRequest>);
+/// An option's value as a request gives it, as the program's flag takes it: a name, a
+/// number, `[l, m, n]` as `LxMxN`, a boolean.
+fn option_text(name: &str, value: &Value) -> Result<String> {
+    let dims = |v: &Vec<Value>| -> Option<String> {
+        let n: Option<Vec<String>> = v
+            .iter()
+            .map(|x| x.as_u64().map(|n| n.to_string()))
+            .collect();
+        n.map(|n| n.join("x"))
+    };
+    Ok(match value {
+        Value::String(s) => s.clone(),
+        Value::Number(n) => n.to_string(),
+        Value::Bool(b) => b.to_string(),
+        Value::Array(v) => match dims(v) {
+            Some(text) => text,
+            None => bail!("{name}: [{}] is not whole numbers", v.len()),
+        },
+        _ => bail!("{name}: {value} is not a name, number or [l, m, n]"),
+    })
+}
 
 impl Session {
-    /// A new method, blend (or `positional` for lattices and cages), ARAP iterations per frame
-    /// and `options`: rebinds when the weights change, else only re-blends. Nothing changes
-    /// when any of them is refused.
+    /// A new method, blend (or `positional` for lattices and cages) and `options`: rebinds
+    /// when the weights change, else only re-blends. Nothing changes when any of them is
+    /// refused.
     pub(super) fn set_method(
         &mut self,
         method: &str,
         blend: &str,
-        iterations: Option<usize>,
-        (energy, local_step, controls): MethodOptions,
+        options: &BTreeMap<String, Value>,
     ) -> Result<Vec<Out>> {
-        let mut next: MethodSettings = self.settings;
+        let mut next: MethodSettings = self.settings.clone();
         next.set_method(Method::from_name(method)?);
-        if next.method == Method::Cage && self.cage.is_none() {
+        if next.method.reads("cage") && self.cage.is_none() {
             bail!("this scene has no cage (the demo's \"cage\" scene has one)");
         }
         if blend == "positional" {
@@ -35,32 +53,18 @@ impl Session {
             next.positional = false;
             next.blend = BlendMethod::from_name(blend)?;
         }
-        if let Some(k) = iterations {
-            next.set_iterations(k)?;
-        }
-        for (name, value) in [("energy", energy), ("local-step", local_step)] {
-            if let Some(v) = value {
-                next.set(name, v)?;
-            }
-        }
-        if let Some(r) = controls {
-            let basis = match &r.basis {
-                Some(b) => Named::from_name(b)?,
-                None => next.basis,
-            };
-            next.set_lattice(r.lattice.unwrap_or(next.lattice), basis)?;
-            if let Some(c) = &r.coordinates {
-                next.set("coordinates", c)?;
-            }
-            if let Some(g) = r.grid {
-                next.set_grid(g)?;
-            }
-        }
+        let texts: Vec<(&str, String)> = options
+            .iter()
+            .map(|(name, v)| Ok((name.as_str(), option_text(name, v)?)))
+            .collect::<Result<_>>()?;
+        let pairs: Vec<(&str, &str)> = texts.iter().map(|(n, t)| (*n, t.as_str())).collect();
+        next.set_all(&pairs)?;
         let rebind = self.settings.rebinds_for(&next);
         let reblend = next.blend != self.settings.blend;
+        let blend = next.blend;
         self.settings = next;
         if !rebind && reblend {
-            return self.reblend(next.blend);
+            return self.reblend(blend);
         }
         self.bind()
     }

@@ -61,8 +61,9 @@ impl Session {
     /// The spline's keys as the CLI's `--keys` takes them: each group's motor after the
     /// translation to its centre (the rest key), as one motor.
     pub(super) fn spline_keys(&self) -> Result<(Vec<MotorSpec>, Vec<MotorSpec>)> {
-        if !matches!(self.bound, BoundMethod::Spline { .. }) {
-            bail!("keys: the method is not the spline (or it has fewer than two groups)");
+        let bound = matches!(self.bound, BoundMethod::Bound(_));
+        if !self.settings.method.reads("keys") || !bound {
+            bail!("keys: the method takes no keys (or it has too few groups to bind)");
         }
         if self.stale || self.specs.len() != self.groups.len() {
             bail!("keys: the groups changed since the last bind (bind first)");

@@ -2,9 +2,8 @@
 
 use super::{Out, Session, NONE};
 use crate::blend::BlendMethod;
-use crate::editor::protocol::{ControlInfo, ControlsInfo, Frame, GroupInfo, Reply, StateInfo};
+use crate::editor::protocol::{ControlsInfo, Frame, GroupInfo, OptionSpecInfo, Reply, StateInfo};
 use crate::editor::rig_edit::RigEdit;
-use crate::methods::bound::BoundMethod;
 use crate::methods::named::Named;
 use crate::methods::Method;
 
@@ -15,11 +14,7 @@ impl Session {
             return vec!["displacement", "dqs-difference", "piece", "made"];
         }
         let mut f = vec!["displacement", "group"];
-        match self.bound {
-            BoundMethod::Handles { .. } => f.push("harmonic"),
-            BoundMethod::Spline { .. } => f.push("lambda"),
-            _ => {}
-        }
+        f.extend(self.bound.fields());
         f
     }
 
@@ -38,13 +33,11 @@ impl Session {
                 .iter()
                 .map(|&g| if g == NONE { -1.0 } else { g as f64 })
                 .collect(),
-            ("harmonic", BoundMethod::Handles { handles, .. }, _) => {
-                let j = self.field.group.min(self.groups.len().saturating_sub(1));
-                (0..n).map(|i| handles.coordinate(i, j)).collect()
-            }
-            ("lambda", BoundMethod::Spline { spline, .. }, _) => spline.lambda().to_vec(),
             (name, _, Some(rig)) => rig.field(name, &self.posed)?,
-            _ => displacement(),
+            (name, bound, None) => match bound.field(name, self.field.group) {
+                Some(values) => values,
+                None => displacement(),
+            },
         };
         Some(Out::Binary(Frame::field(&values)))
     }
@@ -59,7 +52,7 @@ impl Session {
             method: self.method_name().into(),
             methods: Method::ALL
                 .iter()
-                .filter(|m| **m != Method::Cage || self.cage.is_some())
+                .filter(|m| !m.reads("cage") || self.cage.is_some())
                 .map(|m| m.name())
                 .collect(),
             blend: if self.settings.positional {
@@ -81,10 +74,11 @@ impl Session {
                 points: c.points.iter().map(|p| p.to_array()).collect(),
                 edges: c.edges.clone(),
             }),
-            control: ControlInfo::of(&self.settings),
-            iterations: self.settings.iterations,
-            energy: self.settings.arap.energy.name(),
-            local_step: self.settings.arap.local_step.name(),
+            options: self.settings.values().into_iter().collect(),
+            option_specs: (self.settings.method.options().iter())
+                .map(OptionSpecInfo::of)
+                .collect(),
+            inputs: self.settings.method.inputs().iter().map(|i| i.1).collect(),
             groups: self
                 .groups
                 .iter()

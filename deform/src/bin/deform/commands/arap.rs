@@ -13,7 +13,7 @@ use anyhow::{bail, Context, Result};
 use clap::Args;
 use deform::deformers::arap::{Arap, ArapEnergy, ArapOptions, LocalStep, Stop, Targets};
 use deform::input::parse_group_motors;
-use deform::methods::settings;
+use deform::methods::kinds::arap::{ENERGY, ITERATIONS, LOCAL_STEP};
 use deform::render::preview::{Look, POSED_INK, REST_INK, TOOL_INK};
 use deform::render::tools::centroid;
 use std::path::PathBuf;
@@ -31,16 +31,16 @@ pub struct ArapArgs {
     /// with a motor are handles moved rigidly by it; the other groups stay fixed.
     #[arg(long)]
     pub motors: PathBuf,
-    #[arg(long = settings::ENERGY.name, help = settings::ENERGY.help,
+    #[arg(long = ENERGY.name, help = ENERGY.help,
           value_parser = named::<ArapEnergy>(), default_value = "spokes-and-rims")]
     pub energy: ArapEnergy,
     /// Iterations from the rest pose (10 unless --tolerance is given).
-    #[arg(long = settings::ITERATIONS.name, conflicts_with = "tolerance")]
+    #[arg(long = ITERATIONS.name, conflicts_with = "tolerance")]
     pub iterations: Option<usize>,
     /// Iterate until the energy's relative change is at most this (at most 1000 iterations).
     #[arg(long, value_parser = crate::numbers::non_negative)]
     pub tolerance: Option<f64>,
-    #[arg(long = settings::LOCAL_STEP.name, help = settings::LOCAL_STEP.help,
+    #[arg(long = LOCAL_STEP.name, help = LOCAL_STEP.help,
           value_parser = named::<LocalStep>(), default_value = "rotor")]
     pub local_step: LocalStep,
     #[command(flatten)]

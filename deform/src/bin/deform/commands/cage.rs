@@ -12,8 +12,8 @@ use anyhow::{Context, Result};
 use clap::Args;
 use deform::deformers::cage::{CageCoordinates, CageDeformer, CageOptions, HarmonicGrid};
 use deform::input::parse_group_motors;
+use deform::methods::kinds::cage::{COORDINATES, GRID};
 use deform::methods::named::{Coordinates, Named};
-use deform::methods::settings;
 use deform::render::preview::{Look, POSED_INK, REST_INK};
 use deform::render::tools::{mesh_edges, moved};
 use std::path::PathBuf;
@@ -26,10 +26,10 @@ pub struct CageArgs {
     /// The closed triangle cage around it.
     #[arg(long)]
     pub cage: PathBuf,
-    #[arg(long = settings::COORDINATES.name, help = settings::COORDINATES.help,
+    #[arg(long = COORDINATES.name, help = COORDINATES.help,
           value_parser = named::<Coordinates>(), default_value = "mean-value")]
     pub coordinates: Coordinates,
-    #[arg(long = settings::GRID.name, help = settings::GRID.help, default_value_t = 64)]
+    #[arg(long = GRID.name, help = GRID.help, default_value_t = 64)]
     pub grid: usize,
     /// Accept a cage whose faces cross each other (refused by default).
     #[arg(long)]

@@ -11,7 +11,7 @@ use anyhow::{Context, Result};
 use clap::Args;
 use deform::deformers::ffd::{Ffd, FfdOptions, LatticeBasis};
 use deform::input::parse_group_motors;
-use deform::methods::settings;
+use deform::methods::kinds::ffd::{BASIS, LATTICE};
 use deform::render::preview::{Look, POSED_INK, REST_INK};
 use deform::render::tools::{lattice, moved};
 use glam::DVec3;
@@ -22,10 +22,10 @@ use std::time::Instant;
 pub struct FfdArgs {
     /// The mesh (OBJ, OFF or MEDIT).
     pub mesh: PathBuf,
-    #[arg(long = settings::LATTICE.name, help = settings::LATTICE.help,
+    #[arg(long = LATTICE.name, help = LATTICE.help,
           value_parser = crate::numbers::dims)]
     pub lattice: [usize; 3],
-    #[arg(long = settings::BASIS.name, help = settings::BASIS.help,
+    #[arg(long = BASIS.name, help = BASIS.help,
           value_parser = named::<LatticeBasis>(), default_value = "bernstein")]
     pub basis: LatticeBasis,
     /// The lattice box MINX,MINY,MINZ,MAXX,MAXY,MAXZ (default: the mesh's bounding box).

@@ -1,6 +1,6 @@
 //! `deform pose METHOD MESH`: any method of the library's catalogue by its name, bound and
 //! posed as the editor does (`deform::methods::BoundMethod`); its option flags are made from
-//! the library's description ([`settings::OPTIONS`]) and parsed by it
+//! the library's description ([`deform::methods::settings::all_options`]) and parsed by it
 //! ([`MethodSettings::set`]), so a method added to the library is a method here too.
 
 use crate::finish::{displacement, finish};
@@ -14,7 +14,8 @@ use clap::{Arg, ArgAction, ArgMatches, Args, Command, FromArgMatches};
 use deform::input::parse_group_motors;
 use deform::methods::bound::{BoundMethod, HarmonicCache};
 use deform::methods::named::Named;
-use deform::methods::settings::{self, option_values, OPTIONS};
+use deform::methods::option::OptionKind;
+use deform::methods::settings::all_options;
 use deform::methods::{Method, MethodSettings};
 use deform::render::preview::{Look, POSED_INK, REST_INK};
 use deform::render::tools::{edges, moved};
@@ -52,13 +53,14 @@ pub struct MethodFlags(pub Vec<(&'static str, String)>);
 impl FromArgMatches for MethodFlags {
     fn from_arg_matches(m: &ArgMatches) -> Result<Self, clap::Error> {
         let mut given = Vec::new();
-        for o in OPTIONS {
-            if o.name == settings::POSITIONAL.name {
-                if m.get_flag(o.name) {
-                    given.push((o.name, "true".to_string()));
+        for o in all_options() {
+            let name = o.spec.name;
+            if let OptionKind::Switch = o.spec.kind {
+                if m.get_flag(name) {
+                    given.push((name, "true".to_string()));
                 }
-            } else if let Some(v) = m.get_one::<String>(o.name) {
-                given.push((o.name, v.clone()));
+            } else if let Some(v) = m.get_one::<String>(name) {
+                given.push((name, v.clone()));
             }
         }
         Ok(MethodFlags(given))
@@ -72,19 +74,19 @@ impl FromArgMatches for MethodFlags {
 
 impl Args for MethodFlags {
     fn augment_args(mut cmd: Command) -> Command {
-        for o in OPTIONS {
+        for o in all_options() {
             let methods: Vec<&str> = o.methods.iter().map(|m| m.name()).collect();
-            let help = format!("{} ({})", o.help, methods.join(", "));
-            let mut arg = Arg::new(o.name).long(o.name).help(help);
-            arg = if o.name == settings::POSITIONAL.name {
-                arg.action(ArgAction::SetTrue)
-            } else {
-                match option_values(o.name) {
-                    Some(values) => arg.value_parser(PossibleValuesParser::new(values)),
-                    None => arg.value_name("N"),
+            let (name, spec) = (o.spec.name, o.spec);
+            let help = format!("{} ({})", spec.help, methods.join(", "));
+            let arg = Arg::new(name).long(name).help(help);
+            cmd = cmd.arg(match &spec.kind {
+                OptionKind::Switch => arg.action(ArgAction::SetTrue),
+                OptionKind::Choice { names, .. } => {
+                    arg.value_parser(PossibleValuesParser::new(names()))
                 }
-            };
-            cmd = cmd.arg(arg);
+                OptionKind::Number(_) => arg.value_name("N"),
+                OptionKind::Dims(_) => arg.value_name("LxMxN"),
+            });
         }
         cmd
     }
@@ -99,10 +101,10 @@ pub fn settings_of(method: Method, flags: &MethodFlags) -> Result<MethodSettings
     let mut s = MethodSettings::default();
     s.set_method(method);
     for (name, value) in &flags.0 {
-        let info = OPTIONS
-            .iter()
-            .find(|o| o.name == *name)
-            .expect("made from OPTIONS");
+        let info = all_options()
+            .into_iter()
+            .find(|o| o.spec.name == *name)
+            .expect("made from all_options");
         if !info.methods.contains(&method) {
             let methods: Vec<&str> = info.methods.iter().map(|m| m.name()).collect();
             anyhow::bail!(
@@ -119,7 +121,7 @@ pub fn settings_of(method: Method, flags: &MethodFlags) -> Result<MethodSettings
 pub fn run(a: &PoseArgs) -> Result<()> {
     let method = a.method;
     let settings = settings_of(method, &a.options)?;
-    if method == Method::Cage && a.cage.is_none() {
+    if method.reads("cage") && a.cage.is_none() {
         anyhow::bail!("cage: give the cage with --cage CAGE.obj");
     }
     if method.groups_needed() > 0 && a.select.is_none() {

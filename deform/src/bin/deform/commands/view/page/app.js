@@ -136,21 +136,13 @@ function onState(s) {
   $("rig-tools").classList.toggle("hidden", !rig);
   document.querySelectorAll(".rig-only").forEach((e) => e.classList.toggle("hidden", !rig));
   document.querySelectorAll(".mesh-only").forEach((e) => e.classList.toggle("hidden", rig));
-  document.querySelectorAll(".spline-only").forEach((e) => e.classList.toggle("hidden", rig || s.method !== "spline"));
-  document.querySelectorAll(".cage-only").forEach((e) => e.classList.toggle("hidden", rig || s.method !== "cage"));
-  // Lattices and cages are replayed from their motors alone (no --select).
-  document.querySelectorAll(".select-only").forEach((e) => e.classList.toggle("hidden", rig || s.method === "ffd" || s.method === "cage"));
+  // The files the method's command reads (lattices and cages: no --select), for its replay.
+  document.querySelectorAll("[data-input]").forEach((e) => e.classList.toggle("hidden", rig || !s.inputs.includes(e.dataset.input)));
   const field = $("field").value;
   fill($("field"), s.fields, s.fields.includes(field) && !first ? field : "displacement");
   if (!rig) {
     fill($("method"), s.methods, s.method); fill($("blend"), s.blends, s.blend);
-    $("iterations").value = s.iterations;
-    $("energy").value = s.energy; $("local-step").value = s.local_step;
-    $("arap-options").classList.toggle("hidden", s.method !== "arap");
-    $("lattice-options").classList.toggle("hidden", s.method !== "ffd");
-    $("cage-options").classList.toggle("hidden", s.method !== "cage");
-    ["x", "y", "z"].forEach((a, i) => { $(`lattice-${a}`).value = s.control.lattice[i]; });
-    $("basis").value = s.control.basis; $("coordinates").value = s.control.coordinates; $("grid").value = s.control.grid;
+    optionPanel(s);
     // The keys: a lattice's or cage's control points, else the painted groups. Keep each
     // key's gizmo; new keys start at the identity about their rest centre.
     const keys = s.controls ? s.controls.points : s.groups.map((g) => g.center);
@@ -356,12 +348,48 @@ addEventListener("keydown", (e) => {
 
 // --- panels -------------------------------------------------------------------------------------
 $("scene").onchange = () => { ed.state = null; send({ op: "scene", name: $("scene").value }); };
-// The lattice's size and basis go with a lattice, the coordinates with a cage.
-const controlsFor = (method) => method === "ffd"
-  ? { lattice: ["x", "y", "z"].map((a) => +$(`lattice-${a}`).value), basis: $("basis").value }
-  : method === "cage" ? { coordinates: $("coordinates").value, grid: +$("grid").value } : undefined;
-const sendMethod = () => send({ op: "method", method: $("method").value, blend: $("blend").value, iterations: +$("iterations").value, energy: $("energy").value, local_step: $("local-step").value, controls: controlsFor($("method").value) });
-for (const id of ["method", "blend", "iterations", "energy", "local-step", "lattice-x", "lattice-y", "lattice-z", "basis", "coordinates", "grid"]) $(id).onchange = sendMethod;
+// The method's options, as the library describes them (state.option_specs): a select for a
+// choice, a number box for a number, three for points per axis (NAME-x, NAME-y, NAME-z), a
+// checkbox for a switch; each change sends them all.
+const AXES = ["x", "y", "z"];
+function optionPanel(s) {
+  const box = $("method-options");
+  const shape = JSON.stringify(s.option_specs);
+  if (box.dataset.shape !== shape) {
+    box.dataset.shape = shape;
+    box.replaceChildren(...s.option_specs.map((o) => {
+      const label = document.createElement(o.kind === "dims" ? "div" : "label");
+      label.className = o.kind === "dims" ? "row" : "";
+      label.title = o.help;
+      label.append(`${o.name} `);
+      const input = (id) => {
+        const e = document.createElement(o.kind === "choice" ? "select" : "input");
+        e.id = id;
+        if (o.kind === "choice") fill(e, o.values, o.values[0]);
+        else if (o.kind === "switch") e.type = "checkbox";
+        else Object.assign(e, { type: "number", min: o.min, max: o.max, className: o.kind === "dims" ? "dim" : "" });
+        e.onchange = sendMethod;
+        return e;
+      };
+      if (o.kind === "dims") AXES.forEach((a, i) => label.append(...(i ? [" x ", input(`${o.name}-${a}`)] : [input(`${o.name}-${a}`)])));
+      else label.append(input(o.name));
+      return label;
+    }));
+  }
+  for (const o of s.option_specs) {
+    const v = s.options[o.name];
+    if (o.kind === "dims") AXES.forEach((a, i) => { $(`${o.name}-${a}`).value = v[i]; });
+    else if (o.kind === "switch") $(o.name).checked = v;
+    else $(o.name).value = v;
+  }
+}
+const optionValues = () => Object.fromEntries(ed.state.option_specs.map((o) => [o.name,
+  o.kind === "dims" ? AXES.map((a) => +$(`${o.name}-${a}`).value)
+    : o.kind === "number" ? +$(o.name).value : o.kind === "switch" ? $(o.name).checked : $(o.name).value]));
+// A new method starts from its options as the server keeps them.
+const sendMethod = (e) => send({ op: "method", method: $("method").value, blend: $("blend").value,
+  options: e && e.target.id === "method" ? {} : optionValues() });
+for (const id of ["method", "blend"]) $(id).onchange = sendMethod;
 $("group").onchange = () => { retarget(); sendField(); };
 $("field").onchange = () => { sendField(); ed.dirty = true; };
 $("clear").onclick = () => send({ op: "clear-groups" });

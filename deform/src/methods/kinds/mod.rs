@@ -1,0 +1,8 @@
+//! One file per method: its options, its [`MethodKind`](super::kind::MethodKind) (the
+//! description and the bind) and its bound mesh ([`PoseMethod`](super::kind::PoseMethod)).
+
+pub mod arap;
+pub mod cage;
+pub mod ffd;
+pub mod handles;
+pub mod spline;
