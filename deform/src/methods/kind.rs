@@ -43,6 +43,12 @@ pub trait MethodKind: Sync {
     /// `rest-keys`: posed and rest keys; `cage`: the cage mesh).
     fn inputs(&self) -> &'static [(&'static str, &'static str)];
 
+    /// The program's words that pose it from files, before the mesh: `pose NAME` (the
+    /// command every method has), or its own subcommand where it has one.
+    fn command(&self) -> Vec<&'static str> {
+        vec!["pose", self.name()]
+    }
+
     /// Whether its keys are control points (a lattice's or a cage's), not handle groups.
     fn controls(&self) -> bool {
         false

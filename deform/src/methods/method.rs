@@ -50,6 +50,11 @@ impl Method {
         self.kind().inputs()
     }
 
+    /// The program's words that pose it from files, before the mesh ([`MethodKind::command`]).
+    pub fn command(self) -> Vec<&'static str> {
+        self.kind().command()
+    }
+
     /// Whether its command reads a file holding `what` (`selection`, `keys`, `cage`, ...).
     pub fn reads(self, what: &str) -> bool {
         self.inputs().iter().any(|(_, w)| *w == what)

@@ -186,6 +186,9 @@ mod method_flags {
                 set(&mut s, "grid", a.grid.to_string());
                 (s.blend, s.positional) = (a.form.blend, a.form.positional);
             }
+            Command::Pose(a) => {
+                return crate::commands::pose::settings_of(a.method, &a.options).unwrap()
+            }
             other => panic!("not a method: {other:?}"),
         }
         s
@@ -226,7 +229,9 @@ mod method_flags {
                         s.set_all(&[("lattice", "2x3x4"), ("basis", "bernstein")])
                             .unwrap();
                     }
-                    let mut argv = vec!["deform".to_string(), method.name().into(), "m.obj".into()];
+                    let mut argv = vec!["deform".to_string()];
+                    argv.extend(method.command().into_iter().map(String::from));
+                    argv.push("m.obj".into());
                     for (flag, what) in method.inputs() {
                         argv.extend([format!("--{flag}"), format!("{what}.json")]);
                     }

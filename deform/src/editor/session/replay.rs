@@ -5,7 +5,6 @@ use super::Session;
 use crate::editor::error::{bail, Result};
 use crate::input::{MotorSpec, RotateSpec};
 use crate::methods::bound::BoundMethod;
-use crate::methods::named::Named;
 use glam::DVec3;
 
 /// The file each export writes for scene `scene`.
@@ -49,7 +48,7 @@ impl Session {
         }
         let f = |what: &str| file_name(scene, what).unwrap_or_default();
         let method = self.settings.method;
-        let mut words = vec![format!("deform {}", method.name()), f("rest")];
+        let mut words = vec![format!("deform {}", method.command().join(" ")), f("rest")];
         for (flag, what) in method.inputs() {
             words.push(format!("--{flag} {}", f(what)));
         }
@@ -63,7 +62,7 @@ impl Session {
     pub(super) fn spline_keys(&self) -> Result<(Vec<MotorSpec>, Vec<MotorSpec>)> {
         let bound = matches!(self.bound, BoundMethod::Bound(_));
         if !self.settings.method.reads("keys") || !bound {
-            bail!("keys: the method takes no keys (or it has too few groups to bind)");
+            bail!("keys: the method is not one with keys (or it has too few groups to bind)");
         }
         if self.stale || self.specs.len() != self.groups.len() {
             bail!("keys: the groups changed since the last bind (bind first)");

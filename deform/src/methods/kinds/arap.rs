@@ -64,6 +64,11 @@ impl MethodKind for ArapMethod {
         "arap"
     }
 
+    /// Its own subcommand, `deform arap`.
+    fn command(&self) -> Vec<&'static str> {
+        vec![self.name()]
+    }
+
     fn inputs(&self) -> &'static [(&'static str, &'static str)] {
         &[("select", "selection"), ("motors", "motors")]
     }

@@ -49,6 +49,11 @@ impl MethodKind for CageMethod {
         0
     }
 
+    /// Its own subcommand, `deform cage`.
+    fn command(&self) -> Vec<&'static str> {
+        vec![self.name()]
+    }
+
     fn inputs(&self) -> &'static [(&'static str, &'static str)] {
         &[("cage", "cage"), ("motors", "motors")]
     }

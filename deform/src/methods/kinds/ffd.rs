@@ -40,6 +40,11 @@ impl MethodKind for FfdMethod {
         0
     }
 
+    /// Its own subcommand, `deform ffd`.
+    fn command(&self) -> Vec<&'static str> {
+        vec![self.name()]
+    }
+
     fn inputs(&self) -> &'static [(&'static str, &'static str)] {
         &[("motors", "motors")]
     }

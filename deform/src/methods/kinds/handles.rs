@@ -25,6 +25,11 @@ impl MethodKind for HandlesMethod {
         "handles"
     }
 
+    /// Its own subcommand, `deform handles`.
+    fn command(&self) -> Vec<&'static str> {
+        vec![self.name()]
+    }
+
     fn inputs(&self) -> &'static [(&'static str, &'static str)] {
         &[("select", "selection"), ("motors", "motors")]
     }

@@ -33,6 +33,11 @@ impl MethodKind for SplineMethod {
         2
     }
 
+    /// Its own subcommand, `deform spline`.
+    fn command(&self) -> Vec<&'static str> {
+        vec![self.name()]
+    }
+
     fn inputs(&self) -> &'static [(&'static str, &'static str)] {
         &[
             ("select", "selection"),
