@@ -1,7 +1,7 @@
 //! The deformation methods a mesh and its handle groups (or control points) can be posed by.
 
 use super::kind::MethodKind;
-use super::kinds::{arap, cage, ffd, handles, spline};
+use super::kinds::{arap, cage, fabrik, ffd, handles, spline};
 use super::named::Named;
 use super::option::OptionSpec;
 
@@ -21,6 +21,8 @@ pub enum Method {
     Ffd,
     /// A motor per vertex of a closed cage around the mesh.
     Cage,
+    /// B-spline + FABRIK: the last group's motor moves a chain's end effector.
+    Fabrik,
 }
 
 impl Method {
@@ -32,6 +34,7 @@ impl Method {
             Method::Spline => &spline::SplineMethod,
             Method::Ffd => &ffd::FfdMethod,
             Method::Cage => &cage::CageMethod,
+            Method::Fabrik => &fabrik::FabrikMethod,
         }
     }
 
@@ -78,6 +81,7 @@ impl Named for Method {
         Method::Spline,
         Method::Ffd,
         Method::Cage,
+        Method::Fabrik,
     ];
     const WHAT: &'static str = "method";
     /// The name, which is also the program's subcommand.

@@ -277,7 +277,7 @@ mod tests {
         ] {
             s.set(name, value).unwrap();
         }
-        assert_eq!(all_options().len(), 9);
+        assert_eq!(all_options().len(), 11);
         assert_eq!(s.blend, BlendMethod::DualQuaternion);
         assert!(s.positional);
         let (iterations, grid) = (s.number(&arap::ITERATIONS), s.number(&cage::GRID));

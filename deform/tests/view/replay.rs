@@ -1,6 +1,6 @@
 //! The replay command the page shows, run as written on the files the page exports, poses
 //! what the server posed: handles under two blends, the spline, an FFD lattice, a cage with
-//! harmonic coordinates in the positional form, and ARAP (to convergence).
+//! harmonic coordinates in the positional form, ARAP (to convergence) and B-spline + FABRIK.
 
 use crate::client::{worst, Client, Frame, Server};
 use glam::DVec3;
@@ -111,6 +111,33 @@ fn the_replay_line_poses_the_exported_files_as_the_server_posed_them() {
     assert!(c.error().contains("since the last bind"));
     c.send(json!({"op": "undo"}));
     assert_eq!(c.state()["groups"].as_array().unwrap().len(), 3);
+
+    // B-spline + FABRIK, the method added last (one library file and a variant): the page
+    // offers it and its options, and replays it with `deform pose fabrik`.
+    c.send(
+        json!({"op": "method", "method": "fabrik", "blend": "motor-log",
+        "options": {"joints": 5, "controls": 3}}),
+    );
+    let s = c.state();
+    let specs_shown: Vec<&str> = (s["option_specs"].as_array().unwrap().iter())
+        .map(|o| o["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(specs_shown, ["joints", "controls"]);
+    let line = s["replay"].as_str().unwrap();
+    assert!(
+        line.starts_with("deform pose fabrik ") && line.contains("--joints 5"),
+        "{line}"
+    );
+    // The last group's motor moves the end effector (the others are not used).
+    let got = pose(&mut c, &json!([{}, {}, {"translate": [0, 0.8, 0]}]));
+    let dir = folder("fabrik");
+    let files = ["rest", "selection", "motors"];
+    check("fabrik", &replayed(&mut c, &s, &dir, &files), &got, 1e-12);
+    c.send(
+        json!({"op": "method", "method": "fabrik", "blend": "motor-log",
+        "options": {"controls": 6}}),
+    );
+    assert!(c.error().contains("controls"), "more controls than joints");
 
     // ARAP: the page iterates twice per frame from the last frame; after enough frames of one
     // drag it rests where the CLI's run to convergence ends.
