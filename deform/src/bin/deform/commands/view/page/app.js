@@ -361,7 +361,7 @@ function optionPanel(s) {
       const label = document.createElement(o.kind === "dims" ? "div" : "label");
       label.className = o.kind === "dims" ? "row" : "";
       label.title = o.help;
-      label.append(`${o.name} `);
+      label.append(`${o.name[0].toUpperCase()}${o.name.slice(1).replaceAll("-", " ")} `);
       const input = (id) => {
         const e = document.createElement(o.kind === "choice" ? "select" : "input");
         e.id = id;
