@@ -155,7 +155,7 @@ mod method_flags {
     /// The settings a parsed command binds by (the options its method uses).
     fn settings_of(c: &Command) -> MethodSettings {
         let mut s = MethodSettings::default();
-        let mut set = |s: &mut MethodSettings, name: &str, value: String| {
+        let set = |s: &mut MethodSettings, name: &str, value: String| {
             s.set(name, &value)
                 .unwrap_or_else(|e| panic!("{name} {value}: {e}"));
         };
