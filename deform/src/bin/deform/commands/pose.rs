@@ -100,18 +100,14 @@ impl Args for MethodFlags {
 pub fn settings_of(method: Method, flags: &MethodFlags) -> Result<MethodSettings> {
     let mut s = MethodSettings::default();
     s.set_method(method);
+    let all = all_options();
     for (name, value) in &flags.0 {
-        let info = all_options()
-            .into_iter()
-            .find(|o| o.spec.name == *name)
-            .expect("made from all_options");
-        if !info.methods.contains(&method) {
-            let methods: Vec<&str> = info.methods.iter().map(|m| m.name()).collect();
-            anyhow::bail!(
-                "--{name} is for {}, not {}",
-                methods.join(", "),
-                method.name()
-            );
+        let info = all.iter().find(|o| o.spec.name == *name);
+        let methods = info.map_or(&[][..], |o| &o.methods[..]);
+        if !methods.contains(&method) {
+            let methods: Vec<&str> = methods.iter().map(|m| m.name()).collect();
+            let (methods, this) = (methods.join(", "), method.name());
+            anyhow::bail!("--{name} is for {methods}, not {this}");
         }
         s.set(name, value).with_context(|| format!("--{name}"))?;
     }
