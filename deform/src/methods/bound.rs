@@ -6,29 +6,15 @@
 use super::budget::WorkBudget;
 use super::error::MethodError;
 use super::error::MethodsError;
-use super::kind::{BindInput, PoseMethod};
+use super::harmonic_cache::HarmonicCache;
+use super::kind::{BindInput, ControlPoints, PoseMethod};
 use super::settings::MethodSettings;
-use crate::blend::control::ControlScratch;
 use crate::blend::BlendMethod;
-use crate::deformers::Deformer;
-use crate::operators::harmonic::{harmonic_system, HarmonicOptions};
-use crate::operators::solve::SystemAnalysis;
 
 type Result<T> = std::result::Result<T, MethodsError>;
 use crate::mesh::Mesh;
 use cga::ScaledMotor;
 use glam::DVec3;
-use std::hash::{Hash, Hasher};
-
-/// A lattice's or cage's control points at rest and the pairs joined by a line (the lattice's
-/// grid, the cage's edges).
-#[derive(Clone, Debug, PartialEq)]
-pub struct ControlPoints {
-    /// The points at rest.
-    pub points: Vec<DVec3>,
-    /// Pairs of point indices.
-    pub edges: Vec<[u32; 2]>,
-}
 
 /// The bound method of a mesh: the rest pose until it is bound, then the method's own
 /// [`PoseMethod`].
@@ -41,79 +27,6 @@ pub enum BoundMethod {
     },
     /// Bound by its method.
     Bound(Box<dyn PoseMethod>),
-}
-
-/// A lattice or cage bound as a [`PoseMethod`]: one motor per control point.
-pub struct ControlBound<D: Deformer<Scratch = ControlScratch>> {
-    deformer: D,
-    controls: ControlPoints,
-    scratch: ControlScratch,
-}
-
-impl<D: Deformer<Scratch = ControlScratch>> ControlBound<D> {
-    /// `deformer` with its control points (its scratch made here).
-    pub fn new(deformer: D, controls: ControlPoints) -> Self {
-        let scratch = deformer.scratch();
-        ControlBound {
-            deformer,
-            controls,
-            scratch,
-        }
-    }
-}
-
-impl<D: Deformer<Scratch = ControlScratch> + 'static> PoseMethod for ControlBound<D> {
-    fn key_count(&self) -> usize {
-        self.controls.points.len()
-    }
-
-    fn controls(&self) -> Option<&ControlPoints> {
-        Some(&self.controls)
-    }
-
-    fn pose(&mut self, motors: &[ScaledMotor], out: &mut [DVec3]) -> Result<Option<f64>> {
-        self.deformer.pose_using(motors, &mut self.scratch, out)?;
-        Ok(None)
-    }
-}
-
-/// The harmonic system's analysis of one mesh, kept while the mesh and options stay the same,
-/// so that a new handle selection binds with the numeric factorisation and the solves only.
-#[derive(Default)]
-pub struct HarmonicCache {
-    key: Option<u64>,
-    analysis: Option<SystemAnalysis>,
-}
-
-impl HarmonicCache {
-    /// The analysis of `mesh`'s harmonic system, made now if the mesh or options changed.
-    pub fn of(&mut self, mesh: &Mesh, options: &HarmonicOptions) -> Result<&SystemAnalysis> {
-        let mut h = std::collections::hash_map::DefaultHasher::new();
-        for p in &mesh.positions {
-            p.to_array().map(f64::to_bits).hash(&mut h);
-        }
-        mesh.triangles.hash(&mut h);
-        format!("{options:?}").hash(&mut h);
-        let key = h.finish();
-        if self.key != Some(key) || self.analysis.is_none() {
-            self.analysis = None;
-            let q = harmonic_system(mesh, options)?;
-            self.analysis = Some(SystemAnalysis::new(&q)?);
-            self.key = Some(key);
-        }
-        Ok(self.analysis.as_ref().expect("made above"))
-    }
-}
-
-/// The centre of each group (the mean of its vertices).
-pub fn group_centres(mesh: &Mesh, groups: &[Vec<u32>]) -> Vec<DVec3> {
-    groups
-        .iter()
-        .map(|g| {
-            let sum: DVec3 = g.iter().map(|&v| mesh.positions[v as usize]).sum();
-            sum / g.len().max(1) as f64
-        })
-        .collect()
 }
 
 impl BoundMethod {
@@ -142,7 +55,7 @@ impl BoundMethod {
             budget,
             cache,
         };
-        Ok(BoundMethod::Bound(kind.bind(input, settings)?))
+        Ok(BoundMethod::Bound(kind.bind(input, &settings.values)?))
     }
 
     /// The motors a pose takes: one per control point of a lattice or cage, else one per

@@ -1,17 +1,28 @@
 //! What a method is to the program, the editor and a library caller: [`MethodKind`] describes
 //! it (its name, the groups and files it needs, its options) and binds a mesh;
-//! [`PoseMethod`] is the bound mesh, posed from one motor per key. Each method is one file
+//! [`PoseMethod`] is the bound mesh. A method reads its options' values from
+//! [`OptionValues`] (what [`super::MethodSettings`] holds besides the method), posed from one motor per key. Each method is one file
 //! in [`super::kinds`] implementing both; [`super::Method`] names it.
 
-use super::bound::{ControlPoints, HarmonicCache};
 use super::budget::WorkBudget;
 use super::error::{MethodError, MethodsError};
+use super::harmonic_cache::HarmonicCache;
 use super::option::OptionSpec;
-use super::settings::MethodSettings;
+use super::values::OptionValues;
 use crate::blend::BlendMethod;
 use crate::mesh::Mesh;
 use cga::ScaledMotor;
 use glam::DVec3;
+
+/// A lattice's or cage's control points at rest and the pairs joined by a line (the lattice's
+/// grid, the cage's edges).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ControlPoints {
+    /// The points at rest.
+    pub points: Vec<DVec3>,
+    /// Pairs of point indices.
+    pub edges: Vec<[u32; 2]>,
+}
 
 /// What a method binds: the mesh, its handle groups, the cage where the scene has one, the
 /// work budget that refuses oversized requests and the harmonic analysis kept between binds.
@@ -65,7 +76,7 @@ pub trait MethodKind: Sync {
     }
 
     /// The checks its options need together (each alone is checked by its [`OptionSpec`]).
-    fn check(&self, _settings: &MethodSettings) -> Result<(), MethodError> {
+    fn check(&self, _settings: &OptionValues) -> Result<(), MethodError> {
         Ok(())
     }
 
@@ -73,7 +84,7 @@ pub trait MethodKind: Sync {
     fn bind(
         &self,
         input: BindInput<'_>,
-        settings: &MethodSettings,
+        settings: &OptionValues,
     ) -> Result<Box<dyn PoseMethod>, MethodsError>;
 }
 

@@ -9,9 +9,10 @@ use super::option::OptionSpec;
 /// lattice or cage. Each variant names a [`MethodKind`], one file in [`super::kinds`] that
 /// describes, binds and poses it; adding a method is that file, a variant here and its line in
 /// [`Method::kind`] and [`Named::ALL`]. The editor and the program take every method from here.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Method {
     /// Motor handles on harmonic coordinates (the first paper's section V).
+    #[default]
     Handles,
     /// ARAP with rotors, the groups as handles.
     Arap,

@@ -21,6 +21,7 @@ pub mod bound;
 pub mod budget;
 mod error;
 pub mod frame;
+pub mod harmonic_cache;
 pub mod kind;
 pub mod kinds;
 pub mod method;
@@ -29,6 +30,7 @@ pub mod option;
 pub mod scenes;
 pub mod settings;
 pub mod showcase;
+pub mod values;
 
 pub use bound::BoundMethod;
 pub use error::{MethodError, MethodsError};

@@ -8,9 +8,8 @@ use super::error::MethodError;
 use super::method::Method;
 use super::named::Named;
 use super::option::{OptionKind, OptionSpec, OptionValue};
-use crate::blend::control::ControlForm;
+use super::values::OptionValues;
 use crate::blend::BlendMethod;
-use std::collections::BTreeMap;
 
 /// How key motors are blended ([`BlendMethod`]'s names; methods that blend).
 pub const BLEND: OptionSpec = OptionSpec {
@@ -75,29 +74,28 @@ fn method_option(name: &str) -> Option<&'static OptionSpec> {
         .find(|o| o.name == name)
 }
 
-/// A method and every option it binds by. Each value is checked when it is set, alone by its
+/// A method and every value it binds by ([`OptionValues`], which it derefs to: `blend`,
+/// `positional`, each option's value). Each value is checked when it is set, alone by its
 /// [`OptionSpec`] and together by its method's [`super::MethodKind::check`]; an option not
 /// set has its default. [`Default`] is handles with the paper's log blend.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct MethodSettings {
     /// The method.
     pub method: Method,
-    /// How motors are blended (not ARAP's).
-    pub blend: BlendMethod,
-    /// Lattices and cages: the positional form instead of `blend`.
-    pub positional: bool,
-    /// The options set, by name (any method's: they are kept when the method changes).
-    values: BTreeMap<&'static str, OptionValue>,
+    /// Its blend, positional form and options' values.
+    pub values: OptionValues,
 }
 
-impl Default for MethodSettings {
-    fn default() -> Self {
-        MethodSettings {
-            method: Method::Handles,
-            blend: BlendMethod::MotorLog,
-            positional: false,
-            values: BTreeMap::new(),
-        }
+impl std::ops::Deref for MethodSettings {
+    type Target = OptionValues;
+    fn deref(&self) -> &OptionValues {
+        &self.values
+    }
+}
+
+impl std::ops::DerefMut for MethodSettings {
+    fn deref_mut(&mut self) -> &mut OptionValues {
+        &mut self.values
     }
 }
 
@@ -145,7 +143,7 @@ impl MethodSettings {
                 .iter()
                 .any(|o| options.iter().any(|(n, _)| *n == o.name))
             {
-                m.kind().check(&next)?;
+                m.kind().check(&next.values)?;
             }
         }
         *self = next;
@@ -163,41 +161,6 @@ impl MethodSettings {
         Ok(())
     }
 
-    /// The value of `option` (its default where none was set).
-    pub fn value(&self, option: &OptionSpec) -> OptionValue {
-        self.values
-            .get(option.name)
-            .copied()
-            .unwrap_or(option.default)
-    }
-
-    /// The choice `option` names, as its type `T`.
-    pub fn choice<T: Named>(&self, option: &OptionSpec) -> T {
-        let named = |v: OptionValue| match v {
-            OptionValue::Name(n) => T::from_name(n).ok(),
-            _ => None,
-        };
-        named(self.value(option))
-            .or_else(|| named(option.default))
-            .unwrap_or(T::ALL[0])
-    }
-
-    /// The number `option` holds.
-    pub fn number(&self, option: &OptionSpec) -> usize {
-        match (self.value(option), option.default) {
-            (OptionValue::Number(n), _) | (_, OptionValue::Number(n)) => n,
-            _ => 0,
-        }
-    }
-
-    /// The points per axis `option` holds.
-    pub fn dims(&self, option: &OptionSpec) -> [usize; 3] {
-        match (self.value(option), option.default) {
-            (OptionValue::Dims(d), _) | (_, OptionValue::Dims(d)) => d,
-            _ => [0; 3],
-        }
-    }
-
     /// Every option of every method with its value, in [`all_options`]' order (the blend and
     /// the positional form left out: they are fields).
     pub fn values(&self) -> Vec<(&'static str, OptionValue)> {
@@ -210,15 +173,6 @@ impl MethodSettings {
                 }
                 all
             })
-    }
-
-    /// The form lattices and cages pose in.
-    pub fn form(&self) -> ControlForm {
-        if self.positional {
-            ControlForm::Positional
-        } else {
-            ControlForm::Motor(self.blend)
-        }
     }
 
     /// Whether going from `self` to `next` needs the weights bound again; `false` where only

@@ -4,8 +4,9 @@
 //! names, and any other is refused with them listed.
 
 use deform::mesh::shapes::tube_ring;
-use deform::methods::bound::{BoundMethod, HarmonicCache};
+use deform::methods::bound::BoundMethod;
 use deform::methods::budget::WorkBudget;
+use deform::methods::harmonic_cache::HarmonicCache;
 use deform::methods::named::Named;
 use deform::methods::scenes::{bar, bar_cage};
 use deform::methods::{Method, MethodSettings};

@@ -7,7 +7,7 @@ use crate::deformers::arap::{
 use crate::methods::error::MethodsError;
 use crate::methods::kind::{BindInput, MethodKind, PoseMethod};
 use crate::methods::option::{OptionKind, OptionSpec, OptionValue};
-use crate::methods::settings::MethodSettings;
+use crate::methods::values::OptionValues;
 use cga::ScaledMotor;
 use glam::DVec3;
 
@@ -43,7 +43,7 @@ pub const LOCAL_STEP: OptionSpec = OptionSpec {
 pub struct ArapMethod;
 
 /// ARAP options as `settings` name them (the solver and cotangents at their defaults).
-fn arap_options(settings: &MethodSettings) -> ArapOptions {
+fn arap_options(settings: &OptionValues) -> ArapOptions {
     ArapOptions {
         energy: settings.choice(&ENERGY),
         local_step: settings.choice(&LOCAL_STEP),
@@ -84,7 +84,7 @@ impl MethodKind for ArapMethod {
     fn bind(
         &self,
         input: BindInput<'_>,
-        settings: &MethodSettings,
+        settings: &OptionValues,
     ) -> Result<Box<dyn PoseMethod>, MethodsError> {
         let sets: Vec<&[u32]> = input.groups.iter().map(Vec::as_slice).collect();
         let arap = Arap::bind(input.mesh, &[], &sets, arap_options(settings))?;

@@ -2,12 +2,13 @@
 //! coordinates.
 
 use crate::deformers::cage::{CageCoordinates, CageDeformer, CageOptions, HarmonicGrid};
-use crate::methods::bound::{ControlBound, ControlPoints};
 use crate::methods::error::{MethodError, MethodsError};
+use crate::methods::kind::ControlPoints;
 use crate::methods::kind::{BindInput, MethodKind, PoseMethod};
+use crate::methods::kinds::control::ControlBound;
 use crate::methods::named::Coordinates;
 use crate::methods::option::{OptionKind, OptionSpec, OptionValue};
-use crate::methods::settings::MethodSettings;
+use crate::methods::values::OptionValues;
 
 /// The cage's coordinates.
 pub const COORDINATES: OptionSpec = OptionSpec {
@@ -31,7 +32,7 @@ pub const GRID: OptionSpec = OptionSpec {
 pub struct CageMethod;
 
 /// The cage coordinates `settings` name.
-fn cage_coordinates(settings: &MethodSettings) -> CageCoordinates {
+fn cage_coordinates(settings: &OptionValues) -> CageCoordinates {
     match settings.choice(&COORDINATES) {
         Coordinates::MeanValue => CageCoordinates::MeanValue,
         Coordinates::Harmonic => CageCoordinates::Harmonic(HarmonicGrid {
@@ -69,7 +70,7 @@ impl MethodKind for CageMethod {
     fn bind(
         &self,
         input: BindInput<'_>,
-        settings: &MethodSettings,
+        settings: &OptionValues,
     ) -> Result<Box<dyn PoseMethod>, MethodsError> {
         let cage = input.cage.ok_or(MethodError::NoCage)?;
         let options = CageOptions {

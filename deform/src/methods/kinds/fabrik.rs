@@ -6,11 +6,11 @@
 
 use crate::deformers::fabrik::{straight_chain, ChainDeformer, FabrikOptions};
 use crate::deformers::spline::SplineOptions;
-use crate::methods::bound::group_centres;
 use crate::methods::error::{MethodError, MethodsError};
+use crate::methods::harmonic_cache::group_centres;
 use crate::methods::kind::{BindInput, MethodKind, PoseMethod};
 use crate::methods::option::{OptionKind, OptionSpec, OptionValue};
-use crate::methods::settings::MethodSettings;
+use crate::methods::values::OptionValues;
 use cga::ScaledMotor;
 use glam::DVec3;
 
@@ -60,7 +60,7 @@ impl MethodKind for FabrikMethod {
         &[JOINTS, CONTROLS]
     }
 
-    fn check(&self, settings: &MethodSettings) -> Result<(), MethodError> {
+    fn check(&self, settings: &OptionValues) -> Result<(), MethodError> {
         let (joints, controls) = (settings.number(&JOINTS), settings.number(&CONTROLS));
         if controls > joints {
             return Err(MethodError::OutOfRange {
@@ -75,7 +75,7 @@ impl MethodKind for FabrikMethod {
     fn bind(
         &self,
         input: BindInput<'_>,
-        settings: &MethodSettings,
+        settings: &OptionValues,
     ) -> Result<Box<dyn PoseMethod>, MethodsError> {
         let (mesh, groups) = (input.mesh, input.groups);
         let (root, tip) = (&groups[0], &groups[groups.len() - 1]);

@@ -1,11 +1,12 @@
 //! Free-form deformation: a motor per point of a lattice over the mesh's box.
 
 use crate::deformers::ffd::{Ffd, FfdOptions, LatticeBasis};
-use crate::methods::bound::{ControlBound, ControlPoints};
 use crate::methods::error::{MethodError, MethodsError};
+use crate::methods::kind::ControlPoints;
 use crate::methods::kind::{BindInput, MethodKind, PoseMethod};
+use crate::methods::kinds::control::ControlBound;
 use crate::methods::option::{OptionKind, OptionSpec, OptionValue};
-use crate::methods::settings::MethodSettings;
+use crate::methods::values::OptionValues;
 
 /// Control points per axis of the lattice (the editor's limits: 2 to 8).
 pub const LATTICE: OptionSpec = OptionSpec {
@@ -57,7 +58,7 @@ impl MethodKind for FfdMethod {
         &[LATTICE, BASIS]
     }
 
-    fn check(&self, settings: &MethodSettings) -> Result<(), MethodError> {
+    fn check(&self, settings: &OptionValues) -> Result<(), MethodError> {
         let dims = settings.dims(&LATTICE);
         let points: usize = dims.iter().product();
         let basis: LatticeBasis = settings.choice(&BASIS);
@@ -74,7 +75,7 @@ impl MethodKind for FfdMethod {
     fn bind(
         &self,
         input: BindInput<'_>,
-        settings: &MethodSettings,
+        settings: &OptionValues,
     ) -> Result<Box<dyn PoseMethod>, MethodsError> {
         let options = FfdOptions {
             form: settings.form(),

@@ -5,7 +5,7 @@ use crate::blend::{BlendMethod, BoundBlend, PreparedKeys};
 use crate::deformers::handles::{HandleOptions, MotorHandles};
 use crate::methods::error::MethodsError;
 use crate::methods::kind::{BindInput, MethodKind, PoseMethod};
-use crate::methods::settings::MethodSettings;
+use crate::methods::values::OptionValues;
 use cga::ScaledMotor;
 use glam::DVec3;
 
@@ -37,7 +37,7 @@ impl MethodKind for HandlesMethod {
     fn bind(
         &self,
         input: BindInput<'_>,
-        settings: &MethodSettings,
+        settings: &OptionValues,
     ) -> Result<Box<dyn PoseMethod>, MethodsError> {
         let (mesh, groups) = (input.mesh, input.groups);
         let sets: Vec<&[u32]> = groups.iter().map(Vec::as_slice).collect();

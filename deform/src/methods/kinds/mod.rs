@@ -3,6 +3,7 @@
 
 pub mod arap;
 pub mod cage;
+pub mod control;
 pub mod fabrik;
 pub mod ffd;
 pub mod handles;

@@ -4,10 +4,10 @@
 use crate::blend::PreparedKeys;
 use crate::deformers::spline::{SplineDeformer, SplineOptions};
 use crate::deformers::Deformer;
-use crate::methods::bound::group_centres;
 use crate::methods::error::MethodsError;
+use crate::methods::harmonic_cache::group_centres;
 use crate::methods::kind::{BindInput, MethodKind, PoseMethod};
-use crate::methods::settings::MethodSettings;
+use crate::methods::values::OptionValues;
 use cga::{Motor, ScaledMotor};
 use glam::DVec3;
 
@@ -49,7 +49,7 @@ impl MethodKind for SplineMethod {
     fn bind(
         &self,
         input: BindInput<'_>,
-        settings: &MethodSettings,
+        settings: &OptionValues,
     ) -> Result<Box<dyn PoseMethod>, MethodsError> {
         let (mesh, groups) = (input.mesh, input.groups);
         let rest: Vec<ScaledMotor> = group_centres(mesh, groups)
