@@ -6,7 +6,9 @@
 //!   by it ([`PoseMethod`]); [`kinds`]: one file per method;
 //! - [`option`]: an option described once ([`option::OptionSpec`]: name, help, values,
 //!   default) for the program's flags, the editor's panel and the replayed command;
-//! - [`settings`]: a method with its options' values ([`MethodSettings`]);
+//! - [`values`]: the blend, the positional form and every option's value, what a method's
+//!   file reads; [`settings`]: a method with them ([`MethodSettings`]), every value checked;
+//! - [`harmonic_cache`]: the harmonic analysis kept between binds;
 //! - [`bound`]: a mesh bound by its settings ([`BoundMethod`]), posed from a motor per key;
 //! - [`frame`]: which pose of a rig a request means, and the posed frame of a surgery tool;
 //! - [`scenes`]: the procedural scenes the demo and the editor open;
