@@ -164,15 +164,8 @@ impl MethodSettings {
     /// Every option of every method with its value, in [`all_options`]' order (the blend and
     /// the positional form left out: they are fields).
     pub fn values(&self) -> Vec<(&'static str, OptionValue)> {
-        Method::ALL
-            .iter()
-            .flat_map(|m| m.options())
-            .fold(Vec::new(), |mut all, o| {
-                if !all.iter().any(|(n, _)| *n == o.name) {
-                    all.push((o.name, self.value(o)));
-                }
-                all
-            })
+        let own = all_options().into_iter().skip(2);
+        own.map(|o| (o.spec.name, self.value(o.spec))).collect()
     }
 
     /// Whether going from `self` to `next` needs the weights bound again; `false` where only
@@ -184,8 +177,8 @@ impl MethodSettings {
             || m.options().iter().any(|o| next.value(o) != self.value(o))
     }
 
-    /// The program's flags that bind this method the same way (the subcommand is
-    /// [`Method`]'s name): every option of the method by its name and value (its
+    /// The program's flags that bind this method the same way (after
+    /// [`Method::command`] and the files): every option of the method by its name and value (its
     /// [`OptionSpec::replay`] value where it has one), then the positional form or the blend.
     pub fn args(&self) -> Vec<String> {
         let mut a: Vec<String> = Vec::new();

@@ -104,7 +104,20 @@ impl PoseMethod for Bound {
         motors: &[ScaledMotor],
         out: &mut [DVec3],
     ) -> Result<Option<f64>, MethodsError> {
-        let target = motors[self.groups - 1].transform_point(self.tip);
+        let Some(last) = motors
+            .get(self.groups - 1)
+            .filter(|_| motors.len() == self.groups)
+        else {
+            let (given, expected) = (motors.len(), self.groups);
+            let keys = "groups";
+            return Err(MethodError::KeyCount {
+                given,
+                expected,
+                keys,
+            }
+            .into());
+        };
+        let target = last.transform_point(self.tip);
         let options = FabrikOptions::default();
         self.chain.pose_to_target(target, &options, out)?;
         Ok(None)
@@ -116,5 +129,42 @@ impl PoseMethod for Bound {
 
     fn field(&self, name: &str, _group: usize) -> Option<Vec<f64>> {
         (name == "lambda").then(|| self.chain.spline().lambda().to_vec())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::shapes::{tube, tube_ring};
+    use crate::methods::budget::WorkBudget;
+    use crate::methods::harmonic_cache::HarmonicCache;
+
+    #[test]
+    fn a_pose_with_too_few_motors_is_an_error_and_the_tip_group_moves_the_end() {
+        let bar = tube(1.0, 10.0, 8, 21);
+        let groups = vec![tube_ring(8, 0), tube_ring(8, 20)];
+        let input = BindInput {
+            mesh: &bar,
+            groups: &groups,
+            cage: None,
+            budget: &WorkBudget::default(),
+            cache: &mut HarmonicCache::default(),
+        };
+        let mut bound = FabrikMethod.bind(input, &OptionValues::default()).unwrap();
+        let mut out = bar.positions.clone();
+        assert!(bound.pose(&[ScaledMotor::IDENTITY], &mut out).is_err());
+        let up = cga::Motor::from_translation(DVec3::new(0.0, 2.0, 0.0));
+        let motors = [ScaledMotor::IDENTITY, ScaledMotor::from_motor(up)];
+        bound.pose(&motors, &mut out).unwrap();
+        // The root ring turns with the chain's first joint about its centre, which stays.
+        let posed = crate::mesh::Mesh::new(out, bar.triangles.clone());
+        let centres = |m| group_centres(m, &groups);
+        let (rest, now) = (centres(&bar), centres(&posed));
+        assert!(
+            (now[0] - rest[0]).length() < 1e-6,
+            "the root stays: {}",
+            now[0] - rest[0]
+        );
+        assert!(now[1].y - rest[1].y > 1.0, "the tip follows its motor");
     }
 }
