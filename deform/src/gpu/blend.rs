@@ -132,6 +132,157 @@ fn bytes_u32(v: &[u32]) -> Vec<u8> {
     v.iter().flat_map(|x| x.to_le_bytes()).collect()
 }
 
+/// Refuses, before allocating, a buffer of `n` vertices with `width` influences or of
+/// `key_count` keys larger than the device binds.
+fn check_binding_sizes(
+    ctx: &GpuContext,
+    n: usize,
+    width: usize,
+    key_count: usize,
+) -> Result<(), GpuError> {
+    let limits = ctx.device.limits();
+    let largest = (n * width * 4).max(n * 12).max(key_count * 64) as u64;
+    if largest > limits.max_storage_buffer_binding_size {
+        return Err(GpuError::TooLarge(format!(
+            "a buffer of {largest} bytes, the device binds at most {}",
+            limits.max_storage_buffer_binding_size
+        )));
+    }
+    Ok(())
+}
+
+/// The skinning shader (the generated `f32` CGA in WGSL and `skin.wgsl`) compiled at `entry`.
+fn skin_pipeline(device: &wgpu::Device, entry: &str) -> wgpu::ComputePipeline {
+    let source = format!("{}\n{}", cga::f32::WGSL, include_str!("skin.wgsl"));
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some("deform skinning"),
+        source: wgpu::ShaderSource::Wgsl(source.into()),
+    });
+    device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some(entry),
+        layout: None,
+        module: &module,
+        entry_point: Some(entry),
+        compilation_options: Default::default(),
+        cache: None,
+    })
+}
+
+/// A storage buffer holding `contents` (16 zero bytes when empty: a zero-sized binding is
+/// invalid).
+fn storage_buffer(
+    device: &wgpu::Device,
+    label: &str,
+    contents: &[u8],
+    extra: wgpu::BufferUsages,
+) -> wgpu::Buffer {
+    let contents = if contents.is_empty() {
+        &[0u8; 16][..]
+    } else {
+        contents
+    };
+    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some(label),
+        contents,
+        usage: wgpu::BufferUsages::STORAGE | extra,
+    })
+}
+
+/// The skinning shader's buffers, in binding order.
+struct SkinBuffers {
+    params: wgpu::Buffer,
+    rest: wgpu::Buffer,
+    joints: wgpu::Buffer,
+    weights: wgpu::Buffer,
+    keys: wgpu::Buffer,
+    out: wgpu::Buffer,
+    /// `out` read back.
+    staging: wgpu::Buffer,
+}
+
+impl SkinBuffers {
+    /// `weights` and the rest points `local` uploaded; room for `key_count` keys and the
+    /// posed positions.
+    fn new(
+        device: &wgpu::Device,
+        weights: &KeyWeights,
+        local: &[DVec3],
+        key_count: usize,
+    ) -> SkinBuffers {
+        let (n, width) = (weights.vertex_count(), weights.width());
+        let mut joints = Vec::with_capacity(n * width);
+        let mut w = Vec::with_capacity(n * width);
+        for i in 0..n {
+            for (k, x) in weights.row(i).pairs() {
+                joints.push(k as u32);
+                w.push(x as f32);
+            }
+        }
+        let rest: Vec<f32> = local
+            .iter()
+            .flat_map(|p| [p.x as f32, p.y as f32, p.z as f32])
+            .collect();
+        let none = wgpu::BufferUsages::empty();
+        let out_size = (n * 12).max(16) as u64;
+        let plain = |label, size, usage| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size,
+                usage,
+                mapped_at_creation: false,
+            })
+        };
+        use wgpu::BufferUsages as U;
+        SkinBuffers {
+            params: plain("params", 16, U::UNIFORM | U::COPY_DST),
+            rest: storage_buffer(device, "rest", &bytes_f32(&rest), none),
+            joints: storage_buffer(device, "joints", &bytes_u32(&joints), none),
+            weights: storage_buffer(device, "weights", &bytes_f32(&w), none),
+            keys: storage_buffer(
+                device,
+                "keys",
+                &vec![0u8; (key_count * 64).max(16)],
+                U::COPY_DST,
+            ),
+            out: plain("positions", out_size, U::STORAGE | U::COPY_SRC),
+            staging: plain("positions read back", out_size, U::MAP_READ | U::COPY_DST),
+        }
+    }
+
+    /// The bind group of `pipeline` over these buffers (the positional entry point reads no
+    /// rest point, so its layout has no binding 1).
+    fn bind_group(
+        &self,
+        device: &wgpu::Device,
+        pipeline: &wgpu::ComputePipeline,
+        form: ControlForm,
+    ) -> wgpu::BindGroup {
+        let layout = pipeline.get_bind_group_layout(0);
+        let buffers = [
+            &self.params,
+            &self.rest,
+            &self.joints,
+            &self.weights,
+            &self.keys,
+            &self.out,
+        ];
+        let entries: Vec<wgpu::BindGroupEntry> = buffers
+            .into_iter()
+            .enumerate()
+            .filter(|&(i, _)| i != 1 || form != ControlForm::Positional)
+            .map(|(i, b)| wgpu::BindGroupEntry {
+                binding: i as u32,
+                resource: b.as_entire_binding(),
+            })
+            .collect();
+        device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("skinning"),
+            layout: &layout,
+            entries: &entries,
+        })
+    }
+}
+
 impl GpuBlend {
     /// Upload `blend`'s rest points and weights and build its pipeline.
     ///
@@ -172,104 +323,17 @@ impl GpuBlend {
         local: &[DVec3],
         key_count: usize,
     ) -> Result<GpuBlend, GpuError> {
-        let entry = entry_point(form);
         let (n, width) = (weights.vertex_count(), weights.width());
-        let mut joints = Vec::with_capacity(n * width);
-        let mut w = Vec::with_capacity(n * width);
-        for i in 0..n {
-            let row = weights.row(i);
-            for (k, x) in row.pairs() {
-                joints.push(k as u32);
-                w.push(x as f32);
-            }
-        }
-        let rest: Vec<f32> = local
-            .iter()
-            .flat_map(|p| [p.x as f32, p.y as f32, p.z as f32])
-            .collect();
-        let limits = ctx.device.limits();
-        let largest = (n * width * 4).max(n * 12).max(key_count * 64) as u64;
-        if largest > limits.max_storage_buffer_binding_size {
-            return Err(GpuError::TooLarge(format!(
-                "a buffer of {largest} bytes, the device binds at most {}",
-                limits.max_storage_buffer_binding_size
-            )));
-        }
+        check_binding_sizes(ctx, n, width, key_count)?;
+        let device = &ctx.device;
+        let pipeline = skin_pipeline(device, entry_point(form));
+        let buffers = SkinBuffers::new(device, weights, local, key_count);
+        let bind_group = buffers.bind_group(device, &pipeline, form);
         let groups_total = (n as u32).div_ceil(GROUP).max(1);
         let groups = (
             groups_total.min(ROW_GROUPS),
             groups_total.div_ceil(ROW_GROUPS),
         );
-        let device = &ctx.device;
-        let source = format!("{}\n{}", cga::f32::WGSL, include_str!("skin.wgsl"));
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("deform skinning"),
-            source: wgpu::ShaderSource::Wgsl(source.into()),
-        });
-        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some(entry),
-            layout: None,
-            module: &module,
-            entry_point: Some(entry),
-            compilation_options: Default::default(),
-            cache: None,
-        });
-        let storage = |label: &str, contents: &[u8], extra: wgpu::BufferUsages| {
-            // Never empty: a zero-sized binding is invalid.
-            let contents = if contents.is_empty() {
-                &[0u8; 16][..]
-            } else {
-                contents
-            };
-            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some(label),
-                contents,
-                usage: wgpu::BufferUsages::STORAGE | extra,
-            })
-        };
-        let rest = storage("rest", &bytes_f32(&rest), wgpu::BufferUsages::empty());
-        let joints = storage("joints", &bytes_u32(&joints), wgpu::BufferUsages::empty());
-        let w = storage("weights", &bytes_f32(&w), wgpu::BufferUsages::empty());
-        let keys = storage(
-            "keys",
-            &vec![0u8; (key_count * 64).max(16)],
-            wgpu::BufferUsages::COPY_DST,
-        );
-        let out_size = (n * 12).max(16) as u64;
-        let out = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("positions"),
-            size: out_size,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-            mapped_at_creation: false,
-        });
-        let staging = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("positions read back"),
-            size: out_size,
-            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        let params = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("params"),
-            size: 16,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        let layout = pipeline.get_bind_group_layout(0);
-        // The positional entry point reads no rest point, so its layout has no binding 1.
-        let entries: Vec<wgpu::BindGroupEntry> = [&params, &rest, &joints, &w, &keys, &out]
-            .into_iter()
-            .enumerate()
-            .filter(|&(i, _)| i != 1 || form != ControlForm::Positional)
-            .map(|(i, b)| wgpu::BindGroupEntry {
-                binding: i as u32,
-                resource: b.as_entire_binding(),
-            })
-            .collect();
-        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("skinning"),
-            layout: &layout,
-            entries: &entries,
-        });
         Ok(GpuBlend {
             form,
             rest_points: Vec::new(),
@@ -279,10 +343,10 @@ impl GpuBlend {
             key_count,
             pipeline,
             bind_group,
-            params,
-            keys,
-            out,
-            staging,
+            params: buffers.params,
+            keys: buffers.keys,
+            out: buffers.out,
+            staging: buffers.staging,
             groups,
             prepared: PreparedKeys::default(),
             packed: Vec::new(),

@@ -70,30 +70,11 @@ impl Rig {
     /// # Errors
     /// As [`Rig::with_parts`].
     pub fn with_parts_traced(&self, parts: &[RigPart]) -> Result<(Rig, Vec<usize>), SkinError> {
-        let mut trace = Vec::new();
-        let mut part_start = 0;
         let width = parts.iter().map(|p| p.influences.width).max().unwrap_or(4);
-        let mut mesh = Mesh::new(Vec::new(), Vec::new());
-        let mut influences = Influences {
-            width,
-            ..Influences::default()
-        };
         let keep_attributes = parts.iter().all(|p| p.sources.is_some());
-        let mut attributes: Vec<VertexAttribute> = if keep_attributes {
-            self.look
-                .attributes
-                .iter()
-                .map(|a| VertexAttribute {
-                    values: Vec::new(),
-                    ..a.clone()
-                })
-                .collect()
-        } else {
-            Vec::new()
-        };
         let node = self.primitives.first().map_or(0, |p| p.node);
-        let mut primitives = Vec::new();
-        let mut materials = Vec::new();
+        let mut joined = JoinedParts::new(&self.look, node, width, keep_attributes);
+        let mut part_start = 0;
         for (k, part) in parts.iter().enumerate() {
             let m = part.mesh;
             if part.influences.vertex_count() != m.vertex_count() {
@@ -107,20 +88,11 @@ impl Rig {
                 Some(s) if keep_attributes => self.part_attributes(k, part, s)?,
                 _ => Vec::new(),
             };
-            // Triangles by the original primitive their first corner comes from.
-            let group_of = |t: &[u32; 3]| match part.sources {
-                Some(s) => s
-                    .row(t[0] as usize)
-                    .max_by(|a, b| a.1.total_cmp(&b.1))
-                    .map_or(0, |(v, _)| self.primitive_of(v as usize)),
-                None => 0,
-            };
-            let groups: Vec<usize> = m.triangles.iter().map(group_of).collect();
+            let groups = self.triangle_primitives(part);
             let mut order = groups.clone();
             order.sort_unstable();
             order.dedup();
-            let order_len = order.len();
-            for g in order {
+            for &g in &order {
                 let tris: Vec<[u32; 3]> = m
                     .triangles
                     .iter()
@@ -129,71 +101,46 @@ impl Rig {
                     .map(|(t, _)| *t)
                     .collect();
                 // One group keeps every vertex in order; several take the vertices they use.
-                let (local, used): (Vec<u32>, Vec<usize>) = if order_len == 1 {
-                    (
-                        (0..m.vertex_count() as u32).collect(),
-                        (0..m.vertex_count()).collect(),
-                    )
+                let (local, used) = if order.len() == 1 {
+                    every_vertex(m.vertex_count())
                 } else {
-                    let mut local = vec![u32::MAX; m.vertex_count()];
-                    let mut used = Vec::new();
-                    for &v in tris.iter().flatten() {
-                        if local[v as usize] == u32::MAX {
-                            local[v as usize] = used.len() as u32;
-                            used.push(v as usize);
-                        }
-                    }
-                    (local, used)
+                    used_vertices(m.vertex_count(), &tris)
                 };
-                let offset = mesh.positions.len();
-                primitives.push(PrimitiveInfo {
-                    node,
-                    mesh: 0,
-                    primitive: k,
-                    vertex_offset: offset,
-                    vertex_count: used.len(),
-                    triangle_offset: mesh.triangles.len(),
-                    triangle_count: tris.len(),
-                });
-                materials.push(self.look.primitive_materials.get(g).copied().flatten());
-                mesh.positions.extend(used.iter().map(|&v| m.positions[v]));
-                trace.extend(used.iter().map(|&v| part_start + v));
-                mesh.triangles.extend(
-                    tris.iter()
-                        .map(|t| t.map(|v| local[v as usize] + offset as u32)),
-                );
-                for &v in &used {
-                    let row: Vec<(u32, f64)> = part.influences.row(v).collect();
-                    for c in 0..width {
-                        let (j, w) = row.get(c).copied().unwrap_or((0, 0.0));
-                        influences.joints.push(j);
-                        influences.weights.push(w);
-                    }
-                }
-                for (out, a) in attributes.iter_mut().zip(&looks) {
-                    for &v in &used {
-                        out.values.extend_from_slice(a.row(v));
-                    }
-                }
+                let material = self.look.primitive_materials.get(g).copied().flatten();
+                joined.push_primitive(k, part, &tris, (&local, &used), &looks, material);
+                joined.trace.extend(used.iter().map(|&v| part_start + v));
             }
-            part_start += m.vertex_count();
+            part_start += part.mesh.vertex_count();
         }
         let mut rig = Rig::new(
             self.nodes.clone(),
             self.joints.clone(),
             self.inverse_bind.clone(),
-            mesh,
-            influences,
-            primitives,
+            joined.mesh,
+            joined.influences,
+            joined.primitives,
             self.animations.clone(),
             self.report.clone(),
         )?;
         rig.look = Look {
-            attributes,
-            primitive_materials: materials,
+            attributes: joined.attributes,
+            primitive_materials: joined.materials,
             ..self.look.clone()
         };
-        Ok((rig, trace))
+        Ok((rig, joined.trace))
+    }
+
+    /// For each triangle of `part`, the original primitive its first corner comes from (0
+    /// without sources).
+    fn triangle_primitives(&self, part: &RigPart) -> Vec<usize> {
+        let group_of = |t: &[u32; 3]| match part.sources {
+            Some(s) => s
+                .row(t[0] as usize)
+                .max_by(|a, b| a.1.total_cmp(&b.1))
+                .map_or(0, |(v, _)| self.primitive_of(v as usize)),
+            None => 0,
+        };
+        part.mesh.triangles.iter().map(group_of).collect()
     }
 
     /// The look's attributes over part `k`'s vertices: interpolated from `sources`, and on a
@@ -243,5 +190,114 @@ impl Rig {
             }
         }
         Ok(out)
+    }
+}
+
+/// Every vertex of a part of `n`, in order: (part vertex -> primitive vertex, primitive
+/// vertex -> part vertex).
+fn every_vertex(n: usize) -> (Vec<u32>, Vec<usize>) {
+    ((0..n as u32).collect(), (0..n).collect())
+}
+
+/// The vertices of a part of `n` that `tris` use, in order of first use: (part vertex ->
+/// primitive vertex or `u32::MAX`, primitive vertex -> part vertex).
+fn used_vertices(n: usize, tris: &[[u32; 3]]) -> (Vec<u32>, Vec<usize>) {
+    let mut local = vec![u32::MAX; n];
+    let mut used = Vec::new();
+    for &v in tris.iter().flatten() {
+        if local[v as usize] == u32::MAX {
+            local[v as usize] = used.len() as u32;
+            used.push(v as usize);
+        }
+    }
+    (local, used)
+}
+
+/// The new rig's mesh, influences, look and primitives as [`Rig::with_parts_traced`] joins the
+/// parts' primitives, and the trace of each new vertex to the parts' vertices.
+struct JoinedParts {
+    /// The node every new primitive is on (the first original primitive's).
+    node: usize,
+    mesh: Mesh,
+    influences: Influences,
+    attributes: Vec<VertexAttribute>,
+    primitives: Vec<PrimitiveInfo>,
+    materials: Vec<Option<usize>>,
+    trace: Vec<usize>,
+}
+
+impl JoinedParts {
+    /// Nothing joined yet: primitives on `node`, influences `width` wide, the look's
+    /// attributes (without values) where `keep_attributes`.
+    fn new(look: &Look, node: usize, width: usize, keep_attributes: bool) -> JoinedParts {
+        let attributes = if keep_attributes {
+            look.attributes
+                .iter()
+                .map(|a| VertexAttribute {
+                    values: Vec::new(),
+                    ..a.clone()
+                })
+                .collect()
+        } else {
+            Vec::new()
+        };
+        JoinedParts {
+            node,
+            mesh: Mesh::new(Vec::new(), Vec::new()),
+            influences: Influences {
+                width,
+                ..Influences::default()
+            },
+            attributes,
+            primitives: Vec::new(),
+            materials: Vec::new(),
+            trace: Vec::new(),
+        }
+    }
+
+    /// Appends one primitive of part `k`: its triangles `tris`, the part's vertices `used`
+    /// (`local` maps them back), their influences and attributes (`looks`), its material.
+    fn push_primitive(
+        &mut self,
+        k: usize,
+        part: &RigPart,
+        tris: &[[u32; 3]],
+        (local, used): (&[u32], &[usize]),
+        looks: &[VertexAttribute],
+        material: Option<usize>,
+    ) {
+        let offset = self.mesh.positions.len();
+        self.primitives.push(PrimitiveInfo {
+            node: self.node,
+            mesh: 0,
+            primitive: k,
+            vertex_offset: offset,
+            vertex_count: used.len(),
+            triangle_offset: self.mesh.triangles.len(),
+            triangle_count: tris.len(),
+        });
+        self.materials.push(material);
+        let m = part.mesh;
+        self.mesh
+            .positions
+            .extend(used.iter().map(|&v| m.positions[v]));
+        self.mesh.triangles.extend(
+            tris.iter()
+                .map(|t| t.map(|v| local[v as usize] + offset as u32)),
+        );
+        let width = self.influences.width;
+        for &v in used {
+            let row: Vec<(u32, f64)> = part.influences.row(v).collect();
+            for c in 0..width {
+                let (j, w) = row.get(c).copied().unwrap_or((0, 0.0));
+                self.influences.joints.push(j);
+                self.influences.weights.push(w);
+            }
+        }
+        for (out, a) in self.attributes.iter_mut().zip(looks) {
+            for &v in used {
+                out.values.extend_from_slice(a.row(v));
+            }
+        }
     }
 }
