@@ -359,23 +359,50 @@ fn substitute(p: &Poly, temps: &[Poly]) -> Poly {
     out
 }
 
+/// The program of one `split` of the sandwich `case`, or `None` when an output field does not
+/// reduce to the expansion. Phases: the first half product, its temporaries, the second half
+/// (checked field by field), trivial temporaries folded into their uses, unused ones dropped.
 fn split_program(table: &mut BladeTable, case: &SandwichCase, split: Split) -> Option<Program> {
-    let SandwichCase {
-        basis,
-        tv,
-        tx,
-        to,
-        reduced,
-        ideal,
-    } = *case;
-    let a = SymMv::of_type(tv, 0);
-    let x = SymMv::of_type(tx, 1);
+    let a = SymMv::of_type(case.tv, 0);
+    let x = SymMv::of_type(case.tx, 1);
     let ar = a.rev();
+    let (first, prefix, what) = first_half(table, &a, &x, &ar, split);
+    let mut temps = temporaries(&first, prefix, case.basis);
     let g = Product::Geometric;
-    let (first, prefix, what) = match split {
+    let second = match split {
+        Split::LeftCommutator | Split::LeftHalf => table.product(&temps.sym, &ar, g),
+        Split::RightCommutator | Split::RightHalf => table.product(&a, &temps.sym, g),
+    };
+    let with_x = matches!(split, Split::LeftCommutator | Split::RightCommutator);
+    let outputs = checked_outputs(case, &second, with_x.then_some(&x), &temps.polys)?;
+    let folds = fold_trivial_temps(&mut temps.polys);
+    let outputs: Vec<Poly> = outputs
+        .iter()
+        .map(|p| substitute_folded(p, &folds))
+        .collect();
+    let (temps, outputs) = keep_used(&temps, &outputs);
+    Some(Program {
+        temps,
+        outputs,
+        form: what.to_string(),
+    })
+}
+
+/// The first half of `split` for the versor `a` (reverse `ar`) and operand `x`: the commutator
+/// (`a x - x a` or `x ~a - ~a x`) or the plain half product (`a x` or `x ~a`), with the prefix
+/// of its temporaries' names and the form the program's doc names.
+fn first_half(
+    table: &mut BladeTable,
+    a: &SymMv,
+    x: &SymMv,
+    ar: &SymMv,
+    split: Split,
+) -> (SymMv, &'static str, &'static str) {
+    let g = Product::Geometric;
+    match split {
         Split::LeftCommutator => {
-            let ax = table.product(&a, &x, g);
-            let xa = table.product(&x, &a, g);
+            let ax = table.product(a, x, g);
+            let xa = table.product(x, a, g);
             (
                 ax.add_scaled(&xa, -Rational::ONE),
                 "c",
@@ -383,29 +410,46 @@ fn split_program(table: &mut BladeTable, case: &SandwichCase, split: Split) -> O
             )
         }
         Split::RightCommutator => {
-            let xa = table.product(&x, &ar, g);
-            let ax = table.product(&ar, &x, g);
+            let xa = table.product(x, ar, g);
+            let ax = table.product(ar, x, g);
             (
                 xa.add_scaled(&ax, -Rational::ONE),
                 "d",
                 "x + <a d> with the commutator d = x ~a - ~a x",
             )
         }
-        Split::LeftHalf => (table.product(&a, &x, g), "h", "<h ~a> with h = a x"),
-        Split::RightHalf => (table.product(&x, &ar, g), "h", "<a h> with h = x ~a"),
+        Split::LeftHalf => (table.product(a, x, g), "h", "<h ~a> with h = a x"),
+        Split::RightHalf => (table.product(x, ar, g), "h", "<a h> with h = x ~a"),
+    }
+}
+
+/// The temporaries of a first half, one per blade, before folding and pruning.
+struct Temps {
+    /// Each temporary's expansion, with the common magnitude of its coefficients factored out.
+    polys: Vec<Poly>,
+    /// Each temporary's name: the prefix and the blade's name.
+    names: Vec<String>,
+    /// The first half as a multivector of temporaries (operand [`TEMP`]) times their magnitudes.
+    sym: SymMv,
+}
+
+/// One temporary per blade of `first`, with the common magnitude of its coefficients factored
+/// out (the commutator's factor 2), named `prefix_blade` over the basis names `basis`.
+fn temporaries(first: &SymMv, prefix: &str, basis: &[String]) -> Temps {
+    let mut temps = Temps {
+        polys: Vec::new(),
+        names: Vec::new(),
+        sym: SymMv::default(),
     };
-    // Temporaries: one per blade of the first half, with the common magnitude of its
-    // coefficients factored out (the commutator's factor 2).
-    let mut temp_polys = Vec::new();
-    let mut temp_names = Vec::new();
-    let mut tsym = SymMv::default();
     for (i, (&b, p)) in first.0.iter().enumerate() {
         let mag = common_magnitude(p);
         let mut q = Poly::default();
         q.add_scaled(p, Rational::ONE / mag);
-        temp_polys.push(q);
-        temp_names.push(format!("{prefix}_{}", blade_name(b as Bitmap, basis)));
-        tsym.0.insert(
+        temps.polys.push(q);
+        temps
+            .names
+            .push(format!("{prefix}_{}", blade_name(b as Bitmap, basis)));
+        temps.sym.0.insert(
             b,
             Poly::var(
                 Var {
@@ -416,64 +460,79 @@ fn split_program(table: &mut BladeTable, case: &SandwichCase, split: Split) -> O
             ),
         );
     }
-    let second = match split {
-        Split::LeftCommutator | Split::LeftHalf => table.product(&tsym, &ar, g),
-        Split::RightCommutator | Split::RightHalf => table.product(&a, &tsym, g),
-    };
-    let with_x = matches!(split, Split::LeftCommutator | Split::RightCommutator);
-    // Output expressions, checked against the reduced expansion.
+    temps
+}
+
+/// The output fields of `case.to` from the second half (plus the operand `x` for a commutator
+/// form), signed by the fields' signs; `None` unless each one, with the temporaries expanded
+/// (`temps`), equals the reduced expansion modulo the unit identities.
+fn checked_outputs(
+    case: &SandwichCase,
+    second: &SymMv,
+    x: Option<&SymMv>,
+    temps: &[Poly],
+) -> Option<Vec<Poly>> {
     let mut outputs = Vec::new();
-    for f in &to.fields {
+    for f in &case.to.fields {
         let mut p = second.get(f.bitmap);
-        if with_x {
+        if let Some(x) = x {
             p.add_scaled(&x.get(f.bitmap), Rational::ONE);
         }
         let mut signed = Poly::default();
         signed.add_scaled(&p, Rational::int(f.sign as i64));
-        let expanded = substitute(&p, &temp_polys);
-        if !equivalent_mv_coeff(ideal, &expanded, &reduced.get(f.bitmap), 0) {
+        let expanded = substitute(&p, temps);
+        if !equivalent_mv_coeff(case.ideal, &expanded, &case.reduced.get(f.bitmap), 0) {
             return None;
         }
         outputs.push(signed);
     }
-    // A temporary that is one field (times a constant) is written in place; one whose terms
-    // are all negative is stored negated, and its uses negated instead.
-    let mut subst: Vec<Option<Poly>> = vec![None; temp_polys.len()];
-    for (i, t) in temp_polys.iter_mut().enumerate() {
+    Some(outputs)
+}
+
+/// Fold trivial temporaries: one that is one field (times a constant) is to be written in
+/// place, and one whose terms are all negative is negated here and its uses negated instead.
+/// Returns, per temporary, what its uses become (`None`: kept as is).
+fn fold_trivial_temps(polys: &mut [Poly]) -> Vec<Option<Poly>> {
+    let mut folds: Vec<Option<Poly>> = vec![None; polys.len()];
+    for (i, t) in polys.iter_mut().enumerate() {
         let tv = Var {
             operand: TEMP,
             field: i as u16,
         };
         if t.0.len() == 1 && t.0.keys().next().is_some_and(|m| m.len() <= 1) {
-            subst[i] = Some(t.clone());
+            folds[i] = Some(t.clone());
         } else if t.0.values().all(|c| *c < Rational::ZERO) {
             let mut n = Poly::default();
             n.add_scaled(t, -Rational::ONE);
             *t = n;
-            subst[i] = Some(Poly::var(tv, -Rational::ONE));
+            folds[i] = Some(Poly::var(tv, -Rational::ONE));
         }
     }
-    let outputs: Vec<Poly> = outputs
-        .iter()
-        .map(|p| {
-            let mut out = Poly::default();
-            for (m, &c) in &p.0 {
-                let mut term = Poly::constant(c);
-                let mut plain: Monomial = Vec::new();
-                for v in m {
-                    match (v.operand == TEMP).then(|| subst[v.field as usize].as_ref()) {
-                        Some(Some(q)) => term = term.mul(q),
-                        _ => plain.push(*v),
-                    }
-                }
-                out.add_scaled(&term.mul_monomial(&plain), Rational::ONE);
+    folds
+}
+
+/// `p` with each temporary that has a fold in `folds` replaced by it.
+fn substitute_folded(p: &Poly, folds: &[Option<Poly>]) -> Poly {
+    let mut out = Poly::default();
+    for (m, &c) in &p.0 {
+        let mut term = Poly::constant(c);
+        let mut plain: Monomial = Vec::new();
+        for v in m {
+            match (v.operand == TEMP).then(|| folds[v.field as usize].as_ref()) {
+                Some(Some(q)) => term = term.mul(q),
+                _ => plain.push(*v),
             }
-            out
-        })
-        .collect();
-    // Keep the temporaries the outputs use, renumbered.
-    let mut used = vec![false; temp_polys.len()];
-    for p in &outputs {
+        }
+        out.add_scaled(&term.mul_monomial(&plain), Rational::ONE);
+    }
+    out
+}
+
+/// The temporaries the outputs use, renumbered in order and named, and the outputs over the
+/// new numbers.
+fn keep_used(temps: &Temps, outputs: &[Poly]) -> (Vec<(String, Sum)>, Vec<Sum>) {
+    let mut used = vec![false; temps.polys.len()];
+    for p in outputs {
         for m in p.0.keys() {
             for v in m {
                 if v.operand == TEMP {
@@ -482,43 +541,39 @@ fn split_program(table: &mut BladeTable, case: &SandwichCase, split: Split) -> O
             }
         }
     }
-    let mut renum = vec![0u16; temp_polys.len()];
-    let mut temps = Vec::new();
-    for i in 0..temp_polys.len() {
+    let mut renum = vec![0u16; temps.polys.len()];
+    let mut kept = Vec::new();
+    for i in 0..temps.polys.len() {
         if used[i] {
-            renum[i] = temps.len() as u16;
-            temps.push((temp_names[i].clone(), Sum::from_poly(&temp_polys[i])));
+            renum[i] = kept.len() as u16;
+            kept.push((temps.names[i].clone(), Sum::from_poly(&temps.polys[i])));
         }
     }
-    let outputs = outputs
-        .iter()
-        .map(|p| {
-            let mut q = Poly::default();
-            for (m, &c) in &p.0 {
-                let mut mm: Monomial = m
-                    .iter()
-                    .map(|v| {
-                        if v.operand == TEMP {
-                            Var {
-                                operand: TEMP,
-                                field: renum[v.field as usize],
-                            }
-                        } else {
-                            *v
-                        }
-                    })
-                    .collect();
-                mm.sort();
-                q.add_term(mm, c);
-            }
-            Sum::from_poly(&q)
-        })
-        .collect();
-    Some(Program {
-        temps,
-        outputs,
-        form: what.to_string(),
-    })
+    let outputs = outputs.iter().map(|p| renumbered(p, &renum)).collect();
+    (kept, outputs)
+}
+
+/// `p` with temporary `i` renamed `renum[i]`, as a [`Sum`].
+fn renumbered(p: &Poly, renum: &[u16]) -> Sum {
+    let mut q = Poly::default();
+    for (m, &c) in &p.0 {
+        let mut mm: Monomial = m
+            .iter()
+            .map(|v| {
+                if v.operand == TEMP {
+                    Var {
+                        operand: TEMP,
+                        field: renum[v.field as usize],
+                    }
+                } else {
+                    *v
+                }
+            })
+            .collect();
+        mm.sort();
+        q.add_term(mm, c);
+    }
+    Sum::from_poly(&q)
 }
 
 /// The magnitude shared by every coefficient of `p`, or 1 when they differ.

@@ -180,23 +180,28 @@ fn inertia(a: &[Vec<f64>]) -> (usize, usize, usize) {
 ///   error of the order of the squared difference.
 pub fn helpers(scalar: ScalarType) -> TokenStream {
     let s = scalar.tokens();
-    // The cube root of the unit roundoff balances the quotient's rounding against the limit's
-    // truncation.
-    let tol = constant(
+    let mut out = simple_helpers(&s);
+    out.extend(simple_dl_helper(scalar));
+    out.extend(squares_helper(&s));
+    out.extend(coefficients_helper(scalar));
+    out
+}
+
+/// The relative difference under which two squares count as equal (the equal-squares limit
+/// is used): the cube root of the unit roundoff, which balances the quotient's rounding
+/// against the limit's truncation.
+fn equal_squares_tolerance(scalar: ScalarType) -> TokenStream {
+    constant(
         scalar,
         match scalar {
             ScalarType::F64 => 6e-6,
             ScalarType::F32 => 5e-3,
         },
-    );
-    // Taylor coefficients of ds/dl = sum_k k l^(k-1) / (2k+1)!, k = 1..8, used for |l| < 0.1.
-    let series: Vec<TokenStream> = (1..=8u32)
-        .map(|k| {
-            let fact: f64 = (1..=2 * k + 1).map(f64::from).product();
-            constant(scalar, f64::from(k) / fact)
-        })
-        .rev()
-        .collect();
+    )
+}
+
+/// `exp_log_simple`, `exp_log_sinc` and `exp_log_x_over_sin` over the scalar type `s`.
+fn simple_helpers(s: &TokenStream) -> TokenStream {
     quote! {
         /// `(c, s)` with `exp(b) = c + s b` for a simple bivector `b` squaring to `l`: `cos t,
         /// sin(t)/t` (`t = sqrt(-l)`, a rotation), `cosh t, sinh(t)/t` (`t = sqrt(l)`, a boost),
@@ -240,7 +245,21 @@ pub fn helpers(scalar: ScalarType) -> TokenStream {
                 x / sn
             }
         }
+    }
+}
 
+/// `exp_log_simple_dl`, with its Taylor series in the scalar type.
+fn simple_dl_helper(scalar: ScalarType) -> TokenStream {
+    let s = scalar.tokens();
+    // Taylor coefficients of ds/dl = sum_k k l^(k-1) / (2k+1)!, k = 1..8, used for |l| < 0.1.
+    let series: Vec<TokenStream> = (1..=8u32)
+        .map(|k| {
+            let fact: f64 = (1..=2 * k + 1).map(f64::from).product();
+            constant(scalar, f64::from(k) / fact)
+        })
+        .rev()
+        .collect();
+    quote! {
         /// `d s / d l` of [`exp_log_simple`] at `l`, given its `(c, s)` there: `(c - s)/(2 l)`,
         /// or its Taylor series near zero, where that quotient cancels.
         #[inline]
@@ -254,7 +273,12 @@ pub fn helpers(scalar: ScalarType) -> TokenStream {
                 (c - s) / (2.0 * l)
             }
         }
+    }
+}
 
+/// `exp_log_squares` over the scalar type `s`.
+fn squares_helper(s: &TokenStream) -> TokenStream {
+    quote! {
         /// The squares `(lo, hi)` of the two commuting simple parts of a bivector `B` with
         /// `<B B>_0 = s` and `W W = q` (`W = <B B>_4`): the roots of `l^2 - s l + q/4`, the larger
         /// in magnitude by the quadratic formula and the other as `q / (4 root)`, so neither
@@ -274,7 +298,14 @@ pub fn helpers(scalar: ScalarType) -> TokenStream {
                 (lo.min(hi), hi.max(lo))
             }
         }
+    }
+}
 
+/// `exp_log_coefficients`, with the equal-squares tolerance of the scalar type.
+fn coefficients_helper(scalar: ScalarType) -> TokenStream {
+    let s = scalar.tokens();
+    let tol = equal_squares_tolerance(scalar);
+    quote! {
         /// `[c1 c2, alpha, beta, s1 s2]` with `exp(B) = c1 c2 + alpha B + beta (W B)/2 +
         /// s1 s2 W/2` for a bivector whose commuting parts square to `l1` and `l2`
         /// (`W = <B B>_4`). `alpha = (l1 s1 c2 - l2 c1 s2)/(l1 - l2)`, `beta = (c1 s2 - s1 c2)/(l1 - l2)`;
@@ -336,13 +367,7 @@ const SERIES_TERMS: u32 = 11;
 ///   is used, as for real squares.
 pub fn complex_helpers(scalar: ScalarType) -> TokenStream {
     let s = scalar.tokens();
-    let tol = constant(
-        scalar,
-        match scalar {
-            ScalarType::F64 => 6e-6,
-            ScalarType::F32 => 5e-3,
-        },
-    );
+    let tol = equal_squares_tolerance(scalar);
     let fact = |n: u32| -> f64 { (1..=n).map(f64::from).product() };
     let cosh_terms: Vec<TokenStream> = (0..SERIES_TERMS)
         .rev()

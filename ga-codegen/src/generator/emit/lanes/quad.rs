@@ -6,7 +6,7 @@
 //! grouped by their vector of coefficients, so that each group is signed (an exact sign-bit
 //! flip) or scaled once. The f64 twin is the paired-lane form in `lanes.rs`, which also finds the terms.
 
-use super::{lane_terms, lead_with_added, LaneTerms};
+use super::{lane_terms, lead_with_added, signed_sum, LaneTerms};
 use crate::generator::emit::render::{ident, lit};
 use crate::generator::spec::TypeDef;
 use crate::generator::symbolic::SymMv;
@@ -20,6 +20,48 @@ type Tuple = [Option<u16>; 4];
 
 /// A signed lane term (`true`: subtracted): the versor field splatted and the operand tuple.
 type SignedTerm = (bool, (u16, Tuple));
+
+/// The lane terms of one output quad, keyed by their vector of coefficients (first non-zero
+/// positive) with the terms signed.
+type QuadGroups = BTreeMap<[Rational; 4], Vec<SignedTerm>>;
+
+/// What a 4-lane body loads up front: the versor fields it splats, the operand quads (by
+/// index) and the shuffles of them, as `(quad, lanes)`; identity shuffles use the quad itself.
+#[derive(Default)]
+struct QuadLoads {
+    splats: BTreeSet<u16>,
+    quads: BTreeSet<usize>,
+    shuffles: BTreeSet<(usize, [u8; 4])>,
+}
+
+impl QuadLoads {
+    /// The statements that load them: the runtime's `F32x4` (`rt` is the runtime crate path),
+    /// the splats of versor `ta`'s fields, the quads of operand `tb` (`0.0` past its last
+    /// field), then the shuffles.
+    fn tokens(&self, rt: &TokenStream, ta: &TypeDef, tb: &TypeDef) -> TokenStream {
+        let mut body = quote!(use #rt::runtime::f32x4::F32x4;);
+        for j in &self.splats {
+            let (aj, x) = (splat_name(ta, *j), ident(&ta.fields[*j as usize].name));
+            body.extend(quote!(let #aj = F32x4::splat(a.#x);));
+        }
+        for &q in &self.quads {
+            let f = |i: usize| {
+                tb.fields.get(4 * q + i).map_or(quote!(0.0), |f| {
+                    let x = ident(&f.name);
+                    quote!(b.#x)
+                })
+            };
+            let (bq, f0, f1, f2, f3) = (ident(&format!("b_q{q}")), f(0), f(1), f(2), f(3));
+            body.extend(quote!(let #bq = F32x4::new(#f0, #f1, #f2, #f3);));
+        }
+        for (q, lanes) in &self.shuffles {
+            let imm = Literal::i32_unsuffixed(crate::runtime::f32x4::shuffle_imm(*lanes));
+            let (bq, name) = (ident(&format!("b_q{q}")), shuffle_name(*q, lanes));
+            body.extend(quote!(let #name = #bq.shuffle::<#imm>();));
+        }
+        body
+    }
+}
 
 /// The body of `a * b` (types `ta`, `tb`, result `t`, symbolic product `m`) in 4-lane form;
 /// `None` when the product does not qualify (constants, fewer than four fields, a term that
@@ -36,106 +78,18 @@ pub(crate) fn build(
 ) -> Option<TokenStream> {
     let lanes = lane_terms(ta, tb, t, m)?;
     let scalar_terms: usize = lanes.iter().flat_map(|l| l.values()).map(Vec::len).sum();
-    let af = |j: u16| ident(&format!("a_{}", ta.fields[j as usize].name));
-    let bf = |k: u16| &tb.fields[k as usize].name;
-    let nbq = tb.fields.len().div_ceil(4);
-    let mut used_splats = BTreeSet::new();
-    // (quad, shuffle lanes) -> name; identity shuffles use the quad itself.
-    let mut used_quads: BTreeSet<usize> = BTreeSet::new();
-    let mut used_shuffles: BTreeSet<(usize, [u8; 4])> = BTreeSet::new();
+    let mut loads = QuadLoads::default();
     let mut outputs = Vec::new();
     let mut vector_ops = 0usize;
     for (pi, quad) in t.fields.chunks(4).enumerate() {
-        let empty = BTreeMap::new();
-        let l: Vec<&LaneTerms> = (0..4)
-            .map(|i| {
-                if i < quad.len() {
-                    &lanes[4 * pi + i]
-                } else {
-                    &empty
-                }
-            })
-            .collect();
-        // Coefficient vector (first non-zero positive) -> signed terms.
-        let mut groups: BTreeMap<[Rational; 4], Vec<SignedTerm>> = BTreeMap::new();
-        let js: BTreeSet<u16> = l.iter().flat_map(|x| x.keys().copied()).collect();
-        for j in js {
-            let t: Vec<&[(u16, Rational)]> = l
-                .iter()
-                .map(|x| x.get(&j).map_or(&[][..], |v| v.as_slice()))
-                .collect();
-            let depth = t.iter().map(|v| v.len()).max().unwrap_or(0);
-            for i in 0..depth {
-                let tuple: Tuple = std::array::from_fn(|lane| t[lane].get(i).map(|x| x.0));
-                let fill = t
-                    .iter()
-                    .find_map(|v| v.get(i).map(|x| x.1))
-                    .expect("a term");
-                let coef: [Rational; 4] =
-                    std::array::from_fn(|lane| t[lane].get(i).map_or(fill, |x| x.1));
-                let neg = coef[0] < Rational::ZERO;
-                let key = if neg { coef.map(|c| -c) } else { coef };
-                used_splats.insert(j);
-                groups.entry(key).or_default().push((neg, (j, tuple)));
-            }
-        }
+        let groups = quad_groups(&lanes[4 * pi..4 * pi + quad.len()], &mut loads.splats);
         let mut parts: Vec<(bool, TokenStream)> = Vec::new();
-        for (coef, mut terms) in groups {
-            let all_neg = lead_with_added(&mut terms);
-            let mut sum = TokenStream::new();
-            for (i, (neg, (j, tuple))) in terms.iter().enumerate() {
-                let (bvec, built) =
-                    operand_quad(tuple, nbq, &bf, &mut used_quads, &mut used_shuffles);
-                if i > 0 {
-                    sum.extend(if *neg { quote!(-) } else { quote!(+) });
-                }
-                let aj = af(*j);
-                sum.extend(quote!(#aj * #bvec));
-                // A quad built lane by lane costs about as much as the scalar terms it saves.
-                vector_ops += if built { 4 } else { 2 };
-            }
-            let grouped = if terms.len() > 1 { quote!((#sum)) } else { sum };
-            let ones = coef
-                .iter()
-                .all(|c| *c == Rational::ONE || *c == -Rational::ONE);
-            let part = if coef.iter().all(|c| *c == Rational::ONE) {
-                grouped
-            } else if ones {
-                vector_ops += 1;
-                let mask: i32 = (0..4)
-                    .filter(|&i| coef[i] < Rational::ZERO)
-                    .map(|i| 1 << i)
-                    .sum();
-                let mask = syn::LitInt::new(&format!("{mask:#06b}"), Span::call_site());
-                quote!(#grouped.flip::<#mask>())
-            } else {
-                vector_ops += 1;
-                let c = coef.map(lit);
-                let [c0, c1, c2, c3] = &c;
-                quote!(#grouped * F32x4::new(#c0, #c1, #c2, #c3))
-            };
-            parts.push((all_neg, part));
+        for (coef, terms) in groups {
+            let (part, ops) = group_part(&coef, terms, ta, tb, &mut loads);
+            vector_ops += ops;
+            parts.push(part);
         }
-        if let Some(first) = parts.iter().position(|p| !p.0) {
-            parts.swap(0, first);
-        }
-        let mut expr = TokenStream::new();
-        for (i, (neg, part)) in parts.iter().enumerate() {
-            if i == 0 {
-                expr = if *neg {
-                    quote!(F32x4::splat(0.0) - #part)
-                } else {
-                    part.clone()
-                };
-            } else if *neg {
-                expr.extend(quote!(- #part));
-            } else {
-                expr.extend(quote!(+ #part));
-            }
-        }
-        if expr.is_empty() {
-            expr = quote!(F32x4::splat(0.0));
-        }
+        let expr = signed_sum(parts, &quote!(F32x4::splat(0.0)));
         let o = ident(&format!("o{pi}"));
         outputs.push(quote!(let #o = #expr; let #o = #o.to_array();));
     }
@@ -143,27 +97,91 @@ pub(crate) fn build(
     if vector_ops > scalar_terms {
         return None;
     }
-    let mut body = quote!(use #rt::runtime::f32x4::F32x4;);
-    for j in &used_splats {
-        let (aj, x) = (af(*j), ident(&ta.fields[*j as usize].name));
-        body.extend(quote!(let #aj = F32x4::splat(a.#x);));
-    }
-    for &q in &used_quads {
-        let f = |i: usize| {
-            tb.fields.get(4 * q + i).map_or(quote!(0.0), |f| {
-                let x = ident(&f.name);
-                quote!(b.#x)
-            })
-        };
-        let (bq, f0, f1, f2, f3) = (ident(&format!("b_q{q}")), f(0), f(1), f(2), f(3));
-        body.extend(quote!(let #bq = F32x4::new(#f0, #f1, #f2, #f3);));
-    }
-    for (q, lanes) in &used_shuffles {
-        let imm = Literal::i32_unsuffixed(crate::runtime::f32x4::shuffle_imm(*lanes));
-        let (bq, name) = (ident(&format!("b_q{q}")), shuffle_name(*q, lanes));
-        body.extend(quote!(let #name = #bq.shuffle::<#imm>();));
-    }
+    let mut body = loads.tokens(rt, ta, tb);
     body.extend(outputs);
+    body.extend(quad_result(t));
+    Some(body)
+}
+
+/// Group the terms of one output quad (`quad`: its lanes' terms, up to four) by coefficient
+/// vector; a lane without a term takes the first coefficient of the others. The versor fields
+/// used are added to `splats`.
+fn quad_groups(quad: &[LaneTerms], splats: &mut BTreeSet<u16>) -> QuadGroups {
+    let empty = BTreeMap::new();
+    let l: Vec<&LaneTerms> = (0..4).map(|i| quad.get(i).unwrap_or(&empty)).collect();
+    let mut groups = QuadGroups::new();
+    let js: BTreeSet<u16> = l.iter().flat_map(|x| x.keys().copied()).collect();
+    for j in js {
+        let t: Vec<&[(u16, Rational)]> = l
+            .iter()
+            .map(|x| x.get(&j).map_or(&[][..], |v| v.as_slice()))
+            .collect();
+        let depth = t.iter().map(|v| v.len()).max().unwrap_or(0);
+        for i in 0..depth {
+            let tuple: Tuple = std::array::from_fn(|lane| t[lane].get(i).map(|x| x.0));
+            let fill = t
+                .iter()
+                .find_map(|v| v.get(i).map(|x| x.1))
+                .expect("a term");
+            let coef: [Rational; 4] =
+                std::array::from_fn(|lane| t[lane].get(i).map_or(fill, |x| x.1));
+            let neg = coef[0] < Rational::ZERO;
+            let key = if neg { coef.map(|c| -c) } else { coef };
+            splats.insert(j);
+            groups.entry(key).or_default().push((neg, (j, tuple)));
+        }
+    }
+    groups
+}
+
+/// One group of an output quad as a signed part (`true`: subtracted): its terms summed (led by
+/// an added one) and signed (sign-bit flips) or scaled once by `coef`; with the vector
+/// operations it costs. The operand quads and shuffles used go to `loads`.
+fn group_part(
+    coef: &[Rational; 4],
+    mut terms: Vec<SignedTerm>,
+    ta: &TypeDef,
+    tb: &TypeDef,
+    loads: &mut QuadLoads,
+) -> ((bool, TokenStream), usize) {
+    let mut vector_ops = 0usize;
+    let all_neg = lead_with_added(&mut terms);
+    let mut sum = TokenStream::new();
+    for (i, (neg, (j, tuple))) in terms.iter().enumerate() {
+        let (bvec, built) = operand_quad(tuple, tb, &mut loads.quads, &mut loads.shuffles);
+        if i > 0 {
+            sum.extend(if *neg { quote!(-) } else { quote!(+) });
+        }
+        let aj = splat_name(ta, *j);
+        sum.extend(quote!(#aj * #bvec));
+        // A quad built lane by lane costs about as much as the scalar terms it saves.
+        vector_ops += if built { 4 } else { 2 };
+    }
+    let grouped = if terms.len() > 1 { quote!((#sum)) } else { sum };
+    let ones = coef
+        .iter()
+        .all(|c| *c == Rational::ONE || *c == -Rational::ONE);
+    let part = if coef.iter().all(|c| *c == Rational::ONE) {
+        grouped
+    } else if ones {
+        vector_ops += 1;
+        let mask: i32 = (0..4)
+            .filter(|&i| coef[i] < Rational::ZERO)
+            .map(|i| 1 << i)
+            .sum();
+        let mask = syn::LitInt::new(&format!("{mask:#06b}"), Span::call_site());
+        quote!(#grouped.flip::<#mask>())
+    } else {
+        vector_ops += 1;
+        let c = coef.map(lit);
+        let [c0, c1, c2, c3] = &c;
+        quote!(#grouped * F32x4::new(#c0, #c1, #c2, #c3))
+    };
+    ((all_neg, part), vector_ops)
+}
+
+/// The result `T { x: o0[0], y: o0[1], .. }` from the output quads `o0, o1, ..` (as arrays).
+fn quad_result(t: &TypeDef) -> TokenStream {
     let fields = t.fields.iter().enumerate().map(|(i, f)| {
         let (x, o, lane) = (
             ident(&f.name),
@@ -173,8 +191,12 @@ pub(crate) fn build(
         quote!(#x: #o[#lane])
     });
     let tn = ident(&t.name);
-    body.extend(quote!(#tn { #(#fields),* }));
-    Some(body)
+    quote!(#tn { #(#fields),* })
+}
+
+/// `a_x`: field `j` of the versor `ta` splatted to the four lanes.
+fn splat_name(ta: &TypeDef, j: u16) -> Ident {
+    ident(&format!("a_{}", ta.fields[j as usize].name))
 }
 
 fn shuffle_name(q: usize, lanes: &[u8; 4]) -> Ident {
@@ -184,15 +206,15 @@ fn shuffle_name(q: usize, lanes: &[u8; 4]) -> Ident {
     ))
 }
 
-/// The operand quad of a lane term: a loaded quad, a shuffle of one, or built lane by lane
-/// (then `true`).
-fn operand_quad<'t>(
+/// The operand quad of a lane term over operand type `tb`: a loaded quad, a shuffle of one, or
+/// built lane by lane (then `true`).
+fn operand_quad(
     tuple: &Tuple,
-    nbq: usize,
-    bf: &dyn Fn(u16) -> &'t String,
+    tb: &TypeDef,
     used_quads: &mut BTreeSet<usize>,
     used_shuffles: &mut BTreeSet<(usize, [u8; 4])>,
 ) -> (TokenStream, bool) {
+    let nbq = tb.fields.len().div_ceil(4);
     let quads: BTreeSet<usize> = tuple.iter().flatten().map(|k| *k as usize / 4).collect();
     if tuple.iter().all(Option::is_some) && quads.len() == 1 {
         let q = *quads.iter().next().expect("one quad");
@@ -210,7 +232,7 @@ fn operand_quad<'t>(
     }
     let f = |k: Option<u16>| {
         k.map_or(quote!(0.0), |k| {
-            let x = ident(bf(k));
+            let x = ident(&tb.fields[k as usize].name);
             quote!(b.#x)
         })
     };
