@@ -14,10 +14,11 @@ mod limits;
 #[path = "../benches/support/scenes.rs"]
 mod scenes;
 
-use devkit::grade::{Tally, Target};
+use cga::ScaledMotor;
+use devkit::grade::{Spread, Tally, Target};
 use devkit::measure::spread_ms;
 
-use deform::{BlendMethod, Deformer, Mesh};
+use deform::{BlendMethod, Deformer, Mesh, MotorHandles, SplineDeformer};
 use glam::DVec3;
 
 /// The targets of issue 10, set for armadillo-50k; the subdivision is reported for scaling.
@@ -26,45 +27,92 @@ struct Targets {
     pose_ms: Option<Target>,
 }
 
+/// Pose times of the spline and the handles, ms per frame: the batch loop and the
+/// vertex-by-vertex loop it replaced.
+struct PoseTimes {
+    spline: Spread,
+    handles: Spread,
+    spline_vertex: Spread,
+    handles_vertex: Spread,
+}
+
+/// Times and prints every row of one mesh: binds, poses, the lattice and the blend methods.
 fn report(name: &str, mesh: &Mesh, targets: &Targets, tally: &mut Tally) {
     let n = mesh.vertex_count();
+    let (bind_spline, bind_handles) = time_binds(mesh);
+    let spline = scenes::bind_spline(mesh);
+    let handles = scenes::bind_handles(mesh);
+    let keys = scenes::keys(mesh, 4);
+    let mut out = vec![DVec3::ZERO; n];
+    let poses = time_poses(&spline, &handles, &keys, &mut out);
+    println!(
+        "{name} ({n} vertices, {} threads)",
+        rayon::current_num_threads()
+    );
+    print_deformer_rows(bind_spline, bind_handles, &poses, targets, tally);
+    lattice_rows(mesh, &mut out, tally);
+    blend_rows(mesh, &spline, &keys, &mut out, tally);
+}
+
+/// Bind times of the spline and of the 4 handles (harmonic fields and rest points), ms.
+fn time_binds(mesh: &Mesh) -> (Spread, Spread) {
     let bind_spline = spread_ms(3, || {
         std::hint::black_box(scenes::bind_spline(mesh));
     });
     let bind_handles = spread_ms(3, || {
         std::hint::black_box(scenes::bind_handles(mesh));
     });
-    let spline = scenes::bind_spline(mesh);
-    let handles = scenes::bind_handles(mesh);
-    let keys = scenes::keys(mesh, 4);
-    let mut out = vec![DVec3::ZERO; n];
+    (bind_spline, bind_handles)
+}
+
+/// Warms up, then times posing the spline and the handles with `keys` into `out`, with the
+/// batch loop and then with the vertex-by-vertex loop.
+fn time_poses(
+    spline: &SplineDeformer,
+    handles: &MotorHandles,
+    keys: &[ScaledMotor],
+    out: &mut [DVec3],
+) -> PoseTimes {
     // Warm up (page in the output, wake the thread pool) before measuring.
     let (mut spline_poser, mut handles_poser) = (spline.poser(), handles.poser());
     for _ in 0..20 {
-        spline_poser.pose(&keys, &mut out).expect("pose");
-        handles_poser.pose(&keys, &mut out).expect("pose");
+        spline_poser.pose(keys, out).expect("pose");
+        handles_poser.pose(keys, out).expect("pose");
     }
-    let pose_spline = spread_ms(31, || spline_poser.pose(&keys, &mut out).expect("pose"));
-    let pose_handles = spread_ms(31, || handles_poser.pose(&keys, &mut out).expect("pose"));
+    let pose_spline = spread_ms(31, || spline_poser.pose(keys, out).expect("pose"));
+    let pose_handles = spread_ms(31, || handles_poser.pose(keys, out).expect("pose"));
     // The vertex-by-vertex loop the batch loop replaced, in the same run (issue 23: at least
     // 2x per vertex on both cores).
     let mut prepared = spline.blend().scratch();
     let spline_vertex = spread_ms(31, || {
         spline
             .blend()
-            .pose_vertex_by_vertex(&keys, &mut prepared, &mut out)
+            .pose_vertex_by_vertex(keys, &mut prepared, out)
             .expect("pose")
     });
     let handles_vertex = spread_ms(31, || {
         handles
             .blend()
-            .pose_vertex_by_vertex(&keys, &mut prepared, &mut out)
+            .pose_vertex_by_vertex(keys, &mut prepared, out)
             .expect("pose")
     });
-    println!(
-        "{name} ({n} vertices, {} threads)",
-        rayon::current_num_threads()
-    );
+    PoseTimes {
+        spline: pose_spline,
+        handles: pose_handles,
+        spline_vertex,
+        handles_vertex,
+    }
+}
+
+/// Prints the graded bind and pose rows, then the speed-up of the batch loop over the
+/// vertex-by-vertex loop (graded where the pose has a target).
+fn print_deformer_rows(
+    bind_spline: Spread,
+    bind_handles: Spread,
+    poses: &PoseTimes,
+    targets: &Targets,
+    tally: &mut Tally,
+) {
     let rows = [
         (
             "bind spline (field + rest points)",
@@ -80,13 +128,13 @@ fn report(name: &str, mesh: &Mesh, targets: &Targets, tally: &mut Tally) {
         ),
         (
             "pose spline, 4 B-spline keys",
-            pose_spline,
+            poses.spline,
             "ms/frame",
             targets.pose_ms,
         ),
         (
             "pose 4 motor handles",
-            pose_handles,
+            poses.handles,
             "ms/frame",
             targets.pose_ms,
         ),
@@ -96,8 +144,8 @@ fn report(name: &str, mesh: &Mesh, targets: &Targets, tally: &mut Tally) {
     }
     let gain = targets.pose_ms.map(|_| Target::AtLeast(2.0));
     for (label, batch, vertex) in [
-        ("spline", pose_spline, spline_vertex),
-        ("handles", pose_handles, handles_vertex),
+        ("spline", poses.spline, poses.spline_vertex),
+        ("handles", poses.handles, poses.handles_vertex),
     ] {
         println!(
             "{}",
@@ -109,8 +157,12 @@ fn report(name: &str, mesh: &Mesh, targets: &Targets, tally: &mut Tally) {
             )
         );
     }
-    // The positional form of a lattice (4 x 3 x 3 points, cubic: 64 weights per vertex):
-    // the batch loop against the per-vertex sum it replaced, both on both cores.
+}
+
+/// Binds the positional form of a lattice (4 x 3 x 3 points, cubic: 64 weights per vertex) and
+/// prints its pose time and the speed-up of the batch loop over the per-vertex sum it replaced,
+/// both on both cores.
+fn lattice_rows(mesh: &Mesh, out: &mut [DVec3], tally: &mut Tally) {
     let ffd = deform::deformers::ffd::Ffd::bind(
         mesh,
         [4, 3, 3],
@@ -127,9 +179,7 @@ fn report(name: &str, mesh: &Mesh, targets: &Targets, tally: &mut Tally) {
         .iter()
         .map(|p| *p * 1.1 + DVec3::Y)
         .collect();
-    let ffd_batch = spread_ms(31, || {
-        binding.pose_points(&control, &mut out).expect("pose")
-    });
+    let ffd_batch = spread_ms(31, || binding.pose_points(&control, out).expect("pose"));
     let ffd_vertex = spread_ms(31, || {
         use rayon::prelude::*;
         let w = binding.weights();
@@ -156,6 +206,18 @@ fn report(name: &str, mesh: &Mesh, targets: &Targets, tally: &mut Tally) {
             None
         )
     );
+}
+
+/// Per blend method: prints its estimated limit (4 keys per vertex, both cores), then rebinds
+/// the spline with it and prints ns per vertex with rigid keys and with the scaled `keys`.
+fn blend_rows(
+    mesh: &Mesh,
+    spline: &SplineDeformer,
+    keys: &[ScaledMotor],
+    out: &mut [DVec3],
+    tally: &mut Tally,
+) {
+    let n = mesh.vertex_count();
     let rigid = scenes::rigid_keys(mesh, 4);
     let per_vertex = 1e6 / n as f64;
     // The limits of the blend rows (4 keys per vertex, both cores).
@@ -172,12 +234,10 @@ fn report(name: &str, mesh: &Mesh, targets: &Targets, tally: &mut Tally) {
             limits::operations(method, 4),
             limits::bytes(4)
         );
-        let d = scenes::rebind_spline(mesh, &spline, method);
+        let d = scenes::rebind_spline(mesh, spline, method);
         let mut poser = d.poser();
-        let rigid_ns =
-            spread_ms(31, || poser.pose(&rigid, &mut out).expect("pose")).scale(per_vertex);
-        let scaled_ns =
-            spread_ms(31, || poser.pose(&keys, &mut out).expect("pose")).scale(per_vertex);
+        let rigid_ns = spread_ms(31, || poser.pose(&rigid, out).expect("pose")).scale(per_vertex);
+        let scaled_ns = spread_ms(31, || poser.pose(keys, out).expect("pose")).scale(per_vertex);
         let label = format!("  blend {}, rigid keys", method.name());
         println!("{}", tally.row(&label, rigid_ns, "ns/vertex", None));
         let label = format!("  blend {}, scaled keys", method.name());

@@ -74,123 +74,179 @@ fn main() {
     );
     let mut tally = Tally::default();
     for s in skin_scenes::all() {
-        let n = s.positions.len();
-        let w = s.influences.width;
-        println!(
-            "{} ({n} vertices, {} joints, {w} influences per vertex)",
-            s.name, s.joints
-        );
-        for threads in [1, 2] {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .expect("pool");
-            let ns_per_byte = stream_ns_per_byte(bytes(w) as usize * n, threads);
-            println!("  {threads} thread(s)");
-            let mut got: Vec<(BlendMethod, Times)> = Vec::new();
-            for method in skin_scenes::BACKENDS {
-                if !only.is_empty() && !only.iter().any(|o| o == method.name()) {
-                    continue;
-                }
-                let t = pool.install(|| measure(&s, method));
-                let per_vertex = |ms: Spread| ms.scale(1e6 / n as f64);
-                let compute = operations(method, w) / (16.0 * clock * threads as f64);
-                let memory = bytes(w) * ns_per_byte;
-                let limit = compute.max(memory);
-                let target = (s.name == "armadillo" && method == BlendMethod::MotorLinear)
-                    .then_some(Target::AtMost(1.0));
-                println!(
-                    "{}",
-                    tally.row(
-                        &format!("    {}", method.name()),
-                        t.batch,
-                        "ms/frame",
-                        target
-                    )
-                );
-                println!(
-                    "      {:.1} ns/vertex (vertex by vertex {:.1}, x{:.2}); limit {:.1} ns \
-                     (compute {:.1} for {:.0} flops in {:.0} operations, memory {:.1} for {:.0} bytes): {:.1}x the limit",
-                    per_vertex(t.batch).value,
-                    per_vertex(t.vertex).value,
-                    t.vertex.value / t.batch.value,
-                    limit,
-                    compute,
-                    flops(method, w),
-                    operations(method, w),
-                    memory,
-                    bytes(w),
-                    per_vertex(t.batch).value / limit
-                );
-                got.push((method, t));
-            }
-            let get = |m: BlendMethod| got.iter().find(|(k, _)| *k == m).map(|(_, t)| t);
-            let (Some(dq), Some(ml), Some(mx), Some(cf), Some(lg)) = (
-                get(DualQuaternion),
-                get(MotorLinear),
-                get(Matrix),
-                get(Conformal),
-                get(MotorLog),
-            ) else {
-                continue;
-            };
-            let mut rows = vec![
-                (
-                    "motor-linear / dual-quaternion",
-                    ml.batch.ratio(dq.batch),
-                    Some(Target::AtMost(1.0)),
-                ),
-                (
-                    "conformal / matrix",
-                    cf.batch.ratio(mx.batch),
-                    Some(Target::AtMost(1.1)),
-                ),
-                (
-                    "motor-log / motor-linear",
-                    lg.batch.ratio(ml.batch),
-                    Some(Target::AtMost(1.5)),
-                ),
-            ];
-            // Issue 23's speed-ups are measured on one thread, against the per-vertex loop.
-            let gain =
-                |t: &Times, x: f64| (t.batch.speedup_over(t.vertex), Some(Target::AtLeast(x)));
-            if threads == 1 && s.name == "armadillo" {
-                for (label, t, x) in [
-                    ("dual-quaternion speed-up", dq, 2.0),
-                    ("motor-linear speed-up", ml, 3.0),
-                    ("matrix speed-up", mx, 1.25),
-                ] {
-                    let (r, target) = gain(t, x);
-                    rows.push((label, r, target));
-                }
-            }
-            for (label, r, target) in rows {
-                println!(
-                    "{}",
-                    tally.row(&format!("    {} {label}", s.name), r, "x", target)
-                );
-            }
-        }
+        scene_rows(&s, &only, clock, &mut tally);
     }
-    if let Some(rig) = skin_scenes::cesium_rig() {
-        let (t0, t1) = rig.animations[0].range();
-        let mut pose = RigPose::default();
-        for (name, blend) in [
-            ("glTF samplers", KeyframeBlend::Gltf),
-            ("motor log blending", KeyframeBlend::MotorLog),
-        ] {
-            let mut t = t0;
-            let ms = median_ms(1001, || {
-                t = if t > t1 { t0 } else { t + 0.013 };
-                rig.pose_into(Some(0), t, blend, &[], &mut pose)
-                    .expect("pose");
-                std::hint::black_box(pose.skin_motors().expect("motors").len());
-            });
-            println!(
-                "CesiumMan: sample + global and skin motors ({name}): {:.2} us/frame",
-                ms * 1e3
-            );
-        }
-    }
+    cesium_rows();
     println!("{}", tally.summary());
+}
+
+/// One scene: its heading, then on 1 and then 2 threads every selected backend's rows and
+/// the graded comparisons between backends.
+fn scene_rows(s: &skin_scenes::SkinScene, only: &[String], clock: f64, tally: &mut Tally) {
+    let n = s.positions.len();
+    let w = s.influences.width;
+    println!(
+        "{} ({n} vertices, {} joints, {w} influences per vertex)",
+        s.name, s.joints
+    );
+    for threads in [1, 2] {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .expect("pool");
+        let ns_per_byte = stream_ns_per_byte(bytes(w) as usize * n, threads);
+        println!("  {threads} thread(s)");
+        let mut got: Vec<(BlendMethod, Times)> = Vec::new();
+        for method in skin_scenes::BACKENDS {
+            if !only.is_empty() && !only.iter().any(|o| o == method.name()) {
+                continue;
+            }
+            let t = pool.install(|| measure(s, method));
+            let limit = Limit::new(method, w, threads, clock, ns_per_byte);
+            print_backend(s, method, &t, &limit, tally);
+            got.push((method, t));
+        }
+        comparison_rows(s, threads, &got, tally);
+    }
+}
+
+/// A backend's estimated limit on one scene, ns per vertex.
+struct Limit {
+    /// Operations per vertex at 16 per cycle per core.
+    compute: f64,
+    /// Bytes per vertex at the measured streaming rate.
+    memory: f64,
+}
+
+impl Limit {
+    /// The limit of `method` with `w` influences per vertex on `threads` cores at `clock` GHz,
+    /// streaming at `ns_per_byte`.
+    fn new(method: BlendMethod, w: usize, threads: usize, clock: f64, ns_per_byte: f64) -> Limit {
+        Limit {
+            compute: operations(method, w) / (16.0 * clock * threads as f64),
+            memory: bytes(w) * ns_per_byte,
+        }
+    }
+}
+
+/// Prints a backend's graded ms per frame, then ns per vertex of both loops, the speed-up,
+/// the limit and the ratio to it.
+fn print_backend(
+    s: &skin_scenes::SkinScene,
+    method: BlendMethod,
+    t: &Times,
+    limit: &Limit,
+    tally: &mut Tally,
+) {
+    let n = s.positions.len();
+    let w = s.influences.width;
+    let per_vertex = |ms: Spread| ms.scale(1e6 / n as f64);
+    let Limit { compute, memory } = *limit;
+    let limit = compute.max(memory);
+    let target = (s.name == "armadillo" && method == BlendMethod::MotorLinear)
+        .then_some(Target::AtMost(1.0));
+    println!(
+        "{}",
+        tally.row(
+            &format!("    {}", method.name()),
+            t.batch,
+            "ms/frame",
+            target
+        )
+    );
+    println!(
+        "      {:.1} ns/vertex (vertex by vertex {:.1}, x{:.2}); limit {:.1} ns \
+         (compute {:.1} for {:.0} flops in {:.0} operations, memory {:.1} for {:.0} bytes): {:.1}x the limit",
+        per_vertex(t.batch).value,
+        per_vertex(t.vertex).value,
+        t.vertex.value / t.batch.value,
+        limit,
+        compute,
+        flops(method, w),
+        operations(method, w),
+        memory,
+        bytes(w),
+        per_vertex(t.batch).value / limit
+    );
+}
+
+/// The graded ratios between backends (when all five were measured) and, on one thread on the
+/// armadillo, issue 23's speed-ups over the per-vertex loop.
+fn comparison_rows(
+    s: &skin_scenes::SkinScene,
+    threads: usize,
+    got: &[(BlendMethod, Times)],
+    tally: &mut Tally,
+) {
+    let get = |m: BlendMethod| got.iter().find(|(k, _)| *k == m).map(|(_, t)| t);
+    let (Some(dq), Some(ml), Some(mx), Some(cf), Some(lg)) = (
+        get(DualQuaternion),
+        get(MotorLinear),
+        get(Matrix),
+        get(Conformal),
+        get(MotorLog),
+    ) else {
+        return;
+    };
+    let mut rows = vec![
+        (
+            "motor-linear / dual-quaternion",
+            ml.batch.ratio(dq.batch),
+            Some(Target::AtMost(1.0)),
+        ),
+        (
+            "conformal / matrix",
+            cf.batch.ratio(mx.batch),
+            Some(Target::AtMost(1.1)),
+        ),
+        (
+            "motor-log / motor-linear",
+            lg.batch.ratio(ml.batch),
+            Some(Target::AtMost(1.5)),
+        ),
+    ];
+    // Issue 23's speed-ups are measured on one thread, against the per-vertex loop.
+    let gain = |t: &Times, x: f64| (t.batch.speedup_over(t.vertex), Some(Target::AtLeast(x)));
+    if threads == 1 && s.name == "armadillo" {
+        for (label, t, x) in [
+            ("dual-quaternion speed-up", dq, 2.0),
+            ("motor-linear speed-up", ml, 3.0),
+            ("matrix speed-up", mx, 1.25),
+        ] {
+            let (r, target) = gain(t, x);
+            rows.push((label, r, target));
+        }
+    }
+    for (label, r, target) in rows {
+        println!(
+            "{}",
+            tally.row(&format!("    {} {label}", s.name), r, "x", target)
+        );
+    }
+}
+
+/// Times sampling CesiumMan's animation and building its skin motors, with glTF samplers and
+/// with motor log blending (when the rig is present).
+fn cesium_rows() {
+    let Some(rig) = skin_scenes::cesium_rig() else {
+        return;
+    };
+    let (t0, t1) = rig.animations[0].range();
+    let mut pose = RigPose::default();
+    for (name, blend) in [
+        ("glTF samplers", KeyframeBlend::Gltf),
+        ("motor log blending", KeyframeBlend::MotorLog),
+    ] {
+        let mut t = t0;
+        let ms = median_ms(1001, || {
+            t = if t > t1 { t0 } else { t + 0.013 };
+            rig.pose_into(Some(0), t, blend, &[], &mut pose)
+                .expect("pose");
+            std::hint::black_box(pose.skin_motors().expect("motors").len());
+        });
+        println!(
+            "CesiumMan: sample + global and skin motors ({name}): {:.2} us/frame",
+            ms * 1e3
+        );
+    }
 }
