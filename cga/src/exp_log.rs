@@ -282,7 +282,9 @@ impl Motor {
     /// # Errors
     /// [`CgaError::NonFinite`], [`CgaError::NotAMotor`] when the value is not (a multiple
     /// of) a motor, [`CgaError::Overflow`] when the translation is too large for a finite
-    /// logarithm. Any finite multiple of a motor works (`1e300 M` is the motion of `M`).
+    /// logarithm, or for a multiple so small that its subnormal coefficients no longer hold
+    /// the motion (`1e-45 M` in `f32`). Any other finite multiple of a motor works
+    /// (`1e300 M` is the motion of `M`: its logarithm is `M`'s).
     pub fn try_log(self) -> Result<Bivector> {
         let b = self.rescaled()?.log();
         finite_result(b, &b.to_array(), "log")
@@ -343,7 +345,9 @@ impl ScaledMotor {
     ///
     /// # Errors
     /// [`CgaError::NonFinite`], [`CgaError::NotAMotor`] when the value is not (a multiple
-    /// of) a scaled motor, [`CgaError::Overflow`] for a result that is not finite.
+    /// of) a scaled motor, [`CgaError::Overflow`] for a result that is not finite or a multiple
+    /// so small that its subnormal coefficients no longer hold the motion. `k S` for any
+    /// other finite `k` has the logarithm of `S`.
     pub fn try_log(self) -> Result<Bivector> {
         let b = self.rescaled()?.log();
         finite_result(b, &b.to_array(), "log")

@@ -10,7 +10,8 @@ pub(crate) type Mat3 = glam::Mat3;
 pub(crate) type Mat4 = glam::Mat4;
 pub(crate) use quat_map::{dual_coeffs, dual_quat, rotor_coeffs, rotor_quat};
 pub(crate) use validity::{
-    all_finite, finite3, finite_input, finite_result, max_abs, try_unit_direction, unit_direction,
+    all_finite, finite3, finite_input, finite_result, max_abs, precise_scale, try_unit_direction,
+    unit_direction,
 };
 pub(crate) type Affine = glam::Affine3A;
 /// Relative tolerance of validity checks (versor condition, degeneracy).

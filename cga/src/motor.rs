@@ -228,6 +228,7 @@ impl Motor {
                 why: "zero rotor part",
             });
         }
+        precise_scale(k, "motor (coefficients so small that its motion is lost)")?;
         let m = Motor::from_array(c.map(|x| x / k));
         let c = m.to_array();
         if !all_finite(&c) {

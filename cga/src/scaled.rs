@@ -202,6 +202,10 @@ impl ScaledMotor {
                 why: "zero rotor part",
             });
         }
+        precise_scale(
+            k,
+            "scaled motor (coefficients so small that its motion is lost)",
+        )?;
         let m = ScaledMotor::from_array(c.map(|x| x / k));
         if !all_finite(&m.to_array()) {
             return Err(CgaError::Overflow {

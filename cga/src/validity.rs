@@ -27,6 +27,22 @@ pub(crate) fn max_abs(c: &[S]) -> S {
     m
 }
 
+/// `Err(Overflow)` when the largest coefficient `k` of a versor is so small that its
+/// coefficients, subnormal, keep fewer than half their significant digits (the smallest
+/// subnormal over `k` above `sqrt(eps)`): `k M` at `k = 1e-45` in `f32` (`1e-320` in `f64`)
+/// no longer holds the motion of `M`, and a logarithm or normalisation of it would be a wrong
+/// `Ok`. Above the limit the result is as precise as the input: off by about the smallest
+/// subnormal over `k`.
+#[inline]
+pub(crate) fn precise_scale(k: S, what: &'static str) -> Result<()> {
+    let smallest = S::from_bits(1);
+    if smallest <= S::EPSILON.sqrt() * k {
+        Ok(())
+    } else {
+        Err(CgaError::Overflow { what })
+    }
+}
+
 /// `Err(NonFinite)` unless every input coefficient is finite.
 #[inline]
 pub(crate) fn finite_input(c: &[S], what: &'static str) -> Result<()> {
