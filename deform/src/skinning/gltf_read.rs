@@ -120,7 +120,7 @@ pub fn parse_gltf_with(
     // the POSITION accessor unchecked (gltf-json 1.4, `mesh.rs`) and panics on a missing one.
     let raw =
         gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| gltf_error(e.to_string()))?;
-    super::accessor::check_indices(raw.document.as_json()).map_err(gltf_error)?;
+    super::index_check::check_indices(raw.document.as_json()).map_err(gltf_error)?;
     // A required extension this crate does not read is refused by name, before the `gltf`
     // crate's checks list its symptoms (a Draco primitive's accessors have no buffer view).
     super::compressed::check_required(raw.document.as_json()).map_err(|message| {

@@ -36,6 +36,7 @@ mod edit;
 mod glb_container;
 mod glb_write;
 mod gltf_read;
+mod index_check;
 mod influences;
 mod libigl_rig;
 mod look;

@@ -326,45 +326,8 @@ impl Surgery {
                 &owned
             }
         };
-        let mut splitter = Splitter::new(fpos);
-        let root = |a: u32, b: u32| {
-            let (pa, pb) = (fpos[a as usize], fpos[b as usize]);
-            let (lo, hi) = cyl.clip(pa, pb).unwrap_or((0.0, 1.0));
-            if plan.sign[a as usize] < 0 {
-                hi
-            } else {
-                lo
-            }
-        };
-        // Only faces near the drill can change (a face with a vertex inside meets its box).
-        let mut changed: Vec<u32> = near
-            .iter()
-            .copied()
-            .filter(|&f| tris[f as usize].iter().any(|&v| plan.sign[v as usize] < 0))
-            .collect();
-        changed.sort_unstable();
-        let mut produced = Vec::new();
-        for &f in &changed {
-            let t = tris[f as usize];
-            let g = t.map(|v| plan.sign[v as usize]);
-            if g.contains(&1) {
-                splitter.split(t, g, &root, |side, tri| {
-                    if side == 0 {
-                        produced.push((tri, 0u8));
-                    }
-                });
-            }
-        }
-        let mut kept = Vec::with_capacity(tris.len() + produced.len());
-        let mut next = changed.iter().peekable();
-        for (fi, t) in tris.iter().enumerate() {
-            if next.peek() == Some(&&(fi as u32)) {
-                next.next();
-            } else {
-                kept.push(*t);
-            }
-        }
-        kept.extend(produced.iter().map(|p| p.0));
+        let (splitter, changed, produced) = split_near(cyl, plan, near, fpos, tris);
+        let kept = keep_unchanged(tris, &changed, &produced);
         let fate = |f: u32| {
             if changed.binary_search(&f).is_ok() {
                 FaceFate::Changed
@@ -426,6 +389,66 @@ impl Surgery {
             holes: boundary_loops.saturating_sub(loops_before),
         })
     }
+}
+
+/// The faces of `near` with a vertex inside the drill (sorted), split along `cyl`: the
+/// splitter with its new edges, the faces it changed and the outside triangles it produced.
+fn split_near<'a>(
+    cyl: &Cylinder,
+    plan: &Plan,
+    near: &[u32],
+    fpos: &'a [DVec3],
+    tris: &[[u32; 3]],
+) -> (Splitter<'a>, Vec<u32>, Vec<([u32; 3], u8)>) {
+    let mut splitter = Splitter::new(fpos);
+    let root = |a: u32, b: u32| {
+        let (pa, pb) = (fpos[a as usize], fpos[b as usize]);
+        let (lo, hi) = cyl.clip(pa, pb).unwrap_or((0.0, 1.0));
+        if plan.sign[a as usize] < 0 {
+            hi
+        } else {
+            lo
+        }
+    };
+    // Only faces near the drill can change (a face with a vertex inside meets its box).
+    let mut changed: Vec<u32> = near
+        .iter()
+        .copied()
+        .filter(|&f| tris[f as usize].iter().any(|&v| plan.sign[v as usize] < 0))
+        .collect();
+    changed.sort_unstable();
+    let mut produced = Vec::new();
+    for &f in &changed {
+        let t = tris[f as usize];
+        let g = t.map(|v| plan.sign[v as usize]);
+        if g.contains(&1) {
+            splitter.split(t, g, &root, |side, tri| {
+                if side == 0 {
+                    produced.push((tri, 0u8));
+                }
+            });
+        }
+    }
+    (splitter, changed, produced)
+}
+
+/// The triangles not in `changed` (sorted), in order, then the `produced` ones.
+fn keep_unchanged(
+    tris: &[[u32; 3]],
+    changed: &[u32],
+    produced: &[([u32; 3], u8)],
+) -> Vec<[u32; 3]> {
+    let mut kept = Vec::with_capacity(tris.len() + produced.len());
+    let mut next = changed.iter().peekable();
+    for (fi, t) in tris.iter().enumerate() {
+        if next.peek() == Some(&&(fi as u32)) {
+            next.next();
+        } else {
+            kept.push(*t);
+        }
+    }
+    kept.extend(produced.iter().map(|p| p.0));
+    kept
 }
 
 /// The working mesh of one round: rest and frame positions, influences, triangles, and the

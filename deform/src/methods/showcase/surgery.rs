@@ -50,16 +50,25 @@ fn zoomed(origin: &[VertexOrigin], direction: DVec3) -> Look {
 /// The skin and surgery scenes.
 pub fn scenes() -> Result<Vec<PosedScene>> {
     let rig = procedural_arm(24, 81);
-    let mut scenes = Vec::new();
+    let surgery = Surgery::new(&rig.mesh, &rig.influences)?;
+    Ok(vec![
+        skin_scene(&rig)?,
+        cut_scene(&rig, &surgery)?,
+        tear_scene(&rig, &surgery)?,
+        drill_scene(&rig, &surgery)?,
+    ])
+}
 
+/// The arm at `t = 2` of its animation with its elbow dilated by 1.3.
+fn skin_scene(rig: &Rig) -> Result<PosedScene> {
     let edit = [JointEdit {
         joint: 1,
         motor: ScaledMotor::from_scale_rotation_translation(1.3, DQuat::IDENTITY, DVec3::ZERO),
     }];
     let t = Instant::now();
-    let (posed, pose_ms) = animate(&rig, 2.0, &edit)?;
+    let (posed, pose_ms) = animate(rig, 2.0, &edit)?;
     let moved = displacement(&rig.mesh, &posed);
-    scenes.push(PosedScene {
+    Ok(PosedScene {
         name: "skin-arm",
         method: "3-joint rig, animation + dilated elbow / equation (17)".into(),
         rest: rig.mesh.clone(),
@@ -69,10 +78,11 @@ pub fn scenes() -> Result<Vec<PosedScene>> {
         pose_ms,
         look: Look::new("", "displacement"),
         rig: Some(rig.clone()),
-    });
+    })
+}
 
-    let surgery = Surgery::new(&rig.mesh, &rig.influences)?;
-    // Cut across the upper arm, capped: the two pieces stay on the skeleton.
+/// A cut across the upper arm, capped: the two pieces stay on the skeleton.
+fn cut_scene(rig: &Rig, surgery: &Surgery) -> Result<PosedScene> {
     let t = Instant::now();
     let plane = cga::Plane::from_normal_distance(DVec3::new(1.0, 0.3, 0.0).normalize(), 2.6);
     let cut = surgery.cut(
@@ -92,7 +102,7 @@ pub fn scenes() -> Result<Vec<PosedScene>> {
         .iter()
         .flat_map(|p| std::iter::repeat_n(p.primitive as f64, p.vertex_count))
         .collect();
-    scenes.push(PosedScene {
+    Ok(PosedScene {
         name: "cut-arm",
         method: format!(
             "cut + caps ({} new vertices) / re-animated",
@@ -105,9 +115,11 @@ pub fn scenes() -> Result<Vec<PosedScene>> {
         pose_ms,
         look: Look::new("", "piece"),
         rig: Some(cut_rig),
-    });
+    })
+}
 
-    // Tear along the forearm's front (+z, towards the camera) in three scalpel steps, opened.
+/// A tear along the forearm's front (+z, towards the camera) in three scalpel steps, opened.
+fn tear_scene(rig: &Rig, surgery: &Surgery) -> Result<PosedScene> {
     let blade = |x: f64, y: f64| Scalpel {
         a: DVec3::new(x, y, 1.2),
         b: DVec3::new(x, y, 0.2),
@@ -124,7 +136,7 @@ pub fn scenes() -> Result<Vec<PosedScene>> {
     let tear_ms = ms(t);
     let torn = rig.with_parts(&[tear.mesh.part()])?;
     let (posed, pose_ms) = animate(&torn, 2.0, &[])?;
-    scenes.push(PosedScene {
+    Ok(PosedScene {
         name: "tear-arm",
         method: format!(
             "tear, 2 steps, opened ({} incision vertices) / re-animated",
@@ -137,9 +149,11 @@ pub fn scenes() -> Result<Vec<PosedScene>> {
         pose_ms,
         look: zoomed(&tear.origin, DVec3::NEG_Z),
         rig: Some(torn),
-    });
+    })
+}
 
-    // Drill through the upper arm.
+/// A drill through the upper arm.
+fn drill_scene(rig: &Rig, surgery: &Surgery) -> Result<PosedScene> {
     let t = Instant::now();
     let drill = surgery.drill(
         &Drill {
@@ -153,7 +167,7 @@ pub fn scenes() -> Result<Vec<PosedScene>> {
     let drill_ms = ms(t);
     let drilled = rig.with_parts(&[drill.mesh.part()])?;
     let (posed, pose_ms) = animate(&drilled, 2.0, &[])?;
-    scenes.push(PosedScene {
+    Ok(PosedScene {
         name: "drill-arm",
         method: format!("drill, {} holes / re-animated", drill.holes),
         rest: Mesh::new(
@@ -166,6 +180,5 @@ pub fn scenes() -> Result<Vec<PosedScene>> {
         pose_ms,
         look: zoomed(&drill.origin, DVec3::Z),
         rig: Some(drilled),
-    });
-    Ok(scenes)
+    })
 }
