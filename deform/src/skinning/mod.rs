@@ -44,6 +44,7 @@ mod look_read;
 mod morph;
 mod parts;
 mod pose;
+mod primitive_read;
 mod procedural;
 mod rig;
 mod rig_files;

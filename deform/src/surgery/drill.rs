@@ -326,7 +326,11 @@ impl Surgery {
                 &owned
             }
         };
-        let (splitter, changed, produced) = split_near(cyl, plan, near, fpos, tris);
+        let NearSplit {
+            splitter,
+            changed,
+            produced,
+        } = split_near(cyl, plan, near, fpos, tris);
         let kept = keep_unchanged(tris, &changed, &produced);
         let fate = |f: u32| {
             if changed.binary_search(&f).is_ok() {
@@ -391,15 +395,22 @@ impl Surgery {
     }
 }
 
-/// The faces of `near` with a vertex inside the drill (sorted), split along `cyl`: the
-/// splitter with its new edges, the faces it changed and the outside triangles it produced.
+/// What [`split_near`] gives: the splitter with its new edges, the faces it changed (sorted)
+/// and the outside triangles it produced (each with its side, 0).
+struct NearSplit<'a> {
+    splitter: Splitter<'a>,
+    changed: Vec<u32>,
+    produced: Vec<([u32; 3], u8)>,
+}
+
+/// The faces of `near` with a vertex inside the drill, split along `cyl`.
 fn split_near<'a>(
     cyl: &Cylinder,
     plan: &Plan,
     near: &[u32],
     fpos: &'a [DVec3],
     tris: &[[u32; 3]],
-) -> (Splitter<'a>, Vec<u32>, Vec<([u32; 3], u8)>) {
+) -> NearSplit<'a> {
     let mut splitter = Splitter::new(fpos);
     let root = |a: u32, b: u32| {
         let (pa, pb) = (fpos[a as usize], fpos[b as usize]);
@@ -429,7 +440,11 @@ fn split_near<'a>(
             });
         }
     }
-    (splitter, changed, produced)
+    NearSplit {
+        splitter,
+        changed,
+        produced,
+    }
 }
 
 /// The triangles not in `changed` (sorted), in order, then the `produced` ones.
