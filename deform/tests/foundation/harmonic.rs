@@ -208,8 +208,10 @@ fn two_triangles_apart() -> Mesh {
     )
 }
 
+/// A component or a vertex without constraints, or no constraint at all: `Unconstrained`,
+/// naming the vertices, in the message too.
 #[test]
-fn bad_input_gives_typed_errors_naming_vertices() {
+fn unconstrained_components_and_vertices_are_named() {
     let o = HarmonicOptions::default();
     // A component without constraints.
     match harmonic_field(&two_triangles_apart(), &[0], &[1], o) {
@@ -231,6 +233,22 @@ fn bad_input_gives_typed_errors_naming_vertices() {
         Err(SolveError::Unconstrained { vertices, .. }) => assert_eq!(vertices.0, vec![9]),
         other => panic!("{other:?}"),
     }
+    // No constraint at all.
+    let m = grid(3, 3, false);
+    assert!(matches!(
+        harmonic_field(&m, &[], &[], o),
+        Err(SolveError::Unconstrained { .. })
+    ));
+    // Messages name the vertices.
+    let e = harmonic_field(&two_triangles_apart(), &[0], &[1], o).unwrap_err();
+    assert!(e.to_string().contains("[3, 4, 5]"), "{e}");
+}
+
+/// Constraints out of range or on one vertex twice name the vertices; an empty mesh is
+/// `EmptyMesh`.
+#[test]
+fn bad_constraints_and_an_empty_mesh_give_typed_errors() {
+    let o = HarmonicOptions::default();
     let m = grid(3, 3, false);
     match harmonic_field(&m, &[0, 12], &[8, 40], o) {
         Err(SolveError::Mesh(MeshError::ConstraintOutOfRange { vertices, .. })) => {
@@ -250,15 +268,17 @@ fn bad_input_gives_typed_errors_naming_vertices() {
         }
         other => panic!("{other:?}"),
     }
-    // No constraint at all.
-    assert!(matches!(
-        harmonic_field(&m, &[], &[], o),
-        Err(SolveError::Unconstrained { .. })
-    ));
     assert!(matches!(
         harmonic_field(&Mesh::default(), &[], &[], o),
         Err(SolveError::Mesh(MeshError::EmptyMesh { .. }))
     ));
+}
+
+/// Non-finite coordinates, non-manifold edges and vertices, and bad triangle indices name
+/// the vertices, the edge or the faces.
+#[test]
+fn bad_geometry_names_the_vertices_edges_and_faces() {
+    let o = HarmonicOptions::default();
     // Non-finite coordinates.
     let mut nan = grid(3, 3, false);
     nan.positions[4].y = f64::NAN;
@@ -299,7 +319,13 @@ fn bad_input_gives_typed_errors_naming_vertices() {
         }
         other => panic!("{other:?}"),
     }
-    // Unsupported order, wrong value counts, non-finite boundary values.
+}
+
+/// Unsupported order, wrong value counts, non-finite boundary values.
+#[test]
+fn bad_boundary_values_and_orders_give_typed_errors() {
+    let o = HarmonicOptions::default();
+    let m = grid(3, 3, false);
     let h = Harmonic::new(&m, &[&[0], &[8]], o).expect("ok");
     assert!(matches!(
         h.field(&[0.0]),
@@ -314,7 +340,12 @@ fn bad_input_gives_typed_errors_naming_vertices() {
         Harmonic::new(&m, &[&[0], &[8]], o3),
         Err(SolveError::Mesh(MeshError::InvalidArgument(_)))
     ));
-    // Without the component check, a singular system fails in the factorisation, not as NaN.
+}
+
+/// Without the component check, a singular system fails in the factorisation, not as NaN,
+/// naming a vertex of the unconstrained component.
+#[test]
+fn an_unchecked_singular_system_fails_in_the_factorisation() {
     let q = cotangent_laplacian(&two_triangles_apart(), Default::default())
         .expect("L")
         .map(|v| -v);
@@ -333,9 +364,6 @@ fn bad_input_gives_typed_errors_naming_vertices() {
         }
         other => panic!("{other:?}"),
     }
-    // Messages name the vertices.
-    let e = harmonic_field(&two_triangles_apart(), &[0], &[1], o).unwrap_err();
-    assert!(e.to_string().contains("[3, 4, 5]"), "{e}");
 }
 
 /// `Harmonic::new` orders the Laplacian's pattern while the weights are computed (two

@@ -8,6 +8,7 @@ use std::process::{Command, Output};
 
 mod previews;
 mod refusals;
+mod rigs;
 
 const SIDES: usize = 8;
 const RINGS: usize = 11;
@@ -180,34 +181,44 @@ fn spline_handles_and_fabrik_write_meshes_with_the_input_counts() {
     assert_eq!(v["status"], "unreachable");
 }
 
+/// Exit code 2 with `needle` in the message, and the scene's `never.obj` not written.
+fn expect_2(s: &Scene, args: &[&str], needle: &str) {
+    let out = s.p("never.obj");
+    let o = run(args);
+    assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+    assert!(
+        stderr(&o).contains(needle),
+        "{args:?}: {:?} lacks {needle:?}",
+        stderr(&o)
+    );
+    assert!(!Path::new(&out).exists(), "{args:?} left an output");
+}
+
 #[test]
-fn bad_arguments_and_input_exit_2_and_leave_no_file() {
-    let s = Scene::new("bad");
+fn bad_arguments_exit_2_naming_the_argument_and_leave_no_file() {
+    let s = Scene::new("bad-args");
     let (mesh, keys, sel) = (s.p("bar.obj"), s.p("keys.json"), s.p("sel.json"));
     let out = s.p("never.obj");
-    let expect_2 = |args: &[&str], needle: &str| {
-        let o = run(args);
-        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
-        assert!(
-            stderr(&o).contains(needle),
-            "{args:?}: {:?} lacks {needle:?}",
-            stderr(&o)
-        );
-        assert!(!Path::new(&out).exists(), "{args:?} left an output");
-    };
-    expect_2(&["spline", &mesh, "--select", &sel, "-o", &out], "--keys");
+    expect_2(
+        &s,
+        &["spline", &mesh, "--select", &sel, "-o", &out],
+        "--keys",
+    );
     // `--gpu auto` with a space: clap takes `auto` for the model; the hint says `--gpu=auto`.
     expect_2(
+        &s,
         &["skin", "--gpu", "auto", &mesh, "-o", &out],
         "write --gpu=auto",
     );
     expect_2(
+        &s,
         &[
             "spline", &mesh, "--select", &sel, "--keys", &keys, "-o", &out, "--scheme", "cubic",
         ],
         "cubic",
     );
     expect_2(
+        &s,
         &[
             "spline",
             &mesh,
@@ -222,7 +233,13 @@ fn bad_arguments_and_input_exit_2_and_leave_no_file() {
         ],
         "quadratic takes exactly 3 keys",
     );
-    expect_2(&["frobnicate"], "frobnicate");
+    expect_2(&s, &["frobnicate"], "frobnicate");
+}
+
+#[test]
+fn an_output_naming_an_input_exits_2_and_leaves_the_input_unchanged() {
+    let s = Scene::new("bad-overwrite");
+    let (mesh, keys, sel) = (s.p("bar.obj"), s.p("keys.json"), s.p("sel.json"));
     let before = std::fs::read(&mesh).unwrap();
     let o = run(&[
         "spline", &mesh, "--select", &sel, "--keys", &keys, "-o", &mesh,
@@ -234,114 +251,72 @@ fn bad_arguments_and_input_exit_2_and_leave_no_file() {
         stderr(&o)
     );
     assert_eq!(std::fs::read(&mesh).unwrap(), before);
+}
 
+#[test]
+fn bad_keys_and_selections_exit_2_naming_the_key_or_vertex() {
+    let s = Scene::new("bad-keys");
+    let (mesh, keys, sel) = (s.p("bar.obj"), s.p("keys.json"), s.p("sel.json"));
+    let out = s.p("never.obj");
     std::fs::write(
         s.p("bad-keys.json"),
         r#"[{}, {"rotate": {"axis": [0, 0, 0], "degrees": 10}}]"#,
     )
     .unwrap();
-    expect_2(
-        &[
-            "spline",
-            &mesh,
-            "--select",
-            &sel,
-            "--keys",
-            &s.p("bad-keys.json"),
-            "-o",
-            &out,
-        ],
-        "key 1",
-    );
+    let bad_keys = s.p("bad-keys.json");
+    let args = [
+        "spline", &mesh, "--select", &sel, "--keys", &bad_keys, "-o", &out,
+    ];
+    expect_2(&s, &args, "key 1");
     std::fs::write(s.p("shape.json"), r#"{"rotate": 3}"#).unwrap();
-    expect_2(
-        &[
-            "spline",
-            &mesh,
-            "--select",
-            &sel,
-            "--keys",
-            &s.p("shape.json"),
-            "-o",
-            &out,
-        ],
-        "expected an array",
-    );
+    let shape = s.p("shape.json");
+    let args = [
+        "spline", &mesh, "--select", &sel, "--keys", &shape, "-o", &out,
+    ];
+    expect_2(&s, &args, "expected an array");
     std::fs::write(s.p("far.json"), r#"{"0": [0, 1], "1": [99999]}"#).unwrap();
-    expect_2(
-        &[
-            "spline",
-            &mesh,
-            "--select",
-            &s.p("far.json"),
-            "--keys",
-            &keys,
-            "-o",
-            &out,
-        ],
-        "vertex 99999 does not exist",
-    );
+    let far = s.p("far.json");
+    let args = [
+        "spline", &mesh, "--select", &far, "--keys", &keys, "-o", &out,
+    ];
+    expect_2(&s, &args, "vertex 99999 does not exist");
     std::fs::write(s.p("one.json"), r#"{"0": [0, 1]}"#).unwrap();
-    expect_2(
-        &[
-            "spline",
-            &mesh,
-            "--select",
-            &s.p("one.json"),
-            "--keys",
-            &keys,
-            "-o",
-            &out,
-        ],
-        "at least two groups",
-    );
+    let one = s.p("one.json");
+    let args = [
+        "spline", &mesh, "--select", &one, "--keys", &keys, "-o", &out,
+    ];
+    expect_2(&s, &args, "at least two groups");
+}
+
+#[test]
+fn bad_motors_targets_and_meshes_exit_2_naming_the_input() {
+    let s = Scene::new("bad-inputs");
+    let (mesh, keys, sel) = (s.p("bar.obj"), s.p("keys.json"), s.p("sel.json"));
+    let out = s.p("never.obj");
     std::fs::write(s.p("m.json"), r#"{"7": {}}"#).unwrap();
+    let motors = s.p("m.json");
+    let args = [
+        "handles", &mesh, "--select", &sel, "--motors", &motors, "-o", &out,
+    ];
+    expect_2(&s, &args, "group \"7\"");
     expect_2(
-        &[
-            "handles",
-            &mesh,
-            "--select",
-            &sel,
-            "--motors",
-            &s.p("m.json"),
-            "-o",
-            &out,
-        ],
-        "group \"7\"",
-    );
-    expect_2(
+        &s,
         &[
             "fabrik", &mesh, "--select", &sel, "--target", "1,2", "-o", &out,
         ],
         "three finite numbers",
     );
-    expect_2(
-        &[
-            "spline",
-            &s.p("missing.obj"),
-            "--select",
-            &sel,
-            "--keys",
-            &keys,
-            "-o",
-            &out,
-        ],
-        "missing.obj",
-    );
+    let missing = s.p("missing.obj");
+    let args = [
+        "spline", &missing, "--select", &sel, "--keys", &keys, "-o", &out,
+    ];
+    expect_2(&s, &args, "missing.obj");
     std::fs::write(s.p("broken.obj"), "v 0 0 0\nv 1 0 nan\nf 1 2 3\n").unwrap();
-    expect_2(
-        &[
-            "spline",
-            &s.p("broken.obj"),
-            "--select",
-            &sel,
-            "--keys",
-            &keys,
-            "-o",
-            &out,
-        ],
-        "broken.obj",
-    );
+    let broken = s.p("broken.obj");
+    let args = [
+        "spline", &broken, "--select", &sel, "--keys", &keys, "-o", &out,
+    ];
+    expect_2(&s, &args, "broken.obj");
 }
 
 /// Ctrl-C during a long frame sequence (issue 20): exit code 130, and neither frames nor

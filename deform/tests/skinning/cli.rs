@@ -3,21 +3,28 @@
 use crate::common::data_dir;
 use crate::gltf_out;
 use deform::skinning::read_gltf;
+use std::path::Path;
+use std::process::{Command, Output};
 
-/// The CLI: glTF and libigl rigs, OBJ and .glb out (validated in CI), exit code 2 on bad input.
+/// `deform ARGS`.
+fn run(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_deform"))
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+/// The CLI on glTF: an edit of CesiumMan written to .glb (validated in CI) keeps its animation.
 #[test]
-fn skin_cli() {
-    use std::process::Command;
+fn skin_cli_writes_an_edited_glb_with_its_animation() {
     let Some(dir) = data_dir() else { return };
     let out = gltf_out();
-    let exe = env!("CARGO_BIN_EXE_deform");
     let edit = out.join("neck.json");
     std::fs::write(
         &edit,
         r#"{"rotate": {"axis": [1, 0, 0], "degrees": 20}, "scale": 1.1}"#,
     )
     .unwrap();
-    let run = |args: &[&str]| Command::new(exe).args(args).output().unwrap();
     let man = dir.join("gltf/CesiumMan.glb");
     let glb = out.join("cesium-edited.glb");
     let o = run(&[
@@ -32,6 +39,13 @@ fn skin_cli() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let back = read_gltf(&glb).unwrap();
     assert_eq!(back.animations.len(), 1);
+}
+
+/// The Fox posed to OBJ keeps its vertex count and its UVs as `vt`.
+#[test]
+fn skin_cli_writes_the_fox_to_obj_with_its_uvs() {
+    let Some(dir) = data_dir() else { return };
+    let out = gltf_out();
     let obj = out.join("fox.obj");
     let o = run(&[
         "skin",
@@ -68,18 +82,36 @@ fn skin_cli() {
     }
     assert!(!text.contains("\nvn "));
     assert!(text.lines().any(|l| l == "f 1/1 2/2 3/3") || text.contains(" 1/1"));
-    // A libigl rig with its DMAT animation: frame 100.
+}
+
+/// libigl's elephant: its OBJ, TGF skeleton, DMAT weights and DMAT animation, as paths.
+fn elephant_files(dir: &Path) -> [String; 4] {
     let lib = dir.join("meshes/libigl");
+    [
+        "elephant.obj",
+        "elephant.tgf",
+        "elephant-weights.dmat",
+        "elephant-anim.dmat",
+    ]
+    .map(|f| lib.join(f).to_string_lossy().into_owned())
+}
+
+/// A libigl rig with its DMAT animation: frame 100.
+#[test]
+fn skin_cli_poses_a_libigl_rig_at_a_dmat_frame() {
+    let Some(dir) = data_dir() else { return };
+    let out = gltf_out();
+    let [mesh, tgf, weights, anim] = elephant_files(&dir);
     let ele = out.join("elephant-100.obj");
     let o = run(&[
         "skin",
-        lib.join("elephant.obj").to_str().unwrap(),
+        &mesh,
         "--skeleton",
-        lib.join("elephant.tgf").to_str().unwrap(),
+        &tgf,
         "--weights",
-        lib.join("elephant-weights.dmat").to_str().unwrap(),
+        &weights,
         "--dmat-animation",
-        lib.join("elephant-anim.dmat").to_str().unwrap(),
+        &anim,
         "--time",
         "100",
         "--backend",
@@ -93,19 +125,19 @@ fn skin_cli() {
         deform::mesh::io::read_obj(&ele).unwrap().vertex_count(),
         6034
     );
-    // A frame past the animation's 457 (1e300 read "no animation frame 18446744073709551615"),
-    // and a --range whose frames are not indices: the flag and the frames there are.
+}
+
+/// A frame past the animation's 457 (1e300 read "no animation frame 18446744073709551615"),
+/// and a --range whose frames are not indices: exit code 2 naming the flag and the frames
+/// there are.
+#[test]
+fn skin_cli_names_the_dmat_frames_when_a_time_is_not_one() {
+    let Some(dir) = data_dir() else { return };
+    let files = elephant_files(&dir);
     for (when, flag, frame) in [
         (["--time", "1e300"], "--time", "frame 1.00e300"),
         (["--range", "0:5:3"], "--range", "frame 2.5"),
     ] {
-        let files = [
-            "elephant.obj",
-            "elephant.tgf",
-            "elephant-weights.dmat",
-            "elephant-anim.dmat",
-        ]
-        .map(|f| lib.join(f).to_string_lossy().into_owned());
         let mut args = vec![
             "skin",
             &files[0],
@@ -126,7 +158,15 @@ fn skin_cli() {
             format!("{flag}: {frame}: with --dmat-animation times are frame indices, 0 to 456");
         assert!(err.contains(&want), "{err}");
     }
-    // Bad input: exit code 2 with a message.
+}
+
+/// Bad input: a truncated file, an unknown animation or joint, an output over the input: exit
+/// code 2 with a message.
+#[test]
+fn skin_cli_bad_input_exits_2_with_a_message() {
+    let Some(dir) = data_dir() else { return };
+    let out = gltf_out();
+    let man = dir.join("gltf/CesiumMan.glb");
     let trunc = out.join("truncated.bin");
     std::fs::write(&trunc, &std::fs::read(&man).unwrap()[..500]).unwrap();
     let trunc_glb = out.join("truncated-input.glb.bin");

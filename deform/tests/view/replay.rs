@@ -57,48 +57,93 @@ fn replayed(c: &mut Client, state: &Value, dir: &Path, files: &[&str]) -> Vec<DV
         .positions
 }
 
-#[test]
-fn the_replay_line_poses_the_exported_files_as_the_server_posed_them() {
-    let server = Server::start(&[]);
-    let mut c = server.connect(None).expect("connects");
-    let s = c.state();
-    assert_eq!(s["scene"], "sphere");
-    let rest: Vec<DVec3> = {
-        let m = deform::mesh::shapes::icosphere(1.0, 4);
-        m.positions
-    };
-    let specs = json!([{"translate": [0, 0.3, 0]}, {"translate": [0, 0.8, 0], "scale": 1.4, "center": [0, 1, 0]},
-        {"rotate": {"axis": [1, 0, 0], "degrees": 90, "center": [1, 0, 0]}, "translate": [0.1, 0, 0]}]);
-    let mut seq = 30;
-    let mut pose = |c: &mut Client, specs: &Value| {
-        seq += 1;
-        c.send(json!({"op": "motors", "seq": seq, "motors": specs}));
-        c.positions(seq)
-    };
-    let check = |what: &str, got: &[DVec3], want: &[DVec3], tol: f64| {
-        let e = worst(got, want);
-        assert!(e <= tol, "{what}: {e}");
-        assert!(worst(got, &rest) > 0.2, "{what}: it moved");
-    };
+/// A `deform view` on its first scene (the sphere), a client and the last pose's number.
+struct Session {
+    c: Client,
+    seq: u32,
+    _server: Server,
+}
 
-    // Handles, motor log blending, then dual quaternions.
-    for blend in ["motor-log", "dual-quaternion"] {
-        c.send(json!({"op": "method", "method": "handles", "blend": blend}));
+impl Session {
+    fn start() -> Session {
+        let server = Server::start(&[]);
+        let mut c = server.connect(None).expect("connects");
         let s = c.state();
-        assert!(s["replay"].as_str().unwrap().contains(blend));
-        let got = pose(&mut c, &specs);
-        let dir = folder(&format!("handles-{blend}"));
-        let files = ["rest", "selection", "motors"];
-        check(blend, &replayed(&mut c, &s, &dir, &files), &got, 1e-12);
+        assert_eq!(s["scene"], "sphere");
+        Session {
+            c,
+            seq: 30,
+            _server: server,
+        }
     }
 
-    // The spline between the first and last group, its keys after their centres.
+    /// Send `specs` as the next pose and read the positions the server posed.
+    fn pose(&mut self, specs: &Value) -> Vec<DVec3> {
+        self.seq += 1;
+        let seq = self.seq;
+        self.c
+            .send(json!({"op": "motors", "seq": seq, "motors": specs}));
+        self.c.positions(seq)
+    }
+}
+
+/// Motors for the sphere's three groups.
+fn specs() -> Value {
+    json!([{"translate": [0, 0.3, 0]}, {"translate": [0, 0.8, 0], "scale": 1.4, "center": [0, 1, 0]},
+        {"rotate": {"axis": [1, 0, 0], "degrees": 90, "center": [1, 0, 0]}, "translate": [0.1, 0, 0]}])
+}
+
+/// The replayed sphere is within `tol` of the server's pose and moved off the rest sphere.
+fn check(what: &str, got: &[DVec3], want: &[DVec3], tol: f64) {
+    let rest = deform::mesh::shapes::icosphere(1.0, 4).positions;
+    let e = worst(got, want);
+    assert!(e <= tol, "{what}: {e}");
+    assert!(worst(got, &rest) > 0.2, "{what}: it moved");
+}
+
+/// Motors for a scene's control points: those past x = 5 turn and lift, the others stay.
+fn lift(s: &Value) -> Value {
+    let points: Vec<[f64; 3]> = serde_json::from_value(s["controls"]["points"].clone()).unwrap();
+    points
+        .iter()
+        .map(|p| {
+            if p[0] > 5.0 {
+                json!({"rotate": {"axis": [1, 0, 0], "degrees": 40, "center": [p[0], 0, 0]}, "translate": [0, 0.5, 0]})
+            } else {
+                json!({})
+            }
+        })
+        .collect()
+}
+
+/// Handles, motor log blending, then dual quaternions.
+#[test]
+fn handles_replay_poses_as_the_server_under_both_blends() {
+    let mut t = Session::start();
+    for blend in ["motor-log", "dual-quaternion"] {
+        t.c.send(json!({"op": "method", "method": "handles", "blend": blend}));
+        let s = t.c.state();
+        assert!(s["replay"].as_str().unwrap().contains(blend));
+        let got = t.pose(&specs());
+        let dir = folder(&format!("handles-{blend}"));
+        let files = ["rest", "selection", "motors"];
+        check(blend, &replayed(&mut t.c, &s, &dir, &files), &got, 1e-12);
+    }
+}
+
+/// The spline between the first and last group, its keys after their centres; a group painted
+/// and not yet bound leaves no replay line and no keys to export.
+#[test]
+fn spline_replay_poses_as_the_server_and_unbound_groups_have_no_keys() {
+    let mut t = Session::start();
+    let c = &mut t.c;
     c.send(json!({"op": "method", "method": "spline", "blend": "motor-log"}));
     let s = c.state();
-    let got = pose(&mut c, &specs);
+    let got = t.pose(&specs());
+    let c = &mut t.c;
     let dir = folder("spline");
     let files = ["rest", "selection", "keys", "rest-keys"];
-    check("spline", &replayed(&mut c, &s, &dir, &files), &got, 1e-12);
+    check("spline", &replayed(c, &s, &dir, &files), &got, 1e-12);
     // A new group painted and not yet bound: the keys would not match the groups.
     c.send(
         json!({"op": "paint", "origin": [0.0, 0.0, 5.0], "direction": [0.0, 0.0, -1.0],
@@ -111,14 +156,18 @@ fn the_replay_line_poses_the_exported_files_as_the_server_posed_them() {
     assert!(c.error().contains("since the last bind"));
     c.send(json!({"op": "undo"}));
     assert_eq!(c.state()["groups"].as_array().unwrap().len(), 3);
+}
 
-    // B-spline + FABRIK, the method added last (one library file and a variant): the page
-    // offers it and its options, and replays it with `deform pose fabrik`.
-    c.send(
+/// B-spline + FABRIK, the method added last (one library file and a variant): the page
+/// offers it and its options, and replays it with `deform pose fabrik`.
+#[test]
+fn fabrik_is_offered_with_its_options_and_replays_as_posed() {
+    let mut t = Session::start();
+    t.c.send(
         json!({"op": "method", "method": "fabrik", "blend": "motor-log",
         "options": {"joints": 5, "controls": 3}}),
     );
-    let s = c.state();
+    let s = t.c.state();
     let specs_shown: Vec<&str> = (s["option_specs"].as_array().unwrap().iter())
         .map(|o| o["name"].as_str().unwrap())
         .collect();
@@ -129,69 +178,67 @@ fn the_replay_line_poses_the_exported_files_as_the_server_posed_them() {
         "{line}"
     );
     // The last group's motor moves the end effector (the others are not used).
-    let got = pose(&mut c, &json!([{}, {}, {"translate": [0, 0.8, 0]}]));
+    let got = t.pose(&json!([{}, {}, {"translate": [0, 0.8, 0]}]));
     let dir = folder("fabrik");
     let files = ["rest", "selection", "motors"];
-    check("fabrik", &replayed(&mut c, &s, &dir, &files), &got, 1e-12);
-    c.send(
+    check("fabrik", &replayed(&mut t.c, &s, &dir, &files), &got, 1e-12);
+    t.c.send(
         json!({"op": "method", "method": "fabrik", "blend": "motor-log",
         "options": {"controls": 6}}),
     );
-    assert!(c.error().contains("controls"), "more controls than joints");
+    assert!(
+        t.c.error().contains("controls"),
+        "more controls than joints"
+    );
+}
 
-    // ARAP: the page iterates twice per frame from the last frame; after enough frames of one
-    // drag it rests where the CLI's run to convergence ends.
-    c.send(json!({"op": "method", "method": "arap", "blend": "motor-log", "options": {"iterations": 50}}));
-    let s = c.state();
-    let mut got = pose(&mut c, &specs);
+/// ARAP: the page iterates twice per frame from the last frame; after enough frames of one
+/// drag it rests where the CLI's run to convergence ends.
+#[test]
+fn arap_replay_to_convergence_ends_where_the_page_rests() {
+    let mut t = Session::start();
+    t.c.send(json!({"op": "method", "method": "arap", "blend": "motor-log", "options": {"iterations": 50}}));
+    let s = t.c.state();
+    let mut got = t.pose(&specs());
     for _ in 0..20 {
-        got = pose(&mut c, &specs);
+        got = t.pose(&specs());
     }
     let dir = folder("arap");
     let files = ["rest", "selection", "motors"];
-    check("arap", &replayed(&mut c, &s, &dir, &files), &got, 1e-6);
+    check("arap", &replayed(&mut t.c, &s, &dir, &files), &got, 1e-6);
+}
 
-    // A 5x3x3 quadratic B-spline lattice, motor linear blending.
-    c.send(json!({"op": "scene", "name": "lattice"}));
-    c.state();
-    c.send(
+/// A 5x3x3 quadratic B-spline lattice, motor linear blending; then the cage with harmonic
+/// coordinates on a 24-node grid, positional form; then exports that do not belong to the
+/// method are refused and the connection stays.
+#[test]
+fn lattice_and_cage_replays_pose_as_the_server_and_foreign_exports_are_refused() {
+    let mut t = Session::start();
+    t.c.send(json!({"op": "scene", "name": "lattice"}));
+    t.c.state();
+    t.c.send(
         json!({"op": "method", "method": "ffd", "blend": "motor-linear",
         "options": {"lattice": [5, 3, 3], "basis": "bspline-2"}}),
     );
-    let s = c.state();
+    let s = t.c.state();
     let bar = deform::mesh::shapes::tube(1.0, 10.0, 16, 41).positions;
-    let lift = |s: &Value| -> Value {
-        let points: Vec<[f64; 3]> =
-            serde_json::from_value(s["controls"]["points"].clone()).unwrap();
-        points
-            .iter()
-            .map(|p| {
-                if p[0] > 5.0 {
-                    json!({"rotate": {"axis": [1, 0, 0], "degrees": 40, "center": [p[0], 0, 0]}, "translate": [0, 0.5, 0]})
-                } else {
-                    json!({})
-                }
-            })
-            .collect()
-    };
-    let got = pose(&mut c, &lift(&s));
+    let got = t.pose(&lift(&s));
     let dir = folder("ffd");
-    let moved = replayed(&mut c, &s, &dir, &["rest", "motors"]);
+    let moved = replayed(&mut t.c, &s, &dir, &["rest", "motors"]);
     assert!(worst(&moved, &got) <= 1e-12, "ffd: {}", worst(&moved, &got));
     assert!(worst(&got, &bar) > 0.2, "ffd: it moved");
 
-    // The cage with harmonic coordinates on a 24-node grid, positional form.
-    c.send(json!({"op": "scene", "name": "cage"}));
-    c.state();
-    c.send(
+    t.c.send(json!({"op": "scene", "name": "cage"}));
+    t.c.state();
+    t.c.send(
         json!({"op": "method", "method": "cage", "blend": "positional",
         "options": {"coordinates": "harmonic", "grid": 24}}),
     );
-    let s = c.state();
+    let s = t.c.state();
     assert!(s["replay"].as_str().unwrap().contains("--grid 24"));
-    let got = pose(&mut c, &lift(&s));
+    let got = t.pose(&lift(&s));
     let dir = folder("cage");
-    let moved = replayed(&mut c, &s, &dir, &["rest", "cage", "motors"]);
+    let moved = replayed(&mut t.c, &s, &dir, &["rest", "cage", "motors"]);
     assert!(
         worst(&moved, &got) <= 1e-12,
         "cage: {}",
@@ -199,7 +246,7 @@ fn the_replay_line_poses_the_exported_files_as_the_server_posed_them() {
     );
     assert!(worst(&got, &bar) > 0.2, "cage: it moved");
 
-    // Exports that do not belong to the method are refused, the connection stays.
+    let c = &mut t.c;
     for what in ["cage", "keys"] {
         c.send(json!({"op": "scene", "name": "sphere"}));
         c.state();

@@ -1,12 +1,13 @@
 //! Refusals: bad numbers and counts, hostile rig inputs (issue 20) and output names of a format
 //! the command does not write (issue 21) exit with code 2 before any work, never a panic.
 
+use super::rigs::cesium_man;
 use super::{read_obj, run, stderr, Scene};
 use crate::common;
 use std::path::Path;
 
 /// Exit code 2 with `needle` in the message, no panic, and `out` not written.
-fn refused(args: &[&str], needle: &str, out: &str) {
+pub(super) fn refused(args: &[&str], needle: &str, out: &str) {
     let o = run(args);
     let err = stderr(&o);
     assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
@@ -128,170 +129,6 @@ fn huge_counts_and_non_finite_numbers_are_refused_before_any_work() {
         &out,
     ];
     refused(&args, "--iterations", &out);
-}
-
-/// The shared data folder and CesiumMan's path in it (`None`: skipped, see `common`).
-fn cesium_man() -> Option<(std::path::PathBuf, String)> {
-    let data = common::data_dir()?;
-    let man = data
-        .join("gltf/CesiumMan.glb")
-        .to_string_lossy()
-        .into_owned();
-    Some((data, man))
-}
-
-/// Issue 20's reproducers on the shared rigs: `--time nan`, huge frame counts, an opening or a
-/// drill far beyond the model, a scalpel that returns to an earlier blade, a glTF naming a
-/// missing accessor, and a frame sequence whose generated names include an input.
-#[test]
-fn hostile_rig_inputs_exit_2_or_succeed_without_panicking() {
-    let Some((data, man)) = cesium_man() else {
-        return;
-    };
-    let simple = data.join("gltf/SimpleSkin.gltf");
-    let s = Scene::new("rigs");
-    let out = s.p("o.obj");
-    std::fs::write(s.p("edit.json"), "{}").unwrap();
-    let edit = format!("0={}", s.p("edit.json"));
-    refused(&["skin", &man, "--time", "nan", "-o", &out], "finite", &out);
-    // A file per frame: a 10-vertex rig kept vertices x frames under the budget, and a million
-    // in-betweens (or 100,000 frames) ran past 20 s writing files. Each file counts now.
-    let simple_path = simple.to_string_lossy().into_owned();
-    refused(
-        &["skin", &simple_path, "--in-betweens", "1000000", "-o", &out],
-        "--in-betweens: 1000000 files",
-        &out,
-    );
-    refused(
-        &["skin", &simple_path, "--range", "0:1:100000", "-o", &out],
-        "--range: 100000 files",
-        &out,
-    );
-    for tool in [
-        vec!["cut", &man, "--plane", "0,0,1,1"],
-        vec![
-            "drill", &man, "--tip", "0,0,0", "--end", "0,0,1", "--radius", "0.1",
-        ],
-        vec![
-            "tear",
-            &man,
-            "--scalpel",
-            "0.3,0,1.05:0,0,1.05",
-            "--scalpel",
-            "0.3,0.03,1.05:0,0.03,1.05",
-        ],
-    ] {
-        let mut args = tool.clone();
-        args.extend(["--time", "nan", "-o", &out]);
-        refused(&args, "finite", &out);
-    }
-    let args = [
-        "skin",
-        &man,
-        "--edit",
-        &edit,
-        "--in-betweens=18446744073709551615",
-        "-o",
-        &out,
-    ];
-    refused(&args, "--in-betweens", &out);
-    refused(
-        &["skin", &man, "--range", "0:1:100000", "-o", &out],
-        "--max-work",
-        &out,
-    );
-    let (a, b) = ("0.3,0,1.05:0,0,1.05", "0.3,0.03,1.05:0,0.03,1.05");
-    let args = [
-        "tear",
-        &man,
-        "--scalpel",
-        a,
-        "--scalpel",
-        b,
-        "--open",
-        "1e308",
-        "-o",
-        &out,
-    ];
-    refused(&args, "model's size", &out);
-    let args = [
-        "drill", &man, "--tip", "0,0,-10", "--end", "0,0,10", "--radius", "100", "-o", &out,
-    ];
-    refused(&args, "whole mesh", &out);
-
-    // A scalpel that comes back to an earlier blade: no panic; a finite result or a message.
-    let o = run(&[
-        "tear",
-        &man,
-        "--scalpel",
-        a,
-        "--scalpel",
-        b,
-        "--scalpel",
-        a,
-        "-o",
-        &out,
-        "--quiet",
-    ]);
-    let err = stderr(&o);
-    assert!(
-        matches!(o.status.code(), Some(0 | 2)) && !err.contains("panicked"),
-        "{err}"
-    );
-    if o.status.success() {
-        let m = read_obj(&out);
-        assert!(m.positions.iter().all(|p| p.is_finite()));
-        std::fs::remove_file(&out).unwrap();
-    }
-
-    // An ordinary straight 4-blade scalpel along libigl's arm: a finite, opened tear.
-    let libigl = data.join("meshes/libigl");
-    let lib = |n: &str| libigl.join(n).to_string_lossy().into_owned();
-    let (arm, tgf, dmat) = (lib("arm.obj"), lib("arm.tgf"), lib("arm-weights.dmat"));
-    let mut args = vec![
-        "tear".to_string(),
-        arm,
-        "--skeleton".into(),
-        tgf,
-        "--weights".into(),
-        dmat,
-    ];
-    for (x, y) in [(-0.6, 0.215), (-0.3, 0.227), (0.0, 0.183), (0.3, 0.097)] {
-        args.push("--scalpel".into());
-        args.push(format!("{x},{y},0.6:{x},{y},-0.03"));
-    }
-    args.extend(["--open", "0.01", "-o", &out, "--quiet"].map(String::from));
-    let o = run(&args.iter().map(String::as_str).collect::<Vec<_>>());
-    assert!(o.status.success(), "{}", stderr(&o));
-    assert!(read_obj(&out).positions.iter().all(|p| p.is_finite()));
-    std::fs::remove_file(&out).unwrap();
-
-    // POSITION names an accessor that does not exist (the gltf crate's validation panicked).
-    let mut json: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(&simple).unwrap()).unwrap();
-    json["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = 99.into();
-    std::fs::write(s.p("bad.gltf"), json.to_string()).unwrap();
-    refused(
-        &["skin", &s.p("bad.gltf"), "-o", &out],
-        "refers to index 99",
-        &out,
-    );
-
-    // A sequence whose generated names include an input (the edit motor file) is refused
-    // before anything is written, and the input is left as it was.
-    std::fs::write(s.p("seq_0001.obj"), "{}").unwrap();
-    let edit = format!("0={}", s.p("seq_0001.obj"));
-    let simple = simple.to_string_lossy().into_owned();
-    let seq = s.p("seq.obj");
-    let args = [
-        "skin", &simple, "--edit", &edit, "--range", "0:1:3", "-o", &seq,
-    ];
-    refused(
-        &args,
-        "refusing to overwrite an input",
-        &s.p("seq_0000.obj"),
-    );
-    assert_eq!(std::fs::read_to_string(s.p("seq_0001.obj")).unwrap(), "{}");
 }
 
 /// Issue 21's "wrong files under the asked name": an output extension the command does not

@@ -256,33 +256,31 @@ fn two_joint_bar(o: Bar) -> Fixture {
     f
 }
 
-/// glTF's skinning formula on the fixture's own JSON and buffer, independent of the
-/// crate's reader: per skinned mesh node, per primitive in document order, per vertex
-/// `sum w (world(joint) * inverse_bind) p` with the weights normalised (three.js's
-/// `SkinnedMesh`), at the rest pose or with the animation's keys at `time` (STEP only).
-fn reference_skinning(f: &Fixture, time: Option<f64>) -> Vec<DVec3> {
+/// Accessor `a` of the fixture read as f64s (floats, unsigned shorts or bytes; no sparse).
+fn read_accessor(f: &Fixture, a: usize) -> Vec<f64> {
     let j = &f.json;
-    let read = |a: usize| -> Vec<f64> {
-        let acc = &j["accessors"][a];
-        let view = &j["bufferViews"][acc["bufferView"].as_u64().unwrap() as usize];
-        let off = view["byteOffset"].as_u64().unwrap() as usize;
-        let len = view["byteLength"].as_u64().unwrap() as usize;
-        let b = &f.bin[off..off + len];
-        match acc["componentType"].as_u64().unwrap() {
-            5126 => b
-                .chunks_exact(4)
-                .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]) as f64)
-                .collect(),
-            5123 => b
-                .chunks_exact(2)
-                .map(|c| u16::from_le_bytes([c[0], c[1]]) as f64)
-                .collect(),
-            5121 => b.iter().map(|&x| x as f64).collect(),
-            t => panic!("component type {t}"),
-        }
-    };
-    let nodes = j["nodes"].as_array().unwrap();
-    let mut local: Vec<DMat4> = nodes
+    let acc = &j["accessors"][a];
+    let view = &j["bufferViews"][acc["bufferView"].as_u64().unwrap() as usize];
+    let off = view["byteOffset"].as_u64().unwrap() as usize;
+    let len = view["byteLength"].as_u64().unwrap() as usize;
+    let b = &f.bin[off..off + len];
+    match acc["componentType"].as_u64().unwrap() {
+        5126 => b
+            .chunks_exact(4)
+            .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]) as f64)
+            .collect(),
+        5123 => b
+            .chunks_exact(2)
+            .map(|c| u16::from_le_bytes([c[0], c[1]]) as f64)
+            .collect(),
+        5121 => b.iter().map(|&x| x as f64).collect(),
+        t => panic!("component type {t}"),
+    }
+}
+
+/// Each node's local matrix from its translation, rotation and scale (glTF's defaults).
+fn local_matrices(nodes: &[Value]) -> Vec<DMat4> {
+    nodes
         .iter()
         .map(|n| {
             let v = |k: &str, d: &[f64]| -> Vec<f64> {
@@ -303,20 +301,28 @@ fn reference_skinning(f: &Fixture, time: Option<f64>) -> Vec<DVec3> {
                 DVec3::new(t[0], t[1], t[2]),
             )
         })
-        .collect();
-    if let (Some(t), Some(a)) = (time, j.get("animations")) {
-        for c in a[0]["channels"].as_array().unwrap() {
-            let s = &a[0]["samplers"][c["sampler"].as_u64().unwrap() as usize];
-            let times = read(s["input"].as_u64().unwrap() as usize);
-            let values = read(s["output"].as_u64().unwrap() as usize);
-            let k = times.iter().rposition(|&x| x <= t).unwrap_or(0);
-            let node = c["target"]["node"].as_u64().unwrap() as usize;
-            let q = &values[4 * k..4 * k + 4];
-            let (sc, _, tr) = local[node].to_scale_rotation_translation();
-            let q = DQuat::from_xyzw(q[0], q[1], q[2], q[3]).normalize();
-            local[node] = DMat4::from_scale_rotation_translation(sc, q, tr);
-        }
+        .collect()
+}
+
+/// The first animation's rotation keys at `t` (STEP: the last key at or before `t`) set into
+/// the animated nodes' local matrices.
+fn apply_rotation_keys(f: &Fixture, animations: &Value, t: f64, local: &mut [DMat4]) {
+    let a = animations;
+    for c in a[0]["channels"].as_array().unwrap() {
+        let s = &a[0]["samplers"][c["sampler"].as_u64().unwrap() as usize];
+        let times = read_accessor(f, s["input"].as_u64().unwrap() as usize);
+        let values = read_accessor(f, s["output"].as_u64().unwrap() as usize);
+        let k = times.iter().rposition(|&x| x <= t).unwrap_or(0);
+        let node = c["target"]["node"].as_u64().unwrap() as usize;
+        let q = &values[4 * k..4 * k + 4];
+        let (sc, _, tr) = local[node].to_scale_rotation_translation();
+        let q = DQuat::from_xyzw(q[0], q[1], q[2], q[3]).normalize();
+        local[node] = DMat4::from_scale_rotation_translation(sc, q, tr);
     }
+}
+
+/// Each node's world matrix: its local matrix after its ancestors'.
+fn world_matrices(nodes: &[Value], local: &[DMat4]) -> Vec<DMat4> {
     let mut parent = vec![None; nodes.len()];
     for (i, n) in nodes.iter().enumerate() {
         for c in n
@@ -328,14 +334,70 @@ fn reference_skinning(f: &Fixture, time: Option<f64>) -> Vec<DVec3> {
             parent[c.as_u64().unwrap() as usize] = Some(i);
         }
     }
-    let world = |mut i: usize| {
-        let mut m = local[i];
-        while let Some(p) = parent[i] {
-            m = local[p] * m;
-            i = p;
+    (0..nodes.len())
+        .map(|mut i| {
+            let mut m = local[i];
+            while let Some(p) = parent[i] {
+                m = local[p] * m;
+                i = p;
+            }
+            m
+        })
+        .collect()
+}
+
+/// One primitive of `mesh` on `node` skinned by the `bone` matrices: morph targets at the
+/// default weights (the node's, else the mesh's) first, then `sum w bone p` with the weights
+/// normalised; the vertices pushed to `out`.
+fn skin_primitive(
+    f: &Fixture,
+    (mesh, node): (usize, &Value),
+    prim: &Value,
+    bone: &[DMat4],
+    out: &mut Vec<DVec3>,
+) {
+    let at = |k: &str| prim["attributes"][k].as_u64().unwrap() as usize;
+    let mut p = read_accessor(f, at("POSITION"));
+    let weights = node
+        .get("weights")
+        .or_else(|| f.json["meshes"][mesh].get("weights"));
+    for (t, target) in prim
+        .get("targets")
+        .and_then(Value::as_array)
+        .into_iter()
+        .flatten()
+        .enumerate()
+    {
+        let w = weights.map_or(0.0, |w| w[t].as_f64().unwrap());
+        let d = read_accessor(f, target["POSITION"].as_u64().unwrap() as usize);
+        p.iter_mut().zip(&d).for_each(|(x, d)| *x += w * d);
+    }
+    let jj = read_accessor(f, at("JOINTS_0"));
+    let ww = read_accessor(f, at("WEIGHTS_0"));
+    for v in 0..p.len() / 3 {
+        let x = DVec3::new(p[3 * v], p[3 * v + 1], p[3 * v + 2]);
+        let sum: f64 = ww[4 * v..4 * v + 4].iter().sum();
+        let mut y = DVec3::ZERO;
+        for k in 0..4 {
+            let w = ww[4 * v + k] / sum;
+            y += w * bone[jj[4 * v + k] as usize].transform_point3(x);
         }
-        m
-    };
+        out.push(y);
+    }
+}
+
+/// glTF's skinning formula on the fixture's own JSON and buffer, independent of the
+/// crate's reader: per skinned mesh node, per primitive in document order, per vertex
+/// `sum w (world(joint) * inverse_bind) p` with the weights normalised (three.js's
+/// `SkinnedMesh`), at the rest pose or with the animation's keys at `time` (STEP only).
+fn reference_skinning(f: &Fixture, time: Option<f64>) -> Vec<DVec3> {
+    let j = &f.json;
+    let nodes = j["nodes"].as_array().unwrap();
+    let mut local = local_matrices(nodes);
+    if let (Some(t), Some(a)) = (time, j.get("animations")) {
+        apply_rotation_keys(f, a, t, &mut local);
+    }
+    let world = world_matrices(nodes, &local);
     let mut out = Vec::new();
     let mut instances: Vec<(usize, usize)> = nodes
         .iter()
@@ -351,42 +413,14 @@ fn reference_skinning(f: &Fixture, time: Option<f64>) -> Vec<DVec3> {
             .iter()
             .map(|x| x.as_u64().unwrap() as usize)
             .collect();
-        let ibm = read(skin["inverseBindMatrices"].as_u64().unwrap() as usize);
+        let ibm = read_accessor(f, skin["inverseBindMatrices"].as_u64().unwrap() as usize);
         let bone: Vec<DMat4> = joints
             .iter()
             .enumerate()
-            .map(|(k, &n)| world(n) * DMat4::from_cols_slice(&ibm[16 * k..16 * k + 16]))
+            .map(|(k, &n)| world[n] * DMat4::from_cols_slice(&ibm[16 * k..16 * k + 16]))
             .collect();
         for prim in j["meshes"][mesh]["primitives"].as_array().unwrap() {
-            let at = |k: &str| prim["attributes"][k].as_u64().unwrap() as usize;
-            let mut p = read(at("POSITION"));
-            // Morph targets at the default weights (the node's, else the mesh's).
-            let weights = nodes[node]
-                .get("weights")
-                .or_else(|| j["meshes"][mesh].get("weights"));
-            for (t, target) in prim
-                .get("targets")
-                .and_then(Value::as_array)
-                .into_iter()
-                .flatten()
-                .enumerate()
-            {
-                let w = weights.map_or(0.0, |w| w[t].as_f64().unwrap());
-                let d = read(target["POSITION"].as_u64().unwrap() as usize);
-                p.iter_mut().zip(&d).for_each(|(x, d)| *x += w * d);
-            }
-            let jj = read(at("JOINTS_0"));
-            let ww = read(at("WEIGHTS_0"));
-            for v in 0..p.len() / 3 {
-                let x = DVec3::new(p[3 * v], p[3 * v + 1], p[3 * v + 2]);
-                let sum: f64 = ww[4 * v..4 * v + 4].iter().sum();
-                let mut y = DVec3::ZERO;
-                for k in 0..4 {
-                    let w = ww[4 * v + k] / sum;
-                    y += w * bone[jj[4 * v + k] as usize].transform_point3(x);
-                }
-                out.push(y);
-            }
+            skin_primitive(f, (mesh, &nodes[node]), prim, &bone, &mut out);
         }
     }
     out
