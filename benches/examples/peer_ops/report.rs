@@ -1,0 +1,239 @@
+//! The graded table of the peer harness: every side's timings and outputs read back, each
+//! output element compared with ours, each row's ratio graded against issue 47's target.
+
+use crate::{N, PASSES};
+use benches::grade::{Spread, Target};
+use std::collections::BTreeMap;
+use std::io::Read;
+use std::path::Path;
+
+/// One line of the table: label, our key, the peer, its key, the target ratio.
+const ROWS: [(&str, &str, &str, &str, f64); 12] = [
+    (
+        "PGA f32: motor on point, one motor per point",
+        "pga.motor_point",
+        "klein",
+        "pga.motor_point",
+        0.85,
+    ),
+    (
+        "PGA f32: one motor on 10,000 points (`point_matrix().apply` / klein's batch call)",
+        "pga.batch",
+        "klein",
+        "pga.batch",
+        1.0,
+    ),
+    (
+        "PGA f32: same, `sandwich` in a plain loop / klein's batch call",
+        "pga.batch_sandwich",
+        "klein",
+        "pga.batch",
+        1.3,
+    ),
+    (
+        "PGA f32: motor * motor",
+        "pga.motor_motor",
+        "klein",
+        "pga.motor_motor",
+        1.0,
+    ),
+    (
+        "PGA f32: rotor * rotor",
+        "pga.rotor_rotor",
+        "klein",
+        "pga.rotor_rotor",
+        1.0,
+    ),
+    ("PGA f32: exp(line)", "pga.exp", "klein", "pga.exp", 1.0),
+    ("PGA f32: log(motor)", "pga.log", "klein", "pga.log", 1.0),
+    (
+        "PGA f32: motor to matrix (`point_matrix` / `as_mat4x4`)",
+        "pga.motor_matrix",
+        "klein",
+        "pga.motor_matrix",
+        1.0,
+    ),
+    (
+        "CGA f64: vector * vector",
+        "cga.vector_vector",
+        "gatl",
+        "cga.vector_vector",
+        1.0,
+    ),
+    (
+        "CGA f64: bivector * bivector",
+        "cga.bivector_bivector",
+        "gatl",
+        "cga.bivector_bivector",
+        1.0,
+    ),
+    (
+        "CGA f64: motor * motor",
+        "cga.motor_motor",
+        "gatl",
+        "cga.motor_motor",
+        1.0,
+    ),
+    (
+        "CGA f64: motor on point (`sandwich` / `M P ~M`)",
+        "cga.motor_point",
+        "gatl",
+        "cga.motor_point",
+        1.0,
+    ),
+];
+
+fn read_times(path: &Path) -> Option<BTreeMap<String, f64>> {
+    let text = std::fs::read_to_string(path).ok()?;
+    Some(
+        text.lines()
+            .filter_map(|l| {
+                let (k, v) = l.split_once(' ')?;
+                Some((k.to_string(), v.trim().parse().ok()?))
+            })
+            .collect(),
+    )
+}
+
+fn read_outputs(path: &Path) -> Option<BTreeMap<String, Vec<f64>>> {
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)
+        .ok()?
+        .read_to_end(&mut bytes)
+        .ok()?;
+    let mut out = BTreeMap::new();
+    let mut at = 0;
+    let take = |at: &mut usize, k: usize| {
+        let s = &bytes[*at..*at + k];
+        *at += k;
+        s
+    };
+    while at < bytes.len() {
+        let len = u32::from_le_bytes(take(&mut at, 4).try_into().ok()?) as usize;
+        let key = String::from_utf8(take(&mut at, len).to_vec()).ok()?;
+        let count = u64::from_le_bytes(take(&mut at, 8).try_into().ok()?) as usize;
+        let v = take(&mut at, count * 8)
+            .chunks_exact(8)
+            .map(|c| f64::from_le_bytes(c.try_into().unwrap()))
+            .collect();
+        out.insert(key, v);
+    }
+    Some(out)
+}
+
+/// The largest difference between two outputs, relative to `max(1, |ours|)`; infinite when the
+/// lengths differ.
+fn max_diff(a: &[f64], b: &[f64]) -> f64 {
+    if a.len() != b.len() {
+        return f64::INFINITY;
+    }
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| {
+            let d = (x - y).abs() / x.abs().max(1.0);
+            if d.is_nan() {
+                f64::INFINITY
+            } else {
+                d
+            }
+        })
+        .fold(0.0, f64::max)
+}
+
+/// A peer's name as printed.
+fn shown(peer: &str) -> &str {
+    if peer == "gatl" {
+        "GATL"
+    } else {
+        peer
+    }
+}
+
+/// Prints the table; returns the exit code (1 when outputs disagree or a side is missing).
+pub(crate) fn report(dir: &Path, rounds: usize) -> i32 {
+    let times = |side: &str| -> Vec<BTreeMap<String, f64>> {
+        (1..=rounds)
+            .filter_map(|r| read_times(&dir.join(format!("{side}.{r}.times"))))
+            .collect()
+    };
+    let ours = times("ours");
+    let peers: BTreeMap<&str, _> = [("klein", times("klein")), ("gatl", times("gatl"))].into();
+    let out_ours = read_outputs(&dir.join("ours.out")).unwrap_or_default();
+    let outs: BTreeMap<&str, _> = ["klein", "gatl"]
+        .map(|p| {
+            (
+                p,
+                read_outputs(&dir.join(format!("{p}.out"))).unwrap_or_default(),
+            )
+        })
+        .into();
+    let median = |runs: &[BTreeMap<String, f64>], key: &str| {
+        let mut v: Vec<f64> = runs.iter().filter_map(|m| m.get(key).copied()).collect();
+        (!v.is_empty()).then(|| Spread::median_of(&mut v))
+    };
+
+    println!(
+        "ns per op over {N} operands, median of {rounds} alternating rounds (each round: the median of {PASSES} passes)\n"
+    );
+    println!(
+        "| op | ours ns | peer ns | ours / peer (range over rounds) | target | grade | max diff |"
+    );
+    println!("|---|---|---|---|---|---|---|");
+    let (mut pass, mut miss, mut bad) = (0, 0, 0);
+    for (label, key, peer, pkey, target) in ROWS {
+        let o = median(&ours, key);
+        let p = median(&peers[peer], pkey);
+        let tol = if key.starts_with("pga") { 1e-4 } else { 1e-10 };
+        let diff = match (out_ours.get(key), outs[peer].get(pkey)) {
+            (Some(a), Some(b)) => Some(max_diff(a, b)),
+            _ => None,
+        };
+        let diff_text = match diff {
+            Some(d) if d <= tol => format!("{d:.1e}"),
+            Some(d) => {
+                bad += 1;
+                format!("**{d:.1e} DIFFER**")
+            }
+            None => "-".into(),
+        };
+        let (o_text, p_text, ratio_text, grade) = match (o, p) {
+            (Some(o), Some(p)) => {
+                // Ratio of the medians; the range is that of the per-round ratios.
+                let mut per_round: Vec<f64> = ours
+                    .iter()
+                    .zip(&peers[peer])
+                    .filter_map(|(a, b)| Some(a.get(key)? / b.get(pkey)?))
+                    .collect();
+                let r = Spread {
+                    value: o.value / p.value,
+                    ..Spread::median_of(&mut per_round)
+                };
+                let met = Target::AtMost(target).reached_by(r.value);
+                if met {
+                    pass += 1
+                } else {
+                    miss += 1
+                }
+                (
+                    format!("{:.2}", o.value),
+                    format!("{} {:.2}", shown(peer), p.value),
+                    format!("{:.2} ({:.2}-{:.2})", r.value, r.low, r.high),
+                    if met { "PASS" } else { "**MISS**" }.to_string(),
+                )
+            }
+            (o, _) => (
+                o.map_or("-".into(), |o| format!("{:.2}", o.value)),
+                format!("{} not run", shown(peer)),
+                "-".into(),
+                "-".into(),
+            ),
+        };
+        println!("| {label} | {o_text} | {p_text} | {ratio_text} | <= {target:.2} | {grade} | {diff_text} |");
+    }
+    println!("\n{pass} targets met, {miss} missed; outputs compared element by element (relative to max(1, |ours|); tolerance 1e-4 f32, 1e-10 f64): {bad} rows differ");
+    if ours.is_empty() || bad > 0 {
+        1
+    } else {
+        0
+    }
+}
