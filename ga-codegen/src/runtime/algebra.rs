@@ -65,7 +65,7 @@ pub(crate) fn checked_wedge(x: &Exact, y: &Exact) -> Option<Exact> {
     Some(out)
 }
 
-fn invert(m: &[Vec<Rational>]) -> Option<Vec<Vec<Rational>>> {
+pub(crate) fn invert(m: &[Vec<Rational>]) -> Option<Vec<Vec<Rational>>> {
     let n = m.len();
     let mut a: Vec<Vec<Rational>> = m.to_vec();
     let mut inv = Rational::identity_matrix(n);

@@ -4,8 +4,10 @@ use crate::runtime::blade::suffix;
 use crate::runtime::rational::Rational;
 use std::fmt;
 
-/// Largest supported number of basis vectors (2^10 = 1024 blades).
-pub const MAX_DIMENSION: usize = 10;
+/// Largest supported number of basis vectors (2^16 = 65,536 blades; the dense
+/// [`Algebra`](crate::runtime::algebra::Algebra) table of that many is too large to build: large
+/// algebras use the sparse reference, [`crate::runtime::sparse`]).
+pub const MAX_DIMENSION: usize = 16;
 
 /// Inner products `g[i][j] = v_i . v_j` of the basis vectors, exactly.
 #[derive(Clone, Debug, PartialEq)]
