@@ -136,18 +136,6 @@ impl Congruence {
         })
     }
 
-    /// Number of orthogonal-basis blades in the expansion of blade `a`.
-    #[cfg(any(feature = "codegen", test))]
-    pub fn spread(&self, a: Bitmap) -> usize {
-        self.to_f[a as usize].len()
-    }
-
-    /// Number of user-basis blades in the expansion of orthogonal blade `f`.
-    #[cfg(any(feature = "codegen", test))]
-    pub fn spread_back(&self, f: Bitmap) -> usize {
-        self.to_e[f as usize].len()
-    }
-
     /// The exact product `e_a e_b`; `None` on overflow.
     pub fn product(&self, a: Bitmap, b: Bitmap) -> Option<Exact> {
         let mut prod_f = Exact::new();

@@ -504,8 +504,8 @@ mod tests {
             Err(MetricError::Dimension(usize::MAX))
         );
         assert_eq!(Metric::signature(0, 0, 0), Err(MetricError::Dimension(0)));
-        assert_eq!(Metric::signature(11, 0, 0), Err(MetricError::Dimension(11)));
-        assert_eq!(Metric::signature(10, 0, 0).map(|m| m.dim()), Ok(10));
+        assert_eq!(Metric::signature(17, 0, 0), Err(MetricError::Dimension(17)));
+        assert_eq!(Metric::signature(16, 0, 0).map(|m| m.dim()), Ok(16));
     }
 
     #[test]

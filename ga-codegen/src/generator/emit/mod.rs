@@ -416,7 +416,7 @@ struct Gen<'a> {
     /// Type indices ordered by size, for result inference.
     by_size: Vec<usize>,
     /// The generic algebra, for numerical checks at generation time.
-    alg: std::sync::Arc<crate::Algebra>,
+    alg: std::sync::Arc<crate::runtime::sparse::multivector::SparseAlgebra>,
 }
 
 /// Every type and field name must be a Rust identifier.
@@ -478,7 +478,8 @@ fn gen<'a>(spec: &'a Spec, opts: &EmitOptions) -> Result<Gen<'a>, GenError> {
         zero_ops: 0,
         closed_forms: Vec::new(),
         by_size,
-        alg: crate::Algebra::new(spec.metric.clone()),
+        alg: crate::runtime::sparse::multivector::SparseAlgebra::try_new(spec.metric.clone())
+            .expect("the spec's metric was checked for overflow"),
     })
 }
 

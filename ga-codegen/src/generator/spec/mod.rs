@@ -256,7 +256,7 @@ impl Spec {
         let types = types::read(&raw.types, &metric, source)?;
         let sandwiches = sandwiches::read(&raw.sandwich, &types, source)?;
         budget::check(&metric, &types, &sandwiches, source)?;
-        exact::check(&metric, &raw.basis, &types, &raw.types, source)?;
+        exact::check(&metric, &raw.basis, &types, &sandwiches, &raw.types, source)?;
         Ok(Spec {
             source: source.to_string(),
             name: raw.name.unwrap_or_else(|| "algebra".to_string()),

@@ -49,6 +49,11 @@ impl SparseAlgebra {
         &self.metric
     }
 
+    /// Bitmap and sign of a blade name in any basis order (`e21` is `-e12`).
+    pub fn parse_blade(&self, name: &str) -> Option<(Bitmap, i32)> {
+        crate::runtime::blade::parse_blade(name, self.metric.names()).ok()
+    }
+
     /// Number of basis vectors.
     pub fn dim(&self) -> usize {
         self.metric.dim()
