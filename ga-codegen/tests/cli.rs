@@ -440,20 +440,41 @@ fn type_names_of_generated_items_are_refused() {
 
 #[test]
 fn specs_too_large_to_generate_are_refused_up_front() {
-    // Twelve basis vectors (one-letter suffixes, prefix-free) with no type declared: the
-    // general multivector of 2^12 blades is over the work budget.
+    // Twelve basis vectors (one-letter suffixes, prefix-free) with a type of every blade: its
+    // 2^12 blades are over the work budget; with no type declared, none is added (above 8).
     let twelve: Vec<String> = (0..12u8)
         .map(|i| format!("\"e{}\"", (b'a' + i) as char))
         .collect();
+    let every: Vec<String> = (1..1u32 << 12)
+        .map(|b| {
+            let s: String = (0..12u8)
+                .filter(|i| b >> i & 1 == 1)
+                .map(|i| (b'a' + i) as char)
+                .collect();
+            format!("\"e{s}\"")
+        })
+        .collect();
+    let (basis, diagonal) = (
+        format!("[{}]", twelve.join(", ")),
+        format!("[{}]", ["1"; 12].join(", ")),
+    );
     let start = std::time::Instant::now();
     expect_error(
         &spec_with(
-            &format!("[{}]", twelve.join(", ")),
-            &format!("[{}]", ["1"; 12].join(", ")),
-            "",
+            &basis,
+            &diagonal,
+            &format!(
+                "[[type]]\nname = \"All\"\nblades = [\"s\", {}]\n",
+                every.join(", ")
+            ),
         ),
         "twelve",
         &["too large", "units of work", "4096 blades"],
+    );
+    expect_error(
+        &spec_with(&basis, &diagonal, ""),
+        "twelve_untyped",
+        &["no type declared", "above 8 basis vectors", "2^12 blades"],
     );
     let mut many = String::new();
     for t in 0..150 {

@@ -173,11 +173,24 @@ fn size_budget_is_checked_before_any_product() {
     let e = refused(diagonal_spec(&many, &[1.0; 17], &[]));
     assert!(e.to_string().contains("17 basis vectors"), "{e}");
     // Within the limit, the budget counts the declared types (and the general multivector
-    // added when none holds every blade): 2^12 blades are refused, a vector and a bivector of
-    // 9 basis vectors (with the general multivector of 2^9) are not.
+    // added, up to 8 basis vectors, when none holds every blade): a type of 2^12 blades is
+    // refused, a vector and a bivector of 9 basis vectors (no general multivector) are not;
+    // 12 basis vectors and no type declared are refused as such.
     let twelve = letters(12);
     let twelve: Vec<&str> = twelve.iter().map(String::as_str).collect();
     let e = refused(diagonal_spec(&twelve, &[1.0; 12], &[]));
+    assert_eq!(e.kind, SpecErrorKind::NoTypes { n: 12, max: 8 }, "{e}");
+    let every: Vec<String> = (1..1u32 << 12)
+        .map(|b| {
+            let s: String = (0..12)
+                .filter(|i| b >> i & 1 == 1)
+                .map(twelve_suffix)
+                .collect();
+            format!("e{s}")
+        })
+        .collect();
+    let every: Vec<&str> = every.iter().map(String::as_str).collect();
+    let e = refused(diagonal_spec(&twelve, &[1.0; 12], &[("All", &every)]));
     assert!(
         matches!(e.kind, SpecErrorKind::TooLarge(TooLarge::Work { .. })),
         "{e}"

@@ -156,6 +156,18 @@ pub enum SpecErrorKind {
     /// A sandwich whose versor type is not marked `versor = true`.
     #[error("versor type is not marked `versor = true`")]
     NotVersor,
+    /// A spec above [`MAX_GENERAL_DIMENSION`](super::MAX_GENERAL_DIMENSION) basis vectors
+    /// that declares no type (none is added for it).
+    #[error(
+        "no type declared: above {max} basis vectors no general multivector is added (its \
+         2^{n} blades are too many), so a spec of {n} declares the types it needs"
+    )]
+    NoTypes {
+        /// Basis vectors given.
+        n: usize,
+        /// The most basis vectors with a general multivector.
+        max: usize,
+    },
     /// The spec would take too long or too much memory to generate.
     #[error("{0}")]
     TooLarge(TooLarge),

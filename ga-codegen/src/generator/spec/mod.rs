@@ -33,7 +33,11 @@
 //! output = "Point"                       # optional; inferred when left out
 //! ```
 //!
-//! A type holding every blade (the general multivector, `Mv`) is added when the spec has none.
+//! A type holding every blade (the general multivector, `Mv`) is added when the spec has none,
+//! up to [`MAX_GENERAL_DIMENSION`] basis vectors. Above, a spec has only its declared types:
+//! a product or method whose result no declared type holds is not emitted (the summary lists
+//! it, and the module's `SKIPPED` names it), and the generated code's generic reference is the
+//! sparse multivector instead of the dense one ([`Spec::sparse_reference`]).
 //!
 //! # Rules
 //!
@@ -197,7 +201,8 @@ pub struct Spec {
     pub doc: Option<String>,
     /// The metric.
     pub metric: Metric,
-    /// Types, in declaration order (the general multivector last if it was added).
+    /// Types, in declaration order (the general multivector last if it was added: never
+    /// above [`MAX_GENERAL_DIMENSION`] basis vectors).
     pub types: Vec<TypeDef>,
     /// Sandwiches.
     pub sandwiches: Vec<SandwichDef>,
@@ -206,7 +211,21 @@ pub struct Spec {
 /// Name of the general multivector type added when a spec declares none.
 pub(crate) const GENERAL_TYPE: &str = "Mv";
 
+/// Most basis vectors of an algebra that gets the general multivector (`2^n` blades, whose
+/// products with every type cost `4^n`-ish work) and whose generated code is checked against
+/// the dense generic [`Multivector`](crate::runtime::multivector::Multivector) (a `2^n x 2^n`
+/// table). Above, only the declared types are emitted, checked against the sparse reference
+/// ([`SparseMultivector`](crate::runtime::sparse::multivector::SparseMultivector)).
+pub const MAX_GENERAL_DIMENSION: usize = 8;
+
 impl Spec {
+    /// Whether the generated code's generic reference (`algebra()`, `to_multivector`, the
+    /// check harness) is the sparse multivector: above [`MAX_GENERAL_DIMENSION`] basis
+    /// vectors, where the dense one's `2^n x 2^n` table is too large.
+    pub fn sparse_reference(&self) -> bool {
+        self.metric.dim() > MAX_GENERAL_DIMENSION
+    }
+
     /// Read and validate a TOML spec; `source` names it in errors.
     pub fn from_toml(text: &str, source: &str) -> Result<Spec, SpecError> {
         let raw: RawSpec = toml::from_str(text).map_err(|e| {

@@ -139,7 +139,7 @@ mod tests {
     /// change to an orthogonal basis) agree exactly on every pair of the DCGA types' blades.
     #[test]
     fn agrees_with_chevalley_on_every_dcga_blade_pair() {
-        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/dcga.toml");
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../algebras/dcga.toml");
         let raw: RawSpec = toml::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
         let metric = Metric::from_f64(raw.basis.clone(), raw.metric.as_ref().unwrap()).unwrap();
         let mut chevalley = BladeTable::new(&metric);

@@ -5,7 +5,7 @@
 //! bit), but stores only non-zero blades and asks [`BladeProducts`] for the product of each
 //! blade pair it meets: the reference for algebras of up to 16 basis vectors.
 
-use crate::runtime::blade::{grade, involute_sign, reverse_sign, Bitmap};
+use crate::runtime::blade::{grade, involute_sign, reorder_sign, reverse_sign, Bitmap};
 use crate::runtime::metric::{Metric, MetricError};
 use crate::runtime::sparse::blades::BladeProducts;
 use std::collections::{BTreeMap, HashMap};
@@ -304,5 +304,89 @@ impl SparseMultivector {
             sum = sum.gp(&sum);
         }
         sum
+    }
+}
+
+impl SparseAlgebra {
+    /// Whether the metric is degenerate (a vector of its orthogonal basis squares to zero).
+    pub fn is_degenerate(&self) -> bool {
+        self.blades.squares().iter().any(|d| d.is_zero())
+    }
+}
+
+impl SparseMultivector {
+    /// The coefficients of the blades present, in bitmap order (not all `2^n` of them, as
+    /// the dense [`Multivector::coeffs`](crate::runtime::multivector::Multivector::coeffs)).
+    pub fn coeffs(&self) -> Vec<f64> {
+        self.c.values().copied().collect()
+    }
+
+    /// Dual, as the dense [`Multivector::dual`](crate::runtime::multivector::Multivector::dual):
+    /// `self * I^-1` for a non-degenerate metric, the right complement (`e_A` to `s e_(~A)`
+    /// with `e_A ^ s e_(~A) = I`) for a degenerate one.
+    pub fn dual(&self) -> SparseMultivector {
+        let full: Bitmap = ((1u64 << self.alg.dim()) - 1) as Bitmap;
+        if self.alg.is_degenerate() {
+            let mut out = SparseMultivector::zero(&self.alg);
+            for (&a, &x) in &self.c {
+                let comp = full & !a;
+                let y = out.get(comp) + reorder_sign(a, comp) as f64 * x;
+                out.set(comp, y);
+            }
+            out
+        } else {
+            let i = SparseMultivector::blade(&self.alg, full, 1.0);
+            let ii = i.norm_squared();
+            self.gp(&i.rev().scale(1.0 / ii))
+        }
+    }
+
+    /// The inverse of a versor (of any element whose `self ~self` is a scalar):
+    /// `~self / (self ~self)`, which then is a true inverse. `None` when a coefficient is not
+    /// finite, or `self ~self` is not a scalar (another grade above `1e-9` relative) or is
+    /// zero. (The dense [`Multivector::inverse`](crate::runtime::multivector::Multivector::inverse)
+    /// solves the `2^n x 2^n` system of left multiplication instead, for any element.)
+    pub fn inverse(&self) -> Option<SparseMultivector> {
+        if self.c.values().any(|x| !x.is_finite()) {
+            return None;
+        }
+        let r = self.rev();
+        let n = self.gp(&r);
+        let s = n.get(0);
+        let scale = self.max_abs() * self.max_abs();
+        let others = n.add_scaled(&SparseMultivector::scalar(&self.alg, s), -1.0);
+        if scale == 0.0 || s.abs() < 1e-13 * scale || others.max_abs() > 1e-9 * scale {
+            return None;
+        }
+        let inv = r.scale(1.0 / s);
+        inv.c.values().all(|x| x.is_finite()).then_some(inv)
+    }
+}
+
+impl std::ops::Add for &SparseMultivector {
+    type Output = SparseMultivector;
+    fn add(self, o: &SparseMultivector) -> SparseMultivector {
+        self.add_scaled(o, 1.0)
+    }
+}
+
+impl std::ops::Sub for &SparseMultivector {
+    type Output = SparseMultivector;
+    fn sub(self, o: &SparseMultivector) -> SparseMultivector {
+        self.add_scaled(o, -1.0)
+    }
+}
+
+impl std::ops::Neg for &SparseMultivector {
+    type Output = SparseMultivector;
+    fn neg(self) -> SparseMultivector {
+        self.scale(-1.0)
+    }
+}
+
+impl std::ops::Mul for &SparseMultivector {
+    type Output = SparseMultivector;
+    fn mul(self, o: &SparseMultivector) -> SparseMultivector {
+        self.gp(o)
     }
 }
