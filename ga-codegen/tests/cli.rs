@@ -441,7 +441,7 @@ fn type_names_of_generated_items_are_refused() {
 #[test]
 fn specs_too_large_to_generate_are_refused_up_front() {
     // Twelve basis vectors (one-letter suffixes, prefix-free) with a type of every blade: its
-    // 2^12 blades are over the work budget; with no type declared, none is added (above 8).
+    // 2^12 blades are over the work budget; with no type declared, none is added (above 6).
     let twelve: Vec<String> = (0..12u8)
         .map(|i| format!("\"e{}\"", (b'a' + i) as char))
         .collect();
@@ -474,7 +474,7 @@ fn specs_too_large_to_generate_are_refused_up_front() {
     expect_error(
         &spec_with(&basis, &diagonal, ""),
         "twelve_untyped",
-        &["no type declared", "above 8 basis vectors", "2^12 blades"],
+        &["no type declared", "above 6 basis vectors", "2^12 blades"],
     );
     let mut many = String::new();
     for t in 0..150 {

@@ -173,13 +173,13 @@ fn size_budget_is_checked_before_any_product() {
     let e = refused(diagonal_spec(&many, &[1.0; 17], &[]));
     assert!(e.to_string().contains("17 basis vectors"), "{e}");
     // Within the limit, the budget counts the declared types (and the general multivector
-    // added, up to 8 basis vectors, when none holds every blade): a type of 2^12 blades is
+    // added, up to 6 basis vectors, when none holds every blade): a type of 2^12 blades is
     // refused, a vector and a bivector of 9 basis vectors (no general multivector) are not;
     // 12 basis vectors and no type declared are refused as such.
     let twelve = letters(12);
     let twelve: Vec<&str> = twelve.iter().map(String::as_str).collect();
     let e = refused(diagonal_spec(&twelve, &[1.0; 12], &[]));
-    assert_eq!(e.kind, SpecErrorKind::NoTypes { n: 12, max: 8 }, "{e}");
+    assert_eq!(e.kind, SpecErrorKind::NoTypes { n: 12, max: 6 }, "{e}");
     let every: Vec<String> = (1..1u32 << 12)
         .map(|b| {
             let s: String = (0..12)
@@ -226,7 +226,8 @@ fn size_budget_is_checked_before_any_product() {
         .collect();
     let e = refused(diagonal_spec(&["e1", "e2", "e3"], &[1.0; 3], &types));
     assert!(e.to_string().contains("151 types"), "{e}");
-    // A dense metric makes every blade product a sum of many blades.
+    // A dense metric makes every blade product a sum of many blades; the whole algebra
+    // declared as one type (above 6 basis vectors none is added).
     let dense = |n: usize| RawSpec {
         basis: (1..=n).map(|i| format!("e{i}")).collect(),
         metric: Some(
@@ -234,6 +235,23 @@ fn size_budget_is_checked_before_any_product() {
                 .map(|i| (0..n).map(|j| if i == j { 2.0 } else { 1.0 }).collect())
                 .collect(),
         ),
+        types: vec![RawType {
+            name: "All".to_string(),
+            blades: (0..1u32 << n)
+                .map(|b| {
+                    let s: String = (0..n)
+                        .filter(|i| b >> i & 1 == 1)
+                        .map(|i| format!("{}", i + 1))
+                        .collect();
+                    if b == 0 {
+                        "s".to_string()
+                    } else {
+                        format!("e{s}")
+                    }
+                })
+                .collect(),
+            ..RawType::default()
+        }],
         ..RawSpec::default()
     };
     let start = std::time::Instant::now();

@@ -27,7 +27,7 @@ fn text(s: &str) -> Literal {
 /// It defines `pub fn check_all(n: usize, seed: u64) -> (usize, Vec<String>)`, returning the
 /// number of comparisons made and a description of each failure.
 ///
-/// Above [`MAX_GENERAL_DIMENSION`](crate::generator::spec::MAX_GENERAL_DIMENSION) basis vectors
+/// Above [`MAX_DENSE_REFERENCE_DIMENSION`](crate::generator::spec::MAX_DENSE_REFERENCE_DIMENSION) basis vectors
 /// ([`Spec::sparse_reference`]) the reference is the sparse multivector, under the name
 /// `Multivector`, and what was not emitted ([`Generated::skipped`]) is not checked.
 pub fn emit_checks(spec: &Spec, generated: &Generated, runtime: &str) -> String {

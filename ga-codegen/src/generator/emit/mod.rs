@@ -10,8 +10,8 @@
 //! The emitter works in phases, grouped by family, one file each:
 //! - `render.rs`: literals, identifiers and polynomials as tokens (and as text for docs);
 //! - `preamble.rs`: `BASIS`, `METRIC`, `algebra()` (the dense generic algebra, or the sparse
-//!   one above [`MAX_GENERAL_DIMENSION`](crate::generator::spec::MAX_GENERAL_DIMENSION) basis
-//!   vectors), the `Sandwich` trait, `Scalar`, and `SKIPPED` (what no declared type holds);
+//!   one above [`MAX_DENSE_REFERENCE_DIMENSION`](crate::generator::spec::MAX_DENSE_REFERENCE_DIMENSION)
+//!   basis vectors), the `Sandwich` trait, `Scalar`, and `SKIPPED` (what no declared type holds);
 //! - `products/`: the module's types and products: `infer.rs` (result types of symbolic
 //!   products and the expressions that build them), `types.rs` (one struct per declared type
 //!   with its methods and scalar operators), `operators.rs` (binary operators between declared

@@ -1,10 +1,12 @@
 //! The module's preamble (`BASIS`, `METRIC`, `algebra()`, the `Sandwich` trait, `Scalar`),
 //! the paths of the generic reference the generated code converts to (the dense `Multivector`,
-//! or the sparse one above [`MAX_GENERAL_DIMENSION`] basis vectors) and `SKIPPED`, the list of
+//! or the sparse one above 8 basis vectors: [`Spec::sparse_reference`]) and `SKIPPED`, the list of
 //! what was not emitted for want of a type holding its result.
 
 use super::render::{self, int, lit};
 use super::Gen;
+#[cfg(doc)]
+use crate::generator::spec::Spec;
 use crate::generator::spec::MAX_GENERAL_DIMENSION;
 use proc_macro2::TokenStream;
 use quote::quote;
