@@ -96,6 +96,18 @@ proptest! {
         // The exponential of a bivector: the same series, term by term.
         let (db, sb) = (dx.grade(2).scale(0.5), sx.grade(2).scale(0.5));
         prop_assert_eq!(diff(&db.exp(), &sb.exp()), 0.0);
+        // What the check harness of a large algebra uses: the dual (pseudoscalar or right
+        // complement), the operators and the inverse of a versor (the dense one solves the
+        // whole system, the sparse one divides the reverse by `R ~R`).
+        prop_assert!(diff(&dx.dual(), &sx.dual()) < 1e-12);
+        prop_assert_eq!(diff(&(&dx - &dy), &(&sx - &sy)), 0.0);
+        prop_assert_eq!(diff(&(-&dx), &(-&sx)), 0.0);
+        prop_assert_eq!(diff(&(&dx + &dy), &(&sx + &sy)), 0.0);
+        prop_assert_eq!(sx.coeffs().len(), sx.terms().count());
+        let (dr, sr) = (db.exp(), sb.exp());
+        if let (Some(di), Some(si)) = (dr.inverse(), sr.inverse()) {
+            prop_assert!(diff(&di, &si) < 1e-9 * (1.0 + di.max_abs()));
+        }
     }
 }
 
