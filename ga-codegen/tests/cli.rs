@@ -440,16 +440,41 @@ fn type_names_of_generated_items_are_refused() {
 
 #[test]
 fn specs_too_large_to_generate_are_refused_up_front() {
-    let nine: Vec<String> = (1..=9).map(|i| format!("\"e{i}\"")).collect();
+    // Twelve basis vectors (one-letter suffixes, prefix-free) with a type of every blade: its
+    // 2^12 blades are over the work budget; with no type declared, none is added (above 6).
+    let twelve: Vec<String> = (0..12u8)
+        .map(|i| format!("\"e{}\"", (b'a' + i) as char))
+        .collect();
+    let every: Vec<String> = (1..1u32 << 12)
+        .map(|b| {
+            let s: String = (0..12u8)
+                .filter(|i| b >> i & 1 == 1)
+                .map(|i| (b'a' + i) as char)
+                .collect();
+            format!("\"e{s}\"")
+        })
+        .collect();
+    let (basis, diagonal) = (
+        format!("[{}]", twelve.join(", ")),
+        format!("[{}]", ["1"; 12].join(", ")),
+    );
     let start = std::time::Instant::now();
     expect_error(
         &spec_with(
-            &format!("[{}]", nine.join(", ")),
-            &format!("[{}]", ["1"; 9].join(", ")),
-            "",
+            &basis,
+            &diagonal,
+            &format!(
+                "[[type]]\nname = \"All\"\nblades = [\"s\", {}]\n",
+                every.join(", ")
+            ),
         ),
-        "nine",
-        &["too large", "9 basis vectors", "at most 8"],
+        "twelve",
+        &["too large", "units of work", "4096 blades"],
+    );
+    expect_error(
+        &spec_with(&basis, &diagonal, ""),
+        "twelve_untyped",
+        &["no type declared", "above 6 basis vectors", "2^12 blades"],
     );
     let mut many = String::new();
     for t in 0..150 {
@@ -462,12 +487,18 @@ fn specs_too_large_to_generate_are_refused_up_front() {
         "many_types",
         &["too large", "151 types", "22801 ordered pairs"],
     );
-    // 8 basis vectors are within the generator's limit but not with a type for every grade
-    // (the note says what to do instead); 9 are past the limit, which the message gives.
+    // 8 basis vectors are within the work budget's limit but not with a type for every grade
+    // (the note says what to do instead); 9 are past --signature's limit of a type for every
+    // grade, 17 past the generator's; the messages give the limits.
     for (sig, says) in [
         ("8,0,0", &["too large", "only the types you need"][..]),
-        ("9,0,0", &["between 1 and 8"][..]),
-        ("0,0,0", &["between 1 and 8"][..]),
+        (
+            "9,0,0",
+            &["every grade only up to 8", "only the types you need"][..],
+        ),
+        ("8,2,0", &["every grade only up to 8", "2^10 blades"][..]),
+        ("17,0,0", &["between 1 and 16"][..]),
+        ("0,0,0", &["between 1 and 16"][..]),
     ] {
         let out = run(&["--signature", sig, "--summary"]);
         let err = String::from_utf8_lossy(&out.stderr);

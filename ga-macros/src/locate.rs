@@ -58,6 +58,9 @@ pub(crate) fn gen_error(e: &GenError, raw: &RawSpec, spans: &Spans) -> Range {
         } => find(versor, operand).map(|r| r.output.unwrap_or(r.whole)),
         GenError::ZeroSandwich {
             versor, operand, ..
+        }
+        | GenError::NoSandwichOutput {
+            versor, operand, ..
         } => find(versor, operand).map(|r| r.whole),
         GenError::NoClosedForm { ty, .. } => raw
             .types

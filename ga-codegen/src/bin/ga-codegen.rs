@@ -128,8 +128,9 @@ fn parse_args() -> Result<Args, String> {
     Ok(a)
 }
 
-/// `P,Q,R` or `P,Q`: non-negative counts whose sum does not overflow (the dimension limits
-/// are the spec's, checked by `Spec::for_signature`).
+/// `P,Q,R` or `P,Q`: non-negative counts whose sum does not overflow, at least 1 and at most
+/// the generator's limit (the tighter limit of a type for every grade is
+/// `Spec::for_signature`'s, whose error says so).
 fn parse_signature(v: &str) -> Result<(usize, usize, usize), String> {
     let bad = || format!("--signature needs P,Q,R (non-negative integers), not `{v}`");
     let parts: Vec<usize> = v

@@ -304,7 +304,7 @@ pub fn equivalent_mv_coeff(ideal: &UnitIdeal, p: &Poly, q: &Poly, operand: u8) -
 /// (so that the result is never wrong). Returns the reduced sandwich and the identities used.
 pub fn unit_sandwich(
     table: &mut BladeTable,
-    alg: &std::sync::Arc<crate::Algebra>,
+    alg: &std::sync::Arc<crate::runtime::sparse::multivector::SparseAlgebra>,
     tv: &TypeDef,
     tx: &TypeDef,
 ) -> (SymMv, UnitIdeal) {
@@ -336,7 +336,7 @@ pub fn unit_sandwich(
 /// normalised) and random operands. False when the type has no bivector fields or the
 /// exponential leaves the type.
 pub fn vanishes_on_unit_versors(
-    alg: &std::sync::Arc<crate::Algebra>,
+    alg: &std::sync::Arc<crate::runtime::sparse::multivector::SparseAlgebra>,
     tv: &TypeDef,
     tx: &TypeDef,
     p: &Poly,
@@ -358,7 +358,7 @@ pub fn vanishes_on_unit_versors(
         return false;
     }
     for _ in 0..16 {
-        let mut bv = crate::Multivector::zero(alg);
+        let mut bv = crate::runtime::sparse::multivector::SparseMultivector::zero(alg);
         for &b in &biv {
             bv.set(b, next());
         }
@@ -368,9 +368,10 @@ pub fn vanishes_on_unit_versors(
             return false;
         }
         let m = m.scale(1.0 / n);
-        let outside = (0..alg.size() as u32)
-            .filter(|b| !tv.blades().any(|x| x == *b))
-            .map(|b| m.get(b).abs())
+        let outside = m
+            .terms()
+            .filter(|(b, _)| !tv.blades().any(|x| x == *b))
+            .map(|(_, c)| c.abs())
             .fold(0.0, f64::max);
         if outside > 1e-9 {
             return false;
@@ -435,7 +436,8 @@ mod tests {
     fn reduction_keeps_the_grade_in_every_algebra() {
         for name in ["cga", "pga3d", "g3", "sta"] {
             let s = spec(name);
-            let alg = crate::Algebra::new(s.metric.clone());
+            let alg = crate::runtime::sparse::multivector::SparseAlgebra::try_new(s.metric.clone())
+                .unwrap();
             let mut table = BladeTable::new(&s.metric);
             for d in &s.sandwiches {
                 let (tv, tx) = (&s.types[d.versor], &s.types[d.operand]);

@@ -1,11 +1,12 @@
 //! Numeric verification at generation time, next to the emitted check harness
 //! ([`crate::generator::checks`]): what the symbolic engine cannot prove exactly is checked on random
-//! values with the generic [`crate::Multivector`] before the emitter relies on it.
+//! values with the sparse generic
+//! [`SparseMultivector`] (blade pairs only, any dimension) before the emitter relies on it.
 
 use crate::generator::spec::Spec;
 use crate::generator::symbolic::{Poly, SymMv};
-use crate::runtime::blade::{grade, Bitmap};
-use crate::Algebra;
+use crate::runtime::blade::grade;
+use crate::runtime::sparse::multivector::{SparseAlgebra, SparseMultivector};
 
 /// True when, on random unit versors of type `vi` (exponentials of random bivectors in the
 /// type, normalised), every blade of the sandwich `r` (of an operand of type `xi`) that output
@@ -14,7 +15,7 @@ use crate::Algebra;
 /// This is what lets a sandwich by a `unit` versor drop the blades that vanish because
 /// `x ~x = 1` (e.g. the grade-5 part of a motor sandwich).
 pub fn unit_versor_drop_ok(
-    alg: &std::sync::Arc<Algebra>,
+    alg: &std::sync::Arc<SparseAlgebra>,
     spec: &Spec,
     vi: usize,
     xi: usize,
@@ -36,7 +37,7 @@ pub fn unit_versor_drop_ok(
         return false;
     }
     for _ in 0..16 {
-        let mut bv = crate::Multivector::zero(alg);
+        let mut bv = SparseMultivector::zero(alg);
         for &i in &bivector_fields {
             bv.set(tv.fields[i].bitmap, next());
         }
@@ -47,9 +48,10 @@ pub fn unit_versor_drop_ok(
         }
         m = m.scale(1.0 / n);
         // The exponential must lie in the type.
-        let outside: f64 = (0..alg.size() as Bitmap)
-            .filter(|b| !tv.blades().any(|x| x == *b))
-            .map(|b| m.get(b).abs())
+        let outside: f64 = m
+            .terms()
+            .filter(|(b, _)| !tv.blades().any(|x| x == *b))
+            .map(|(_, c)| c.abs())
             .fold(0.0, f64::max);
         if outside > 1e-9 {
             return false;

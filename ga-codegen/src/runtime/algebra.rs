@@ -65,7 +65,7 @@ pub(crate) fn checked_wedge(x: &Exact, y: &Exact) -> Option<Exact> {
     Some(out)
 }
 
-fn invert(m: &[Vec<Rational>]) -> Option<Vec<Vec<Rational>>> {
+pub(crate) fn invert(m: &[Vec<Rational>]) -> Option<Vec<Vec<Rational>>> {
     let n = m.len();
     let mut a: Vec<Vec<Rational>> = m.to_vec();
     let mut inv = Rational::identity_matrix(n);
@@ -134,18 +134,6 @@ impl Congruence {
             to_e: blade_transform(&p)?,
             squares,
         })
-    }
-
-    /// Number of orthogonal-basis blades in the expansion of blade `a`.
-    #[cfg(any(feature = "codegen", test))]
-    pub fn spread(&self, a: Bitmap) -> usize {
-        self.to_f[a as usize].len()
-    }
-
-    /// Number of user-basis blades in the expansion of orthogonal blade `f`.
-    #[cfg(any(feature = "codegen", test))]
-    pub fn spread_back(&self, f: Bitmap) -> usize {
-        self.to_e[f as usize].len()
     }
 
     /// The exact product `e_a e_b`; `None` on overflow.

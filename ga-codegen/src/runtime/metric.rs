@@ -4,8 +4,10 @@ use crate::runtime::blade::suffix;
 use crate::runtime::rational::Rational;
 use std::fmt;
 
-/// Largest supported number of basis vectors (2^10 = 1024 blades).
-pub const MAX_DIMENSION: usize = 10;
+/// Largest supported number of basis vectors (2^16 = 65,536 blades; the dense
+/// [`Algebra`](crate::runtime::algebra::Algebra) table of that many is too large to build: large
+/// algebras use the sparse reference, [`crate::runtime::sparse`]).
+pub const MAX_DIMENSION: usize = 16;
 
 /// Inner products `g[i][j] = v_i . v_j` of the basis vectors, exactly.
 #[derive(Clone, Debug, PartialEq)]
@@ -502,8 +504,8 @@ mod tests {
             Err(MetricError::Dimension(usize::MAX))
         );
         assert_eq!(Metric::signature(0, 0, 0), Err(MetricError::Dimension(0)));
-        assert_eq!(Metric::signature(11, 0, 0), Err(MetricError::Dimension(11)));
-        assert_eq!(Metric::signature(10, 0, 0).map(|m| m.dim()), Ok(10));
+        assert_eq!(Metric::signature(17, 0, 0), Err(MetricError::Dimension(17)));
+        assert_eq!(Metric::signature(16, 0, 0).map(|m| m.dim()), Ok(16));
     }
 
     #[test]

@@ -5,6 +5,8 @@
 //!   and the blades of its basis; [`ident`]: which basis names can become Rust identifiers;
 //! - [`multivector`]: the slow generic dense [`Multivector`](multivector::Multivector), the
 //!   reference every generated function is checked against;
+//! - [`sparse`]: the sparse generic reference of large algebras (blades present only, blade
+//!   products one pair at a time);
 //! - [`f64x2`]: two `f64` lanes ([`F64x2`](f64x2::F64x2)), for generated products in
 //!   paired-lane form;
 //! - [`f32x4`]: four `f32` lanes ([`F32x4`](f32x4::F32x4)), for generated f32 products in
@@ -20,4 +22,5 @@ pub mod ident;
 pub mod metric;
 pub mod multivector;
 pub mod rational;
+pub mod sparse;
 pub mod wide_lanes;

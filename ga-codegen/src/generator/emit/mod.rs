@@ -3,11 +3,15 @@
 //! Every product of two declared types is expanded symbolically (`generator::symbolic`),
 //! every identically-zero term is dropped, and the result type is the smallest declared type that
 //! holds every remaining blade (a pure scalar is returned as the scalar type itself; a product
-//! that is identically zero is not emitted at all). The output is meant for `include!` inside a
+//! that is identically zero is not emitted at all, nor, in an algebra too large for the general
+//! multivector, one whose result no declared type holds: see [`Generated::skipped`]). The output is meant for `include!` inside a
 //! module (or a macro expansion): it has no inner attributes.
 //!
 //! The emitter works in phases, grouped by family, one file each:
 //! - `render.rs`: literals, identifiers and polynomials as tokens (and as text for docs);
+//! - `preamble.rs`: `BASIS`, `METRIC`, `algebra()` (the dense generic algebra, or the sparse
+//!   one above [`MAX_DENSE_REFERENCE_DIMENSION`](crate::generator::spec::MAX_DENSE_REFERENCE_DIMENSION)
+//!   basis vectors), the `Sandwich` trait, `Scalar`, and `SKIPPED` (what no declared type holds);
 //! - `products/`: the module's types and products: `infer.rs` (result types of symbolic
 //!   products and the expressions that build them), `types.rs` (one struct per declared type
 //!   with its methods and scalar operators), `operators.rs` (binary operators between declared
@@ -31,6 +35,7 @@
 mod exp_log;
 mod lanes;
 mod library;
+mod preamble;
 mod products;
 mod render;
 mod summary;
@@ -45,7 +50,6 @@ use crate::generator::spec::Spec;
 use crate::generator::symbolic::BladeTable;
 use proc_macro2::TokenStream;
 use quote::{quote, ToTokens};
-use render::{int, lit};
 use std::cell::OnceCell;
 use std::fmt;
 
@@ -192,6 +196,16 @@ pub enum GenError {
         /// Operand type.
         operand: String,
     },
+    /// A sandwich without a declared output whose result no declared type holds (an algebra
+    /// without the general multivector).
+    NoSandwichOutput {
+        /// The spec file.
+        file: String,
+        /// Versor type.
+        versor: String,
+        /// Operand type.
+        operand: String,
+    },
     /// Closed-form `exp`/`log` were required ([`EmitOptions::require_exp_log`]) and a type
     /// cannot have them.
     NoClosedForm {
@@ -224,6 +238,10 @@ impl fmt::Display for GenError {
             GenError::ZeroSandwich { file, versor, operand } => {
                 write!(f, "{file}: type `{versor}`: `{operand}`: the sandwich is identically zero")
             }
+            GenError::NoSandwichOutput { file, versor, operand } => write!(
+                f,
+                "{file}: type `{versor}`: `{operand}`: no declared type holds the sandwich's result; declare a type with its blades and name it as the sandwich's `output`"
+            ),
             GenError::NoClosedForm { file, ty, reason } => {
                 write!(f, "{file}: type `{ty}`: no closed-form exp/log: {reason}")
             }
@@ -252,6 +270,10 @@ pub enum OutType {
     Scalar,
     /// A declared type (index).
     Type(usize),
+    /// No declared type holds it (only above
+    /// [`MAX_GENERAL_DIMENSION`](crate::generator::spec::MAX_GENERAL_DIMENSION) basis vectors,
+    /// where no general multivector is added): not emitted, listed in [`Generated::skipped`].
+    Unfit,
 }
 
 /// An emitted binary operation between two declared types.
@@ -367,6 +389,10 @@ pub struct Generated {
     pub methods: Vec<(String, Method)>,
     /// Operations skipped because identically zero.
     pub zero_ops: usize,
+    /// Products, methods and scalar operators not emitted because no declared type holds
+    /// their result (only in algebras without the general multivector), one line each:
+    /// `Vector * Vector -> grades 0, 2`, `-Point -> grade 2`, `Vector::dual -> grade 9`.
+    pub skipped: Vec<String>,
     /// The closed-form exp/log impls, one line each (`Bivector exp -> Motor`,
     /// `Motor log -> Bivector`, `Motor sqrt, normalize`).
     pub closed_forms: Vec<String>,
@@ -411,12 +437,14 @@ struct Gen<'a> {
     ops: Vec<OpSummary>,
     methods: Vec<(String, Method)>,
     zero_ops: usize,
+    /// What was not emitted because no declared type holds its result.
+    skipped: Vec<String>,
     /// The closed-form exp/log impls emitted, for the summary.
     closed_forms: Vec<String>,
     /// Type indices ordered by size, for result inference.
     by_size: Vec<usize>,
     /// The generic algebra, for numerical checks at generation time.
-    alg: std::sync::Arc<crate::Algebra>,
+    alg: std::sync::Arc<crate::runtime::sparse::multivector::SparseAlgebra>,
 }
 
 /// Every type and field name must be a Rust identifier.
@@ -476,9 +504,11 @@ fn gen<'a>(spec: &'a Spec, opts: &EmitOptions) -> Result<Gen<'a>, GenError> {
         ops: Vec::new(),
         methods: Vec::new(),
         zero_ops: 0,
+        skipped: Vec::new(),
         closed_forms: Vec::new(),
         by_size,
-        alg: crate::Algebra::new(spec.metric.clone()),
+        alg: crate::runtime::sparse::multivector::SparseAlgebra::try_new(spec.metric.clone())
+            .expect("the spec's metric was checked for overflow"),
     })
 }
 
@@ -508,6 +538,7 @@ pub fn generate(spec: &Spec, opts: &EmitOptions) -> Result<Generated, GenError> 
         g.sandwich(d)?;
     }
     g.exp_log();
+    g.skipped_list();
     if opts.wide {
         g.wide_module()?;
     }
@@ -532,59 +563,8 @@ pub fn generate(spec: &Spec, opts: &EmitOptions) -> Result<Generated, GenError> 
         ops: g.ops,
         methods: g.methods,
         zero_ops: g.zero_ops,
+        skipped: g.skipped,
         closed_forms: g.closed_forms,
         code: OnceCell::new(),
     })
-}
-
-impl Gen<'_> {
-    /// Constants, the generic algebra, the `Sandwich` trait and the `Scalar` alias.
-    fn header(&mut self) {
-        let spec = self.spec;
-        let n = spec.metric.dim();
-        let (s, rt) = (&self.s, &self.rt);
-        let basis = spec
-            .metric
-            .names()
-            .iter()
-            .map(|b| proc_macro2::Literal::string(b));
-        let rows = (0..n).map(|i| {
-            let row = (0..n).map(|j| lit(spec.metric.get(i, j)));
-            quote!([#(#row),*])
-        });
-        let n = int(n);
-        let algebra_doc = render::doc(&format!(
-            "The generic algebra of this module, for the slow reference [`{}::Multivector`].",
-            self.runtime
-        ));
-        self.out.extend(quote! {
-            /// Names of the basis vectors, in order (blade bitmaps use this order).
-            pub const BASIS: [&str; #n] = [#(#basis),*];
-
-            /// The metric: `METRIC[i][j]` is the inner product of basis vectors `i` and `j`.
-            pub const METRIC: [[f64; #n]; #n] = [#(#rows),*];
-
-            #algebra_doc
-            pub fn algebra() -> ::std::sync::Arc<#rt::Algebra> {
-                static ALGEBRA: ::std::sync::OnceLock<::std::sync::Arc<#rt::Algebra>> = ::std::sync::OnceLock::new();
-                ALGEBRA
-                    .get_or_init(|| {
-                        let rows: ::std::vec::Vec<::std::vec::Vec<f64>> = METRIC.iter().map(|r| r.to_vec()).collect();
-                        #rt::Algebra::from_metric(&BASIS, &rows).expect("the metric was validated when the code was generated")
-                    })
-                    .clone()
-            }
-
-            /// The sandwich product `self * x * ~self` of a versor with `x`, fused into one expression.
-            pub trait Sandwich<X> {
-                /// The type of the result.
-                type Output;
-                /// `self * x * ~self`.
-                fn sandwich(&self, x: X) -> Self::Output;
-            }
-
-            /// The scalar type of this module.
-            pub type Scalar = #s;
-        });
-    }
 }

@@ -1,6 +1,7 @@
 //! The summary of a generated module: its types, then its product table (geometric products
-//! and sandwiches, with result types and term counts), then the closed-form exp/log impls, as
-//! printed by `ga-codegen --summary`.
+//! and sandwiches, with result types and term counts), what was not emitted for want of a type
+//! holding the result (large algebras only), then the closed-form exp/log impls, as printed by
+//! `ga-codegen --summary`.
 
 use super::{Generated, Op};
 use std::fmt::Write;
@@ -35,6 +36,18 @@ impl Generated {
                 o.output,
                 o.terms
             );
+        }
+        if !self.skipped.is_empty() {
+            let _ = writeln!(
+                s,
+                "not emitted ({}): no declared type holds the result (no general multivector \
+                 above {} basis vectors)",
+                self.skipped.len(),
+                crate::generator::spec::MAX_GENERAL_DIMENSION
+            );
+            for x in &self.skipped {
+                let _ = writeln!(s, "  {x}");
+            }
         }
         let _ = writeln!(
             s,

@@ -2,11 +2,12 @@
 //!
 //! The estimate counts the work the generator does, in units of about one term inserted in a
 //! symbolic polynomial (a few microseconds and about a kilobyte at the peak, on a laptop core),
-//! and is proportional to the code emitted. With `m` the mean number of terms of a product of
-//! two basis blades (1 for a diagonal metric, more for a dense one; measured on a sample of
-//! blade pairs by congruence, see `MetricCost`):
+//! and is proportional to the code emitted. It counts the blade pairs of the declared types,
+//! never the `2^n x 2^n` table of the algebra (which the generator does not build). With `m`
+//! the mean number of terms of a product of two of the declared blades (1 for a diagonal
+//! metric, more for a dense one; measured exactly on a sample of those pairs, see
+//! `MetricCost`):
 //!
-//! - the exact product table of the basis blades: `4^n` times the work of one entry;
 //! - each type of `w` blades (stored and constant): `2 m w^2 + 8 w` for its unary methods
 //!   (reverse, dual, norm, scalar products) plus `ITEMS_PER_TYPE` emitted items;
 //! - each ordered pair of types: `3 m w_a w_b` for the geometric and outer products and the
@@ -16,39 +17,42 @@
 //! - each emitted item costs `ITEM` units (formatting, parsing, printing).
 //!
 //! Measured (release build, one core): `algebras/cga.toml` is about 0.13 million units
-//! (0.5 s), `--signature 7,0,0` 1.46 million (3.4 s, 830 MB), a dense 6-dimensional metric
-//! 0.94 million (2.6 s), 80 two-blade types about 1.7 million (2.8 s, 870 MB); refused:
-//! `--signature 8,0,0` (about 10 million units; it took 50 s and 4.7 GB), 150 two-blade types
-//! (5.8 million; 2.8 GB), a dense 7-dimensional metric (10.8 million; 16 s). The budget is
-//! `BUDGET`.
+//! (0.5 s), `--signature 7,0,0` 1.45 million (3.4 s, 830 MB), 80 two-blade types about 1.7
+//! million (2.8 s, 870 MB); refused: `--signature 8,0,0` (about 10 million units; it took 50 s
+//! and 4.7 GB), 150 two-blade types (5.8 million; 2.8 GB). The budget is `BUDGET`.
 
 use super::error::{SpecError, SpecErrorKind, SpecLocation, TooLarge};
 use super::{SandwichDef, TypeDef};
-use crate::runtime::algebra::Congruence;
 use crate::runtime::blade::Bitmap;
 use crate::runtime::metric::Metric;
+use crate::runtime::sparse::blades::BladeProducts;
 
-/// What a metric costs per blade product, measured on a sample of blade pairs.
+/// What a metric costs per blade product, measured on a sample of the declared blade pairs.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct MetricCost {
     /// Mean number of terms of a blade product (at least 1).
     pub terms: f64,
-    /// Mean work of one entry of the exact product table.
-    pub entry: f64,
 }
 
-/// Blade pairs sampled (all of them in algebras of up to 4 vectors).
+/// Blade pairs sampled (all of them when the declared blades make at most this many pairs).
 const SAMPLE: u64 = 256;
 
 impl MetricCost {
-    /// Measure a metric; `None` when its exact products overflow (reported by the
-    /// exactness phase).
-    pub fn of(metric: &Metric) -> Option<MetricCost> {
-        let c = Congruence::new(metric)?;
-        let size = 1u32 << metric.dim();
-        let pairs: Vec<(Bitmap, Bitmap)> = if u64::from(size) * u64::from(size) <= SAMPLE {
-            (0..size)
-                .flat_map(|a| (0..size).map(move |b| (a, b)))
+    /// Measure a metric on the blades of `types`; `None` when its exact products overflow
+    /// (reported by the exactness phase).
+    pub fn of(metric: &Metric, types: &[TypeDef]) -> Option<MetricCost> {
+        let c = BladeProducts::new(metric)?;
+        let mut blades: Vec<Bitmap> = types.iter().flat_map(TypeDef::blades).collect();
+        blades.sort_unstable();
+        blades.dedup();
+        if blades.is_empty() {
+            return Some(MetricCost { terms: 1.0 });
+        }
+        let size = blades.len() as u64;
+        let pairs: Vec<(Bitmap, Bitmap)> = if size * size <= SAMPLE {
+            blades
+                .iter()
+                .flat_map(|&a| blades.iter().map(move |&b| (a, b)))
                 .collect()
         } else {
             // A fixed pseudo-random sample (64-bit LCG, high bits), the same on every run.
@@ -57,27 +61,24 @@ impl MetricCost {
                 x = x
                     .wrapping_mul(6364136223846793005)
                     .wrapping_add(1442695040888963407);
-                ((x >> 33) % u64::from(size)) as Bitmap
+                blades[((x >> 33) % size) as usize]
             };
             (0..SAMPLE).map(|_| (next(), next())).collect()
         };
-        let back = (0..size).map(|f| c.spread_back(f)).sum::<usize>() as f64 / size as f64;
-        let (mut terms, mut entry) = (0.0, 0.0);
+        let mut terms = 0.0;
         for &(a, b) in &pairs {
             terms += c.product(a, b)?.len().max(1) as f64;
-            entry += 1.0 + (c.spread(a) * c.spread(b)) as f64 * back;
         }
-        let pairs = pairs.len() as f64;
         Some(MetricCost {
-            terms: terms / pairs,
-            entry: entry / pairs,
+            terms: terms / pairs.len() as f64,
         })
     }
 }
 
-/// Largest number of basis vectors the generator takes: the general multivector of an
-/// 8-dimensional algebra has 256 blades and its products alone are 65,536 terms each.
-pub const MAX_DIMENSION: usize = 8;
+/// Largest number of basis vectors the generator takes (blades are 32-bit bitmaps, and the
+/// runtime [`Metric`] takes up to 16). What a spec of that many costs is the budget's to say:
+/// it counts the declared types, not the `2^n` blades of the algebra.
+pub const MAX_DIMENSION: usize = 16;
 
 /// Largest estimate accepted, in units of work (about 5 s and 1.2 GB).
 pub(crate) const BUDGET: u64 = 2_000_000;
@@ -94,8 +95,6 @@ pub(crate) const ITEMS_PER_PAIR: u64 = 6;
 /// The estimate of one spec, by part.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub(crate) struct Estimate {
-    /// The product table of the basis blades.
-    pub table: u64,
     /// The unary methods of every type.
     pub types: u64,
     /// The binary operators of every ordered pair of types.
@@ -105,13 +104,8 @@ pub(crate) struct Estimate {
 }
 
 impl Estimate {
-    /// The estimate of a spec: its dimension, the cost of its metric, types and sandwiches.
-    pub fn of(
-        dim: usize,
-        cost: MetricCost,
-        types: &[TypeDef],
-        sandwiches: &[SandwichDef],
-    ) -> Estimate {
+    /// The estimate of a spec: the cost of its metric, its types and sandwiches.
+    pub fn of(cost: MetricCost, types: &[TypeDef], sandwiches: &[SandwichDef]) -> Estimate {
         let width = |t: &TypeDef| (t.fields.len() + t.constants.len()) as f64;
         let widths: Vec<f64> = types.iter().map(width).collect();
         let sum: f64 = widths.iter().sum();
@@ -119,7 +113,6 @@ impl Estimate {
         let (m, item) = (cost.terms, ITEM as f64);
         let units = |x: f64| x.min(u64::MAX as f64 / 8.0) as u64;
         Estimate {
-            table: units(4f64.powi(dim as i32) * cost.entry),
             types: units(
                 widths
                     .iter()
@@ -140,7 +133,7 @@ impl Estimate {
 
     /// The total.
     pub fn total(&self) -> u64 {
-        self.table + self.types + self.pairs + self.sandwiches.iter().map(|s| s.1).sum::<u64>()
+        self.types + self.pairs + self.sandwiches.iter().map(|s| s.1).sum::<u64>()
     }
 }
 
@@ -162,18 +155,18 @@ pub(super) fn check(
             }),
         ));
     }
-    let Some(cost) = MetricCost::of(metric) else {
+    let Some(cost) = MetricCost::of(metric, types) else {
         // Exact products overflow: the exactness phase says which entry.
         return Ok(());
     };
-    let e = Estimate::of(dim, cost, types, sandwiches);
+    let e = Estimate::of(cost, types, sandwiches);
     let estimate = e.total();
     if estimate <= BUDGET {
         return Ok(());
     }
     let biggest_sandwich = e.sandwiches.iter().max_by_key(|s| s.1).copied();
     let (cause, location, type_name) = match biggest_sandwich {
-        Some((i, units)) if units >= e.pairs.max(e.types).max(e.table) => {
+        Some((i, units)) if units >= e.pairs.max(e.types) => {
             let s = &sandwiches[i];
             let (v, x) = (&types[s.versor], &types[s.operand]);
             (
@@ -189,7 +182,7 @@ pub(super) fn check(
                 Some(v.name.clone()),
             )
         }
-        _ if e.pairs >= e.types.max(e.table) => (
+        _ if e.pairs >= e.types => (
             format!(
                 "the products of every pair of the {} types ({} ordered pairs, {} blades in \
                  all): {} units; declare fewer or smaller types",
@@ -204,22 +197,14 @@ pub(super) fn check(
             SpecLocation::Spec,
             None,
         ),
-        _ if e.types >= e.table => (
+        _ => (
             format!(
-                "the methods of the {} types: {} units",
+                "the methods of the {} types ({:.1} terms per blade product): {} units",
                 types.len(),
+                cost.terms,
                 e.types
             ),
             SpecLocation::Spec,
-            None,
-        ),
-        _ => (
-            format!(
-                "the product table of the 2^{dim} blades ({:.1} terms per blade product): {} \
-                 units",
-                cost.terms, e.table
-            ),
-            SpecLocation::BasisList,
             None,
         ),
     };

@@ -62,13 +62,26 @@ pub enum SpecLocation {
 pub enum TooLarge {
     /// More basis vectors than the generator takes.
     #[error(
-        "too large to generate: {n} basis vectors give a general multivector of 2^{n} blades; \
-         the generator takes at most {max} (the runtime `Multivector` takes up to 10)"
+        "too large to generate: {n} basis vectors; the generator takes at most {max} (blades \
+         are computed pair by pair, so what a spec costs depends on its declared types)"
     )]
     Dimension {
         /// Basis vectors given.
         n: usize,
         /// The limit.
+        max: usize,
+    },
+    /// `--signature` declares every grade and the whole algebra, which stays small only up to
+    /// a few basis vectors.
+    #[error(
+        "too large to generate with a type for every grade: {n} basis vectors give a general \
+         multivector of 2^{n} blades; --signature declares every grade only up to {max} basis \
+         vectors (the generator takes up to 16 in a spec that declares only the types it needs)"
+    )]
+    EveryGrade {
+        /// Basis vectors given.
+        n: usize,
+        /// The limit of `--signature`.
         max: usize,
     },
     /// The estimated work (and memory) exceeds the budget.
@@ -143,6 +156,18 @@ pub enum SpecErrorKind {
     /// A sandwich whose versor type is not marked `versor = true`.
     #[error("versor type is not marked `versor = true`")]
     NotVersor,
+    /// A spec above [`MAX_GENERAL_DIMENSION`](super::MAX_GENERAL_DIMENSION) basis vectors
+    /// that declares no type (none is added for it).
+    #[error(
+        "no type declared: above {max} basis vectors no general multivector is added (its \
+         2^{n} blades are too many), so a spec of {n} declares the types it needs"
+    )]
+    NoTypes {
+        /// Basis vectors given.
+        n: usize,
+        /// The most basis vectors with a general multivector.
+        max: usize,
+    },
     /// The spec would take too long or too much memory to generate.
     #[error("{0}")]
     TooLarge(TooLarge),

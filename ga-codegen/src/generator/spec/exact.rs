@@ -1,8 +1,11 @@
 //! Phase 5: the exact products of the metric fit in 128-bit rationals, with room for what
 //! generation does with them.
 //!
-//! The product table of the basis blades is computed exactly, with checked arithmetic (it is
-//! what [`crate::Algebra`] computes at generation time and in the generated code). Generation
+//! The products of basis blades are computed exactly, with checked arithmetic: the whole table
+//! (what [`crate::Algebra`] computes in the generated code) for algebras of up to
+//! `FULL_TABLE_DIMENSION` basis vectors, and above that the blade pairs generation multiplies
+//! (those of the declared types, of each sandwich's versor by its intermediate product, and
+//! of the pseudoscalar), one pair at a time ([`BladeProducts`]). Generation
 //! then multiplies table coefficients with each other and with type constants: a sandwich
 //! term is two table coefficients and up to three constants, a dual term one coefficient and
 //! `1 / (I ~I)`. For a set of values let `h = bits(ceil(max |v|)) + bits(D)`, `D` the common
@@ -19,11 +22,13 @@
 
 use super::error::{SpecError, SpecErrorKind, SpecLocation};
 use super::metric::error as metric_error;
-use super::{RawType, TypeDef};
-use crate::runtime::algebra::exact_products;
+use super::{RawType, SandwichDef, TypeDef};
+use crate::runtime::algebra::{exact_products, Exact};
 use crate::runtime::blade::reverse_sign;
+use crate::runtime::blade::Bitmap;
 use crate::runtime::metric::{Metric, MetricError};
 use crate::runtime::rational::Rational;
+use crate::runtime::sparse::blades::BladeProducts;
 
 /// Bits of a positive integer (1 for 0 and 1).
 fn bits(x: u128) -> u32 {
@@ -55,6 +60,7 @@ pub(super) fn check(
     metric: &Metric,
     basis: &[String],
     types: &[TypeDef],
+    sandwiches: &[SandwichDef],
     raw: &[RawType],
     source: &str,
 ) -> Result<(), SpecError> {
@@ -69,15 +75,11 @@ pub(super) fn check(
             }
         }
     }
-    let (table, _) = exact_products(metric).ok_or_else(overflow)?;
-    let full = (1usize << n) - 1;
-    let ii = table[full * (full + 1) + full].get(&0).map(|c| {
-        if reverse_sign(full as u32) < 0 {
-            -*c
-        } else {
-            *c
-        }
-    });
+    let (table, ii) = products(metric, types, sandwiches).ok_or_else(overflow)?;
+    let full = (1u32 << n) - 1;
+    let ii = ii
+        .get(&0)
+        .map(|c| if reverse_sign(full) < 0 { -*c } else { *c });
     let table_values = table
         .iter()
         .flat_map(|m| m.values().copied())
@@ -103,6 +105,53 @@ pub(super) fn check(
         return Err(constant_error(types, raw, source));
     }
     Err(overflow())
+}
+
+/// Largest number of basis vectors whose whole product table is checked (4,096 blade pairs).
+const FULL_TABLE_DIMENSION: usize = 6;
+
+/// The exact blade products generation may multiply, and the pseudoscalar's square `I I`;
+/// `None` on overflow.
+fn products(
+    metric: &Metric,
+    types: &[TypeDef],
+    sandwiches: &[SandwichDef],
+) -> Option<(Vec<Exact>, Exact)> {
+    let full: Bitmap = (1 << metric.dim()) - 1;
+    if metric.dim() <= FULL_TABLE_DIMENSION {
+        let (table, _) = exact_products(metric)?;
+        let ii = table[full as usize * (full as usize + 2)].clone();
+        return Some((table, ii));
+    }
+    let c = BladeProducts::new(metric)?;
+    let mut declared: Vec<Bitmap> = types.iter().flat_map(TypeDef::blades).collect();
+    declared.extend([0, full]);
+    declared.sort_unstable();
+    declared.dedup();
+    let mut table = Vec::new();
+    for &a in &declared {
+        for &b in &declared {
+            table.push(c.product(a, b)?);
+        }
+    }
+    for s in sandwiches {
+        let versor: Vec<Bitmap> = types[s.versor].blades().collect();
+        let mut middle: Vec<Bitmap> = Vec::new();
+        for &a in &versor {
+            for b in types[s.operand].blades() {
+                middle.extend(c.product(a, b)?.keys());
+            }
+        }
+        middle.sort_unstable();
+        middle.dedup();
+        for &k in &middle {
+            for &v in &versor {
+                table.push(c.product(k, v)?);
+            }
+        }
+    }
+    let ii = c.product(full, full)?;
+    Some((table, ii))
 }
 
 /// The error for the constant with the largest numerator or denominator.

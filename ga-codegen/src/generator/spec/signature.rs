@@ -5,19 +5,25 @@ use super::{RawSandwich, RawSpec, RawType, Spec, SpecError, SpecErrorKind, SpecL
 use crate::runtime::blade::blade_name;
 use crate::runtime::metric::Metric;
 
+/// Most basis vectors of a default spec: it declares every grade and the whole algebra, whose
+/// products grow as `4^n` (8 is already over the work budget; 9 and more are refused here,
+/// before any product, with the advice to write a spec of the types needed).
+pub const MAX_SIGNATURE_DIMENSION: usize = 8;
+
 impl Spec {
     /// The default spec of a diagonal signature G(p, q, r): one type per grade 1..n, the even
-    /// subalgebra (a versor, sandwiching every grade type), and the general multivector.
+    /// subalgebra (a versor, sandwiching every grade type), and the general multivector; up to
+    /// [`MAX_SIGNATURE_DIMENSION`] basis vectors.
     pub fn for_signature(p: usize, q: usize, r: usize) -> Result<Spec, SpecError> {
         let source = format!("--signature {p},{q},{r}");
         let n = p.saturating_add(q).saturating_add(r);
-        if n > super::budget::MAX_DIMENSION {
+        if n > MAX_SIGNATURE_DIMENSION {
             return Err(SpecError::new(
                 &source,
                 SpecLocation::BasisList,
-                SpecErrorKind::TooLarge(super::TooLarge::Dimension {
+                SpecErrorKind::TooLarge(super::TooLarge::EveryGrade {
                     n,
-                    max: super::budget::MAX_DIMENSION,
+                    max: MAX_SIGNATURE_DIMENSION,
                 }),
             ));
         }

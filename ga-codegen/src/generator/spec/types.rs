@@ -1,14 +1,15 @@
-//! Phase 2: the specialised types (names, blades, constants) and the general multivector.
+//! Phase 2: the specialised types (names, blades, constants) and, up to
+//! [`MAX_GENERAL_DIMENSION`] basis vectors, the general multivector.
 
 use super::error::{SpecError, SpecErrorKind, SpecLocation};
 use super::names::{check_type_name, GENERAL_NAME_TAKEN};
-use super::{Field, RawType, TypeDef, GENERAL_TYPE};
+use super::{Field, RawType, TypeDef, GENERAL_TYPE, MAX_GENERAL_DIMENSION};
 use crate::runtime::blade::{blade_name, canonical_order, parse_blade, Bitmap, BladeNameError};
 use crate::runtime::metric::Metric;
 use crate::runtime::rational::Rational;
 
 /// Validate every declared type, in order, and add the general multivector when no type
-/// holds every blade.
+/// holds every blade and the algebra has at most [`MAX_GENERAL_DIMENSION`] basis vectors.
 pub(super) fn read(
     raw: &[RawType],
     metric: &Metric,
@@ -25,6 +26,15 @@ pub(super) fn read(
             ));
         }
         types.push(read_type(ti, rt, metric.names(), source)?);
+    }
+    if metric.dim() > MAX_GENERAL_DIMENSION {
+        // Only the declared types: results that none holds are not emitted.
+        if types.is_empty() {
+            let (n, max) = (metric.dim(), MAX_GENERAL_DIMENSION);
+            let kind = SpecErrorKind::NoTypes { n, max };
+            return Err(SpecError::new(source, SpecLocation::Spec, kind));
+        }
+        return Ok(types);
     }
     let size = 1usize << metric.dim();
     let has_general = types

@@ -4,7 +4,7 @@
 use crate::generator::emit::render::{ident, Names};
 use crate::generator::emit::{Gen, OutType};
 use crate::generator::symbolic::{Poly, Product, SymMv};
-use crate::runtime::blade::{reorder_sign, Bitmap};
+use crate::runtime::blade::{grade, reorder_sign, Bitmap};
 use crate::runtime::rational::Rational;
 use proc_macro2::TokenStream;
 use quote::quote;
@@ -18,7 +18,8 @@ pub(crate) fn terms(m: &SymMv) -> usize {
 
 impl Gen<'_> {
     /// The result type of `m`: zero, a scalar, or the smallest declared type that holds every
-    /// blade of `m` and whose constants `m` keeps.
+    /// blade of `m` and whose constants `m` keeps; [`OutType::Unfit`] when none does (only in
+    /// an algebra without the general multivector).
     pub(crate) fn infer(&self, m: &SymMv) -> OutType {
         let support = m.support();
         if support.is_empty() {
@@ -27,18 +28,39 @@ impl Gen<'_> {
         if support == [0] {
             return OutType::Scalar;
         }
-        for &ti in &self.by_size {
+        self.holder(m).map_or(OutType::Unfit, OutType::Type)
+    }
+
+    /// The smallest declared type that holds every blade of `m` (the scalar included) and
+    /// whose constants `m` keeps.
+    pub(crate) fn holder(&self, m: &SymMv) -> Option<usize> {
+        let support = m.support();
+        self.by_size.iter().copied().find(|&ti| {
             let t = &self.spec.types[ti];
             let holds = support.iter().all(|b| t.blades().any(|x| x == *b));
             let consts_ok = t
                 .constants
                 .iter()
                 .all(|&(b, c)| m.get(b).as_constant() == Some(c));
-            if holds && consts_ok {
-                return OutType::Type(ti);
-            }
+            holds && consts_ok
+        })
+    }
+
+    /// Whether `o` is [`OutType::Unfit`]; if so, `what` (`Vector * Vector`, `Point::dual`)
+    /// is recorded as skipped with the grades of `m`, the result no declared type holds.
+    pub(crate) fn skip_unfit(&mut self, o: OutType, m: &SymMv, what: &str) -> bool {
+        if o != OutType::Unfit {
+            return false;
         }
-        unreachable!("the general multivector holds every blade")
+        let mut grades: Vec<u32> = m.support().iter().map(|&b| grade(b)).collect();
+        grades.dedup();
+        grades.sort_unstable();
+        grades.dedup();
+        let list: Vec<String> = grades.iter().map(u32::to_string).collect();
+        let word = if grades.len() == 1 { "grade" } else { "grades" };
+        self.skipped
+            .push(format!("{what} -> {word} {}", list.join(", ")));
+        true
     }
 
     /// The name of a result type (the scalar type for scalars).
@@ -64,6 +86,7 @@ impl Gen<'_> {
     pub(crate) fn build(&self, o: OutType, m: &SymMv, names: &Names) -> TokenStream {
         match o {
             OutType::Zero => quote!(0.0),
+            OutType::Unfit => unreachable!("a result no type holds is skipped, not built"),
             OutType::Scalar => names.poly(&m.get(0)),
             OutType::Type(ti) => {
                 let t = &self.spec.types[ti];
@@ -84,6 +107,7 @@ impl Gen<'_> {
     pub(crate) fn expansion(&self, o: OutType, m: &SymMv, names: &Names) -> String {
         match o {
             OutType::Zero => "0".to_string(),
+            OutType::Unfit => unreachable!("a result no type holds is skipped, not documented"),
             OutType::Scalar => format!("- `s` = {}", names.poly_text(&m.get(0))),
             OutType::Type(ti) => self.spec.types[ti]
                 .fields

@@ -64,6 +64,9 @@ impl Gen<'_> {
                 self.zero_ops += 1;
                 continue;
             }
+            if self.skip_unfit(o, &m, &format!("{} {op} {}", ta.name, tb.name)) {
+                continue;
+            }
             let (tr, method) = op.trait_method().expect("an operator");
             let (tr, method) = (ident(tr), ident(method));
             let on = self.out_type(o);

@@ -149,16 +149,6 @@ impl Gen<'_> {
                 oi
             }
             None => match self.infer(&r) {
-                OutType::Type(t) => t,
-                OutType::Scalar => self
-                    .by_size
-                    .iter()
-                    .copied()
-                    .find(|&t| {
-                        spec.types[t].fields.iter().any(|f| f.bitmap == 0)
-                            && spec.types[t].constants.is_empty()
-                    })
-                    .unwrap_or(spec.types.len() - 1),
                 OutType::Zero => {
                     return Err(GenError::ZeroSandwich {
                         file: spec.source.clone(),
@@ -166,6 +156,11 @@ impl Gen<'_> {
                         operand: tx.name.clone(),
                     })
                 }
+                _ => self.holder(&r).ok_or_else(|| GenError::NoSandwichOutput {
+                    file: spec.source.clone(),
+                    versor: tv.name.clone(),
+                    operand: tx.name.clone(),
+                })?,
             },
         };
         Ok((r, ideal, oi))

@@ -58,10 +58,10 @@ impl Gen<'_> {
         body.extend(self.predicates(t));
         body.extend(self.unary_methods(t));
         body.extend(self.multivector_conversions(t));
-        let rt = &self.rt;
+        let mv = self.multivector_path();
         self.out.extend(quote! {
             impl #name { #body }
-            impl ::core::convert::From<#name> for #rt::Multivector {
+            impl ::core::convert::From<#name> for #mv {
                 fn from(x: #name) -> Self { x.to_multivector() }
             }
         });
@@ -143,7 +143,9 @@ impl Gen<'_> {
         let mut out = TokenStream::new();
         for (method, fdoc, m) in unary.iter() {
             let o = self.infer(m);
-            if o == OutType::Zero {
+            if o == OutType::Zero
+                || self.skip_unfit(o, m, &format!("{}::{}", t.name, method.name()))
+            {
                 continue;
             }
             self.methods.push((t.name.clone(), *method));
@@ -199,7 +201,7 @@ impl Gen<'_> {
 
     /// `to_multivector` and `from_multivector`.
     fn multivector_conversions(&self, t: &TypeDef) -> TokenStream {
-        let rt = &self.rt;
+        let mv = self.multivector_path();
         let f32 = self.scalar == crate::generator::emit::ScalarType::F32;
         let mut to_mv = TokenStream::new();
         for f in &t.fields {
@@ -225,9 +227,9 @@ impl Gen<'_> {
         });
         quote! {
             /// This value as a generic multivector (constant blades included).
-            #[must_use] pub fn to_multivector(self) -> #rt::Multivector { let mut m = #rt::Multivector::zero(&algebra()); #to_mv m }
+            #[must_use] pub fn to_multivector(self) -> #mv { let mut m = #mv::zero(&algebra()); #to_mv m }
             /// The stored blades of a generic multivector; other blades and constant blades are ignored.
-            #[must_use] pub fn from_multivector(m: &#rt::Multivector) -> Self { Self { #(#from_mv),* } }
+            #[must_use] pub fn from_multivector(m: &#mv) -> Self { Self { #(#from_mv),* } }
         }
     }
 
@@ -238,15 +240,20 @@ impl Gen<'_> {
         let a = SymMv::of_type(t, 0);
         let neg = a.add_scaled(&a, Rational::int(-2));
         let o = self.infer(&neg);
-        let on = self.out_type(o);
-        let body = self.build(o, &neg, &names);
-        self.out.extend(quote! {
-            impl ::core::ops::Neg for #name { type Output = #on; #[inline] fn neg(self) -> #on { let a = self; #body } }
-        });
+        if !self.skip_unfit(o, &neg, &format!("-{}", t.name)) {
+            let on = self.out_type(o);
+            let body = self.build(o, &neg, &names);
+            self.out.extend(quote! {
+                impl ::core::ops::Neg for #name { type Output = #on; #[inline] fn neg(self) -> #on { let a = self; #body } }
+            });
+        }
         let m = self
             .table
             .product(&a, &SymMv::scalar_var(), Product::Geometric);
         let o = self.infer(&m);
+        if self.skip_unfit(o, &m, &format!("{} * scalar", t.name)) {
+            return;
+        }
         let on = self.out_type(o);
         let body = self.build(o, &m, &names);
         self.out.extend(quote! {

@@ -113,6 +113,7 @@ fn type_def(out: &mut String, t: &TypeDef) {
 fn construct(g: &Gen<'_>, o: OutType, m: &SymMv, names: &Names) -> String {
     match o {
         OutType::Zero => "0.0".to_string(),
+        OutType::Unfit => unreachable!("a result no type holds is skipped, not built"),
         OutType::Scalar => text(&names.poly(&m.get(0))),
         OutType::Type(ti) => {
             let t = &g.spec.types[ti];
@@ -163,7 +164,7 @@ impl Gen<'_> {
         for op in Op::OPERATORS {
             let m = self.apply(op, &a, &b);
             let o = self.infer(&m);
-            if o == OutType::Zero {
+            if o == OutType::Zero || o == OutType::Unfit {
                 continue;
             }
             let (tag, what) = match op {
