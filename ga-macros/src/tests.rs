@@ -263,9 +263,15 @@ fn hostile_specs_are_refused_with_the_binary_messages() {
         quote!(basis = [e1, e2, e3, e4, e5, e6, e7, e8, e9]; diagonal = [1, 1, 1, 1, 1, 1, 1, 1, 1];),
     );
     assert!(
-        e.starts_with("too large to generate: 9 basis vectors"),
+        e.starts_with("no type declared: above 6 basis vectors no general multivector"),
         "{e}"
     );
+    let e = error(quote!(
+        basis = [a, b, c, d, f, g, h, i, j, k, l, m, n, o, p, q, r];
+        diagonal = [1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1];
+        type V { blades = [a] }
+    ));
+    assert!(e.contains("17"), "{e}");
 }
 
 #[test]
