@@ -69,6 +69,22 @@ pub fn emit_checks(spec: &Spec, generated: &Generated, runtime: &str) -> String 
         /// Relative tolerance of a comparison: 1e-12 for f64, 1e-4 for f32.
         pub const TOL: f64 = if ::core::mem::size_of::<Scalar>() == 4 { 1e-4 } else { 1e-12 };
 
+        /// A random scalar (uniform in [-1, 1)), the scalar operand of the named products.
+        pub fn rand_scalar(rng: &mut Rng) -> Scalar { rng.next() as Scalar }
+
+        /// A random blade of grade `k`: a random scalar times the outer product of `k` random
+        /// vectors.
+        pub fn rand_blade(rng: &mut Rng, k: u32) -> Multivector {
+            let alg = algebra();
+            let mut m = Multivector::scalar(&alg, rng.next());
+            for _ in 0..k {
+                let mut v = Multivector::zero(&alg);
+                for i in 0..BASIS.len() { v.set(1 << i, rng.next()); }
+                m = m.outer(&v);
+            }
+            m
+        }
+
         fn check_that(count: &mut usize, fails: &mut Vec<String>, what: &str, ok: bool) {
             *count += 1;
             if !ok && fails.len() < 50 {
@@ -95,7 +111,10 @@ pub fn emit_checks(spec: &Spec, generated: &Generated, runtime: &str) -> String 
         body.extend(type_checks(spec, t, generated));
     }
     for o in &generated.ops {
-        body.extend(op_check(spec, o.op, &o.left, &o.right));
+        body.extend(match o.op.trait_name() {
+            Some(_) => named_check(spec, o.op, &o.left, &o.right),
+            None => op_check(spec, o.op, &o.left, &o.right),
+        });
     }
     out.extend(quote! {
         /// Compare every generated function with the generic multivector on `n` random inputs.
@@ -217,7 +236,7 @@ fn type_checks(spec: &Spec, t: &TypeDef, generated: &Generated) -> TokenStream {
         let what = w(format!("{tn}::{}", m.name()));
         let method = ident(m.name());
         out.extend(match m {
-            Method::Rev | Method::Involute | Method::Conjugate | Method::Dual => {
+            Method::Rev | Method::Involute | Method::Conjugate | Method::Dual | Method::Undual => {
                 quote!(check(c, f, #what, a.#method().mv(), ma.#method());)
             }
             Method::Grade => (0..=n)
@@ -276,6 +295,13 @@ fn op_check(spec: &Spec, op: Op, left: &str, right: &str) -> TokenStream {
                 _ => quote!(check(c, f, #what, (a - b).mv(), &ma - &mb);),
             }
         }
+        Op::RightContraction
+        | Op::ScalarProduct
+        | Op::DotProduct
+        | Op::HestenesInnerProduct
+        | Op::CommutatorProduct
+        | Op::RegressiveProduct
+        | Op::InverseGeometricProduct => unreachable!("checked by named_check"),
         Op::From => {
             let what = text(&format!("{right}::from({left})"));
             let rn = ident(right);
@@ -320,6 +346,58 @@ fn op_check(spec: &Spec, op: Op, left: &str, right: &str) -> TokenStream {
             }
             return out;
         }
+    };
+    quote!({ let a = #rand_l(&mut rng); let b = #rand_r(&mut rng); let (ma, mb) = (a.mv(), b.mv()); #body })
+}
+
+/// The random generator of an operand: `rand_scalar` for the scalar type, else the type's.
+fn rand_of(name: &str) -> Ident {
+    match name {
+        "f64" | "f32" => ident("rand_scalar"),
+        _ => ident(&format!("rand_{}", snake(name))),
+    }
+}
+
+/// The check of one named product (called through its trait, so that an inherent method of
+/// the same name in the including crate cannot hide it) against the generic multivector's
+/// product of the same name; the inverse geometric product also against `a * b^-1` with the
+/// generic inverse, on random blades of the right operand's grade.
+fn named_check(spec: &Spec, op: Op, left: &str, right: &str) -> TokenStream {
+    let (rand_l, rand_r) = (rand_of(left), rand_of(right));
+    let (tr, m) = (ident(op.trait_name().expect("named")), ident(op.symbol()));
+    let what = text(&format!("{left}.{}({right})", op.symbol()));
+    let got = quote!(#tr::#m(a, b).mv());
+    let body = match op {
+        Op::ScalarProduct => quote!(check(c, f, #what, #got, ma.scalar_product(&mb).mv());),
+        Op::InverseGeometricProduct => {
+            let blade = text(&format!(
+                "{left}.{}(blade {right}) vs a * b^-1",
+                op.symbol()
+            ));
+            let rt = spec.types.iter().find(|t| t.name == right);
+            let k = rt
+                .and_then(|t| t.fields.first())
+                .map_or(0, |f| grade(f.bitmap));
+            let k = Literal::u32_unsuffixed(k);
+            let from = match rt {
+                Some(t) => {
+                    let tn = ident(&t.name);
+                    quote!(#tn::from_multivector(&mv))
+                }
+                None => quote!(mv.get(0) as Scalar),
+            };
+            quote! {
+                if mb.norm_squared().abs() > 1e-2 { check(c, f, #what, #got, ma.reverse_quotient(&mb)); }
+                let mv = rand_blade(&mut rng, #k);
+                let b = #from;
+                let mb = b.mv();
+                if mv.max_diff(&mb) < TOL * (1.0 + mv.max_abs()) && mb.norm_squared().abs() > 1e-2 {
+                    if let Some(want) = ma.inverse_geometric_product(&mb) { check(c, f, #blade, #tr::#m(a, b).mv(), want); }
+                }
+            }
+        }
+        // The generic multivector's products have the generated methods' names.
+        _ => quote!(check(c, f, #what, #got, ma.#m(&mb));),
     };
     quote!({ let a = #rand_l(&mut rng); let b = #rand_r(&mut rng); let (ma, mb) = (a.mv(), b.mv()); #body })
 }

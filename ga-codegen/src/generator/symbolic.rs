@@ -13,7 +13,7 @@ use crate::runtime::rational::Rational;
 use std::collections::{BTreeMap, HashMap};
 
 /// A variable: field `field` of operand `operand` (0 = left/versor, 1 = right/operand, 2 = an
-/// extra scalar).
+/// extra scalar, 3 = a scalar factor).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub struct Var {
     /// Which operand.
@@ -141,17 +141,13 @@ impl SymMv {
 
     /// A scalar variable (operand 2).
     pub fn scalar_var() -> SymMv {
+        SymMv::scalar_operand(2)
+    }
+
+    /// The scalar variable of operand `operand` (2: the scalar `s`, 3: the factor `r`).
+    pub fn scalar_operand(operand: u8) -> SymMv {
         let mut m = SymMv::default();
-        m.add(
-            0,
-            &Poly::var(
-                Var {
-                    operand: 2,
-                    field: 0,
-                },
-                Rational::ONE,
-            ),
-        );
+        m.add(0, &Poly::var(Var { operand, field: 0 }, Rational::ONE));
         m
     }
 
@@ -234,10 +230,16 @@ pub enum Product {
     Geometric,
     /// Outer product.
     Outer,
-    /// Left contraction.
+    /// Left contraction `a ⌋ b`: grade `gb - ga` of each pair of grade parts, `ga <= gb`.
     Left,
-    /// Scalar product.
+    /// Scalar product `<a b>_0`.
     Scalar,
+    /// Right contraction `a ⌊ b`: grade `ga - gb` of each pair of grade parts, `ga >= gb`.
+    Right,
+    /// Dot product (Dorst's, as GATL's `dot`): grade `|ga - gb|` of each pair of grade parts.
+    Dot,
+    /// Hestenes inner product (GATL's `hip`): the dot product, zero when either grade is 0.
+    Hestenes,
 }
 
 impl Product {
@@ -247,6 +249,9 @@ impl Product {
             Product::Outer => gk == ga + gb,
             Product::Left => gb >= ga && gk == gb - ga,
             Product::Scalar => gk == 0,
+            Product::Right => ga >= gb && gk == ga - gb,
+            Product::Dot => gk == ga.abs_diff(gb),
+            Product::Hestenes => ga != 0 && gb != 0 && gk == ga.abs_diff(gb),
         }
     }
 }

@@ -7,6 +7,9 @@
 //!   reference every generated function is checked against;
 //! - [`sparse`]: the sparse generic reference of large algebras (blades present only, blade
 //!   products one pair at a time);
+//! - [`derived`]: products of ga-benchmark's set built from the multivector's own (dot,
+//!   Hestenes inner, commutator, undual, regressive, inverse geometric product), the
+//!   reference of the generated functions of those names;
 //! - [`f64x2`]: two `f64` lanes ([`F64x2`](f64x2::F64x2)), for generated products in
 //!   paired-lane form;
 //! - [`f32x4`]: four `f32` lanes ([`F32x4`](f32x4::F32x4)), for generated f32 products in
@@ -16,6 +19,7 @@
 
 pub mod algebra;
 pub mod blade;
+pub mod derived;
 pub mod f32x4;
 pub mod f64x2;
 pub mod ident;

@@ -8,6 +8,7 @@
 //! module (or a macro expansion): it has no inner attributes.
 //!
 //! The emitter works in phases, grouped by family, one file each:
+//! - `ops.rs`: what is emitted (`Op`, `Method`, `OpSummary`, `OutType`);
 //! - `render.rs`: literals, identifiers and polynomials as tokens (and as text for docs);
 //! - `preamble.rs`: `BASIS`, `METRIC`, `algebra()` (the dense generic algebra, or the sparse
 //!   one above [`MAX_DENSE_REFERENCE_DIMENSION`](crate::generator::spec::MAX_DENSE_REFERENCE_DIMENSION)
@@ -15,7 +16,8 @@
 //! - `products/`: the module's types and products: `infer.rs` (result types of symbolic
 //!   products and the expressions that build them), `types.rs` (one struct per declared type
 //!   with its methods and scalar operators), `operators.rs` (binary operators between declared
-//!   types and conversions), `sandwich.rs` (fused sandwich products and their matrix
+//!   types and conversions), `named.rs` (the named products of ga-benchmark's set between the
+//!   scalar and the types of one grade, a trait each), `sandwich.rs` (fused sandwich products and their matrix
 //!   (outermorphism) form);
 //! - `lanes/`: lane forms: `mod.rs` (paired-lane `F64x2` forms of dense geometric products),
 //!   `quad.rs` (their 4-lane `F32x4` f32 forms), `wide.rs` (structure-of-arrays twins over a
@@ -35,6 +37,7 @@
 mod exp_log;
 mod lanes;
 mod library;
+mod ops;
 mod preamble;
 mod products;
 mod render;
@@ -43,6 +46,7 @@ mod wgsl;
 
 pub use exp_log::decompose::Refusal;
 pub use exp_log::refusals;
+pub use ops::{Method, Op, OpSummary, OutType};
 pub use render::snake;
 pub use wgsl::{generate_wgsl, generate_wgsl_to};
 
@@ -261,119 +265,6 @@ impl fmt::Display for GenError {
 
 impl std::error::Error for GenError {}
 
-/// What a product returns.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum OutType {
-    /// Identically zero: not emitted.
-    Zero,
-    /// A pure scalar: the scalar type.
-    Scalar,
-    /// A declared type (index).
-    Type(usize),
-    /// No declared type holds it (only above
-    /// [`MAX_GENERAL_DIMENSION`](crate::generator::spec::MAX_GENERAL_DIMENSION) basis vectors,
-    /// where no general multivector is added): not emitted, listed in [`Generated::skipped`].
-    Unfit,
-}
-
-/// An emitted binary operation between two declared types.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Op {
-    /// `a * b`, the geometric product.
-    Geometric,
-    /// `a ^ b`, the outer product.
-    Outer,
-    /// `a | b`, the left contraction.
-    LeftContraction,
-    /// `a + b`.
-    Add,
-    /// `a - b`.
-    Sub,
-    /// `a.sandwich(b)`, `a * b * ~a` fused (with its matrix form).
-    Sandwich,
-    /// `B::from(a)`, a conversion into a type that holds every blade of `a`.
-    From,
-}
-
-impl Op {
-    /// The binary operators, in the order they are emitted for each pair of types.
-    pub const OPERATORS: [Op; 5] = [
-        Op::Geometric,
-        Op::Outer,
-        Op::LeftContraction,
-        Op::Add,
-        Op::Sub,
-    ];
-
-    /// The operator as written (`*`, `^`, `|`, `+`, `-`), or `sandwich` / `from`.
-    pub fn symbol(self) -> &'static str {
-        match self {
-            Op::Geometric => "*",
-            Op::Outer => "^",
-            Op::LeftContraction => "|",
-            Op::Add => "+",
-            Op::Sub => "-",
-            Op::Sandwich => "sandwich",
-            Op::From => "from",
-        }
-    }
-}
-
-impl fmt::Display for Op {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.symbol())
-    }
-}
-
-/// An emitted unary method whose result is not fixed by the type.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Method {
-    /// `rev()`: the reverse.
-    Rev,
-    /// `involute()`: the grade involution.
-    Involute,
-    /// `conjugate()`: the Clifford conjugate.
-    Conjugate,
-    /// `dual()`.
-    Dual,
-    /// `grade(k)`: the grade-`k` part.
-    Grade,
-    /// `normalized()`.
-    Normalized,
-    /// `inverse()`: the versor inverse.
-    Inverse,
-}
-
-impl Method {
-    /// The method's name.
-    pub fn name(self) -> &'static str {
-        match self {
-            Method::Rev => "rev",
-            Method::Involute => "involute",
-            Method::Conjugate => "conjugate",
-            Method::Dual => "dual",
-            Method::Grade => "grade",
-            Method::Normalized => "normalized",
-            Method::Inverse => "inverse",
-        }
-    }
-}
-
-/// One emitted binary operation, for the summary and the check harness.
-#[derive(Clone, Debug, PartialEq)]
-pub struct OpSummary {
-    /// The operation.
-    pub op: Op,
-    /// Left type.
-    pub left: String,
-    /// Right type.
-    pub right: String,
-    /// Result type name (the scalar type's name for scalars).
-    pub output: String,
-    /// Number of multiply terms after simplification.
-    pub terms: usize,
-}
-
 /// Generated code (as tokens) and its summary.
 #[derive(Clone, Debug)]
 pub struct Generated {
@@ -534,6 +425,7 @@ pub fn generate(spec: &Spec, opts: &EmitOptions) -> Result<Generated, GenError> 
             g.binary(ai, bi);
         }
     }
+    g.named_products();
     for d in &spec.sandwiches {
         g.sandwich(d)?;
     }

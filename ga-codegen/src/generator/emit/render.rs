@@ -82,8 +82,8 @@ pub fn snake(name: &str) -> String {
     s
 }
 
-/// Renders polynomials with variable names: operand 0 is `a.field`, operand 1 `b.field`, any
-/// other operand the scalar `s`.
+/// Renders polynomials with variable names: operand 0 is `a.field`, operand 1 `b.field`,
+/// operand 3 the factor `r`, any other operand the scalar `s`.
 pub(super) struct Names<'a> {
     types: [Option<&'a TypeDef>; 2],
     /// Set when a rendered expression reads operand 0 (`a`).
@@ -124,6 +124,7 @@ impl<'a> Names<'a> {
                 let (p, f) = (ident(prefix), ident(f));
                 quote!(#p.#f)
             }
+            None if v.operand == 3 => quote!(r),
             None => quote!(s),
         }
     }
@@ -159,6 +160,7 @@ impl<'a> Names<'a> {
         m.iter()
             .map(|v| match self.field(*v) {
                 Some((p, f)) => format!("{p}.{f}"),
+                None if v.operand == 3 => "r".to_string(),
                 None => "s".to_string(),
             })
             .collect::<Vec<_>>()

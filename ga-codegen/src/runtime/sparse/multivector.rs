@@ -93,6 +93,7 @@ enum Keep {
     All,
     Outer,
     Left,
+    Right,
     Scalar,
 }
 
@@ -102,6 +103,7 @@ impl Keep {
             Keep::All => true,
             Keep::Outer => gk == ga + gb,
             Keep::Left => gb >= ga && gk == gb - ga,
+            Keep::Right => ga >= gb && gk == ga - gb,
             Keep::Scalar => gk == 0,
         }
     }
@@ -212,6 +214,11 @@ impl SparseMultivector {
     /// Left contraction `self ⌋ o`.
     pub fn left_contraction(&self, o: &SparseMultivector) -> SparseMultivector {
         self.product(o, Keep::Left)
+    }
+
+    /// Right contraction `self ⌊ o`.
+    pub fn right_contraction(&self, o: &SparseMultivector) -> SparseMultivector {
+        self.product(o, Keep::Right)
     }
 
     /// Scalar product `<self o>_0`.

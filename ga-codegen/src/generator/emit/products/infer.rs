@@ -123,7 +123,7 @@ impl Gen<'_> {
     }
 
     /// Whether the metric is degenerate (a basis vector squares to zero).
-    fn degenerate(&self) -> bool {
+    pub(crate) fn degenerate(&self) -> bool {
         self.table
             .metric()
             .orthogonal_basis()
@@ -163,6 +163,32 @@ impl Gen<'_> {
                 ),
             );
             self.table.product(a, &inv, Product::Geometric)
+        }
+    }
+
+    /// The doc of `undual`, which depends on the metric.
+    pub(crate) fn undual_doc(&self) -> &'static str {
+        if self.degenerate() {
+            "The undual, inverse of `dual`: the left complement (`undual(x) ^ x = I` blade by blade)."
+        } else {
+            "The undual `x * I`, inverse of `dual`, with `I` the outer product of the basis in order."
+        }
+    }
+
+    /// The undual of `a`, inverse of [`Gen::dual`]: `a * I`, or the left complement for a
+    /// degenerate metric.
+    pub(crate) fn undual(&mut self, a: &SymMv) -> SymMv {
+        let n = self.spec.metric.dim();
+        let full: Bitmap = (1 << n) - 1;
+        if self.degenerate() {
+            a.map_blades(|b| {
+                let comp = full & !b;
+                vec![(comp, Rational::int(reorder_sign(comp, b) as i64))]
+            })
+        } else {
+            let mut i = SymMv::default();
+            i.0.insert(full, Poly::constant(Rational::ONE));
+            self.table.product(a, &i, Product::Geometric)
         }
     }
 }

@@ -1,8 +1,10 @@
 //! The module's types and products: result types of symbolic products (`infer.rs`), one struct
 //! per declared type with its methods (`types.rs`), binary operators and conversions
-//! (`operators.rs`), and fused sandwiches with their matrix form (`sandwich.rs`).
+//! (`operators.rs`), the named products of ga-benchmark's set between blade types
+//! (`named.rs`), and fused sandwiches with their matrix form (`sandwich.rs`).
 
 pub(crate) mod infer;
+mod named;
 mod operators;
 pub(crate) mod sandwich;
 mod types;

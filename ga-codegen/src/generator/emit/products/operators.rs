@@ -17,11 +17,11 @@ impl Op {
             Op::LeftContraction => ("BitOr", "bitor"),
             Op::Add => ("Add", "add"),
             Op::Sub => ("Sub", "sub"),
-            Op::Sandwich | Op::From => return None,
+            _ => return None,
         })
     }
 
-    /// The doc of the operator's method.
+    /// The doc of the operator's method (for the five operators).
     fn doc(self) -> &'static str {
         match self {
             Op::Geometric => "Geometric product.",
@@ -29,8 +29,7 @@ impl Op {
             Op::LeftContraction => "Left contraction.",
             Op::Add => "Sum.",
             Op::Sub => "Difference.",
-            Op::Sandwich => "Sandwich product.",
-            Op::From => "Conversion.",
+            _ => unreachable!("not an operator"),
         }
     }
 }
@@ -44,7 +43,7 @@ impl Gen<'_> {
             Op::LeftContraction => self.table.product(a, b, Product::Left),
             Op::Add => a.add_scaled(b, Rational::ONE),
             Op::Sub => a.add_scaled(b, -Rational::ONE),
-            Op::Sandwich | Op::From => unreachable!("not a binary operator"),
+            _ => unreachable!("not an operator"),
         }
     }
 

@@ -117,12 +117,12 @@ impl Gen<'_> {
         }
     }
 
-    /// `rev`, `involute`, `conjugate`, `dual` (result types inferred), the norms, and for
+    /// `rev`, `involute`, `conjugate`, `dual`, `undual` (result types inferred), the norms, and for
     /// types without constants `grade`, `normalized` and `inverse`.
     fn unary_methods(&mut self, t: &TypeDef) -> TokenStream {
         let s = self.s.clone();
         let a = SymMv::of_type(t, 0);
-        let unary: [(Method, &str, SymMv); 4] = [
+        let unary: [(Method, &str, SymMv); 5] = [
             (
                 Method::Rev,
                 "The reverse (reverses the order of every outer product).",
@@ -139,6 +139,7 @@ impl Gen<'_> {
                 a.conjugate(),
             ),
             (Method::Dual, self.dual_doc(), self.dual(&a)),
+            (Method::Undual, self.undual_doc(), self.undual(&a)),
         ];
         let mut out = TokenStream::new();
         for (method, fdoc, m) in unary.iter() {

@@ -173,7 +173,7 @@ impl Gen<'_> {
                 Op::LeftContraction => ("lc", "Left contraction"),
                 Op::Add => ("add", "Sum"),
                 Op::Sub => ("sub", "Difference"),
-                Op::Sandwich | Op::From => continue,
+                _ => continue,
             };
             let body = construct(self, o, &m, &names);
             let _ = write!(
