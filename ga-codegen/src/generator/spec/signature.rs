@@ -13,7 +13,7 @@ pub const MAX_SIGNATURE_DIMENSION: usize = 8;
 impl Spec {
     /// The default spec of a diagonal signature G(p, q, r): one type per grade 1..n, the even
     /// subalgebra (a versor, sandwiching every grade type), and the general multivector; up to
-    /// [`MAX_SIGNATURE_DIMENSION`] basis vectors.
+    /// `MAX_SIGNATURE_DIMENSION` (8) basis vectors.
     pub fn for_signature(p: usize, q: usize, r: usize) -> Result<Spec, SpecError> {
         let source = format!("--signature {p},{q},{r}");
         let n = p.saturating_add(q).saturating_add(r);
