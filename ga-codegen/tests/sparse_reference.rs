@@ -2,6 +2,7 @@
 //! PGA, STA, a dense non-orthogonal metric) every product of random multivectors agrees, and
 //! the exact blade products agree with the dense table.
 
+use ga_codegen::runtime::derived::DerivedProducts as _;
 use ga_codegen::runtime::sparse::multivector::{SparseAlgebra, SparseMultivector};
 use ga_codegen::{Algebra, Multivector};
 use proptest::prelude::*;

@@ -40,6 +40,9 @@ pub fn emit_checks(spec: &Spec, generated: &Generated, runtime: &str) -> String 
     let mut out = quote! {
         use super::*;
         #import
+        // ga-benchmark's products of the reference (dot, commutator, regressive...).
+        #[allow(unused_imports)]
+        use #rt::runtime::derived::DerivedProducts as _;
 
         /// A small seeded generator (xorshift64*), uniform in [-1, 1).
         pub struct Rng(pub u64);

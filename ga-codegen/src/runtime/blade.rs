@@ -7,6 +7,35 @@
 /// A basis blade: the set of basis vectors in its outer product, as a bitmap.
 pub type Bitmap = u32;
 
+/// Which grades of `e_a e_b` a product keeps: the products of the generic references (dense
+/// and sparse) differ only by it.
+#[derive(Clone, Copy)]
+pub(crate) enum Keep {
+    /// Every grade: the geometric product.
+    All,
+    /// Grade `ga + gb`: the outer product.
+    Outer,
+    /// Grade `gb - ga`: the left contraction.
+    Left,
+    /// Grade `ga - gb`: the right contraction.
+    Right,
+    /// Grade 0: the scalar product.
+    Scalar,
+}
+
+impl Keep {
+    /// Whether grade `gk` of the product of blades of grades `ga`, `gb` is kept.
+    pub(crate) fn keeps(self, ga: u32, gb: u32, gk: u32) -> bool {
+        match self {
+            Keep::All => true,
+            Keep::Outer => gk == ga + gb,
+            Keep::Left => gb >= ga && gk == gb - ga,
+            Keep::Right => ga >= gb && gk == ga - gb,
+            Keep::Scalar => gk == 0,
+        }
+    }
+}
+
 /// Number of basis vectors in the blade.
 pub(crate) fn grade(b: Bitmap) -> u32 {
     b.count_ones()

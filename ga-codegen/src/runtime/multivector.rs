@@ -5,7 +5,7 @@
 //! function the generator emits is tested against it.
 
 use crate::runtime::algebra::Algebra;
-use crate::runtime::blade::{grade, involute_sign, reorder_sign, reverse_sign, Bitmap};
+use crate::runtime::blade::{grade, involute_sign, reorder_sign, reverse_sign, Bitmap, Keep};
 use std::fmt;
 use std::ops::{Add, Mul, Neg, Sub};
 use std::sync::Arc;
@@ -40,28 +40,6 @@ impl fmt::Debug for Multivector {
 impl PartialEq for Multivector {
     fn eq(&self, o: &Multivector) -> bool {
         Arc::ptr_eq(&self.alg, &o.alg) && self.c == o.c
-    }
-}
-
-/// Which grades of `e_a e_b` a product keeps.
-#[derive(Clone, Copy)]
-enum Keep {
-    All,
-    Outer,
-    Left,
-    Right,
-    Scalar,
-}
-
-impl Keep {
-    fn keeps(self, ga: u32, gb: u32, gk: u32) -> bool {
-        match self {
-            Keep::All => true,
-            Keep::Outer => gk == ga + gb,
-            Keep::Left => gb >= ga && gk == gb - ga,
-            Keep::Right => ga >= gb && gk == ga - gb,
-            Keep::Scalar => gk == 0,
-        }
     }
 }
 

@@ -3,8 +3,6 @@
 //!
 //! - [`blades`]: exact products of basis blades by a lazy change to an orthogonal basis
 //!   ([`BladeProducts`](blades::BladeProducts)), in any metric, null bases included;
-//! - [`derived`]: ga-benchmark's products built from the sparse multivector's own, as the
-//!   dense reference builds them;
 //! - [`multivector`]: [`SparseAlgebra`](multivector::SparseAlgebra) (the `f64` products,
 //!   memoised per blade pair) and [`SparseMultivector`](multivector::SparseMultivector),
 //!   with the products and unary operations of the dense
@@ -12,5 +10,4 @@
 //!   algebras.
 
 pub mod blades;
-pub mod derived;
 pub mod multivector;

@@ -5,7 +5,7 @@
 //! bit), but stores only non-zero blades and asks [`BladeProducts`] for the product of each
 //! blade pair it meets: the reference for algebras of up to 16 basis vectors.
 
-use crate::runtime::blade::{grade, involute_sign, reorder_sign, reverse_sign, Bitmap};
+use crate::runtime::blade::{grade, involute_sign, reorder_sign, reverse_sign, Bitmap, Keep};
 use crate::runtime::metric::{Metric, MetricError};
 use crate::runtime::sparse::blades::BladeProducts;
 use std::collections::{BTreeMap, HashMap};
@@ -84,28 +84,6 @@ impl SparseAlgebra {
             .expect("not poisoned")
             .insert((a, b), t.clone());
         t
-    }
-}
-
-/// Which grades of `e_a e_b` a product keeps.
-#[derive(Clone, Copy)]
-enum Keep {
-    All,
-    Outer,
-    Left,
-    Right,
-    Scalar,
-}
-
-impl Keep {
-    fn keeps(self, ga: u32, gb: u32, gk: u32) -> bool {
-        match self {
-            Keep::All => true,
-            Keep::Outer => gk == ga + gb,
-            Keep::Left => gb >= ga && gk == gb - ga,
-            Keep::Right => ga >= gb && gk == ga - gb,
-            Keep::Scalar => gk == 0,
-        }
     }
 }
 
