@@ -2,13 +2,15 @@
 //!
 //! The product table here is derived independently of the symbolic engine: the metric is
 //! diagonalised by congruence (exact rationals), blades are mapped to the orthogonal basis by
-//! the outermorphism, multiplied with the diagonal bitmap rule, and mapped back. The symbolic
+//! the outermorphism, multiplied with the diagonal bitmap rule, and mapped back
+//! ([`BladeProducts`], which the sparse reference shares). The symbolic
 //! engine instead expands products directly in the user's basis (Chevalley's recursion), so
 //! the two routes check each other.
 
 use crate::runtime::blade::{grade, reorder_sign, Bitmap};
 use crate::runtime::metric::{Metric, MetricError};
 use crate::runtime::rational::Rational;
+use crate::runtime::sparse::blades::BladeProducts;
 use std::collections::BTreeMap;
 use std::sync::Arc;
 
@@ -26,7 +28,7 @@ pub struct Algebra {
 }
 
 /// `m[b] += c`, dropping the term if it cancels; `None` on overflow.
-fn add_term(m: &mut Exact, b: Bitmap, c: Rational) -> Option<()> {
+pub(crate) fn add_term(m: &mut Exact, b: Bitmap, c: Rational) -> Option<()> {
     if c.is_zero() {
         return Some(());
     }
@@ -39,7 +41,7 @@ fn add_term(m: &mut Exact, b: Bitmap, c: Rational) -> Option<()> {
 }
 
 /// `c * (-1 or 1)`.
-fn signed(c: Rational, sign: i32) -> Rational {
+pub(crate) fn signed(c: Rational, sign: i32) -> Rational {
     if sign < 0 {
         -c
     } else {
@@ -92,88 +94,19 @@ pub(crate) fn invert(m: &[Vec<Rational>]) -> Option<Vec<Vec<Rational>>> {
     Some(inv)
 }
 
-/// Express each outer-basis blade of one basis in another, given vectors `rows[i]` =
-/// coordinates of old basis vector `i` in the new basis.
-fn blade_transform(rows: &[Vec<Rational>]) -> Option<Vec<Exact>> {
-    let n = rows.len();
-    (0..(1u32 << n))
-        .map(|b| {
-            let mut acc = Exact::new();
-            acc.insert(0, Rational::ONE);
-            for (i, row) in rows.iter().enumerate() {
-                if b & (1 << i) != 0 {
-                    let mut v = Exact::new();
-                    for (k, &c) in row.iter().enumerate() {
-                        add_term(&mut v, 1 << k, c)?;
-                    }
-                    acc = checked_wedge(&acc, &v)?;
-                }
-            }
-            Some(acc)
-        })
-        .collect()
-}
-
-/// Products of basis blades by congruence: each blade of the user's basis is expanded in an
-/// orthogonal basis (`to_f`), multiplied there with the diagonal bitmap rule, and mapped back
-/// (`to_e`). Every step is checked.
-pub(crate) struct Congruence {
-    to_f: Vec<Exact>,
-    to_e: Vec<Exact>,
-    squares: Vec<Rational>,
-}
-
-impl Congruence {
-    /// The transforms of a metric; `None` when exact arithmetic overflows.
-    pub fn new(metric: &Metric) -> Option<Congruence> {
-        let (p, squares) = metric.checked_orthogonal_basis()?;
-        let q = invert(&p)?;
-        // e_i = sum_k q[i][k] f_k ; f_k = sum_i p[k][i] e_i
-        Some(Congruence {
-            to_f: blade_transform(&q)?,
-            to_e: blade_transform(&p)?,
-            squares,
-        })
-    }
-
-    /// The exact product `e_a e_b`; `None` on overflow.
-    pub fn product(&self, a: Bitmap, b: Bitmap) -> Option<Exact> {
-        let mut prod_f = Exact::new();
-        for (&fa, &ca) in &self.to_f[a as usize] {
-            for (&fb, &cb) in &self.to_f[b as usize] {
-                let mut c = signed(ca.checked_mul(cb)?, reorder_sign(fa, fb));
-                let common = fa & fb;
-                for (k, dk) in self.squares.iter().enumerate() {
-                    if common & (1 << k) != 0 {
-                        c = c.checked_mul(*dk)?;
-                    }
-                }
-                add_term(&mut prod_f, fa ^ fb, c)?;
-            }
-        }
-        let mut prod_e = Exact::new();
-        for (&fk, &c) in &prod_f {
-            for (&eb, &ce) in &self.to_e[fk as usize] {
-                add_term(&mut prod_e, eb, c.checked_mul(ce)?)?;
-            }
-        }
-        Some(prod_e)
-    }
-}
-
 /// The exact geometric product of every pair of basis blades of a metric, by congruence:
 /// `table[a * 2^n + b]` holds the non-zero terms of `e_a e_b`, and the squares of the
 /// orthogonal basis come second. `None` when exact arithmetic overflows.
 pub(crate) fn exact_products(metric: &Metric) -> Option<(Vec<Exact>, Vec<Rational>)> {
     let size = 1u32 << metric.dim();
-    let c = Congruence::new(metric)?;
+    let c = BladeProducts::new(metric)?;
     let mut table = Vec::with_capacity((size * size) as usize);
     for a in 0..size {
         for b in 0..size {
             table.push(c.product(a, b)?);
         }
     }
-    Some((table, c.squares))
+    Some((table, c.squares().to_vec()))
 }
 
 impl Algebra {

@@ -1,12 +1,12 @@
 //! Exact products of basis blades one pair at a time, in any metric (null bases included),
 //! without the table of the whole algebra.
 //!
-//! The route is the congruence of [`crate::runtime::algebra`], made lazy: the metric is
-//! diagonalised once (an `n x n` problem), and each blade is expanded in the orthogonal basis
-//! (and back) only when a product asks for it, then memoised. A product of two blades costs
-//! the sizes of their expansions, never `2^n`.
+//! The metric is diagonalised by congruence once (an `n x n` problem), and each blade is
+//! expanded in the orthogonal basis (and back) only when a product asks for it, then
+//! memoised. A product of two blades costs the sizes of their expansions, never `2^n`. The
+//! dense [`Algebra`](crate::runtime::algebra::Algebra) builds its whole table with it.
 
-use crate::runtime::algebra::{checked_wedge, invert, Exact};
+use crate::runtime::algebra::{add_term, checked_wedge, invert, signed, Exact};
 use crate::runtime::blade::{reorder_sign, Bitmap};
 use crate::runtime::metric::Metric;
 use crate::runtime::rational::Rational;
@@ -89,43 +89,24 @@ impl BladeProducts {
         let mut prod_f = Exact::new();
         for (&x, &cx) in &fa {
             for (&y, &cy) in &fb {
-                let mut c = ca_times(cx, cy, reorder_sign(x, y))?;
+                let mut c = signed(cx.checked_mul(cy)?, reorder_sign(x, y));
                 let common = x & y;
                 for (k, dk) in self.squares.iter().enumerate() {
                     if common & (1 << k) != 0 {
                         c = c.checked_mul(*dk)?;
                     }
                 }
-                add(&mut prod_f, x ^ y, c)?;
+                add_term(&mut prod_f, x ^ y, c)?;
             }
         }
         let mut prod_e = Exact::new();
         for (&k, &c) in &prod_f {
             for (&e, &ce) in &self.to_user(k)? {
-                add(&mut prod_e, e, c.checked_mul(ce)?)?;
+                add_term(&mut prod_e, e, c.checked_mul(ce)?)?;
             }
         }
         Some(prod_e)
     }
-}
-
-/// `x y` with a sign; `None` on overflow.
-fn ca_times(x: Rational, y: Rational, sign: i32) -> Option<Rational> {
-    let p = x.checked_mul(y)?;
-    Some(if sign < 0 { -p } else { p })
-}
-
-/// `m[b] += c`, dropping the term if it cancels; `None` on overflow.
-fn add(m: &mut Exact, b: Bitmap, c: Rational) -> Option<()> {
-    if c.is_zero() {
-        return Some(());
-    }
-    let e = m.entry(b).or_insert(Rational::ZERO);
-    *e = e.checked_add(c)?;
-    if e.is_zero() {
-        m.remove(&b);
-    }
-    Some(())
 }
 
 #[cfg(all(test, feature = "codegen"))]
