@@ -9,6 +9,8 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
+mod fresh_crate;
+
 /// The crate's library: the generated modules, public (in a binary's private module every
 /// generated item the program does not use would be dead code, warned about).
 const LIB: &str = "pub mod pga3d;\npub mod sta;\n";
@@ -57,23 +59,7 @@ fn a_new_crate_builds_and_runs_modules_the_cli_wrote() {
     let manifest_dir = Path::new(env!("CARGO_MANIFEST_DIR"));
     let workspace = manifest_dir.join("..");
     let root = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("ga-codegen-cli-flow");
-    let krate = root.join("crate");
-    let src = krate.join("src");
-    std::fs::create_dir_all(&src).unwrap();
-    std::fs::write(
-        krate.join("Cargo.toml"),
-        format!(
-            "[package]\nname = \"cli-flow\"\nversion = \"0.0.0\"\nedition = \"2021\"\n\
-             publish = false\n\n[workspace]\n\n[profile.dev]\ndebug = 0\n\n[dependencies]\n\
-             ga-codegen = {{ path = {:?}, default-features = false }}\n",
-            manifest_dir.display().to_string()
-        ),
-    )
-    .unwrap();
-    // The workspace's lock file, so `--offline` resolves.
-    std::fs::copy(workspace.join("Cargo.lock"), krate.join("Cargo.lock")).unwrap();
-    std::fs::write(src.join("lib.rs"), LIB).unwrap();
-    std::fs::write(src.join("main.rs"), MAIN).unwrap();
+    let src = fresh_crate::write(&root, "cli-flow", 0, LIB, MAIN);
     for (spec, flags, out) in [
         ("algebras/pga3d.toml", &[][..], "pga3d.rs"),
         ("algebras/sta.toml", &["--library", "--wide"][..], "sta.rs"),
@@ -94,28 +80,5 @@ fn a_new_crate_builds_and_runs_modules_the_cli_wrote() {
             String::from_utf8_lossy(&run.stderr)
         );
     }
-    let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
-    let output = Command::new(cargo)
-        .current_dir(&krate)
-        .args(["run", "--offline", "--quiet"])
-        .env("CARGO_TARGET_DIR", root.join("target"))
-        .env("CARGO_ENCODED_RUSTFLAGS", "-Dwarnings")
-        .env_remove("RUSTFLAGS")
-        .env_remove("RUSTC_WORKSPACE_WRAPPER")
-        .env_remove("CARGO_MAKEFLAGS")
-        .env_remove("MAKEFLAGS")
-        .env_remove("MFLAGS")
-        .stdin(Stdio::null())
-        .output()
-        .unwrap();
-    let (stdout, stderr) = (
-        String::from_utf8_lossy(&output.stdout),
-        String::from_utf8_lossy(&output.stderr),
-    );
-    assert!(
-        output.status.success(),
-        "the crate did not build or run:\n{stderr}\n{stdout}"
-    );
-    assert!(stdout.ends_with("ok\n"), "{stdout}");
-    assert!(!stderr.contains("warning"), "{stderr}");
+    fresh_crate::run(&src, &root);
 }
