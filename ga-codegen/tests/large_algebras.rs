@@ -3,7 +3,9 @@
 //! and, in a fresh crate, on the types the CLI generates from `algebras/dcga.toml`, whose every
 //! function is also checked against the sparse reference (`tests/large/dcga_main.rs`). The
 //! generator's and the reference's exact routes agree on every DCGA blade pair
-//! (`runtime/sparse/blades.rs`).
+//! (`runtime/sparse/blades.rs`). QCGA likewise (`algebras/qcga.toml`, `tests/large/qcga_main.rs`):
+//! Breuils, Nozick, Sugimoto and Hitzer's dual quadric from implicit coefficients (`x . Q` is
+//! the implicit function) and their quadric through nine points, which holds a tenth.
 
 use ga_codegen::generator::spec::RawSpec;
 use ga_codegen::runtime::sparse::multivector::{SparseAlgebra, SparseMultivector};
