@@ -13,8 +13,8 @@ mod qcga {
 
 use dcga::{CgaPoint1, CgaPoint2, Point, Rotor, Sandwich as _, Surface};
 
-/// The DCGA point `P1 ^ P2` of `x`.
-fn point(x: [f64; 3]) -> Point {
+/// The CGA points of `x` in DCGA's two copies.
+fn cga_points(x: [f64; 3]) -> (CgaPoint1, CgaPoint2) {
     let h = 0.5 * x.iter().map(|v| v * v).sum::<f64>();
     let p1 = CgaPoint1 {
         e1: x[0],
@@ -28,6 +28,12 @@ fn point(x: [f64; 3]) -> Point {
         e6: x[2],
         ei2: h,
     };
+    (p1, p2)
+}
+
+/// The DCGA point `P1 ^ P2` of `x`.
+fn point(x: [f64; 3]) -> Point {
+    let (p1, p2) = cga_points(x);
     p1 ^ p2
 }
 
@@ -38,19 +44,7 @@ fn dcga_from_the_macro_agrees_with_the_sparse_reference() {
         "no general multivector above 6 basis vectors"
     );
     let x = [0.3, -1.1, 2.0];
-    let h = 0.5 * x.iter().map(|v| v * v).sum::<f64>();
-    let p1 = CgaPoint1 {
-        e1: x[0],
-        e2: x[1],
-        e3: x[2],
-        ei1: h,
-    };
-    let p2 = CgaPoint2 {
-        e4: x[0],
-        e5: x[1],
-        e6: x[2],
-        ei2: h,
-    };
+    let (p1, p2) = cga_points(x);
     let slow = p1.to_multivector().outer(&p2.to_multivector());
     assert!((p1 ^ p2).to_multivector().max_diff(&slow) < 1e-12);
     let (c, s) = (0.35f64.cos(), 0.35f64.sin());
