@@ -119,7 +119,7 @@ impl Motor {
     /// When `src` and `dst` differ in length (see [`Motor::try_transform_points`]).
     pub fn transform_points(self, src: &[V3], dst: &mut [V3]) {
         assert_eq!(src.len(), dst.len(), "transform_points: length mismatch");
-        let m = self.point_matrix().m;
+        let m = self.point_matrix().rows();
         affine_rows(&m[0], &m[1], &m[2], src, dst);
     }
 

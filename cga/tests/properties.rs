@@ -627,7 +627,7 @@ proptest! {
         let d = log_scale.exp();
         let m = ScaledMotor::from_scale_rotation_translation(d, q, t);
         prop_assert!((m.origin_weight() * d - 1.0).abs() < 1e-13);
-        let expanded = m.point_matrix().m[0][4];
+        let expanded = m.point_matrix().rows()[0][4];
         prop_assert!((m.origin_weight() - expanded).abs() < 1e-12 * expanded.abs());
         let multiple = (m * k).origin_weight();
         prop_assert!((multiple - k * k * m.origin_weight()).abs() < 1e-13 * multiple);

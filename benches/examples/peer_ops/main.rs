@@ -18,7 +18,7 @@
 //! sandwich `m x ~m`, so the mapping is the identity on names (klein keeps them in other lanes:
 //! a point's `p3_` is `(e123, e032, e013, e021)`, a motor's `p1_ = (s, e23, e31, e12)`,
 //! `p2_ = (e0123, e01, e02, e03)`); klein's `mat4x4` column `c`, lane `r` is our
-//! `point_matrix().m[r][c]`. CGA: GATL's `ga3c` has the same metric (`no . ni = -1`) with basis
+//! `point_matrix().rows()[r][c]`. CGA: GATL's `ga3c` has the same metric (`no . ni = -1`) with basis
 //! order `e1, e2, e3, no, ni` where ours is `eo, e1, e2, e3, ei`: our blade `eo12i` is
 //! `no ^ e1 ^ e2 ^ ni = -(e1 ^ e2 ^ no ^ ni)`, i.e. the sign of the permutation that sorts our
 //! basis order into GATL's (`gatl.cpp` computes it for every blade).
@@ -249,7 +249,7 @@ fn run(input: &Path, prefix: &str) {
 }
 
 fn pga_rows(inp: &BTreeMap<&str, Vec<f64>>, rec: &mut Record) {
-    use pga::{Line, Motor, MotorPointMatrix, Point, Rotor};
+    use pga::{Line, Motor, Point, Rotor};
     let ma = typed(&inp["pga.motor_a"], |a| Motor::from_array(f32s(a)));
     let mb = typed(&inp["pga.motor_b"], |a| Motor::from_array(f32s(a)));
     let pts = typed(&inp["pga.point"], |a| Point::from_array(f32s(a)));
@@ -309,7 +309,8 @@ fn pga_rows(inp: &BTreeMap<&str, Vec<f64>>, rec: &mut Record) {
     });
     rec.add("pga.log", ns, &lout, |l| l.to_array().map(f64::from));
 
-    let mut mats = vec![MotorPointMatrix { m: [[0.0; 5]; 4] }; N];
+    let mut mats =
+        vec![Motor::from_array([1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]).point_matrix(); N];
     let ns = time_pass(&mut mats, |o| {
         let m = black_box(&ma);
         each1(o, m, |x| x.point_matrix());
@@ -317,7 +318,8 @@ fn pga_rows(inp: &BTreeMap<&str, Vec<f64>>, rec: &mut Record) {
     // The 4 x 4 block acting on (e032, e013, e021, e123), row-major (column 4 is the constant
     // column, zero for points).
     rec.add("pga.motor_matrix", ns, &mats, |pm| -> [f64; 16] {
-        std::array::from_fn(|k| f64::from(pm.m[k / 4][k % 4]))
+        let m = pm.rows();
+        std::array::from_fn(|k| f64::from(m[k / 4][k % 4]))
     });
 }
 

@@ -63,7 +63,7 @@ impl ConformalKey {
         // The point matrix's formulas hold for `S ~S = 1`; a multiple (which every other
         // method accepts as the same motion) is brought back to it first.
         let m = m.normalize_similarity();
-        let p = m.point_matrix().m;
+        let p = m.point_matrix().rows();
         debug_assert!((1..4).all(|r| p[r][3] == 0.0) && p[0][..4].iter().all(|&x| x == 0.0));
         let row = |r: usize| [p[r][0], p[r][1], p[r][2], p[r][4]];
         ConformalKey {

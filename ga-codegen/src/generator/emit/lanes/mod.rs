@@ -2,6 +2,7 @@
 //! fields at a time in one [`crate::runtime::f64x2::F64x2`].
 
 pub(crate) mod quad;
+mod slots;
 mod wide;
 
 use super::render::{float, ident, lit};

@@ -28,7 +28,7 @@ type QuadGroups = BTreeMap<[Rational; 4], Vec<SignedTerm>>;
 /// What a 4-lane body loads up front: the versor fields it splats, the operand quads (by
 /// index) and the shuffles of them, as `(quad, lanes)`; identity shuffles use the quad itself.
 #[derive(Default)]
-struct QuadLoads {
+pub(crate) struct QuadLoads {
     splats: BTreeSet<u16>,
     quads: BTreeSet<usize>,
     shuffles: BTreeSet<(usize, [u8; 4])>,
@@ -38,7 +38,7 @@ impl QuadLoads {
     /// The statements that load them: the runtime's `F32x4` (`rt` is the runtime crate path),
     /// the splats of versor `ta`'s fields, the quads of operand `tb` (`0.0` past its last
     /// field), then the shuffles.
-    fn tokens(&self, rt: &TokenStream, ta: &TypeDef, tb: &TypeDef) -> TokenStream {
+    pub(crate) fn tokens(&self, rt: &TokenStream, ta: &TypeDef, tb: &TypeDef) -> TokenStream {
         let mut body = quote!(use #rt::runtime::f32x4::F32x4;);
         for j in &self.splats {
             let (aj, x) = (splat_name(ta, *j), ident(&ta.fields[*j as usize].name));
@@ -82,16 +82,18 @@ pub(crate) fn build(
     let mut outputs = Vec::new();
     let mut vector_ops = 0usize;
     for (pi, quad) in t.fields.chunks(4).enumerate() {
-        let groups = quad_groups(&lanes[4 * pi..4 * pi + quad.len()], &mut loads.splats);
-        let mut parts: Vec<(bool, TokenStream)> = Vec::new();
-        for (coef, terms) in groups {
-            let (part, ops) = group_part(&coef, terms, ta, tb, &mut loads);
-            vector_ops += ops;
-            parts.push(part);
-        }
-        let expr = signed_sum(parts, &quote!(F32x4::splat(0.0)));
+        let lanes = &lanes[4 * pi..4 * pi + quad.len()];
+        let (expr, ops) = quad_sum(lanes, ta, tb, [false; 4], &mut loads);
+        vector_ops += ops;
         let o = ident(&format!("o{pi}"));
         outputs.push(quote!(let #o = #expr; let #o = #o.to_array();));
+    }
+    // The slot form (shuffles on both sides) where it costs less.
+    let broadcast_ops = vector_ops + loads.splats.len() + loads.shuffles.len();
+    if let Some((body, ops)) = super::slots::build(ta, tb, t, &lanes, rt) {
+        if ops < broadcast_ops && ops <= scalar_terms {
+            return Some(body);
+        }
     }
     // Worth it only when the lanes do at most half the scalar work.
     if vector_ops > scalar_terms {
@@ -101,6 +103,28 @@ pub(crate) fn build(
     body.extend(outputs);
     body.extend(quad_result(t));
     Some(body)
+}
+
+/// One output quad (`quad`: its lanes' terms, up to four) as a sum of signed groups of
+/// `splat(a.x) * b quad` terms, with the vector operations it costs; the loads it needs go to
+/// `loads`. The lanes marked `free` are discarded by the caller: a term may put anything there
+/// (so an operand quad with a free lane can still be a shuffle).
+pub(crate) fn quad_sum(
+    quad: &[LaneTerms],
+    ta: &TypeDef,
+    tb: &TypeDef,
+    free: [bool; 4],
+    loads: &mut QuadLoads,
+) -> (TokenStream, usize) {
+    let groups = quad_groups(quad, &mut loads.splats);
+    let mut parts: Vec<(bool, TokenStream)> = Vec::new();
+    let mut vector_ops = 0;
+    for (coef, terms) in groups {
+        let (part, ops) = group_part(&coef, terms, (ta, tb), free, loads);
+        vector_ops += ops;
+        parts.push(part);
+    }
+    (signed_sum(parts, &quote!(F32x4::splat(0.0))), vector_ops)
 }
 
 /// Group the terms of one output quad (`quad`: its lanes' terms, up to four) by coefficient
@@ -140,15 +164,16 @@ fn quad_groups(quad: &[LaneTerms], splats: &mut BTreeSet<u16>) -> QuadGroups {
 fn group_part(
     coef: &[Rational; 4],
     mut terms: Vec<SignedTerm>,
-    ta: &TypeDef,
-    tb: &TypeDef,
+    (ta, tb): (&TypeDef, &TypeDef),
+    free: [bool; 4],
     loads: &mut QuadLoads,
 ) -> ((bool, TokenStream), usize) {
     let mut vector_ops = 0usize;
     let all_neg = lead_with_added(&mut terms);
     let mut sum = TokenStream::new();
     for (i, (neg, (j, tuple))) in terms.iter().enumerate() {
-        let (bvec, built) = operand_quad(tuple, tb, &mut loads.quads, &mut loads.shuffles);
+        let tuple = fill_free(tuple, free);
+        let (bvec, built) = operand_quad(&tuple, tb, &mut loads.quads, &mut loads.shuffles);
         if i > 0 {
             sum.extend(if *neg { quote!(-) } else { quote!(+) });
         }
@@ -204,6 +229,16 @@ fn shuffle_name(q: usize, lanes: &[u8; 4]) -> Ident {
         "b_q{q}_{}{}{}{}",
         lanes[0], lanes[1], lanes[2], lanes[3]
     ))
+}
+
+/// A lane term with its free lanes (no term, result discarded) taking the first field the
+/// term uses, so that they do not stop the quad from being one shuffle.
+fn fill_free(tuple: &Tuple, free: [bool; 4]) -> Tuple {
+    let first = tuple.iter().flatten().next().copied();
+    std::array::from_fn(|i| match tuple[i] {
+        None if free[i] => first,
+        x => x,
+    })
 }
 
 /// The operand quad of a lane term over operand type `tb`: a loaded quad, a shuffle of one, or

@@ -4,6 +4,7 @@
 //! (`named.rs`), and fused sandwiches with their matrix form (`sandwich.rs`).
 
 pub(crate) mod infer;
+mod matrix;
 mod named;
 mod operators;
 pub(crate) mod sandwich;

@@ -6,7 +6,7 @@
 //! expression per output field) and [`Kernel::body`] is the one place where a program becomes
 //! tokens; the matrix form reuses the same temporaries.
 
-use crate::generator::emit::render::{doc, ident, int, Names};
+use crate::generator::emit::render::{doc, ident, Names};
 use crate::generator::emit::{snake, Gen, GenError, Op, OpSummary, OutType};
 use crate::generator::spec::{SandwichDef, TypeDef};
 use crate::generator::symbolic::{Monomial, Poly, Product, SymMv, Var};
@@ -28,7 +28,7 @@ pub(crate) struct SandwichParts {
     /// The straight-line program of the fused sandwich.
     pub kernel: Kernel,
     /// The matrix entries, row by row, in terms of `matrix_lets`' temporaries.
-    pub matrix: Vec<TokenStream>,
+    pub matrix: Vec<Vec<TokenStream>>,
     /// The temporaries of the matrix form.
     pub matrix_lets: TokenStream,
     /// The doc: the expansion, and the factored form's cost when there is one.
@@ -176,7 +176,7 @@ impl Gen<'_> {
         tx: &TypeDef,
         to: &TypeDef,
         coef: &[Vec<Poly>],
-    ) -> (Kernel, Vec<TokenStream>) {
+    ) -> (Kernel, Vec<Vec<TokenStream>>) {
         let nx = tx.fields.len();
         let names = Names::new(tv, Some(tx));
         // Shared subexpressions: every product of two versor coefficients.
@@ -233,14 +233,11 @@ impl Gen<'_> {
                 (ident(&f.name), e)
             })
             .collect();
-        let matrix = coef
+        let entries = coef
             .iter()
-            .map(|row| {
-                let entries = row.iter().map(|p| names.poly_with(p, mono));
-                quote!([#(#entries),*])
-            })
+            .map(|row| row.iter().map(|p| names.poly_with(p, mono)).collect())
             .collect();
-        (Kernel { temps, outputs }, matrix)
+        (Kernel { temps, outputs }, entries)
     }
 
     /// Everything a sandwich's emitters need: the types, the linear form, the straight-line
@@ -314,56 +311,17 @@ impl Gen<'_> {
             terms: nterms,
             ..
         } = parts;
-        let nx = tx.fields.len();
         let (vn, xn, on) = (ident(&tv.name), ident(&tx.name), ident(&to.name));
-        let s = &self.s;
-        let mat = ident(&format!("{}{}Matrix", tv.name, tx.name));
         let body = kernel.body(&on);
-        let ny = int(to.fields.len());
-        let apply = to.fields.iter().enumerate().map(|(k, f)| {
-            let mut e = TokenStream::new();
-            for j in 0..=nx {
-                if coef[k][j].is_zero() {
-                    continue;
-                }
-                if !e.is_empty() {
-                    e.extend(quote!(+));
-                }
-                let (k, jj) = (int(k), int(j));
-                if j < nx {
-                    let x = ident(&tx.fields[j].name);
-                    e.extend(quote!(m[#k][#jj] * b.#x));
-                } else {
-                    e.extend(quote!(m[#k][#jj]));
-                }
-            }
-            if e.is_empty() {
-                e = quote!(0.0);
-            }
-            let f = ident(&f.name);
-            quote!(#f: #e,)
-        });
-        let cols: Vec<String> = tx
-            .fields
-            .iter()
-            .map(|f| format!("`{}`", f.name))
-            .chain(std::iter::once("1".to_string()))
-            .collect();
-        let rows: Vec<String> = to.fields.iter().map(|f| format!("`{}`", f.name)).collect();
-        let mdoc = doc(&format!(
-            "The linear (outermorphism) form of the sandwich of a `{}` by a `{}`, for applying one versor to many operands.\n\nRows: {}. Columns: {}.",
-            tx.name,
-            tv.name,
-            rows.join(", "),
-            cols.join(", ")
-        ));
-        let fdoc = doc(&format!(
-            "The matrix form of `self.sandwich(x)` for `x: {}`; see [`{mat}`].",
-            tx.name
-        ));
-        let fname = ident(&format!("{}_matrix", snake(&tx.name)));
-        let ncols = int(nx + 1);
         let sdoc = doc(&sdoc);
+        let matrix = self.sandwich_matrix(&super::matrix::MatrixInput {
+            tv,
+            tx,
+            to,
+            coef: &coef,
+            entries: &matrix,
+            lets: &lets,
+        });
         self.out.extend(quote! {
             impl Sandwich<#xn> for #vn {
                 type Output = #on;
@@ -371,24 +329,7 @@ impl Gen<'_> {
                 #[inline]
                 fn sandwich(&self, b: #xn) -> #on { #body }
             }
-            #mdoc
-            #[derive(Clone, Copy, Debug, PartialEq)]
-            pub struct #mat {
-                /// `m[row][col]`: rows are the output fields, columns the operand fields then the constant column.
-                pub m: [[#s; #ncols]; #ny],
-            }
-            impl #mat {
-                /// Apply the map: the same result as the sandwich, at matrix cost. Entries that are
-                /// identically zero for every versor are skipped.
-                #[inline]
-                #[must_use]
-                pub fn apply(&self, b: #xn) -> #on { let m = &self.m; #on { #(#apply)* } }
-            }
-            impl #vn {
-                #fdoc
-                #[must_use]
-                pub fn #fname(&self) -> #mat { let a = self; #lets #mat { m: [#(#matrix),*] } }
-            }
+            #matrix
         });
         self.ops.push(OpSummary {
             op: Op::Sandwich,

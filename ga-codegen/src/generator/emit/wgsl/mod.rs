@@ -232,9 +232,8 @@ impl Gen<'_> {
             .matrix
             .iter()
             .map(|r| {
-                let t = text(r);
-                let inner = t.trim().trim_start_matches('[').trim_end_matches(']');
-                format!("array<f32, {cols}>({inner})")
+                let inner: Vec<String> = r.iter().map(text).collect();
+                format!("array<f32, {cols}>({})", inner.join(", "))
             })
             .collect();
         let _ = writeln!(

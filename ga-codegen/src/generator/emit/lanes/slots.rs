@@ -1,0 +1,272 @@
+//! f32 geometric products in 4-lane form with shuffles on both sides ("slots").
+//!
+//! The broadcast form of `quad.rs` computes an output quad as a sum of
+//! `splat(a.x) * shuffle(b quad)`: one product per left field, each with its own sign
+//! pattern. Here a product may take a different left field in each lane: slot `s` of an
+//! output quad is `shuffle(a quad) * shuffle(b quad)`, lane `i` holding one term `c a.x b.y` of
+//! output field `i`. The terms of each lane are split by the quads their factors come from and
+//! ordered added-first, so that slots line up sign patterns: slots with the same coefficient
+//! vector are summed and signed once (klein's motor product has this shape: 12 multiplies and
+//! two sign flips). [`build`] returns the body with its cost so the caller keeps the cheaper
+//! of the two forms.
+
+use super::{signed_sum, LaneTerms};
+use crate::generator::emit::render::{ident, lit};
+use crate::generator::spec::TypeDef;
+use crate::runtime::rational::Rational;
+use proc_macro2::{Ident, Literal, Span, TokenStream};
+use quote::quote;
+use std::collections::{BTreeMap, BTreeSet};
+
+/// A term of one lane: left field, right field, coefficient.
+type Term = (u16, u16, Rational);
+
+/// A slot: per lane the term it holds (`None`: a free lane, whose result is discarded).
+type Slot = [Option<Term>; 4];
+
+/// A quad of one operand (`0`: left `a`, `1`: right `b`): its index and the lanes picked.
+type QuadPick = (u8, usize, [u8; 4]);
+
+/// Loads and shuffles a slot body uses.
+#[derive(Default)]
+struct Loads {
+    quads: BTreeSet<(u8, usize)>,
+    shuffles: BTreeSet<QuadPick>,
+}
+
+impl Loads {
+    /// `a_q0`, `b_q1_1032`: the name of a quad or a shuffle of it.
+    fn name(pick: &QuadPick) -> Ident {
+        let (side, q, lanes) = pick;
+        let s = if *side == 0 { "a" } else { "b" };
+        if *lanes == [0, 1, 2, 3] {
+            ident(&format!("{s}_q{q}"))
+        } else {
+            ident(&format!(
+                "{s}_q{q}_{}{}{}{}",
+                lanes[0], lanes[1], lanes[2], lanes[3]
+            ))
+        }
+    }
+
+    /// Register a pick and return its name.
+    fn pick(&mut self, pick: QuadPick) -> Ident {
+        self.quads.insert((pick.0, pick.1));
+        if pick.2 != [0, 1, 2, 3] {
+            self.shuffles.insert(pick);
+        }
+        Loads::name(&pick)
+    }
+
+    /// The statements: the quads of `ta` (side 0) and `tb` (side 1) as stored (`0.0` past the
+    /// last field), then the shuffles.
+    fn tokens(&self, rt: &TokenStream, ta: &TypeDef, tb: &TypeDef) -> TokenStream {
+        let mut body = quote!(use #rt::runtime::f32x4::F32x4;);
+        for &(side, q) in &self.quads {
+            let (t, v) = if side == 0 {
+                (ta, quote!(a))
+            } else {
+                (tb, quote!(b))
+            };
+            let lanes = (0..4).map(|i| {
+                t.fields.get(4 * q + i).map_or(quote!(0.0), |f| {
+                    let x = ident(&f.name);
+                    quote!(#v.#x)
+                })
+            });
+            let name = Loads::name(&(side, q, [0, 1, 2, 3]));
+            body.extend(quote!(let #name = F32x4::new(#(#lanes),*);));
+        }
+        for pick in &self.shuffles {
+            let imm = Literal::i32_unsuffixed(crate::runtime::f32x4::shuffle_imm(pick.2));
+            let (name, src) = (
+                Loads::name(pick),
+                Loads::name(&(pick.0, pick.1, [0, 1, 2, 3])),
+            );
+            body.extend(quote!(let #name = #src.shuffle::<#imm>();));
+        }
+        body
+    }
+}
+
+/// The slots of one output quad, or `None` when a lane cannot be lined up (a class of terms
+/// with more terms in one lane than another that is not free). `seen` holds the quad picks
+/// already loaded (the slots chosen here add theirs).
+fn quad_slots(quad: &[LaneTerms], seen: &mut BTreeSet<QuadPick>) -> Option<Vec<Slot>> {
+    // Terms by class (left quad, right quad), per lane, added first.
+    let mut classes: BTreeMap<(usize, usize), [Vec<Term>; 4]> = BTreeMap::new();
+    for (i, lane) in quad.iter().enumerate() {
+        for (&x, ys) in lane {
+            for &(y, c) in ys {
+                let class = classes.entry((x as usize / 4, y as usize / 4)).or_default();
+                class[i].push((x, y, c));
+            }
+        }
+    }
+    // Lanes past the last output field are free; every other lane needs its terms.
+    let used: [bool; 4] = std::array::from_fn(|i| i < quad.len());
+    let mut slots = Vec::new();
+    let mut keys: BTreeSet<[Rational; 4]> = BTreeSet::new();
+    for lanes in classes.values_mut() {
+        let depth = lanes.iter().map(Vec::len).max().unwrap_or(0);
+        if (0..4).any(|i| used[i] && lanes[i].len() != depth) {
+            return None;
+        }
+        for l in lanes.iter_mut() {
+            l.sort_by_key(|&(x, y, c)| (c < Rational::ZERO, x, y));
+        }
+        for left in (1..=depth).rev() {
+            let slot = best_slot(lanes, left, seen, &keys);
+            let (pa, pb, coef) = slot_parts(&slot);
+            seen.extend([pa, pb]);
+            keys.insert(group_key(coef).1);
+            slots.push(slot);
+        }
+    }
+    Some(slots)
+}
+
+/// The next slot from the terms left in each lane (`left` of them in every used lane): the
+/// choice of one term per lane that reuses the most loaded quad picks and group sign
+/// patterns (searched in full while that is at most 4,096 choices, else the first terms). The
+/// terms taken are removed.
+fn best_slot(
+    lanes: &mut [Vec<Term>; 4],
+    left: usize,
+    seen: &BTreeSet<QuadPick>,
+    keys: &BTreeSet<[Rational; 4]>,
+) -> Slot {
+    let used: Vec<usize> = (0..4).filter(|&i| !lanes[i].is_empty()).collect();
+    let mut best: (i32, Vec<usize>) = (i32::MIN, vec![0; used.len()]);
+    if left.pow(used.len() as u32) <= 4096 {
+        let mut choice = vec![0usize; used.len()];
+        loop {
+            let mut slot: Slot = [None; 4];
+            for (k, &i) in used.iter().enumerate() {
+                slot[i] = Some(lanes[i][choice[k]]);
+            }
+            let (pa, pb, coef) = slot_parts(&slot);
+            let known = |p: &QuadPick| p.2 == [0, 1, 2, 3] || seen.contains(p);
+            let score = 2 * i32::from(keys.contains(&group_key(coef).1))
+                + i32::from(known(&pa))
+                + i32::from(known(&pb));
+            if score > best.0 {
+                best = (score, choice.clone());
+            }
+            // The next choice, odometer-style.
+            let mut k = 0;
+            while k < choice.len() {
+                choice[k] += 1;
+                if choice[k] < left {
+                    break;
+                }
+                choice[k] = 0;
+                k += 1;
+            }
+            if k == choice.len() {
+                break;
+            }
+        }
+    }
+    let mut slot: Slot = [None; 4];
+    for (k, &i) in used.iter().enumerate() {
+        slot[i] = Some(lanes[i].remove(best.1[k]));
+    }
+    slot
+}
+
+/// A coefficient vector as a group key: made positive in its first lane (`true`: negated).
+fn group_key(coef: [Rational; 4]) -> (bool, [Rational; 4]) {
+    let neg = coef[0] < Rational::ZERO;
+    (neg, if neg { coef.map(|c| -c) } else { coef })
+}
+
+/// A slot's factors as quad picks (free lanes repeat lane 0's pick) and its coefficients.
+fn slot_parts(slot: &Slot) -> (QuadPick, QuadPick, [Rational; 4]) {
+    let first = slot.iter().flatten().next().copied().expect("a term");
+    let t = |i: usize| slot[i].unwrap_or(first);
+    let a = (
+        0u8,
+        first.0 as usize / 4,
+        std::array::from_fn(|i| (t(i).0 % 4) as u8),
+    );
+    let b = (
+        1u8,
+        first.1 as usize / 4,
+        std::array::from_fn(|i| (t(i).1 % 4) as u8),
+    );
+    (a, b, std::array::from_fn(|i| t(i).2))
+}
+
+/// The body of `a * b` in slot form and its cost in vector operations (shuffles, multiplies,
+/// adds, sign flips and scalings); `None` when an output quad's terms do not line up.
+/// `lanes` are the terms per output field of `t`; `rt` the runtime crate path.
+pub(super) fn build(
+    ta: &TypeDef,
+    tb: &TypeDef,
+    t: &TypeDef,
+    lanes: &[LaneTerms],
+    rt: &TokenStream,
+) -> Option<(TokenStream, usize)> {
+    let mut loads = Loads::default();
+    let mut outputs = Vec::new();
+    let mut ops = 0usize;
+    let mut seen = BTreeSet::new();
+    for (qi, fields) in t.fields.chunks(4).enumerate() {
+        let slots = quad_slots(&lanes[4 * qi..4 * qi + fields.len()], &mut seen)?;
+        // Slots grouped by coefficient vector, made positive in its first lane.
+        let mut groups: BTreeMap<[Rational; 4], Vec<(bool, TokenStream)>> = BTreeMap::new();
+        for slot in &slots {
+            let (pa, pb, coef) = slot_parts(slot);
+            let (na, nb) = (loads.pick(pa), loads.pick(pb));
+            let (neg, key) = group_key(coef);
+            groups
+                .entry(key)
+                .or_default()
+                .push((neg, quote!(#na * #nb)));
+            ops += 2; // the multiply and its add
+        }
+        let mut parts = Vec::new();
+        for (coef, mut terms) in groups {
+            let all_neg = super::lead_with_added(&mut terms);
+            let sum = signed_sum(terms.clone(), &quote!(F32x4::splat(0.0)));
+            let grouped = if terms.len() > 1 { quote!((#sum)) } else { sum };
+            let part = if coef.iter().all(|c| *c == Rational::ONE) {
+                grouped
+            } else if coef
+                .iter()
+                .all(|c| *c == Rational::ONE || *c == -Rational::ONE)
+            {
+                ops += 1;
+                let mask: i32 = (0..4)
+                    .filter(|&i| coef[i] < Rational::ZERO)
+                    .map(|i| 1 << i)
+                    .sum();
+                let mask = syn::LitInt::new(&format!("{mask:#06b}"), Span::call_site());
+                quote!(#grouped.flip::<#mask>())
+            } else {
+                ops += 1;
+                let c = coef.map(lit);
+                quote!(#grouped * F32x4::new(#(#c),*))
+            };
+            parts.push((all_neg, part));
+        }
+        let expr = signed_sum(parts, &quote!(F32x4::splat(0.0)));
+        let o = ident(&format!("o{qi}"));
+        outputs.push(quote!(let #o = (#expr).to_array();));
+    }
+    ops += loads.shuffles.len();
+    let mut body = loads.tokens(rt, ta, tb);
+    body.extend(outputs);
+    let fields = t.fields.iter().enumerate().map(|(i, f)| {
+        let (x, o, lane) = (
+            ident(&f.name),
+            ident(&format!("o{}", i / 4)),
+            Literal::usize_unsuffixed(i % 4),
+        );
+        quote!(#x: #o[#lane])
+    });
+    let tn = ident(&t.name);
+    body.extend(quote!(#tn { #(#fields),* }));
+    Some((body, ops))
+}
