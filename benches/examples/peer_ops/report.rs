@@ -8,7 +8,7 @@ use std::io::Read;
 use std::path::Path;
 
 /// One line of the table: label, our key, the peer, its key, the target ratio.
-const ROWS: [(&str, &str, &str, &str, f64); 12] = [
+const ROWS: [(&str, &str, &str, &str, f64); 14] = [
     (
         "PGA f32: motor on point, one motor per point",
         "pga.motor_point",
@@ -80,6 +80,20 @@ const ROWS: [(&str, &str, &str, &str, f64); 12] = [
         "gatl",
         "cga.motor_point",
         1.0,
+    ),
+    (
+        "CGA f64: ga-benchmark inverse kinematics, 5 joints (Taylor expp)",
+        "cga.ik_taylor",
+        "gatl",
+        "cga.ik_taylor",
+        0.8,
+    ),
+    (
+        "CGA f64: ga-benchmark inverse kinematics, 5 joints (closed-form exp / GATL's `exp`)",
+        "cga.ik_exp",
+        "gatl",
+        "cga.ik_exp",
+        0.8,
     ),
 ];
 
