@@ -44,7 +44,8 @@ struct Closed {
 };
 
 // One solve. Joint positions in mm: J1 (d1, 0, d2), J2 one link l12 above it, J3 at the end
-// of link l23 and d3 higher, the gripper Jg d4 + d5 further along x. Jg's x is a double:
+// of link l23 and d3 higher, the gripper Jg d4 + d5 further along x. Jg's x is a double (and
+// its z the constant 1720: GATL's `point` does not compile a double beside a sum of constants):
 // ga-benchmark's `c<1142> / c<10>` is evaluated in GATL's integral constant type, so `point`
 // stores Jg's x as 1334 while its ni part uses 1334.2 (Jg is not null) and `dual(J3 ^ Jg ^ ni)`
 // has direction 254 with moment 1720 * 254.2 (ga-benchmark's sanity values for Rg and Jg_f
@@ -53,12 +54,12 @@ struct Closed {
 template <class Exp>
 auto solve(double a1, double a2, double a3, double a4, double a5) {
   auto d1 = c<200>, d2 = c<680>, d3 = c<150>;  // d4 = 140 is in jg_x
-  double jg_x = 200.0 + 880.0 + 140.0 + 114.2;  // d1 + l23 + d4 + d5 (mixed, GATL's `point` fails)
+  double jg_x = 200.0 + 880.0 + 140.0 + 114.2;  // d1 + l23 + d4 + d5
   auto l12 = c<890>, l23 = c<880>;
   auto j1 = point(d1, c<0>, d2);
   auto j2 = point(d1, c<0>, d2 + l12);
   auto j3 = point(d1 + l23, c<0>, d2 + l12 + d3);
-  auto jg = point(jg_x, c<0>, d2 + l12 + d3);
+  auto jg = point(jg_x, c<0>, c<1720>);  // z = d2 + l12 + d3 (a sum fails here too)
 
   // Joint 1 turns about the z axis.
   auto lz = dual(no ^ point(c<0>, c<0>, c<1>) ^ ni);

@@ -10,8 +10,10 @@
 //! Types: a line (the generator of a joint) is a [`Motor`] whose `s` and `e123i` are zero (a
 //! dual line has only the six blades `e12 e13 e23 e1i e2i e3i`, and `Motor * Motor` is closed),
 //! joint 1's generator a [`Rotor`], the translation generator a [`Translator`]. The series
-//! versors are not unit (`R ~R != 1`), so `apply_rotor(R, X) = R X ~R` is the two full
-//! geometric products, never the generated unit-reduced `sandwich`.
+//! versors are not unit (`R ~R != 1`), so there `apply_rotor(R, X) = R X ~R` is the two full
+//! geometric products, as in GATL; the closed-form versors are unit, and [`Closed`] moves
+//! points by the generated unit-reduced `sandwich` (lines still by the two products, cheaper
+//! than the fused bivector sandwich; GATL's closed-form side keeps ga-benchmark's `apply_rotor`).
 //!
 //! Blade order and signs against GATL: the same as the other CGA rows (GATL's basis `e1, e2,
 //! e3, no, ni` against our `eo, e1, e2, e3, ei`, one sign per blade from sorting; for the
@@ -19,7 +21,7 @@
 //! `dual(x)` is `x ⌋ I⁻¹` with `I = e1^e2^e3^no^ni`, which is `-eo^e1^e2^e3^ei`, minus our
 //! `dual` (`x I⁻¹` with `I = eo123i`): [`gatl_dual`].
 
-use cga::f64::Exp as _;
+use cga::f64::{Exp as _, Sandwich as _};
 use cga::glam::DVec3;
 use cga::{Bivector, Motor, Odd, Point, Rotor, Translator, Trivector, Vector};
 use std::ops::{Add, Div, Mul};
@@ -82,6 +84,16 @@ pub trait Exponential {
     fn translator(x: Translator) -> Translator;
     /// `exp` of a line (a motor with zero `s`; its `e123i` rounding is kept, as GATL keeps it).
     fn motor(x: Motor) -> Motor;
+    /// `apply_rotor(v, x)` of a line: the full products (the series' versors are not unit).
+    #[inline(always)]
+    fn move_line<V: Versor>(v: V, x: Motor) -> Motor {
+        v.line_full(x)
+    }
+    /// `apply_rotor(v, p)` of a point.
+    #[inline(always)]
+    fn move_point<V: Versor>(v: V, p: Point) -> Vector {
+        v.point_full(p)
+    }
 }
 
 /// ga-benchmark's `expp`: `1 + x + x^2/2 + x^3/6 + x^4/24`, evaluated left to right.
@@ -134,6 +146,12 @@ impl Exponential for Closed {
         let b = Bivector::new(0.0, 0.0, 0.0, 0.0, x.e12, x.e13, x.e23, x.e1i, x.e2i, x.e3i);
         b.exp()
     }
+    /// Closed-form versors are unit: points move by the generated unit-reduced `sandwich`
+    /// (lines by the full products, which cost less than the fused bivector sandwich).
+    #[inline(always)]
+    fn move_point<V: Versor>(v: V, p: Point) -> Vector {
+        v.point_unit(p)
+    }
 }
 
 /// GATL's `dual`: minus ours (see the module doc).
@@ -154,25 +172,50 @@ fn line_through(a: Point, b: Point) -> Bivector {
     gatl_dual((a ^ b) ^ Vector::new(0.0, 0.0, 0.0, 0.0, 1.0))
 }
 
-/// `v x ~v` by the two full products (`v` need not be unit).
-#[inline(always)]
-fn move_line<V>(v: V, rev_v: V, x: Motor) -> Motor
-where
-    V: Copy + Mul<Motor, Output = Motor>,
-    Motor: Mul<V, Output = Motor>,
-{
-    (v * x) * rev_v
+/// What a solve does with a versor `v`: move a line or a point, `v x ~v`.
+pub trait Versor: Copy {
+    /// `v x ~v` by the two full geometric products (`v` need not be unit).
+    fn line_full(self, x: Motor) -> Motor;
+    /// `v p ~v` by the two full products, its vector part.
+    fn point_full(self, p: Point) -> Vector;
+    /// The generated unit-reduced `sandwich` of a point (exact for unit `v` only).
+    fn point_unit(self, p: Point) -> Vector;
 }
 
-/// `v p ~v` by the two full products, its vector part.
+/// The vector part of an odd result.
 #[inline(always)]
-fn move_point<V>(v: V, rev_v: V, p: Point) -> Vector
-where
-    V: Copy + Mul<Point, Output = Odd>,
-    Odd: Mul<V, Output = Odd>,
-{
-    let o = (v * p) * rev_v;
+fn vector_part(o: Odd) -> Vector {
     Vector::new(o.eo, o.e1, o.e2, o.e3, o.ei)
+}
+
+impl Versor for Rotor {
+    #[inline(always)]
+    fn line_full(self, x: Motor) -> Motor {
+        (self * x) * self.rev()
+    }
+    #[inline(always)]
+    fn point_full(self, p: Point) -> Vector {
+        vector_part((self * p) * self.rev())
+    }
+    #[inline(always)]
+    fn point_unit(self, p: Point) -> Vector {
+        self.sandwich(p).into()
+    }
+}
+
+impl Versor for Motor {
+    #[inline(always)]
+    fn line_full(self, x: Motor) -> Motor {
+        (self * x) * self.rev()
+    }
+    #[inline(always)]
+    fn point_full(self, p: Point) -> Vector {
+        vector_part((self * p) * self.rev())
+    }
+    #[inline(always)]
+    fn point_unit(self, p: Point) -> Vector {
+        self.sandwich(p).into()
+    }
 }
 
 fn pt(x: f64, y: f64, z: f64) -> Point {
@@ -193,37 +236,32 @@ pub fn solve<E: Exponential>(a: [f64; 5]) -> Solve {
     let eo = pt(0.0, 0.0, 0.0);
     let lz = line_through(eo, pt(0.0, 0.0, 1.0));
     let r1 = E::rotor(Rotor::new(0.0, lz.e12, lz.e13, lz.e23) * (a[0] / 2.0));
-    let r1_rev = r1.rev();
 
     // Joint 2 about the line through J1 along y, carried by joint 1.
-    let l2 = move_line(r1, r1_rev, line(line_through(j1, pt(d1, 1.0, d2))));
+    let l2 = E::move_line(r1, line(line_through(j1, pt(d1, 1.0, d2))));
     let r2 = E::motor(l2 * (a[1] / 2.0));
     let r21 = r2 * r1;
-    let j2_f = move_point(r21, r21.rev(), j2);
+    let j2_f = E::move_point(r21, j2);
 
     // Joint 3 about the line through J2 along y, carried by joints 1 and 2.
-    let l3 = move_line(
-        r21,
-        r21.rev(),
-        line(line_through(j2, pt(d1, 1.0, d2 + l12))),
-    );
+    let l3 = E::move_line(r21, line(line_through(j2, pt(d1, 1.0, d2 + l12))));
     let r3 = E::motor(l3 * (a[2] / 2.0));
 
     // The translation joint 2 gave J2 (`sp(X, e_k)` is X's e_k coefficient) as a translator.
-    let j2_r1 = move_point(r1, r1_rev, j2);
+    let j2_r1 = E::move_point(r1, j2);
     let t = DVec3::new(j2_f.e1 - j2_r1.e1, j2_f.e2 - j2_r1.e2, j2_f.e3 - j2_r1.e3);
     let t2 = E::translator(Translator::new(0.0, t.x, t.y, t.z) * -0.5);
 
     // Joint 4 about the unit line J3 Jg, joint 5 about the line through J3 along y.
     let m4 = r3 * t2 * r1;
-    let l4 = move_line(m4, m4.rev(), line(line_through(j3, jg).normalized()));
+    let l4 = E::move_line(m4, line(line_through(j3, jg).normalized()));
     let r4 = E::motor(l4 * (a[3] / 2.0));
     let mg = r4 * r3 * t2 * r1;
     let lg_init = line_through(j3, pt(d1 + l23, 1.0, d2 + l12 + d3));
-    let lg = move_line(mg, mg.rev(), line(lg_init));
+    let lg = E::move_line(mg, line(lg_init));
     let rg = E::motor(lg * (a[4] / 2.0));
     let mf = rg * r3 * t2 * r1;
-    let jg_f = move_point(mf, mf.rev(), jg);
+    let jg_f = E::move_point(mf, jg);
     Solve {
         r1,
         r2,
