@@ -101,6 +101,8 @@ static void row(Record &rec, const char *key, const std::vector<A> &a, const std
   stray = std::max(stray, s);
 }
 
+#include "gatl_ops.hpp"
+
 // Times ga-benchmark's inverse kinematics (gatl_ik.hpp), one solve per 5 angles, and records
 // (R1, R2, R3, T2, R4, Rg, Jg_f) per solve as our Rotor, 4 Motors, Translator, Vector (45 values;
 // the order of peer_ops' ik.rs).
@@ -155,6 +157,12 @@ int main(int argc, char **argv) {
   row(rec, "cga.motor_point", ma, pts, sw, pt, stray);
   ik_row<gatl_ik::Taylor>(rec, "cga.ik_taylor", in["cga.ik_angles"], stray);
   ik_row<gatl_ik::Closed>(rec, "cga.ik_exp", in["cga.ik_angles"], stray);
+  auto b2a = operands(in, "cga.blade2_a", 10, make_bivector), b2b = operands(in, "cga.blade2_b", 10, make_bivector);
+  auto q4 = operands(in, "cga.blade4", 5, gatl_ops::make_quadvector);
+  gatl_ops::pair_rows<true, false>(rec, "11", va, vb, stray);
+  gatl_ops::pair_rows<false, false>(rec, "12", va, b2a, stray);
+  gatl_ops::pair_rows<true, false>(rec, "22", b2a, b2b, stray);
+  gatl_ops::pair_rows<false, true>(rec, "14", va, q4, stray);
   rec.write(argv[2]);
   return stray > 1e-9 ? 1 : 0;
 }

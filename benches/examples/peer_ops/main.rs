@@ -27,6 +27,7 @@
 //! --example peer_ops`.
 
 mod ik;
+mod ops;
 mod report;
 
 mod pga {
@@ -49,7 +50,7 @@ const N: usize = 10_000;
 const PASSES: usize = 41;
 
 /// The input file's sections: name and f64 values per operand, in file order.
-const SECTIONS: [(&str, usize); 14] = [
+const SECTIONS: [(&str, usize); 17] = [
     ("pga.motor_a", 8),  // s e23 e31 e12 e01 e02 e03 e0123 (unit)
     ("pga.motor_b", 8),  // the same
     ("pga.point", 4),    // e032 e013 e021 e123 (e123 = 1)
@@ -64,6 +65,9 @@ const SECTIONS: [(&str, usize); 14] = [
     ("cga.motor_b", 8),
     ("cga.point", 4),     // e1 e2 e3 ei (eo = 1, not stored)
     ("cga.ik_angles", 5), // ga-benchmark's inverse kinematics: 5 joint angles
+    ("cga.blade2_a", 10), // blades for the operation rows (`ops.rs`): outer products of vectors
+    ("cga.blade2_b", 10),
+    ("cga.blade4", 5),
 ];
 
 fn main() {
@@ -151,6 +155,8 @@ fn operand(name: &str, rng: &mut Lcg) -> Vec<f64> {
         "cga.ik_angles" => (0..5)
             .map(|_| rng.uniform() * std::f64::consts::FRAC_PI_2)
             .collect(),
+        "cga.blade2_a" | "cga.blade2_b" => ops::blade(2, rng),
+        "cga.blade4" => ops::blade(4, rng),
         _ => unreachable!("{name}"),
     }
 }
@@ -249,6 +255,7 @@ fn run(input: &Path, prefix: &str) {
     pga_rows(&inp, &mut rec);
     cga_rows(&inp, &mut rec);
     ik_rows(&inp, &mut rec);
+    ops::op_rows(&inp, &mut rec);
     let times: String = rec
         .times
         .iter()

@@ -97,6 +97,26 @@ const ROWS: [(&str, &str, &str, &str, f64); 14] = [
     ),
 ];
 
+/// [`ROWS`] and the operation rows of `ops.rs` (target 1.0 each).
+fn rows() -> Vec<(String, String, &'static str, String, f64)> {
+    let mut rows: Vec<_> = ROWS
+        .iter()
+        .map(|&(l, k, p, pk, t)| (l.to_string(), k.to_string(), p, pk.to_string(), t))
+        .collect();
+    for (pair, products) in crate::ops::PAIRS {
+        for op in products {
+            let key = format!("ops.{pair}.{op}");
+            let (ga, gb) = (&pair[..1], &pair[1..]);
+            let label = format!(
+                "CGA f64 op, grades ({ga}, {gb}) blades: {} product",
+                crate::ops::product_name(op)
+            );
+            rows.push((label, key.clone(), "gatl", key, 1.0));
+        }
+    }
+    rows
+}
+
 fn read_times(path: &Path) -> Option<BTreeMap<String, f64>> {
     let text = std::fs::read_to_string(path).ok()?;
     Some(
@@ -194,7 +214,8 @@ pub(crate) fn report(dir: &Path, rounds: usize) -> i32 {
     );
     println!("|---|---|---|---|---|---|---|");
     let (mut pass, mut miss, mut bad) = (0, 0, 0);
-    for (label, key, peer, pkey, target) in ROWS {
+    for (label, key, peer, pkey, target) in rows() {
+        let (key, pkey) = (key.as_str(), pkey.as_str());
         let o = median(&ours, key);
         let p = median(&peers[peer], pkey);
         let tol = if key.starts_with("pga") { 1e-4 } else { 1e-10 };
