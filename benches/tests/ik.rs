@@ -112,9 +112,9 @@ fn taylor_and_closed_form_differ_for_large_angles() {
 }
 
 #[test]
-fn closed_form_versors_are_unit_and_move_the_gripper_rigidly() {
-    // The closed form gives unit motors, so the gripper point stays a normalised point, at the
-    // distance of Jg from J3 from the moved J3... here: eo stays 1 and the point is null.
+fn closed_form_versors_are_unit_and_keep_the_gripper_a_point() {
+    // The closed form gives unit motors, so the moved gripper stays a normalised conformal
+    // point: eo stays 1 and the point is null.
     let s = solve::<Closed>(rad(SANITY_DEG));
     for m in [s.r2, s.r3, s.r4, s.rg] {
         let n = (m * m.rev()).to_array();
