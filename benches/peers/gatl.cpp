@@ -17,6 +17,7 @@
 #include <cmath>
 
 #include "peer_io.hpp"
+#include "gatl_ik.hpp"
 
 using namespace ga3c;
 using namespace peer;
@@ -34,23 +35,28 @@ static std::pair<bitset_t, double> blade(const std::string &name) {
   return {bits, swaps % 2 ? -1.0 : 1.0};
 }
 
-// Every result in our blade order; the largest component outside it goes to `stray`.
+// Appends one result in our blade order; the largest component outside it goes to `stray`.
+template <class E>
+static void append(const E &e, const std::vector<std::string> &blades, std::vector<double> &v,
+                   double &stray) {
+  std::map<bitset_t, double> c;
+  for_each_component(e, [&](bitset_t b, double x, entry_source_t, entry_source_t, bool &) {
+    c[b] += x;
+  });
+  for (auto &name : blades) {
+    auto [bits, sign] = blade(name);
+    v.push_back(sign * c[bits]);
+    c.erase(bits);
+  }
+  for (auto &[bits, x] : c) stray = std::max(stray, std::abs(x));
+}
+
+// Every result in our blade order.
 template <class E>
 static std::vector<double> ours(const std::vector<E> &out, const std::vector<std::string> &blades,
                                 double &stray) {
   std::vector<double> v;
-  for (auto &e : out) {
-    std::map<bitset_t, double> c;
-    for_each_component(e, [&](bitset_t b, double x, entry_source_t, entry_source_t, bool &) {
-      c[b] += x;
-    });
-    for (auto &name : blades) {
-      auto [bits, sign] = blade(name);
-      v.push_back(sign * c[bits]);
-      c.erase(bits);
-    }
-    for (auto &[bits, x] : c) stray = std::max(stray, std::abs(x));
-  }
+  for (auto &e : out) append(e, blades, v, stray);
   return v;
 }
 
@@ -95,6 +101,36 @@ static void row(Record &rec, const char *key, const std::vector<A> &a, const std
   stray = std::max(stray, s);
 }
 
+#include "gatl_ops.hpp"
+
+// Times ga-benchmark's inverse kinematics (gatl_ik.hpp), one solve per 5 angles, and records
+// (R1, R2, R3, T2, R4, Rg, Jg_f) per solve as our Rotor, 4 Motors, Translator, Vector (45 values;
+// the order of peer_ops' ik.rs).
+template <class Exp>
+static void ik_row(Record &rec, const char *key, const std::vector<double> &ang, double &stray) {
+  std::vector<decltype(gatl_ik::solve<Exp>(0.0, 0.0, 0.0, 0.0, 0.0))> out(N);
+  double ns = time_pass([&] {
+    for (std::size_t i = 0; i < N; ++i) {
+      const double *a = ang.data() + 5 * i;
+      out[i] = gatl_ik::solve<Exp>(a[0], a[1], a[2], a[3], a[4]);
+    }
+    clobber(out.data());
+  });
+  const std::vector<std::string> rot = {"s", "e12", "e13", "e23"}, tra = {"s", "e1i", "e2i", "e3i"},
+                                 mot = {"s", "e12", "e13", "e23", "e1i", "e2i", "e3i", "e123i"},
+                                 vec = {"eo", "e1", "e2", "e3", "ei"};
+  std::vector<double> v;
+  double s = 0;
+  for (auto &o : out) {
+    auto &[r1, r2, r3, t2, r4, rg, jg] = o;
+    append(r1, rot, v, s), append(r2, mot, v, s), append(r3, mot, v, s), append(t2, tra, v, s);
+    append(r4, mot, v, s), append(rg, mot, v, s), append(jg, vec, v, s);
+  }
+  rec.add(key, ns, std::move(v));
+  if (s > 1e-9) std::fprintf(stderr, "gatl-peer: %s has components outside our types, up to %g\n", key, s);
+  stray = std::max(stray, s);
+}
+
 int main(int argc, char **argv) {
   if (argc != 3) {
     std::fprintf(stderr, "usage: gatl-peer INPUT OUT_PREFIX\n");
@@ -119,6 +155,14 @@ int main(int argc, char **argv) {
   row(rec, "cga.bivector_bivector", ba, bb, gp2, even, stray);
   row(rec, "cga.motor_motor", ma, mb, gp2, mot, stray);
   row(rec, "cga.motor_point", ma, pts, sw, pt, stray);
+  ik_row<gatl_ik::Taylor>(rec, "cga.ik_taylor", in["cga.ik_angles"], stray);
+  ik_row<gatl_ik::Closed>(rec, "cga.ik_exp", in["cga.ik_angles"], stray);
+  auto b2a = operands(in, "cga.blade2_a", 10, make_bivector), b2b = operands(in, "cga.blade2_b", 10, make_bivector);
+  auto q4 = operands(in, "cga.blade4", 5, gatl_ops::make_quadvector);
+  gatl_ops::pair_rows<true, false>(rec, "11", va, vb, stray);
+  gatl_ops::pair_rows<false, false>(rec, "12", va, b2a, stray);
+  gatl_ops::pair_rows<true, false>(rec, "22", b2a, b2b, stray);
+  gatl_ops::pair_rows<false, true>(rec, "14", va, q4, stray);
   rec.write(argv[2]);
   return stray > 1e-9 ? 1 : 0;
 }

@@ -24,7 +24,8 @@ inline const std::vector<std::pair<std::string, std::size_t>> &sections() {
       {"pga.motor_a", 8},     {"pga.motor_b", 8},     {"pga.point", 4},    {"pga.rotor_a", 4},
       {"pga.rotor_b", 4},     {"pga.line", 6},        {"cga.vector_a", 5}, {"cga.vector_b", 5},
       {"cga.bivector_a", 10}, {"cga.bivector_b", 10}, {"cga.motor_a", 8},  {"cga.motor_b", 8},
-      {"cga.point", 4}};
+      {"cga.point", 4},       {"cga.ik_angles", 5},  {"cga.blade2_a", 10},
+      {"cga.blade2_b", 10},   {"cga.blade4", 5}};
   return s;
 }
 

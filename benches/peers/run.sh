@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The peer harness of issue 47: our generated PGA f32 and CGA f64 products against klein
-# (hand-written SSE PGA, f32) and GATL (C++17 templates, CGA f64), on one input file, checked
-# element by element, in a table graded against the issue's targets.
+# (hand-written SSE PGA, f32) and GATL (C++17 templates, CGA f64; also ga-benchmark's inverse
+# kinematics, gatl_ik.hpp), on one input file, checked element by element, in a table graded
+# against the issue's targets.
 #
 #   benches/peers/run.sh KLEIN_DIR GATL_DIR [ROUNDS]
 #

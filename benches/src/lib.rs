@@ -3,6 +3,7 @@
 pub mod cga_report;
 pub mod codegen_report;
 pub use devkit::grade;
+pub mod peer_ops_set;
 pub mod timing;
 
 #[cfg(test)]

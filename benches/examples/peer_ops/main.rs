@@ -26,6 +26,8 @@
 //! Built at the x86-64 baseline (no `-C target-cpu`): `cargo build --release -p benches
 //! --example peer_ops`.
 
+mod ik;
+mod ops;
 mod report;
 
 mod pga {
@@ -48,7 +50,7 @@ const N: usize = 10_000;
 const PASSES: usize = 41;
 
 /// The input file's sections: name and f64 values per operand, in file order.
-const SECTIONS: [(&str, usize); 13] = [
+const SECTIONS: [(&str, usize); 17] = [
     ("pga.motor_a", 8),  // s e23 e31 e12 e01 e02 e03 e0123 (unit)
     ("pga.motor_b", 8),  // the same
     ("pga.point", 4),    // e032 e013 e021 e123 (e123 = 1)
@@ -61,7 +63,11 @@ const SECTIONS: [(&str, usize); 13] = [
     ("cga.bivector_b", 10),
     ("cga.motor_a", 8), // s e12 e13 e23 e1i e2i e3i e123i (unit)
     ("cga.motor_b", 8),
-    ("cga.point", 4), // e1 e2 e3 ei (eo = 1, not stored)
+    ("cga.point", 4),     // e1 e2 e3 ei (eo = 1, not stored)
+    ("cga.ik_angles", 5), // ga-benchmark's inverse kinematics: 5 joint angles
+    ("cga.blade2_a", 10), // blades for the operation rows (`ops.rs`): outer products of vectors
+    ("cga.blade2_b", 10),
+    ("cga.blade4", 5),
 ];
 
 fn main() {
@@ -142,6 +148,15 @@ fn operand(name: &str, rng: &mut Lcg) -> Vec<f64> {
             let x = rng.vec3();
             vec![x.x, x.y, x.z, 0.5 * x.length_squared()]
         }
+        // Uniform in [-pi/2, pi/2). ga-benchmark's `MakeRandomAngle` draws [0, 2 pi): at
+        // half-angles near pi the series versors are far from unit, the chained sandwiches
+        // reach 1e124 and no comparison of outputs means anything. The series has no branch,
+        // so its time does not depend on the values.
+        "cga.ik_angles" => (0..5)
+            .map(|_| rng.uniform() * std::f64::consts::FRAC_PI_2)
+            .collect(),
+        "cga.blade2_a" | "cga.blade2_b" => ops::blade(2, rng),
+        "cga.blade4" => ops::blade(4, rng),
         _ => unreachable!("{name}"),
     }
 }
@@ -239,6 +254,8 @@ fn run(input: &Path, prefix: &str) {
     let mut rec = Record::default();
     pga_rows(&inp, &mut rec);
     cga_rows(&inp, &mut rec);
+    ik_rows(&inp, &mut rec);
+    ops::op_rows(&inp, &mut rec);
     let times: String = rec
         .times
         .iter()
@@ -363,6 +380,21 @@ fn cga_rows(inp: &BTreeMap<&str, Vec<f64>>, rec: &mut Record) {
         let [a, b, c, d] = p.to_array();
         [1.0, a, b, c, d]
     });
+}
+
+/// ga-benchmark's inverse kinematics (`ik.rs`), one solve per 5 angles: the Taylor series row and
+/// the closed-form row.
+fn ik_rows(inp: &BTreeMap<&str, Vec<f64>>, rec: &mut Record) {
+    let angles = typed(&inp["cga.ik_angles"], |a: [f64; 5]| a);
+    let mut out = vec![ik::Solve::zero(); N];
+    let ns = time_pass(&mut out, |o| {
+        each1(o, black_box(&angles), ik::solve::<ik::Taylor>);
+    });
+    rec.add("cga.ik_taylor", ns, &out, |s| s.to_array());
+    let ns = time_pass(&mut out, |o| {
+        each1(o, black_box(&angles), ik::solve::<ik::Closed>);
+    });
+    rec.add("cga.ik_exp", ns, &out, |s| s.to_array());
 }
 
 fn write_outputs(path: &str, outputs: &[(String, Vec<f64>)]) {

@@ -8,7 +8,7 @@ use std::io::Read;
 use std::path::Path;
 
 /// One line of the table: label, our key, the peer, its key, the target ratio.
-const ROWS: [(&str, &str, &str, &str, f64); 12] = [
+const ROWS: [(&str, &str, &str, &str, f64); 14] = [
     (
         "PGA f32: motor on point, one motor per point",
         "pga.motor_point",
@@ -81,7 +81,41 @@ const ROWS: [(&str, &str, &str, &str, f64); 12] = [
         "cga.motor_point",
         1.0,
     ),
+    (
+        "CGA f64: ga-benchmark inverse kinematics, 5 joints (Taylor expp)",
+        "cga.ik_taylor",
+        "gatl",
+        "cga.ik_taylor",
+        0.8,
+    ),
+    (
+        "CGA f64: ga-benchmark inverse kinematics, 5 joints (closed-form exp / GATL's `exp`)",
+        "cga.ik_exp",
+        "gatl",
+        "cga.ik_exp",
+        0.8,
+    ),
 ];
+
+/// [`ROWS`] and the operation rows of `ops.rs` (target 1.0 each).
+fn rows() -> Vec<(String, String, &'static str, String, f64)> {
+    let mut rows: Vec<_> = ROWS
+        .iter()
+        .map(|&(l, k, p, pk, t)| (l.to_string(), k.to_string(), p, pk.to_string(), t))
+        .collect();
+    for (pair, products) in crate::ops::PAIRS {
+        for op in products {
+            let key = format!("ops.{pair}.{op}");
+            let (ga, gb) = (&pair[..1], &pair[1..]);
+            let label = format!(
+                "CGA f64 op, grades ({ga}, {gb}) blades: {} product",
+                crate::ops::product_name(op)
+            );
+            rows.push((label, key.clone(), "gatl", key, 1.0));
+        }
+    }
+    rows
+}
 
 fn read_times(path: &Path) -> Option<BTreeMap<String, f64>> {
     let text = std::fs::read_to_string(path).ok()?;
@@ -180,7 +214,8 @@ pub(crate) fn report(dir: &Path, rounds: usize) -> i32 {
     );
     println!("|---|---|---|---|---|---|---|");
     let (mut pass, mut miss, mut bad) = (0, 0, 0);
-    for (label, key, peer, pkey, target) in ROWS {
+    for (label, key, peer, pkey, target) in rows() {
+        let (key, pkey) = (key.as_str(), pkey.as_str());
         let o = median(&ours, key);
         let p = median(&peers[peer], pkey);
         let tol = if key.starts_with("pga") { 1e-4 } else { 1e-10 };
