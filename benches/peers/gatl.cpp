@@ -144,6 +144,8 @@ int main(int argc, char **argv) {
 
   const std::vector<std::string> even = {"s",   "eo1", "eo2", "eo3",   "eoi",   "e12",   "e13",  "e23",
                                          "e1i", "e2i", "e3i", "eo123", "eo12i", "eo13i", "eo23i", "e123i"};
+  // A scalar plus a bivector: our `ScalarBivector`, the product of two vectors.
+  const std::vector<std::string> sb = {"s", "eo1", "eo2", "eo3", "eoi", "e12", "e13", "e23", "e1i", "e2i", "e3i"};
   const std::vector<std::string> mot = {"s", "e12", "e13", "e23", "e1i", "e2i", "e3i", "e123i"};
   const std::vector<std::string> pt = {"eo", "e1", "e2", "e3", "ei"};
   auto gp2 = [](auto const &a, auto const &b) { return gp(a, b); };
@@ -151,7 +153,7 @@ int main(int argc, char **argv) {
 
   Record rec;
   double stray = 0;
-  row(rec, "cga.vector_vector", va, vb, gp2, even, stray);
+  row(rec, "cga.vector_vector", va, vb, gp2, sb, stray);
   row(rec, "cga.bivector_bivector", ba, bb, gp2, even, stray);
   row(rec, "cga.motor_motor", ma, mb, gp2, mot, stray);
   row(rec, "cga.motor_point", ma, pts, sw, pt, stray);

@@ -12,7 +12,8 @@
 # Flags: ours at the x86-64 baseline (no -C target-cpu; `cargo build --release`), klein with
 # g++ -O3 -DNDEBUG -std=c++17 -msse4.1 (klein needs SSE4.1), GATL with g++ -O3 -DNDEBUG
 # -std=c++17 at the baseline. ROUNDS (default 5) runs of ours, klein and GATL, alternating;
-# the table gives medians over the rounds. Everything is built and written under target/peers.
+# the table gives medians over the rounds. Everything is built and written under target/peers
+# (our side under $CARGO_TARGET_DIR when it is set).
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 root="$(cd "$here/../.." && pwd)"
@@ -41,7 +42,7 @@ fi
 echo "g++: $(g++ -dumpfullversion); rustc: $(rustc --version)"
 
 (cd "$root" && cargo build --release -p benches --example peer_ops)
-ours="$root/target/release/examples/peer_ops"
+ours="${CARGO_TARGET_DIR:-$root/target}/release/examples/peer_ops"
 "$ours" gen "$out/input.bin"
 for r in $(seq 1 "$rounds"); do
   "$ours" run "$out/input.bin" "$out/ours.$r"

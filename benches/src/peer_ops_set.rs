@@ -18,7 +18,7 @@ use cga::f64::{
     CommutatorProduct, DotProduct, HestenesInnerProduct, InverseGeometricProduct,
     RegressiveProduct, RightContraction, ScalarProduct,
 };
-use cga::{Bivector, Even, Mv, Odd, Pseudoscalar, Quadvector, Trivector, Vector};
+use cga::{Bivector, Even, Mv, Odd, Pseudoscalar, Quadvector, ScalarBivector, Trivector, Vector};
 use std::hint::black_box;
 use std::time::Instant;
 
@@ -91,6 +91,7 @@ macro_rules! as_mv {
 }
 as_mv!(
     Vector,
+    ScalarBivector,
     Bivector,
     Trivector,
     Quadvector,

@@ -28,6 +28,7 @@
 
 mod ik;
 mod ops;
+mod pga_rows;
 mod report;
 
 mod pga {
@@ -252,7 +253,8 @@ impl Record {
 fn run(input: &Path, prefix: &str) {
     let inp = read_input(input);
     let mut rec = Record::default();
-    pga_rows(&inp, &mut rec);
+    pga_rows::pga_rows(&inp, &mut rec);
+    pga_rows::pga64_rows(&inp, &mut rec);
     cga_rows(&inp, &mut rec);
     ik_rows(&inp, &mut rec);
     ops::op_rows(&inp, &mut rec);
@@ -265,83 +267,8 @@ fn run(input: &Path, prefix: &str) {
     write_outputs(&format!("{prefix}.out"), &rec.outputs);
 }
 
-fn pga_rows(inp: &BTreeMap<&str, Vec<f64>>, rec: &mut Record) {
-    use pga::{Line, Motor, Point, Rotor};
-    let ma = typed(&inp["pga.motor_a"], |a| Motor::from_array(f32s(a)));
-    let mb = typed(&inp["pga.motor_b"], |a| Motor::from_array(f32s(a)));
-    let pts = typed(&inp["pga.point"], |a| Point::from_array(f32s(a)));
-    let ra = typed(&inp["pga.rotor_a"], |a| Rotor::from_array(f32s(a)));
-    let rb = typed(&inp["pga.rotor_b"], |a| Rotor::from_array(f32s(a)));
-    let lines = typed(&inp["pga.line"], |a| Line::from_array(f32s(a)));
-    let wide = |a: [f32; 4]| a.map(f64::from);
-
-    let mut out = vec![Point::new(0.0, 0.0, 0.0, 0.0); N];
-    let ns = time_pass(&mut out, |o| {
-        let (m, p) = black_box((&ma, &pts));
-        each2(o, m, p, |m, p| m.sandwich(p));
-    });
-    rec.add("pga.motor_point", ns, &out, |p| wide(p.to_array()));
-
-    let ns = time_pass(&mut out, |o| {
-        let (m, p) = black_box((&ma[0], &pts));
-        let pm = m.point_matrix();
-        for (o, p) in o.iter_mut().zip(p) {
-            *o = pm.apply(*p);
-        }
-    });
-    rec.add("pga.batch", ns, &out, |p| wide(p.to_array()));
-
-    let ns = time_pass(&mut out, |o| {
-        let (m, p) = black_box((&ma[0], &pts));
-        for (o, p) in o.iter_mut().zip(p) {
-            *o = m.sandwich(*p);
-        }
-    });
-    rec.add("pga.batch_sandwich", ns, &out, |p| wide(p.to_array()));
-
-    let mut out = vec![Motor::from_array([0.0; 8]); N];
-    let ns = time_pass(&mut out, |o| {
-        let (a, b) = black_box((&ma, &mb));
-        each2(o, a, b, |a, b| a * b);
-    });
-    rec.add("pga.motor_motor", ns, &out, |m| m.to_array().map(f64::from));
-
-    let mut rout = vec![Rotor::from_array([0.0; 4]); N];
-    let ns = time_pass(&mut rout, |o| {
-        let (a, b) = black_box((&ra, &rb));
-        each2(o, a, b, |a, b| a * b);
-    });
-    rec.add("pga.rotor_rotor", ns, &rout, |r| wide(r.to_array()));
-
-    let ns = time_pass(&mut out, |o| {
-        let l = black_box(&lines);
-        each1(o, l, |x| x.exp());
-    });
-    rec.add("pga.exp", ns, &out, |m| m.to_array().map(f64::from));
-
-    let mut lout = vec![Line::from_array([0.0; 6]); N];
-    let ns = time_pass(&mut lout, |o| {
-        let m = black_box(&ma);
-        each1(o, m, |x| x.log());
-    });
-    rec.add("pga.log", ns, &lout, |l| l.to_array().map(f64::from));
-
-    let mut mats =
-        vec![Motor::from_array([1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]).point_matrix(); N];
-    let ns = time_pass(&mut mats, |o| {
-        let m = black_box(&ma);
-        each1(o, m, |x| x.point_matrix());
-    });
-    // The 4 x 4 block acting on (e032, e013, e021, e123), row-major (column 4 is the constant
-    // column, zero for points).
-    rec.add("pga.motor_matrix", ns, &mats, |pm| -> [f64; 16] {
-        let m = pm.rows();
-        std::array::from_fn(|k| f64::from(m[k / 4][k % 4]))
-    });
-}
-
 fn cga_rows(inp: &BTreeMap<&str, Vec<f64>>, rec: &mut Record) {
-    use cga::{Bivector, Even, Motor, Point, Vector};
+    use cga::{Bivector, Even, Motor, Point, ScalarBivector, Vector};
     let va = typed(&inp["cga.vector_a"], Vector::from_array);
     let vb = typed(&inp["cga.vector_b"], Vector::from_array);
     let ba = typed(&inp["cga.bivector_a"], Bivector::from_array);
@@ -350,12 +277,15 @@ fn cga_rows(inp: &BTreeMap<&str, Vec<f64>>, rec: &mut Record) {
     let mb = typed(&inp["cga.motor_b"], Motor::from_array);
     let pts = typed(&inp["cga.point"], Point::from_array);
 
-    let mut out = vec![Even::from_array([0.0; 16]); N];
-    let ns = time_pass(&mut out, |o| {
+    // A scalar plus a bivector (`ScalarBivector`, 11 fields), as GATL's result.
+    let mut sb = vec![ScalarBivector::from_array([0.0; 11]); N];
+    let ns = time_pass(&mut sb, |o| {
         let (a, b) = black_box((&va, &vb));
         each2(o, a, b, |a, b| a * b);
     });
-    rec.add("cga.vector_vector", ns, &out, |e| e.to_array());
+    rec.add("cga.vector_vector", ns, &sb, |e| e.to_array());
+
+    let mut out = vec![Even::from_array([0.0; 16]); N];
 
     let ns = time_pass(&mut out, |o| {
         let (a, b) = black_box((&ba, &bb));

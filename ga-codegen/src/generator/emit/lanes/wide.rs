@@ -218,7 +218,7 @@ impl Gen<'_> {
             &SymMv::of_type(ta, 0),
             &SymMv::of_type(tb, 1),
         );
-        let OutType::Type(oi) = self.infer(&m) else {
+        let OutType::Type(oi) = self.infer_versor_product(&m) else {
             return TokenStream::new();
         };
         if !kept.contains(&oi) {

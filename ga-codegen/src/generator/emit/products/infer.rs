@@ -34,16 +34,52 @@ impl Gen<'_> {
     /// The smallest declared type that holds every blade of `m` (the scalar included) and
     /// whose constants `m` keeps.
     pub(crate) fn holder(&self, m: &SymMv) -> Option<usize> {
+        self.by_size.iter().copied().find(|&ti| self.holds(ti, m))
+    }
+
+    /// Whether type `ti` holds every blade of `m` and `m` keeps its constants.
+    fn holds(&self, ti: usize, m: &SymMv) -> bool {
+        let t = &self.spec.types[ti];
         let support = m.support();
-        self.by_size.iter().copied().find(|&ti| {
-            let t = &self.spec.types[ti];
-            let holds = support.iter().all(|b| t.blades().any(|x| x == *b));
-            let consts_ok = t
-                .constants
+        support.iter().all(|b| t.blades().any(|x| x == *b))
+            && t.constants
                 .iter()
-                .all(|&(b, c)| m.get(b).as_constant() == Some(c));
-            holds && consts_ok
-        })
+                .all(|&(b, c)| m.get(b).as_constant() == Some(c))
+    }
+
+    /// The result type of the geometric product `m` of two versor types: a product of
+    /// versors is a versor, so the smallest declared versor type that holds it (a translator
+    /// times a dilator is a scaled motor, not the scalar-plus-bivector type that also holds
+    /// it), else what [`Gen::infer`] gives.
+    pub(crate) fn infer_versor_product(&self, m: &SymMv) -> OutType {
+        match self.infer(m) {
+            OutType::Type(_) => self
+                .by_size
+                .iter()
+                .copied()
+                .find(|&ti| self.spec.types[ti].versor && self.holds(ti, m))
+                .map_or_else(|| self.infer(m), OutType::Type),
+            o => o,
+        }
+    }
+
+    /// The result type of `a op b` for operand types `ta`, `tb`: see
+    /// [`Gen::infer_versor_product`] for the geometric product of two versor types, else
+    /// [`Gen::infer`].
+    pub(crate) fn infer_op(
+        &self,
+        m: &SymMv,
+        op: crate::generator::emit::Op,
+        (ta, tb): (
+            &crate::generator::spec::TypeDef,
+            &crate::generator::spec::TypeDef,
+        ),
+    ) -> OutType {
+        if op == crate::generator::emit::Op::Geometric && ta.versor && tb.versor {
+            self.infer_versor_product(m)
+        } else {
+            self.infer(m)
+        }
     }
 
     /// Whether `o` is [`OutType::Unfit`]; if so, `what` (`Vector * Vector`, `Point::dual`)

@@ -20,6 +20,7 @@ use crate::generator::symbolic::Poly;
 use crate::runtime::rational::Rational;
 use proc_macro2::{Ident, Literal, TokenStream};
 use quote::quote;
+use std::collections::BTreeSet;
 
 /// One column chunk: operand field `col` (`None`: the constant column), the output rows from
 /// `first_row` on (as many as a lane type holds), and how `apply` gets it.
@@ -117,15 +118,20 @@ impl Gen<'_> {
             let rows: Vec<&str> = (c.first_row..(c.first_row + width).min(ny))
                 .map(|k| to.fields[k].name.as_str())
                 .collect();
-            let col = c.col.map_or("the constant column".to_string(), |j| {
-                format!("column `{}`", tx.fields[j].name)
+            let col = c.col.map_or("The constant column".to_string(), |j| {
+                format!("Column `{}`", tx.fields[j].name)
             });
             doc(&format!("{col}, rows `{}`.", rows.join("`, `")))
         });
         let names: Vec<&Ident> = stored.iter().map(|(n, _)| *n).collect();
         let (lets, values) = self.chunk_values(m, &stored, width);
         let rows_fn = rows_fn(&chunks, &stored, width, (nx, ny), self.scalar);
-        let apply = apply_body(&chunks, tx, to, width, self.scalar);
+        let mut apply = apply_body(&chunks, tx, to, width, self.scalar);
+        // The lane type, where the body uses it.
+        let ln = lane_name(self.scalar);
+        if apply.to_string().contains(&format!("{ln} ::")) {
+            apply = quote!(use #lane; #apply);
+        }
         let cols: Vec<String> = tx
             .fields
             .iter()
@@ -159,16 +165,13 @@ impl Gen<'_> {
                 /// Apply the map: the same result as the sandwich, at matrix cost.
                 #[inline]
                 #[must_use]
-                pub fn apply(&self, b: #xn) -> #on {
-                    use #lane as L;
-                    #apply
-                }
+                pub fn apply(&self, b: #xn) -> #on { #apply }
                 /// Every entry, row by row: `rows()[row][col]`, rows the output fields,
                 /// columns the operand fields then the constant column.
                 #[must_use]
                 pub fn rows(&self) -> [[#s; #ncols]; #nrows] { #rows_fn }
             }
-            impl PartialEq for #mat {
+            impl ::core::cmp::PartialEq for #mat {
                 fn eq(&self, other: &Self) -> bool { self.rows() == other.rows() }
             }
             impl #vn {
@@ -176,7 +179,6 @@ impl Gen<'_> {
                 #[inline]
                 #[must_use]
                 pub fn #fname(&self) -> #mat {
-                    use #lane as L;
                     #lets
                     #mat { #(#names: #values,)* }
                 }
@@ -197,6 +199,9 @@ impl Gen<'_> {
         width: usize,
     ) -> (TokenStream, Vec<TokenStream>) {
         let nx = m.tx.fields.len();
+        if stored.is_empty() {
+            return (TokenStream::new(), Vec::new());
+        }
         if self.scalar == ScalarType::F32 {
             let mut loads = QuadLoads::default();
             let quads: Option<Vec<TokenStream>> = stored
@@ -208,6 +213,7 @@ impl Gen<'_> {
                 return (quote!(let a = self; let b = self; #loads), values);
             }
         }
+        let (_, lane) = self.matrix_lanes();
         let values = stored
             .iter()
             .map(|(_, c)| {
@@ -217,11 +223,12 @@ impl Gen<'_> {
                     Some(j) => m.entries[k][j].clone(),
                     None => m.entries[k][nx].clone(),
                 });
-                quote!(L::new(#(#lanes),*))
+                let ln = lane_name(self.scalar);
+                quote!(#ln::new(#(#lanes),*))
             })
             .collect();
         let lets = m.lets;
-        (quote!(let a = self; #lets), values)
+        (quote!(use #lane; let a = self; #lets), values)
     }
 }
 
@@ -282,13 +289,21 @@ fn quad_chunk(m: &MatrixInput<'_>, c: &Chunk, loads: &mut QuadLoads) -> Option<T
     let (mut expr, _) = quad_sum(&lanes, m.tv, m.tv, free, loads);
     if free.iter().any(|&f| f) || scale != Rational::ONE {
         let mask = free.map(|f| lit(if f { Rational::ZERO } else { scale }));
-        expr = quote!((#expr) * L::new(#(#mask),*));
+        expr = quote!((#expr) * F32x4::new(#(#mask),*));
     }
     if consts.iter().any(|c| *c != Rational::ZERO) {
         let cs = consts.map(lit);
-        expr = quote!(#expr + L::new(#(#cs),*));
+        expr = quote!(#expr + F32x4::new(#(#cs),*));
     }
     Some(expr)
+}
+
+/// The lane type's name: `F32x4` or `F64x2` (as the 4-lane and paired products name them).
+fn lane_name(scalar: ScalarType) -> Ident {
+    ident(match scalar {
+        ScalarType::F32 => "F32x4",
+        ScalarType::F64 => "F64x2",
+    })
 }
 
 /// The zero polynomial, for rows past the last output field.
@@ -346,6 +361,7 @@ fn apply_body(
 ) -> TokenStream {
     let ny = to.fields.len();
     let nq = ny.div_ceil(width);
+    let ln = lane_name(scalar);
     let mut stmts = TokenStream::new();
     let mut outs = Vec::new();
     for q in 0..nq {
@@ -372,18 +388,18 @@ fn apply_body(
                             quote!(#c * b.#x)
                         }
                     });
-                    quote!(L::new(#(#lanes),*))
+                    quote!(#ln::new(#(#lanes),*))
                 }
                 (ChunkKind::Constant(cs), None) => {
                     let cs = cs.iter().map(|&c| lit(c));
-                    quote!(L::new(#(#cs),*))
+                    quote!(#ln::new(#(#cs),*))
                 }
             };
             terms.push(term);
         }
         let o = ident(&format!("o{q}"));
         let sum = if terms.is_empty() {
-            quote!(L::splat(0.0))
+            quote!(#ln::splat(0.0))
         } else {
             quote!(#(#terms)+*)
         };
@@ -399,16 +415,29 @@ fn apply_body(
         let f = ident(&f.name);
         quote!(#f: #o[#lane])
     });
-    let loads = operand_loads(tx, scalar);
+    let used: BTreeSet<usize> = chunks
+        .iter()
+        .filter_map(|c| match (&c.kind, c.col) {
+            (ChunkKind::Stored(_), Some(j)) => Some(j / 4),
+            _ => None,
+        })
+        .collect();
+    let loads = operand_loads(tx, scalar, &used);
     let on = ident(&to.name);
     quote!(#loads #stmts #on { #(#fields),* })
 }
 
-/// The operand's fields as lane loads: f32 quads (shuffled per field), f64 splats.
-fn operand_loads(tx: &TypeDef, scalar: ScalarType) -> TokenStream {
+/// The operand's fields as lane loads: the f32 quads in `used` (shuffled per field); none
+/// for f64 (each field is splatted where it is used).
+fn operand_loads(tx: &TypeDef, scalar: ScalarType, used: &BTreeSet<usize>) -> TokenStream {
     match scalar {
         ScalarType::F32 => {
-            let quads = tx.fields.chunks(4).enumerate().map(|(i, fs)| {
+            let quads = tx
+                .fields
+                .chunks(4)
+                .enumerate()
+                .filter(|(i, _)| used.contains(i));
+            let quads = quads.map(|(i, fs)| {
                 let q = ident(&format!("bq{i}"));
                 let mut lanes: Vec<TokenStream> = fs
                     .iter()
@@ -418,7 +447,7 @@ fn operand_loads(tx: &TypeDef, scalar: ScalarType) -> TokenStream {
                     })
                     .collect();
                 lanes.resize(4, quote!(0.0));
-                quote!(let #q = L::new(#(#lanes),*);)
+                quote!(let #q = F32x4::new(#(#lanes),*);)
             });
             quote!(#(#quads)*)
         }
@@ -437,7 +466,7 @@ fn splat(tx: &TypeDef, j: usize, scalar: ScalarType) -> TokenStream {
         }
         ScalarType::F64 => {
             let f = ident(&tx.fields[j].name);
-            quote!(L::splat(b.#f))
+            quote!(F64x2::splat(b.#f))
         }
     }
 }

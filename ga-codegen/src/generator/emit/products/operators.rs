@@ -58,7 +58,7 @@ impl Gen<'_> {
         let (an, bn) = (ident(&ta.name), ident(&tb.name));
         for op in Op::OPERATORS {
             let m = self.apply(op, &a, &b);
-            let o = self.infer(&m);
+            let o = self.infer_op(&m, op, (ta, tb));
             if o == OutType::Zero {
                 self.zero_ops += 1;
                 continue;

@@ -163,7 +163,7 @@ impl Gen<'_> {
         let b = SymMv::of_type(tb, 1);
         for op in Op::OPERATORS {
             let m = self.apply(op, &a, &b);
-            let o = self.infer(&m);
+            let o = self.infer_op(&m, op, (ta, tb));
             if o == OutType::Zero || o == OutType::Unfit {
                 continue;
             }
