@@ -38,7 +38,6 @@ mod pga {
 use benches::grade::Spread;
 use benches::timing::Lcg;
 use cga::f64::Sandwich as _;
-use pga::{Exp as _, Log as _, Sandwich as _};
 use std::collections::BTreeMap;
 use std::hint::black_box;
 use std::io::Write;
