@@ -289,7 +289,18 @@ fn quad_chunk(m: &MatrixInput<'_>, c: &Chunk, loads: &mut QuadLoads) -> Option<T
     let (mut expr, _) = quad_sum(&lanes, m.tv, m.tv, free, loads);
     if free.iter().any(|&f| f) || scale != Rational::ONE {
         let mask = free.map(|f| lit(if f { Rational::ZERO } else { scale }));
-        expr = quote!((#expr) * F32x4::new(#(#mask),*));
+        // Parenthesised unless it already is one group.
+        let mut trees = expr.clone().into_iter();
+        let grouped = matches!(
+            (trees.next(), trees.next()),
+            (Some(proc_macro2::TokenTree::Group(g)), None)
+                if g.delimiter() == proc_macro2::Delimiter::Parenthesis
+        );
+        expr = if grouped {
+            quote!(#expr * F32x4::new(#(#mask),*))
+        } else {
+            quote!((#expr) * F32x4::new(#(#mask),*))
+        };
     }
     if consts.iter().any(|c| *c != Rational::ZERO) {
         let cs = consts.map(lit);
