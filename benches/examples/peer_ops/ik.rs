@@ -188,35 +188,27 @@ fn vector_part(o: Odd) -> Vector {
     Vector::new(o.eo, o.e1, o.e2, o.e3, o.ei)
 }
 
-impl Versor for Rotor {
-    #[inline(always)]
-    fn line_full(self, x: Motor) -> Motor {
-        (self * x) * self.rev()
-    }
-    #[inline(always)]
-    fn point_full(self, p: Point) -> Vector {
-        vector_part((self * p) * self.rev())
-    }
-    #[inline(always)]
-    fn point_unit(self, p: Point) -> Vector {
-        self.sandwich(p).into()
-    }
+/// [`Versor`] for generated versor types: the same three calls on each.
+macro_rules! versor {
+    ($($t:ty),*) => {$(
+        impl Versor for $t {
+            #[inline(always)]
+            fn line_full(self, x: Motor) -> Motor {
+                (self * x) * self.rev()
+            }
+            #[inline(always)]
+            fn point_full(self, p: Point) -> Vector {
+                vector_part((self * p) * self.rev())
+            }
+            #[inline(always)]
+            fn point_unit(self, p: Point) -> Vector {
+                self.sandwich(p).into()
+            }
+        }
+    )*};
 }
 
-impl Versor for Motor {
-    #[inline(always)]
-    fn line_full(self, x: Motor) -> Motor {
-        (self * x) * self.rev()
-    }
-    #[inline(always)]
-    fn point_full(self, p: Point) -> Vector {
-        vector_part((self * p) * self.rev())
-    }
-    #[inline(always)]
-    fn point_unit(self, p: Point) -> Vector {
-        self.sandwich(p).into()
-    }
-}
+versor!(Rotor, Motor);
 
 fn pt(x: f64, y: f64, z: f64) -> Point {
     Point::from_vec3(DVec3::new(x, y, z))

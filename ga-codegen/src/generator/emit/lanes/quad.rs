@@ -183,26 +183,30 @@ fn group_part(
         vector_ops += if built { 4 } else { 2 };
     }
     let grouped = if terms.len() > 1 { quote!((#sum)) } else { sum };
-    let ones = coef
+    let (part, ops) = scale_group(coef, grouped);
+    ((all_neg, part), vector_ops + ops)
+}
+
+/// A group's sum times its coefficient vector: as it is for `(1, 1, 1, 1)`, an exact sign-bit
+/// flip for `±1` lanes, else a multiply by the constant vector; with the vector operations
+/// that costs (0 or 1). Shared by the broadcast and slot forms.
+pub(super) fn scale_group(coef: &[Rational; 4], grouped: TokenStream) -> (TokenStream, usize) {
+    if coef.iter().all(|c| *c == Rational::ONE) {
+        (grouped, 0)
+    } else if coef
         .iter()
-        .all(|c| *c == Rational::ONE || *c == -Rational::ONE);
-    let part = if coef.iter().all(|c| *c == Rational::ONE) {
-        grouped
-    } else if ones {
-        vector_ops += 1;
+        .all(|c| *c == Rational::ONE || *c == -Rational::ONE)
+    {
         let mask: i32 = (0..4)
             .filter(|&i| coef[i] < Rational::ZERO)
             .map(|i| 1 << i)
             .sum();
         let mask = syn::LitInt::new(&format!("{mask:#06b}"), Span::call_site());
-        quote!(#grouped.flip::<#mask>())
+        (quote!(#grouped.flip::<#mask>()), 1)
     } else {
-        vector_ops += 1;
         let c = coef.map(lit);
-        let [c0, c1, c2, c3] = &c;
-        quote!(#grouped * F32x4::new(#c0, #c1, #c2, #c3))
-    };
-    ((all_neg, part), vector_ops)
+        (quote!(#grouped * F32x4::new(#(#c),*)), 1)
+    }
 }
 
 /// The result `T { x: o0[0], y: o0[1], .. }` from the output quads `o0, o1, ..` (as arrays).

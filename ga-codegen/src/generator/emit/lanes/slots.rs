@@ -11,10 +11,10 @@
 //! of the two forms.
 
 use super::{signed_sum, LaneTerms};
-use crate::generator::emit::render::{ident, lit};
+use crate::generator::emit::render::ident;
 use crate::generator::spec::TypeDef;
 use crate::runtime::rational::Rational;
-use proc_macro2::{Ident, Literal, Span, TokenStream};
+use proc_macro2::{Ident, Literal, TokenStream};
 use quote::quote;
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -231,24 +231,8 @@ pub(super) fn build(
             let all_neg = super::lead_with_added(&mut terms);
             let sum = signed_sum(terms.clone(), &quote!(F32x4::splat(0.0)));
             let grouped = if terms.len() > 1 { quote!((#sum)) } else { sum };
-            let part = if coef.iter().all(|c| *c == Rational::ONE) {
-                grouped
-            } else if coef
-                .iter()
-                .all(|c| *c == Rational::ONE || *c == -Rational::ONE)
-            {
-                ops += 1;
-                let mask: i32 = (0..4)
-                    .filter(|&i| coef[i] < Rational::ZERO)
-                    .map(|i| 1 << i)
-                    .sum();
-                let mask = syn::LitInt::new(&format!("{mask:#06b}"), Span::call_site());
-                quote!(#grouped.flip::<#mask>())
-            } else {
-                ops += 1;
-                let c = coef.map(lit);
-                quote!(#grouped * F32x4::new(#(#c),*))
-            };
+            let (part, scale_ops) = super::quad::scale_group(&coef, grouped);
+            ops += scale_ops;
             parts.push((all_neg, part));
         }
         let expr = signed_sum(parts, &quote!(F32x4::splat(0.0)));
