@@ -210,7 +210,7 @@ pub(super) fn scale_group(coef: &[Rational; 4], grouped: TokenStream) -> (TokenS
 }
 
 /// The result `T { x: o0[0], y: o0[1], .. }` from the output quads `o0, o1, ..` (as arrays).
-fn quad_result(t: &TypeDef) -> TokenStream {
+pub(super) fn quad_result(t: &TypeDef) -> TokenStream {
     let fields = t.fields.iter().enumerate().map(|(i, f)| {
         let (x, o, lane) = (
             ident(&f.name),

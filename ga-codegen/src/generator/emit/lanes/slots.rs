@@ -242,15 +242,6 @@ pub(super) fn build(
     ops += loads.shuffles.len();
     let mut body = loads.tokens(rt, ta, tb);
     body.extend(outputs);
-    let fields = t.fields.iter().enumerate().map(|(i, f)| {
-        let (x, o, lane) = (
-            ident(&f.name),
-            ident(&format!("o{}", i / 4)),
-            Literal::usize_unsuffixed(i % 4),
-        );
-        quote!(#x: #o[#lane])
-    });
-    let tn = ident(&t.name);
-    body.extend(quote!(#tn { #(#fields),* }));
+    body.extend(super::quad::quad_result(t));
     Some((body, ops))
 }
