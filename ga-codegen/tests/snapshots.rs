@@ -97,3 +97,43 @@ fn motor_times_motor_f32_four_lanes() {
         "impl ::core::ops::Mul<Motor> for Motor {"
     ));
 }
+
+/// Vector operations of a 4-lane body: (shuffles, multiplies, sign flips).
+fn lane_ops(body: &str) -> (usize, usize, usize) {
+    let multiplies = body
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .windows(3)
+        .filter(|w| w[1] == "*" && [w[0], w[2]].iter().all(|x| x.contains("_q")))
+        .count();
+    (
+        body.matches(".shuffle::<").count(),
+        multiplies,
+        body.matches(".flip::<").count(),
+    )
+}
+
+/// PGA's f32 motor product against klein's hand-written SSE one (`gpMM` in
+/// `detail/x86/x86_geometric_product.hpp`: 15 shuffles, 12 multiplies, 2 sign flips): the slot
+/// form's placement search finds at most as many shuffles.
+#[test]
+fn pga_motor_product_f32_needs_no_more_shuffles_than_klein() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../algebras/pga3d.toml");
+    let text = std::fs::read_to_string(path).expect("read pga3d.toml");
+    let spec = ga_codegen::Spec::from_toml(&text, "algebras/pga3d.toml").expect("valid spec");
+    let opts = ga_codegen::EmitOptions {
+        scalar: ga_codegen::ScalarType::F32,
+        ..ga_codegen::EmitOptions::default()
+    };
+    let generated = ga_codegen::generate(&spec, &opts).expect("generate");
+    let body = item(
+        generated.code().expect("formats"),
+        "impl ::core::ops::Mul<Motor> for Motor {",
+    );
+    let (shuffles, multiplies, flips) = lane_ops(&body);
+    assert_eq!(multiplies, 12, "{body}");
+    assert!(
+        shuffles <= 15 && flips <= 2,
+        "{shuffles} shuffles, {flips} flips:\n{body}"
+    );
+}

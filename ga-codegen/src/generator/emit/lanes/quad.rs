@@ -191,7 +191,7 @@ fn group_part(
 /// flip for `±1` lanes, else a multiply by the constant vector; with the vector operations
 /// that costs (0 or 1). Shared by the broadcast and slot forms.
 pub(super) fn scale_group(coef: &[Rational; 4], grouped: TokenStream) -> (TokenStream, usize) {
-    if coef.iter().all(|c| *c == Rational::ONE) {
+    if is_unscaled(coef) {
         (grouped, 0)
     } else if coef
         .iter()
@@ -207,6 +207,11 @@ pub(super) fn scale_group(coef: &[Rational; 4], grouped: TokenStream) -> (TokenS
         let c = coef.map(lit);
         (quote!(#grouped * F32x4::new(#(#c),*)), 1)
     }
+}
+
+/// A group whose coefficients are all 1 (no flip or scaling).
+pub(super) fn is_unscaled(coef: &[Rational; 4]) -> bool {
+    coef.iter().all(|c| *c == Rational::ONE)
 }
 
 /// The result `T { x: o0[0], y: o0[1], .. }` from the output quads `o0, o1, ..` (as arrays).

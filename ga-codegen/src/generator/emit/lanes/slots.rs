@@ -208,15 +208,22 @@ pub(super) fn build(
     lanes: &[LaneTerms],
     rt: &TokenStream,
 ) -> Option<(TokenStream, usize)> {
+    let mut seen = BTreeSet::new();
+    let mut quads = Vec::new();
+    for (qi, fields) in t.fields.chunks(4).enumerate() {
+        quads.push(quad_slots(
+            &lanes[4 * qi..4 * qi + fields.len()],
+            &mut seen,
+        )?);
+    }
+    refine(&mut quads);
     let mut loads = Loads::default();
     let mut outputs = Vec::new();
     let mut ops = 0usize;
-    let mut seen = BTreeSet::new();
-    for (qi, fields) in t.fields.chunks(4).enumerate() {
-        let slots = quad_slots(&lanes[4 * qi..4 * qi + fields.len()], &mut seen)?;
+    for (qi, slots) in quads.iter().enumerate() {
         // Slots grouped by coefficient vector, made positive in its first lane.
         let mut groups: BTreeMap<[Rational; 4], Vec<(bool, TokenStream)>> = BTreeMap::new();
-        for slot in &slots {
+        for slot in slots {
             let (pa, pb, coef) = slot_parts(slot);
             let (na, nb) = (loads.pick(pa), loads.pick(pb));
             let (neg, key) = group_key(coef);
@@ -244,4 +251,84 @@ pub(super) fn build(
     body.extend(outputs);
     body.extend(super::quad::quad_result(t));
     Some((body, ops))
+}
+
+/// The vector operations that depend on how terms are placed in slots: the shuffles (picks
+/// other than a quad as stored, shared by every output quad) and the scalings of each output
+/// quad's coefficient groups.
+fn placement_cost(quads: &[Vec<Slot>]) -> usize {
+    let mut shuffles = BTreeSet::new();
+    let mut scalings = 0;
+    for slots in quads {
+        let mut keys = BTreeSet::new();
+        for slot in slots {
+            let (pa, pb, coef) = slot_parts(slot);
+            shuffles.extend([pa, pb].into_iter().filter(|p| p.2 != [0, 1, 2, 3]));
+            keys.insert(group_key(coef).1);
+        }
+        scalings += keys.iter().filter(|k| !super::quad::is_unscaled(k)).count();
+    }
+    shuffles.len() + scalings
+}
+
+/// Improve the greedy placement by local search: swap the terms two slots of one output quad
+/// and one class (the same left and right quads) hold in one lane, keep the swap when the
+/// [`placement_cost`] does not grow (moves along equal cost let it leave a plateau), and end
+/// with the cheapest placement seen. Deterministic (a fixed-seed generator), bounded: at most
+/// 200 tries per slot and 4,000 in all, none above 96 slots.
+fn refine(quads: &mut [Vec<Slot>]) {
+    let total: usize = quads.iter().map(Vec::len).sum();
+    if total < 2 || total > 96 {
+        return;
+    }
+    let class = |slot: &Slot| {
+        let t = slot.iter().flatten().next().expect("a term");
+        (t.0 / 4, t.1 / 4)
+    };
+    // Swappable pairs: (quad, slot, slot) of one class.
+    let mut pairs = Vec::new();
+    for (q, slots) in quads.iter().enumerate() {
+        for i in 0..slots.len() {
+            for j in i + 1..slots.len() {
+                if class(&slots[i]) == class(&slots[j]) {
+                    pairs.push((q, i, j));
+                }
+            }
+        }
+    }
+    if pairs.is_empty() {
+        return;
+    }
+    let mut state: u64 = 0x9e37_79b9_7f4a_7c15;
+    let mut next = |n: usize| {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        ((state >> 33) as usize) % n
+    };
+    let mut cost = placement_cost(quads);
+    let mut best = (cost, quads.to_vec());
+    for _ in 0..(200 * total).min(4000) {
+        let (q, i, j) = pairs[next(pairs.len())];
+        let lane = next(4);
+        if quads[q][i][lane].is_none() {
+            continue;
+        }
+        let swap = |quads: &mut [Vec<Slot>]| {
+            let (a, b) = (quads[q][i][lane], quads[q][j][lane]);
+            quads[q][i][lane] = b;
+            quads[q][j][lane] = a;
+        };
+        swap(quads);
+        let new = placement_cost(quads);
+        if new <= cost {
+            cost = new;
+            if cost < best.0 {
+                best = (cost, quads.to_vec());
+            }
+        } else {
+            swap(quads);
+        }
+    }
+    quads.clone_from_slice(&best.1);
 }
