@@ -278,7 +278,7 @@ fn placement_cost(quads: &[Vec<Slot>]) -> usize {
 /// 200 tries per slot and 4,000 in all, none above 96 slots.
 fn refine(quads: &mut [Vec<Slot>]) {
     let total: usize = quads.iter().map(Vec::len).sum();
-    if total < 2 || total > 96 {
+    if !(2..=96).contains(&total) {
         return;
     }
     let class = |slot: &Slot| {
