@@ -131,8 +131,9 @@ fn dcga_point_on_an_ellipsoid_satisfies_its_inner_product_equation() {
 /// Generate `algebras/NAME.toml` with the CLI into a fresh crate (`large-flow-NAME`) whose
 /// library is the module with its check harness and whose `main` is `main`, then build and
 /// run it: the harness against the generic reference (sparse above 8 basis vectors), then the
-/// paper's example. Returns the spec, which has no general multivector.
-fn cli_flow(name: &str, main: &str) -> ga_codegen::Spec {
+/// paper's example; `extra` are more files of `src/` (name, text) that `main` includes.
+/// Returns the spec, which has no general multivector.
+fn cli_flow(name: &str, main: &str, extra: &[(&str, &str)]) -> ga_codegen::Spec {
     let workspace = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
     let root = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("ga-codegen-large-{name}"));
     let lib = format!(
@@ -143,6 +144,9 @@ fn cli_flow(name: &str, main: &str) -> ga_codegen::Spec {
          pub mod checks {{\n        include!(\"{name}_checks.rs\");\n    }}\n}}\n"
     );
     let src = fresh_crate::write(&root, &format!("large-flow-{name}"), 1, &lib, main);
+    for (file, text) in extra {
+        std::fs::write(src.join(file), text).unwrap();
+    }
     let spec_path = format!("algebras/{name}.toml");
     let run = Command::new(env!("CARGO_BIN_EXE_ga-codegen"))
         .args([spec_path.as_str(), "-o"])
@@ -176,19 +180,20 @@ fn cli_flow(name: &str, main: &str) -> ga_codegen::Spec {
 
 #[test]
 fn dcga_generated_by_the_cli_compiles_matches_the_sparse_reference_and_reproduces_the_example() {
-    let spec = cli_flow("dcga", include_str!("large/dcga_main.rs"));
+    let spec = cli_flow("dcga", include_str!("large/dcga_main.rs"), &[]);
     assert_eq!(spec.metric.dim(), 10);
 }
 
 #[test]
 fn qcga_generated_by_the_cli_compiles_matches_the_sparse_reference_and_reproduces_the_examples() {
-    let spec = cli_flow("qcga", include_str!("large/qcga_main.rs"));
+    let motions = ("qcga_motions.rs", include_str!("large/qcga_motions.rs"));
+    let spec = cli_flow("qcga", include_str!("large/qcga_main.rs"), &[motions]);
     assert_eq!(spec.metric.dim(), 15);
 }
 
 #[test]
 fn mother_algebra_generated_by_the_cli_compiles_matches_the_references_and_reproduces_the_maps() {
-    let spec = cli_flow("mother", include_str!("large/mother_main.rs"));
+    let spec = cli_flow("mother", include_str!("large/mother_main.rs"), &[]);
     assert_eq!(spec.metric.dim(), 8);
     assert!(!spec.sparse_reference());
 }

@@ -323,24 +323,32 @@ pub fn unit_sandwich(
         .into_iter()
         .filter(|b| !grades.contains(&grade(*b)))
         .collect();
-    for b in stray {
-        if vanishes_on_unit_versors(alg, tv, tx, &red.get(b)) {
-            red.0.remove(&b);
+    if !stray.is_empty() {
+        // The same 16 unit versors and operands for every stray blade: drawn once.
+        if let Some(samples) = unit_versor_samples(alg, tv, tx) {
+            for b in stray {
+                let p = red.get(b);
+                if samples
+                    .iter()
+                    .all(|(v0, v1)| eval(&p, v0, v1).abs() <= 1e-9)
+                {
+                    red.0.remove(&b);
+                }
+            }
         }
     }
     (red, ideal)
 }
 
-/// True when `p` (in the fields of `tv`, operand 0, and `tx`, operand 1) is zero to 1e-9 on
-/// 16 unit versors `exp(B)` of `tv` (random generators `B` among its bivector fields,
-/// normalised) and random operands. False when the type has no bivector fields or the
-/// exponential leaves the type.
-pub fn vanishes_on_unit_versors(
+/// The fields of 16 unit versors `exp(B)` of `tv` (random generators `B` among its bivector
+/// fields, normalised), each with random fields of an operand of type `tx`, from a fixed
+/// seed (the same samples on every call). `None` when the type has no bivector fields or an
+/// exponential leaves the type (or is too small to normalise).
+pub fn unit_versor_samples(
     alg: &std::sync::Arc<crate::runtime::sparse::multivector::SparseAlgebra>,
     tv: &TypeDef,
     tx: &TypeDef,
-    p: &Poly,
-) -> bool {
+) -> Option<Vec<(Vec<f64>, Vec<f64>)>> {
     let mut rng = 0x2545_f491_4f6c_dd1du64;
     let mut next = move || {
         rng ^= rng << 13;
@@ -355,8 +363,9 @@ pub fn vanishes_on_unit_versors(
         .filter(|&b| grade(b) == 2)
         .collect();
     if biv.is_empty() {
-        return false;
+        return None;
     }
+    let mut samples = Vec::with_capacity(16);
     for _ in 0..16 {
         let mut bv = crate::runtime::sparse::multivector::SparseMultivector::zero(alg);
         for &b in &biv {
@@ -365,7 +374,7 @@ pub fn vanishes_on_unit_versors(
         let m = bv.exp();
         let n = m.norm();
         if n.is_nan() || n <= 1e-6 {
-            return false;
+            return None;
         }
         let m = m.scale(1.0 / n);
         let outside = m
@@ -374,7 +383,7 @@ pub fn vanishes_on_unit_versors(
             .map(|(_, c)| c.abs())
             .fold(0.0, f64::max);
         if outside > 1e-9 {
-            return false;
+            return None;
         }
         let v0: Vec<f64> = tv
             .fields
@@ -382,11 +391,9 @@ pub fn vanishes_on_unit_versors(
             .map(|f| f.sign as f64 * m.get(f.bitmap))
             .collect();
         let v1: Vec<f64> = tx.fields.iter().map(|_| next()).collect();
-        if eval(p, &v0, &v1).abs() > 1e-9 {
-            return false;
-        }
+        samples.push((v0, v1));
     }
-    true
+    Some(samples)
 }
 
 /// Evaluate `p` with operand 0 fields `v0` and operand 1 fields `v1` (other operands 1.0).
