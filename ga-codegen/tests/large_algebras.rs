@@ -197,3 +197,47 @@ fn mother_algebra_generated_by_the_cli_compiles_matches_the_references_and_repro
     assert_eq!(spec.metric.dim(), 8);
     assert!(!spec.sparse_reference());
 }
+
+/// Every spec in `algebras/` is checked against a generic reference by some test: the small
+/// ones by the `tests` crate (`tests/build.rs` generates them with their check harness, run by
+/// `tests/tests/generated_vs_generic.rs`), the large ones here by `cli_flow` (generating them
+/// in the `tests` crate would compile tens of thousands of lines into every workspace test
+/// build). A new spec in `algebras/` fails this test until one of the two lists names it.
+#[test]
+fn every_spec_in_algebras_is_checked_by_a_test() {
+    let workspace = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let build = std::fs::read_to_string(workspace.join("tests/build.rs")).unwrap();
+    let list = build
+        .split("for name in [")
+        .nth(1)
+        .and_then(|rest| rest.split(']').next())
+        .expect("tests/build.rs lists its specs as `for name in [...]`");
+    let small: Vec<&str> = list
+        .split(',')
+        .map(|s| s.trim().trim_matches('"'))
+        .collect();
+    let here = include_str!("large_algebras.rs");
+    let large: Vec<&str> = here
+        .split("cli_flow(\"")
+        .skip(1)
+        .filter_map(|rest| rest.split('"').next())
+        .collect();
+    assert!(
+        small.contains(&"cga") && large.contains(&"qcga"),
+        "{small:?} {large:?}"
+    );
+    let mut specs: Vec<String> = std::fs::read_dir(workspace.join("algebras"))
+        .unwrap()
+        .filter_map(|e| e.unwrap().file_name().into_string().ok())
+        .filter_map(|f| f.strip_suffix(".toml").map(str::to_string))
+        .collect();
+    specs.sort();
+    assert!(specs.len() >= 7, "{specs:?}");
+    for spec in &specs {
+        assert!(
+            small.contains(&spec.as_str()) || large.contains(&spec.as_str()),
+            "algebras/{spec}.toml is checked by no test: add it to tests/build.rs (up to 6 basis \
+             vectors) or give it a cli_flow test in ga-codegen/tests/large_algebras.rs"
+        );
+    }
+}
