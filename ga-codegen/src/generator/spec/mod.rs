@@ -62,6 +62,7 @@ mod names;
 mod sandwiches;
 mod signature;
 mod types;
+mod unit_cost;
 
 pub use error::{SpecError, SpecErrorInfo, SpecErrorKind, SpecLocation, TooLarge};
 
