@@ -275,6 +275,52 @@ fn size_budget_is_checked_before_any_product() {
     }
 }
 
+/// A unit rotor of 13 Euclidean basis vectors (all 78 bivectors) and its sandwich on vectors:
+/// the product itself is small for the budget, but checking the unit sandwich draws sample
+/// exponentials that span the 4,096 even blades (minutes of products). The budget counts that
+/// check and refuses the spec at once, naming the sandwich; without `unit` it is accepted.
+#[test]
+fn unit_sandwich_check_too_costly_is_refused_up_front() {
+    let basis: Vec<String> = (0..13).map(|i| format!("e{}", twelve_suffix(i))).collect();
+    let basis: Vec<&str> = basis.iter().map(String::as_str).collect();
+    let mut rotor: Vec<String> = vec!["s".to_string()];
+    for i in 0..13 {
+        for j in i + 1..13 {
+            rotor.push(format!("e{}{}", twelve_suffix(i), twelve_suffix(j)));
+        }
+    }
+    let rotor: Vec<&str> = rotor.iter().map(String::as_str).collect();
+    let spec = |unit: bool| {
+        let mut raw = diagonal_spec(&basis, &[1.0; 13], &[("Vector", &basis), ("Rotor", &rotor)]);
+        raw.types[1].versor = true;
+        raw.types[1].unit = unit;
+        raw.sandwich = vec![ga_codegen::generator::spec::RawSandwich {
+            versor: "Rotor".to_string(),
+            operand: "Vector".to_string(),
+            output: Some("Vector".to_string()),
+        }];
+        raw
+    };
+    let start = std::time::Instant::now();
+    let e = refused(spec(true));
+    assert!(start.elapsed().as_secs_f64() < 2.0, "{:?}", start.elapsed());
+    assert!(
+        matches!(e.kind, SpecErrorKind::TooLarge(TooLarge::Work { .. })),
+        "{e}"
+    );
+    assert_eq!(e.location, SpecLocation::Sandwich(0), "{e}");
+    assert_eq!(e.type_name.as_deref(), Some("Rotor"), "{e}");
+    let text = e.to_string();
+    for part in [
+        "the sandwich of `Vector` (13 blades) by the unit versor `Rotor` (79 blades)",
+        "sample unit versors",
+        "more than 1024 blades",
+    ] {
+        assert!(text.contains(part), "{part:?} not in: {text}");
+    }
+    Spec::from_raw(spec(false), "rotor13.toml").expect("without `unit`, no sample check");
+}
+
 /// The one-letter suffix of basis vector `i` (`a`, `b`, ...).
 fn twelve_suffix(i: u8) -> char {
     (b'a' + i) as char

@@ -115,12 +115,18 @@ impl UnitIdeal {
     /// Every equivalent is `base + sum c_i row_i` with `base` the pivot-free form of `p`. With
     /// `m` rows, a shortest one zeroes `m` independent monomials: every choice of `m` of the
     /// monomials the rows touch is solved when there are few; otherwise a coordinate descent
-    /// over the `c_i` is used.
+    /// over the `c_i` is used. A `base` of at most one term is returned at once: no
+    /// equivalent is shorter (only a `p` in the span has an equivalent of no terms, and then
+    /// `base` is zero).
     pub fn reduce(&self, p: &Poly) -> Poly {
         if self.rows.is_empty() || p.is_zero() {
             return p.clone();
         }
         let base = self.eliminate(p);
+        let shortest = |q: Poly| if q.0.len() < p.0.len() { q } else { p.clone() };
+        if base.0.len() <= 1 {
+            return shortest(base);
+        }
         let m = self.rows.len();
         // Monomials the rows touch; only these can change.
         let touched: Vec<Monomial> = self
@@ -130,17 +136,33 @@ impl UnitIdeal {
             .collect::<BTreeSet<_>>()
             .into_iter()
             .collect();
-        // Only rows whose monomials meet `base` or each other matter: a row that touches no
-        // term of `base` can only add terms unless combined; keep every row (m is small).
-        let eval = |c: &[Rational]| -> Poly {
-            let mut q = base.clone();
-            for (ci, (_, row)) in c.iter().zip(&self.rows) {
-                if !ci.is_zero() {
-                    q.add_scaled(row, *ci);
-                }
-            }
+        if binomial(touched.len(), m) <= 4096 {
+            return self.reduce_by_choices(p, &base, &touched);
+        }
+        let best = shortest(base.clone());
+        let q = self.reduce_by_descent(base);
+        if q.0.len() < best.0.len() {
             q
-        };
+        } else {
+            best
+        }
+    }
+
+    /// `base + sum c_i row_i`.
+    fn combine(&self, base: &Poly, c: &[Rational]) -> Poly {
+        let mut q = base.clone();
+        for (ci, (_, row)) in c.iter().zip(&self.rows) {
+            if !ci.is_zero() {
+                q.add_scaled(row, *ci);
+            }
+        }
+        q
+    }
+
+    /// The shortest of `p`, `base` and the equivalents that zero each choice of `m` of the
+    /// `touched` monomials (the first found among equally short ones).
+    fn reduce_by_choices(&self, p: &Poly, base: &Poly, touched: &[Monomial]) -> Poly {
+        let (m, n) = (self.rows.len(), touched.len());
         let mut best = p.clone();
         let consider = |q: Poly, best: &mut Poly| {
             if q.0.len() < best.0.len() {
@@ -148,76 +170,100 @@ impl UnitIdeal {
             }
         };
         consider(base.clone(), &mut best);
-        let n = touched.len();
-        if binomial(n, m) <= 4096 {
-            // Row coefficient of row i on monomial u, and base's value there.
-            let mut idx: Vec<usize> = (0..m).collect();
+        // Row coefficient of row i on monomial u, and base's value there.
+        let mut idx: Vec<usize> = (0..m).collect();
+        loop {
+            let mut a: Vec<Vec<Rational>> = idx
+                .iter()
+                .map(|&u| {
+                    let mono = &touched[u];
+                    let mut eq: Vec<Rational> = self
+                        .rows
+                        .iter()
+                        .map(|(_, r)| r.0.get(mono).copied().unwrap_or(Rational::ZERO))
+                        .collect();
+                    eq.push(-base.0.get(mono).copied().unwrap_or(Rational::ZERO));
+                    eq
+                })
+                .collect();
+            if let Some(c) = solve(&mut a, m) {
+                consider(self.combine(base, &c), &mut best);
+            }
+            // Next combination.
+            let mut i = m;
             loop {
-                let mut a: Vec<Vec<Rational>> = idx
-                    .iter()
-                    .map(|&u| {
-                        let mono = &touched[u];
-                        let mut eq: Vec<Rational> = self
-                            .rows
-                            .iter()
-                            .map(|(_, r)| r.0.get(mono).copied().unwrap_or(Rational::ZERO))
-                            .collect();
-                        eq.push(-base.0.get(mono).copied().unwrap_or(Rational::ZERO));
-                        eq
-                    })
-                    .collect();
-                if let Some(c) = solve(&mut a, m) {
-                    consider(eval(&c), &mut best);
+                if i == 0 {
+                    return best;
                 }
-                // Next combination.
-                let mut i = m;
-                loop {
-                    if i == 0 {
-                        return best;
+                i -= 1;
+                if idx[i] < n - m + i {
+                    idx[i] += 1;
+                    for j in i + 1..m {
+                        idx[j] = idx[j - 1] + 1;
                     }
-                    i -= 1;
-                    if idx[i] < n - m + i {
-                        idx[i] += 1;
-                        for j in i + 1..m {
-                            idx[j] = idx[j - 1] + 1;
-                        }
-                        break;
-                    }
+                    break;
                 }
             }
         }
-        // Coordinate descent.
+    }
+
+    /// Coordinate descent from `base` (all `c_i` zero): for each row in turn, try the
+    /// coefficients that cancel one of its monomials and keep one that makes fewer terms;
+    /// at most 8 passes. The polynomial is updated by one row per accepted step and each
+    /// trial only counts terms, so a pass costs the rows' terms, not `m` full combinations.
+    fn reduce_by_descent(&self, base: Poly) -> Poly {
+        let m = self.rows.len();
         let mut c = vec![Rational::ZERO; m];
-        let mut cur = eval(&c).0.len();
+        let mut now = base;
         for _ in 0..8 {
             let mut improved = false;
             for i in 0..m {
                 let row = &self.rows[i].1;
-                let now = eval(&c);
+                // `now` is the combination with `c[i]` at `start`; a trial `v` adds
+                // `(v - start) row`.
+                let start = c[i];
                 let cands: Vec<Rational> = row
                     .0
                     .iter()
-                    .map(|(mono, &r)| c[i] - now.0.get(mono).copied().unwrap_or(Rational::ZERO) / r)
+                    .map(|(mono, &r)| {
+                        start - now.0.get(mono).copied().unwrap_or(Rational::ZERO) / r
+                    })
                     .collect();
+                let mut cur = now.0.len();
                 for v in cands {
-                    let old = c[i];
-                    c[i] = v;
-                    let k = eval(&c).0.len();
+                    let k = terms_after(&now, row, v - start);
                     if k < cur {
                         cur = k;
+                        c[i] = v;
                         improved = true;
-                    } else {
-                        c[i] = old;
                     }
+                }
+                if c[i] != start {
+                    now.add_scaled(row, c[i] - start);
                 }
             }
             if !improved {
                 break;
             }
         }
-        consider(eval(&c), &mut best);
-        best
+        now
     }
+}
+
+/// The number of terms of `now + d row`, without building it.
+fn terms_after(now: &Poly, row: &Poly, d: Rational) -> usize {
+    if d.is_zero() {
+        return now.0.len();
+    }
+    let mut k = now.0.len();
+    for (mono, &r) in &row.0 {
+        match now.0.get(mono) {
+            Some(&x) if (x + r * d).is_zero() => k -= 1,
+            Some(_) => {}
+            None => k += 1,
+        }
+    }
+    k
 }
 
 fn binomial(n: usize, k: usize) -> usize {
@@ -323,25 +369,43 @@ pub fn unit_sandwich(
         .into_iter()
         .filter(|b| !grades.contains(&grade(*b)))
         .collect();
-    for b in stray {
-        if vanishes_on_unit_versors(alg, tv, tx, &red.get(b)) {
-            red.0.remove(&b);
+    if !stray.is_empty() {
+        // The same 16 unit versors and operands for every stray blade: drawn once.
+        if let Some(samples) = unit_versor_samples(alg, tv, tx, SAMPLES_SEED) {
+            for b in stray {
+                let p = red.get(b);
+                if samples
+                    .iter()
+                    .all(|(v0, v1)| eval(&p, v0, v1).abs() <= 1e-9)
+                {
+                    red.0.remove(&b);
+                }
+            }
         }
     }
     (red, ideal)
 }
 
-/// True when `p` (in the fields of `tv`, operand 0, and `tx`, operand 1) is zero to 1e-9 on
-/// 16 unit versors `exp(B)` of `tv` (random generators `B` among its bivector fields,
-/// normalised) and random operands. False when the type has no bivector fields or the
-/// exponential leaves the type.
-pub fn vanishes_on_unit_versors(
+/// The seed of the samples that decide which stray blades of a unit sandwich are dropped.
+const SAMPLES_SEED: u64 = 0x2545_f491_4f6c_dd1d;
+
+/// Terms of a sample exponential's products below this fraction of their largest
+/// coefficient are rounding noise, dropped ([`SparseMultivector::exp_pruned`]).
+///
+/// [`SparseMultivector::exp_pruned`]: crate::runtime::sparse::multivector::SparseMultivector::exp_pruned
+const EXP_NOISE: f64 = 1e-13;
+
+/// The fields of 16 unit versors `exp(B)` of `tv` (random generators `B` among its bivector
+/// fields, normalised), each with random fields of an operand of type `tx`, drawn from
+/// `seed` (the same samples on every call with it). `None` when the type has no bivector
+/// fields or an exponential leaves the type (or is too small to normalise).
+pub fn unit_versor_samples(
     alg: &std::sync::Arc<crate::runtime::sparse::multivector::SparseAlgebra>,
     tv: &TypeDef,
     tx: &TypeDef,
-    p: &Poly,
-) -> bool {
-    let mut rng = 0x2545_f491_4f6c_dd1du64;
+    seed: u64,
+) -> Option<Vec<(Vec<f64>, Vec<f64>)>> {
+    let mut rng = seed;
     let mut next = move || {
         rng ^= rng << 13;
         rng ^= rng >> 7;
@@ -355,17 +419,18 @@ pub fn vanishes_on_unit_versors(
         .filter(|&b| grade(b) == 2)
         .collect();
     if biv.is_empty() {
-        return false;
+        return None;
     }
+    let mut samples = Vec::with_capacity(16);
     for _ in 0..16 {
         let mut bv = crate::runtime::sparse::multivector::SparseMultivector::zero(alg);
         for &b in &biv {
             bv.set(b, next());
         }
-        let m = bv.exp();
+        let m = bv.exp_pruned(EXP_NOISE);
         let n = m.norm();
         if n.is_nan() || n <= 1e-6 {
-            return false;
+            return None;
         }
         let m = m.scale(1.0 / n);
         let outside = m
@@ -374,7 +439,7 @@ pub fn vanishes_on_unit_versors(
             .map(|(_, c)| c.abs())
             .fold(0.0, f64::max);
         if outside > 1e-9 {
-            return false;
+            return None;
         }
         let v0: Vec<f64> = tv
             .fields
@@ -382,11 +447,9 @@ pub fn vanishes_on_unit_versors(
             .map(|f| f.sign as f64 * m.get(f.bitmap))
             .collect();
         let v1: Vec<f64> = tx.fields.iter().map(|_| next()).collect();
-        if eval(p, &v0, &v1).abs() > 1e-9 {
-            return false;
-        }
+        samples.push((v0, v1));
     }
-    true
+    Some(samples)
 }
 
 /// Evaluate `p` with operand 0 fields `v0` and operand 1 fields `v1` (other operands 1.0).
@@ -456,6 +519,40 @@ mod tests {
                     );
                 }
             }
+        }
+    }
+
+    /// QCGA's translator generator `B = sum e_i u_i` (`u_i` among the null `ei` vectors) is
+    /// nilpotent (`B^4 = 0`), so `exp(B) = 1 + B + B^2/2 + B^3/6` exactly: the pruned
+    /// exponential the samples use equals that polynomial and has no blade outside the type
+    /// (the unpruned one carries about 90 blades of rounding noise).
+    #[test]
+    fn pruned_exponential_of_a_qcga_translator_is_its_polynomial() {
+        let s = spec("qcga");
+        let alg =
+            crate::runtime::sparse::multivector::SparseAlgebra::try_new(s.metric.clone()).unwrap();
+        let tv = ty(&s, "Translator");
+        let mut bv = crate::runtime::sparse::multivector::SparseMultivector::zero(&alg);
+        for (i, f) in tv
+            .fields
+            .iter()
+            .filter(|f| grade(f.bitmap) == 2)
+            .enumerate()
+        {
+            bv.set(f.bitmap, 0.9 - 0.23 * i as f64);
+        }
+        let m = bv.exp_pruned(EXP_NOISE);
+        let b2 = bv.gp(&bv);
+        let b3 = b2.gp(&bv);
+        assert!(b3.gp(&bv).max_abs() < 1e-12, "B^4 = 0 up to rounding");
+        let poly = crate::runtime::sparse::multivector::SparseMultivector::scalar(&alg, 1.0)
+            .add_scaled(&bv, 1.0)
+            .add_scaled(&b2, 0.5)
+            .add_scaled(&b3, 1.0 / 6.0);
+        assert!(m.max_diff(&poly) < 1e-12, "{}", m.max_diff(&poly));
+        let blades: BTreeSet<u32> = tv.blades().collect();
+        for (b, c) in m.terms() {
+            assert!(blades.contains(&b), "blade {b:#b} ({c:e}) outside the type");
         }
     }
 

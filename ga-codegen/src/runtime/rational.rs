@@ -26,6 +26,17 @@ const OVERFLOW: &str =
 
 fn gcd(a: i128, b: i128) -> u128 {
     let (mut a, mut b) = (a.unsigned_abs(), b.unsigned_abs());
+    if a == 1 || b == 1 {
+        return 1;
+    }
+    if let (Ok(x), Ok(y)) = (u64::try_from(a), u64::try_from(b)) {
+        // The same Euclid in 64 bits: one machine division a step instead of a 128-bit call.
+        let (mut x, mut y) = (x, y);
+        while y != 0 {
+            (x, y) = (y, x % y);
+        }
+        return x.into();
+    }
     while b != 0 {
         let t = a % b;
         a = b;
@@ -110,6 +121,12 @@ impl Rational {
                     .collect()
             })
             .collect()
+    }
+
+    /// The integer `num` (what `checked_new(num, 1)` gives, without its gcd); `None` for
+    /// `i128::MIN`, whose negation does not fit.
+    fn integer(num: i128) -> Option<Rational> {
+        (num != i128::MIN).then_some(Rational { num, den: 1 })
     }
 
     /// `num / den`, reduced; `None` when `den == 0` or the value does not fit.
@@ -242,6 +259,9 @@ impl Rational {
 
     /// `self + o`, or `None` on overflow.
     pub fn checked_add(self, o: Rational) -> Option<Rational> {
+        if self.den == 1 && o.den == 1 {
+            return Rational::integer(self.num.checked_add(o.num)?);
+        }
         let g = i128::try_from(gcd(self.den, o.den)).ok()?;
         let (da, db) = (self.den / g, o.den / g);
         let num = self
@@ -259,6 +279,23 @@ impl Rational {
     /// `self * o`, or `None` on overflow (cross-reduced first, so a product that fits is
     /// always found).
     pub fn checked_mul(self, o: Rational) -> Option<Rational> {
+        if self.den == 1 && o.den == 1 {
+            return Rational::integer(self.num.checked_mul(o.num)?);
+        }
+        if let (Ok(a), Ok(b), Ok(c), Ok(d)) = (
+            i64::try_from(self.num),
+            i64::try_from(self.den),
+            i64::try_from(o.num),
+            i64::try_from(o.den),
+        ) {
+            // The same cross-reduction in 64 bits; the result is then already reduced, with
+            // a positive denominator (what `checked_new` would return).
+            let g1 = (gcd(a.into(), d.into()).max(1)) as i64;
+            let g2 = (gcd(c.into(), b.into()).max(1)) as i64;
+            let num = i128::from(a / g1) * i128::from(c / g2);
+            let den = i128::from(b / g2) * i128::from(d / g1);
+            return (num != i128::MIN).then_some(Rational { num, den });
+        }
         let g1 = i128::try_from(gcd(self.num, o.den).max(1)).ok()?;
         let g2 = i128::try_from(gcd(o.num, self.den).max(1)).ok()?;
         let num = (self.num / g1).checked_mul(o.num / g2)?;
@@ -377,6 +414,59 @@ mod tests {
         assert_eq!(a * b, Rational::new(1, 18));
         assert_eq!(a / b, Rational::int(2));
         assert_eq!(Rational::new(2, -4), Rational::new(-1, 2));
+    }
+
+    /// The integer and 64-bit routes of `checked_mul` and `checked_add` (and of `gcd`) give
+    /// what the general 128-bit route gives: `checked_new` of the plain cross products.
+    #[test]
+    fn fast_paths_match_the_general_route() {
+        let big = 1i128 << 70;
+        let values: Vec<Rational> = [
+            (0, 1),
+            (1, 1),
+            (-1, 1),
+            (7, 1),
+            (-12, 1),
+            (1, 2),
+            (-3, 2),
+            (5, 6),
+            (-14, 15),
+            (i64::MAX as i128, 1),
+            (i64::MIN as i128 + 1, 3),
+            (big + 1, 1),
+            (-big, 3),
+            (3, big + 1),
+            (1, (1 << 62) + 1),
+        ]
+        .iter()
+        .map(|&(n, d)| Rational::new(n, d))
+        .collect();
+        for &a in &values {
+            for &b in &values {
+                let mul = a
+                    .num
+                    .checked_mul(b.num)
+                    .zip(a.den.checked_mul(b.den))
+                    .and_then(|(n, d)| Rational::checked_new(n, d));
+                if let Some(m) = mul {
+                    assert_eq!(a.checked_mul(b), Some(m), "{a:?} * {b:?}");
+                }
+                let add = a
+                    .num
+                    .checked_mul(b.den)
+                    .zip(b.num.checked_mul(a.den))
+                    .and_then(|(x, y)| x.checked_add(y))
+                    .zip(a.den.checked_mul(b.den))
+                    .and_then(|(n, d)| Rational::checked_new(n, d));
+                if let Some(s) = add {
+                    assert_eq!(a.checked_add(b), Some(s), "{a:?} + {b:?}");
+                }
+            }
+        }
+        assert_eq!(gcd(12, 18), 6);
+        assert_eq!(gcd(big * 6, big * 4), (big * 2) as u128);
+        assert_eq!(gcd(0, 5), 5);
+        assert_eq!(gcd(1, 0), 1);
     }
 
     #[test]

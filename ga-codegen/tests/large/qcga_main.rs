@@ -3,6 +3,10 @@
 // generated types. Built and run by `ga-codegen/tests/large_algebras.rs`.
 use large_flow_qcga::qcga::{self, *};
 
+mod motions {
+    include!("qcga_motions.rs");
+}
+
 /// The QCGA point of `x` (the paper's embedding; `eo1 = eo2 = eo3 = 1` are not stored).
 fn point([x, y, z]: [f64; 3]) -> Point {
     Point {
@@ -57,6 +61,21 @@ fn transpose(m: M3) -> M3 {
     [0, 1, 2].map(|r| [0, 1, 2].map(|c| m[c][r]))
 }
 
+/// The ten implicit coefficients of `(x - c)^T M (x - c) - 1`.
+fn ellipsoid_coeffs(m: M3, c: [f64; 3]) -> [f64; 10] {
+    let mc = apply(m, c);
+    let cmc: f64 = c.iter().zip(mc).map(|(a, b)| a * b).sum();
+    [
+        m[0][0], m[1][1], m[2][2], 2.0 * m[0][1], 2.0 * m[0][2], 2.0 * m[1][2],
+        -2.0 * mc[0], -2.0 * mc[1], -2.0 * mc[2], cmc - 1.0,
+    ]
+}
+
+/// `a x^2 + b y^2 + c z^2 + d xy + e xz + f yz + g x + h y + i z + j` at `p`.
+fn implicit([a, b, c, d, e, f, g, h, i, j]: [f64; 10], [x, y, z]: [f64; 3]) -> f64 {
+    a * x * x + b * y * y + c * z * z + d * x * y + e * x * z + f * y * z + g * x + h * y + i * z + j
+}
+
 fn close(a: f64, b: f64, scale: f64) -> bool {
     (a - b).abs() < 1e-9 * scale
 }
@@ -81,17 +100,8 @@ fn main() {
     let rot = mul([[c1, -s1, 0.0], [s1, c1, 0.0], [0.0, 0.0, 1.0]], [[1.0, 0.0, 0.0], [0.0, c2, -s2], [0.0, s2, c2]]);
     let diag = [0, 1, 2].map(|r| [0, 1, 2].map(|c| if r == c { 1.0 / (axes[r] * axes[r]) } else { 0.0 }));
     let m = mul(mul(rot, diag), transpose(rot));
-    let mc = apply(m, centre);
-    let cmc: f64 = centre.iter().zip(mc).map(|(a, b)| a * b).sum();
-    let coeffs = [
-        m[0][0], m[1][1], m[2][2], 2.0 * m[0][1], 2.0 * m[0][2], 2.0 * m[1][2],
-        -2.0 * mc[0], -2.0 * mc[1], -2.0 * mc[2], cmc - 1.0,
-    ];
-    let implicit = |p: [f64; 3]| {
-        let [a, b, c, d, e, f, g, h, i, j] = coeffs;
-        let [x, y, z] = p;
-        a * x * x + b * y * y + c * z * z + d * x * y + e * x * z + f * y * z + g * x + h * y + i * z + j
-    };
+    let coeffs = ellipsoid_coeffs(m, centre);
+    let implicit = |p: [f64; 3]| implicit(coeffs, p);
     let on_surface = |u: f64, v: f64| {
         let local = [axes[0] * u.cos() * v.sin(), axes[1] * u.sin() * v.sin(), axes[2] * v.cos()];
         let p = apply(rot, local);
@@ -141,5 +151,9 @@ fn main() {
         let (got, want) = (point(off) | q9, ratio * implicit(off));
         assert!(close(got, want, scale * (1.0 + implicit(off).abs())), "{off:?}: {got} vs {want}");
     }
+
+    motions::translations(m, centre);
+    motions::rotations(m, centre);
+    motions::intersections(m, centre);
     println!("ok");
 }

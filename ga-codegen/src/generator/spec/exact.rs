@@ -29,6 +29,7 @@ use crate::runtime::blade::Bitmap;
 use crate::runtime::metric::{Metric, MetricError};
 use crate::runtime::rational::Rational;
 use crate::runtime::sparse::blades::BladeProducts;
+use std::collections::HashSet;
 
 /// Bits of a positive integer (1 for 0 and 1).
 fn bits(x: u128) -> u32 {
@@ -128,9 +129,13 @@ fn products(
     declared.extend([0, full]);
     declared.sort_unstable();
     declared.dedup();
+    // Each blade pair once: a sandwich's middle blades are often declared ones, and two
+    // sandwiches of one versor share most of theirs.
+    let mut pairs: HashSet<(Bitmap, Bitmap)> = HashSet::new();
     let mut table = Vec::new();
     for &a in &declared {
         for &b in &declared {
+            pairs.insert((a, b));
             table.push(c.product(a, b)?);
         }
     }
@@ -146,7 +151,9 @@ fn products(
         middle.dedup();
         for &k in &middle {
             for &v in &versor {
-                table.push(c.product(k, v)?);
+                if pairs.insert((k, v)) {
+                    table.push(c.product(k, v)?);
+                }
             }
         }
     }

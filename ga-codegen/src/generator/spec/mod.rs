@@ -48,8 +48,9 @@
 //!   prefix-free (not `e1` with `e12`), so every blade name reads one way, in linear time.
 //! - Type names are UpperCamelCase, not keywords, not `Scalar`, `Sandwich`, `F64x2`, `F32x4`,
 //!   and do not end in `Matrix` (the generated versor matrices are `<Versor><Operand>Matrix`).
-//! - The spec must fit the size budget ([`budget`]): at most 8 basis vectors and an estimated
-//!   work proportional to the code emitted.
+//! - The spec must fit the size budget ([`budget`]): at most 16 basis vectors and an estimated
+//!   work proportional to the code emitted (with `unit_cost`, the check of each unit versor's
+//!   sandwich on sample unit versors).
 //!
 //! Validation runs in phases, one module each: `metric` (basis and metric),
 //! `types`, `sandwiches`, [`budget`], `exact`. Every error carries a [`SpecLocation`].
@@ -62,6 +63,7 @@ mod names;
 mod sandwiches;
 mod signature;
 mod types;
+mod unit_cost;
 
 pub use error::{SpecError, SpecErrorInfo, SpecErrorKind, SpecLocation, TooLarge};
 

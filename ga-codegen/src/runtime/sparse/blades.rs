@@ -11,7 +11,7 @@ use crate::runtime::blade::{reorder_sign, Bitmap};
 use crate::runtime::metric::Metric;
 use crate::runtime::rational::Rational;
 use std::collections::HashMap;
-use std::sync::Mutex;
+use std::sync::{Arc, Mutex};
 
 /// The orthogonal basis of a metric and the blade expansions computed so far.
 #[derive(Debug)]
@@ -21,8 +21,8 @@ pub struct BladeProducts {
     /// `to_e_rows[k]`: orthogonal vector `f_k` in the user's basis.
     to_e_rows: Vec<Exact>,
     squares: Vec<Rational>,
-    to_f: Mutex<HashMap<Bitmap, Exact>>,
-    to_e: Mutex<HashMap<Bitmap, Exact>>,
+    to_f: Mutex<HashMap<Bitmap, Arc<Exact>>>,
+    to_e: Mutex<HashMap<Bitmap, Arc<Exact>>>,
 }
 
 /// Rows of a matrix as sparse vectors (`row[k]` multiplies basis vector `k`).
@@ -38,17 +38,22 @@ fn sparse_rows(m: &[Vec<Rational>]) -> Vec<Exact> {
         .collect()
 }
 
-/// The outer product of the vectors `rows[i]` for every bit `i` of `b`, memoised in `memo`.
-fn expand(rows: &[Exact], memo: &Mutex<HashMap<Bitmap, Exact>>, b: Bitmap) -> Option<Exact> {
+/// The outer product of the vectors `rows[i]` for every bit `i` of `b`, memoised in `memo`
+/// (shared, not copied, by every product that asks for it).
+fn expand(
+    rows: &[Exact],
+    memo: &Mutex<HashMap<Bitmap, Arc<Exact>>>,
+    b: Bitmap,
+) -> Option<Arc<Exact>> {
     if let Some(x) = memo.lock().ok()?.get(&b) {
         return Some(x.clone());
     }
     let x = if b == 0 {
-        Exact::from([(0, Rational::ONE)])
+        Arc::new(Exact::from([(0, Rational::ONE)]))
     } else {
         let i = b.trailing_zeros() as usize;
         let rest = expand(rows, memo, b & !(1 << i))?;
-        checked_wedge(&rows[i], &rest)?
+        Arc::new(checked_wedge(&rows[i], &rest)?)
     };
     memo.lock().ok()?.insert(b, x.clone());
     Some(x)
@@ -74,12 +79,12 @@ impl BladeProducts {
     }
 
     /// Blade `e_a` of the user's basis in the orthogonal basis; `None` on overflow.
-    pub fn to_orthogonal(&self, a: Bitmap) -> Option<Exact> {
+    pub fn to_orthogonal(&self, a: Bitmap) -> Option<Arc<Exact>> {
         expand(&self.to_f_rows, &self.to_f, a)
     }
 
     /// Orthogonal blade `f_k` in the user's basis; `None` on overflow.
-    pub fn to_user(&self, k: Bitmap) -> Option<Exact> {
+    pub fn to_user(&self, k: Bitmap) -> Option<Arc<Exact>> {
         expand(&self.to_e_rows, &self.to_e, k)
     }
 
@@ -87,8 +92,8 @@ impl BladeProducts {
     pub fn product(&self, a: Bitmap, b: Bitmap) -> Option<Exact> {
         let (fa, fb) = (self.to_orthogonal(a)?, self.to_orthogonal(b)?);
         let mut prod_f = Exact::new();
-        for (&x, &cx) in &fa {
-            for (&y, &cy) in &fb {
+        for (&x, &cx) in fa.iter() {
+            for (&y, &cy) in fb.iter() {
                 let mut c = signed(cx.checked_mul(cy)?, reorder_sign(x, y));
                 let common = x & y;
                 for (k, dk) in self.squares.iter().enumerate() {
@@ -101,7 +106,7 @@ impl BladeProducts {
         }
         let mut prod_e = Exact::new();
         for (&k, &c) in &prod_f {
-            for (&e, &ce) in &self.to_user(k)? {
+            for (&e, &ce) in self.to_user(k)?.iter() {
                 add_term(&mut prod_e, e, c.checked_mul(ce)?)?;
             }
         }

@@ -270,6 +270,18 @@ impl SparseMultivector {
     /// Exponential by scaling and squaring of the Taylor series, as the dense
     /// [`Multivector::exp`](crate::runtime::multivector::Multivector::exp).
     pub fn exp(&self) -> SparseMultivector {
+        self.exp_pruned(0.0)
+    }
+
+    /// [`exp`](Self::exp) with every product's terms below `rel` times its largest
+    /// coefficient dropped as they are made (`rel = 0` drops nothing: `exp` itself).
+    ///
+    /// In a null basis the rounding of `f64` sums leaves terms of about `1e-17` on blades
+    /// whose exact coefficient is zero; every squaring multiplies them into more blades, each
+    /// a new blade pair to compute exactly (QCGA's 51-blade translator: 145 blades and 21,000
+    /// pairs instead of 51 and 2,600). A `rel` of `1e-13` drops that noise and nothing of
+    /// the size a true coefficient has.
+    pub fn exp_pruned(&self, rel: f64) -> SparseMultivector {
         let norm: f64 = self.c.values().map(|x| x.abs()).sum();
         let mut k = 0;
         while norm / f64::powi(2.0, k) > 0.25 && k < 60 {
@@ -279,16 +291,25 @@ impl SparseMultivector {
         let mut sum = SparseMultivector::scalar(&self.alg, 1.0);
         let mut term = SparseMultivector::scalar(&self.alg, 1.0);
         for i in 1..30 {
-            term = term.gp(&x).scale(1.0 / i as f64);
+            term = term.gp(&x).pruned(rel).scale(1.0 / i as f64);
             sum = sum.add_scaled(&term, 1.0);
             if term.max_abs() < 1e-18 {
                 break;
             }
         }
         for _ in 0..k {
-            sum = sum.gp(&sum);
+            sum = sum.gp(&sum).pruned(rel);
         }
         sum
+    }
+
+    /// Without the terms below `rel` times the largest coefficient (`self` for `rel = 0`).
+    fn pruned(mut self, rel: f64) -> SparseMultivector {
+        if rel > 0.0 {
+            let floor = rel * self.max_abs();
+            self.c.retain(|_, x| x.abs() >= floor);
+        }
+        self
     }
 }
 
