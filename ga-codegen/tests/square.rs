@@ -50,7 +50,9 @@ fn a_dual_line_squares_to_a_dual_number() {
         .find("impl ::core::ops::Mul<DualLine> for DualLine {")
         .expect("DualLine * DualLine");
     assert!(
-        code[mul..].starts_with("impl ::core::ops::Mul<DualLine> for DualLine {\n    type Output = Motor;"),
+        code[mul..].starts_with(
+            "impl ::core::ops::Mul<DualLine> for DualLine {\n    type Output = Motor;"
+        ),
         "{}",
         &code[mul..mul + 120]
     );

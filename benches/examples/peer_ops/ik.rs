@@ -27,7 +27,9 @@
 
 use cga::f64::{Exp as _, Sandwich as _};
 use cga::glam::DVec3;
-use cga::{Bivector, DualLine, DualNumber, Motor, Odd, Point, Rotor, Translator, Trivector, Vector};
+use cga::{
+    Bivector, DualLine, DualNumber, Motor, Odd, Point, Rotor, Translator, Trivector, Vector,
+};
 
 /// The outputs of one solve.
 #[derive(Clone, Copy, Debug)]

@@ -33,9 +33,10 @@ impl Gen<'_> {
     /// squares of lines) does not change the type a `log` returns.
     pub(crate) fn log_type(&self, vt: &TypeDef) -> Option<usize> {
         let g2: Vec<Bitmap> = grade_part(&SymMv::of_type(vt, 0), 2).support();
-        self.spec.types.iter().position(|t| {
-            is_bivector(t) && g2.iter().all(|b| t.blades().any(|x| x == *b))
-        })
+        self.spec
+            .types
+            .iter()
+            .position(|t| is_bivector(t) && g2.iter().all(|b| t.blades().any(|x| x == *b)))
     }
 
     /// The [`Preamble`] of `V` in `cx` (operand 0 is `V`); `sign` multiplies `p` and `r4`
