@@ -7,13 +7,17 @@
 //! Taylor series `expp` ([`Taylor`], the same products as GATL's) or our closed form
 //! ([`Closed`], the generated `Exp` impls).
 //!
-//! Types: a line (the generator of a joint) is a [`Motor`] whose `s` and `e123i` are zero (a
-//! dual line has only the six blades `e12 e13 e23 e1i e2i e3i`, and `Motor * Motor` is closed),
-//! joint 1's generator a [`Rotor`], the translation generator a [`Translator`]. The series
+//! Types: a line (the generator of a joint) is a [`DualLine`] (the six blades `e12 e13 e23 e1i
+//! e2i e3i`), joint 1's generator a [`Rotor`], the translation generator a [`Translator`]. The
+//! series takes `x^2` by the generated `square` (expanded in one set of coefficients, as GATL's
+//! lazy `x * x`: a line's square keeps only its scalar and `e123i`, a [`DualNumber`]), `x^3` as
+//! `x^2 x` and `x^4` as `(x^2)^2`: the same polynomial, its powers by fewer products. The series
 //! versors are not unit (`R ~R != 1`), so there `apply_rotor(R, X) = R X ~R` is the two full
-//! geometric products, as in GATL; the closed-form versors are unit, and [`Closed`] moves
-//! points by the generated unit-reduced `sandwich` (lines still by the two products, cheaper
-//! than the fused bivector sandwich; GATL's closed-form side keeps ga-benchmark's `apply_rotor`).
+//! geometric products, as in GATL (of a line: its bivector part, the part GATL's lazy product
+//! keeps, so a moved line is a `DualLine` again); the closed-form versors are unit, and
+//! [`Closed`] moves points by the generated unit-reduced `sandwich` (lines still by the two
+//! products, cheaper than the fused bivector sandwich; GATL's closed-form side keeps
+//! ga-benchmark's `apply_rotor`).
 //!
 //! Blade order and signs against GATL: the same as the other CGA rows (GATL's basis `e1, e2,
 //! e3, no, ni` against our `eo, e1, e2, e3, ei`, one sign per blade from sorting; for the
@@ -23,8 +27,9 @@
 
 use cga::f64::{Exp as _, Sandwich as _};
 use cga::glam::DVec3;
-use cga::{Bivector, Motor, Odd, Point, Rotor, Translator, Trivector, Vector};
-use std::ops::{Add, Div, Mul};
+use cga::{
+    Bivector, DualLine, DualNumber, Motor, Odd, Point, Rotor, Translator, Trivector, Vector,
+};
 
 /// The outputs of one solve.
 #[derive(Clone, Copy, Debug)]
@@ -82,11 +87,11 @@ pub trait Exponential {
     fn rotor(x: Rotor) -> Rotor;
     /// `exp` of a generator on `e1i e2i e3i`.
     fn translator(x: Translator) -> Translator;
-    /// `exp` of a line (a motor with zero `s`; its `e123i` rounding is kept, as GATL keeps it).
-    fn motor(x: Motor) -> Motor;
+    /// `exp` of a line.
+    fn motor(x: DualLine) -> Motor;
     /// `apply_rotor(v, x)` of a line: the full products (the series' versors are not unit).
     #[inline(always)]
-    fn move_line<V: Versor>(v: V, x: Motor) -> Motor {
+    fn move_line<V: Versor>(v: V, x: DualLine) -> DualLine {
         v.line_full(x)
     }
     /// `apply_rotor(v, p)` of a point.
@@ -96,55 +101,53 @@ pub trait Exponential {
     }
 }
 
-/// ga-benchmark's `expp`: `1 + x + x^2/2 + x^3/6 + x^4/24`, evaluated left to right.
+/// ga-benchmark's `expp`: `1 + x + x^2/2 + x^3/6 + x^4/24`, summed left to right, with
+/// `x^2 = x.square()`, `x^3 = x^2 x`, `x^4 = (x^2).square()`.
 pub struct Taylor;
 
 /// The generated closed-form exponentials (`Exp<Rotor>`, `Exp<Translator>`, `Exp<Motor>` of a
-/// [`Bivector`]).
+/// [`DualLine`]).
 pub struct Closed;
 
-/// The series `1 + x + x^2/2 + x^3/6 + x^4/24` by the type's own products.
-#[inline(always)]
-fn expp<T>(one: T, x: T) -> T
-where
-    T: Copy + Mul<Output = T> + Add<Output = T> + Div<f64, Output = T>,
-{
-    let x2 = x * x;
-    let x3 = x2 * x;
-    let x4 = x3 * x;
-    one + x + x2 / 2.0 + x3 / 6.0 + x4 / 24.0
+/// The series `1 + x + x^2/2 + x^3/6 + x^4/24` of `$x`, with `1` given as `$one`, by the
+/// generated `square` and products (each term in the smallest type that holds it).
+macro_rules! expp {
+    ($one:expr, $x:expr) => {{
+        let x = $x;
+        let x2 = x.square();
+        let x3 = x2 * x;
+        let x4 = x2.square();
+        $one + x + x2 / 2.0 + x3 / 6.0 + x4 / 24.0
+    }};
 }
 
 impl Exponential for Taylor {
     #[inline(always)]
     fn rotor(x: Rotor) -> Rotor {
-        expp(Rotor::new(1.0, 0.0, 0.0, 0.0), x)
+        expp!(Rotor::new(1.0, 0.0, 0.0, 0.0), x)
     }
     #[inline(always)]
     fn translator(x: Translator) -> Translator {
-        expp(Translator::new(1.0, 0.0, 0.0, 0.0), x)
+        expp!(Translator::new(1.0, 0.0, 0.0, 0.0), x)
     }
     #[inline(always)]
-    fn motor(x: Motor) -> Motor {
-        expp(Motor::new(1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0), x)
+    fn motor(x: DualLine) -> Motor {
+        expp!(DualNumber::new(1.0, 0.0), x)
     }
 }
 
 impl Exponential for Closed {
     #[inline(always)]
     fn rotor(x: Rotor) -> Rotor {
-        let b = Bivector::new(0.0, 0.0, 0.0, 0.0, x.e12, x.e13, x.e23, 0.0, 0.0, 0.0);
-        b.exp()
+        DualLine::new(x.e12, x.e13, x.e23, 0.0, 0.0, 0.0).exp()
     }
     #[inline(always)]
     fn translator(x: Translator) -> Translator {
-        let b = Bivector::new(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, x.e1i, x.e2i, x.e3i);
-        b.exp()
+        DualLine::new(0.0, 0.0, 0.0, x.e1i, x.e2i, x.e3i).exp()
     }
     #[inline(always)]
-    fn motor(x: Motor) -> Motor {
-        let b = Bivector::new(0.0, 0.0, 0.0, 0.0, x.e12, x.e13, x.e23, x.e1i, x.e2i, x.e3i);
-        b.exp()
+    fn motor(x: DualLine) -> Motor {
+        x.exp()
     }
     /// Closed-form versors are unit: points move by the generated unit-reduced `sandwich`
     /// (lines by the full products, which cost less than the fused bivector sandwich).
@@ -160,10 +163,18 @@ fn gatl_dual(t: Trivector) -> Bivector {
     -t.dual()
 }
 
-/// A dual line as a motor (its `eo` blades are zero, so nothing is dropped but exact zeros).
+/// A dual line as a [`DualLine`] (its `eo` blades are zero, so nothing is dropped but exact
+/// zeros).
 #[inline(always)]
-fn line(b: Bivector) -> Motor {
-    Motor::new(0.0, b.e12, b.e13, b.e23, b.e1i, b.e2i, b.e3i, 0.0)
+fn line(b: Bivector) -> DualLine {
+    DualLine::new(b.e12, b.e13, b.e23, b.e1i, b.e2i, b.e3i)
+}
+
+/// The bivector part of `v x ~v` for a line `x`: all there is of it up to rounding (`v x ~v`
+/// changes sign under reversion, so it has no scalar or `e123i` part; a motor has no `eo`).
+#[inline(always)]
+fn line_part(m: Motor) -> DualLine {
+    DualLine::new(m.e12, m.e13, m.e23, m.e1i, m.e2i, m.e3i)
 }
 
 /// The dual line through `a` and `b`: GATL's `dual(a ^ b ^ ni)`.
@@ -174,8 +185,8 @@ fn line_through(a: Point, b: Point) -> Bivector {
 
 /// What a solve does with a versor `v`: move a line or a point, `v x ~v`.
 pub trait Versor: Copy {
-    /// `v x ~v` by the two full geometric products (`v` need not be unit).
-    fn line_full(self, x: Motor) -> Motor;
+    /// `v x ~v` by the two full geometric products (`v` need not be unit), its bivector part.
+    fn line_full(self, x: DualLine) -> DualLine;
     /// `v p ~v` by the two full products, its vector part.
     fn point_full(self, p: Point) -> Vector;
     /// The generated unit-reduced `sandwich` of a point (exact for unit `v` only).
@@ -188,17 +199,43 @@ fn vector_part(o: Odd) -> Vector {
     Vector::new(o.eo, o.e1, o.e2, o.e3, o.ei)
 }
 
+/// The vector part of `o r` for an odd `o` and a versor `r`, as the sum of the vector parts
+/// of `o`'s grades times `r` (products small enough to be inlined, so only the vector part is
+/// computed).
+#[inline(always)]
+fn vector_of_odd_times<R>(o: Odd, r: R) -> Vector
+where
+    R: Copy,
+    Vector: std::ops::Mul<R, Output = Odd>,
+    Trivector: std::ops::Mul<R, Output = Odd>,
+    cga::Pseudoscalar: std::ops::Mul<R, Output = Odd>,
+{
+    let v = Vector::new(o.eo, o.e1, o.e2, o.e3, o.ei);
+    let t = Trivector::new(
+        o.eo12, o.eo13, o.eo1i, o.eo23, o.eo2i, o.eo3i, o.e123, o.e12i, o.e13i, o.e23i,
+    );
+    let (a, b) = (vector_part(v * r), vector_part(t * r));
+    let c = vector_part(cga::Pseudoscalar::new(o.eo123i) * r);
+    Vector::new(
+        a.eo + b.eo + c.eo,
+        a.e1 + b.e1 + c.e1,
+        a.e2 + b.e2 + c.e2,
+        a.e3 + b.e3 + c.e3,
+        a.ei + b.ei + c.ei,
+    )
+}
+
 /// [`Versor`] for generated versor types: the same three calls on each.
 macro_rules! versor {
     ($($t:ty),*) => {$(
         impl Versor for $t {
             #[inline(always)]
-            fn line_full(self, x: Motor) -> Motor {
-                (self * x) * self.rev()
+            fn line_full(self, x: DualLine) -> DualLine {
+                line_part((self * x) * self.rev())
             }
             #[inline(always)]
             fn point_full(self, p: Point) -> Vector {
-                vector_part((self * p) * self.rev())
+                vector_of_odd_times((self * p), self.rev())
             }
             #[inline(always)]
             fn point_unit(self, p: Point) -> Vector {

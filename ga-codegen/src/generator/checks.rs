@@ -252,6 +252,7 @@ fn type_checks(spec: &Spec, t: &TypeDef, generated: &Generated) -> TokenStream {
             Method::Rev | Method::Involute | Method::Conjugate | Method::Dual | Method::Undual => {
                 quote!(check(c, f, #what, a.#method().mv(), ma.#method());)
             }
+            Method::Square => quote!(check(c, f, #what, a.square().mv(), ma.gp(&ma));),
             Method::Grade => (0..=n)
                 .map(|k| {
                     let what = w(format!("{tn}::grade({k})"));

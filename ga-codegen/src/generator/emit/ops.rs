@@ -132,6 +132,8 @@ pub enum Method {
     Dual,
     /// `undual()`: the inverse of `dual()`.
     Undual,
+    /// `square()`: `x * x` expanded in one set of coefficients.
+    Square,
     /// `grade(k)`: the grade-`k` part.
     Grade,
     /// `normalized()`.
@@ -149,6 +151,7 @@ impl Method {
             Method::Conjugate => "conjugate",
             Method::Dual => "dual",
             Method::Undual => "undual",
+            Method::Square => "square",
             Method::Grade => "grade",
             Method::Normalized => "normalized",
             Method::Inverse => "inverse",

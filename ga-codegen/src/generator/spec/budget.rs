@@ -8,8 +8,8 @@
 //! metric, more for a dense one; measured exactly on a sample of those pairs, see
 //! `MetricCost`):
 //!
-//! - each type of `w` blades (stored and constant): `2 m w^2 + 8 w` for its unary methods
-//!   (reverse, dual, norm, scalar products) plus `ITEMS_PER_TYPE` emitted items;
+//! - each type of `w` blades (stored and constant): `3 m w^2 + 8 w` for its unary methods
+//!   (reverse, dual, norm and square, scalar products) plus `ITEMS_PER_TYPE` emitted items;
 //! - each ordered pair of types: `3 m w_a w_b` for the geometric and outer products and the
 //!   left contraction, plus `ITEMS_PER_PAIR` emitted items (`*`, `^`, `|`, `+`, `-`, `From`);
 //! - each sandwich of a versor of `v` blades on an operand of `x`: `m v x + 2 m^2 v^2 x` (the
@@ -97,7 +97,7 @@ pub(crate) const BUDGET: u64 = 2_000_000;
 pub(crate) const ITEM: u64 = 40;
 
 /// Emitted items per type (struct, constructors, unary methods, conversions).
-pub(crate) const ITEMS_PER_TYPE: u64 = 12;
+pub(crate) const ITEMS_PER_TYPE: u64 = 13;
 
 /// Emitted items per ordered pair of types.
 pub(crate) const ITEMS_PER_PAIR: u64 = 6;
@@ -159,7 +159,7 @@ impl Estimate {
             types: units(
                 widths
                     .iter()
-                    .map(|w| 2.0 * m * w * w + 8.0 * w + ITEMS_PER_TYPE as f64 * item)
+                    .map(|w| 3.0 * m * w * w + 8.0 * w + ITEMS_PER_TYPE as f64 * item)
                     .sum(),
             ),
             pairs: units(3.0 * m * sum * sum + count * count * ITEMS_PER_PAIR as f64 * item),

@@ -28,13 +28,15 @@ pub(crate) struct Preamble {
 }
 
 impl Gen<'_> {
-    /// The smallest bivector type holding every bivector blade of `V`.
+    /// The first declared bivector type holding every bivector blade of `V`: the spec's order
+    /// chooses, so a smaller bivector type declared later (CGA's `DualLine`, for products and
+    /// squares of lines) does not change the type a `log` returns.
     pub(crate) fn log_type(&self, vt: &TypeDef) -> Option<usize> {
         let g2: Vec<Bitmap> = grade_part(&SymMv::of_type(vt, 0), 2).support();
-        self.by_size.iter().copied().find(|&i| {
-            let t = &self.spec.types[i];
-            is_bivector(t) && g2.iter().all(|b| t.blades().any(|x| x == *b))
-        })
+        self.spec
+            .types
+            .iter()
+            .position(|t| is_bivector(t) && g2.iter().all(|b| t.blades().any(|x| x == *b)))
     }
 
     /// The [`Preamble`] of `V` in `cx` (operand 0 is `V`); `sign` multiplies `p` and `r4`

@@ -117,12 +117,12 @@ impl Gen<'_> {
         }
     }
 
-    /// `rev`, `involute`, `conjugate`, `dual`, `undual` (result types inferred), the norms, and for
-    /// types without constants `grade`, `normalized` and `inverse`.
+    /// `rev`, `involute`, `conjugate`, `dual`, `undual`, `square` (result types inferred), the
+    /// norms, and for types without constants `grade`, `normalized` and `inverse`.
     fn unary_methods(&mut self, t: &TypeDef) -> TokenStream {
         let s = self.s.clone();
         let a = SymMv::of_type(t, 0);
-        let unary: [(Method, &str, SymMv); 5] = [
+        let unary: [(Method, &str, SymMv); 6] = [
             (
                 Method::Rev,
                 "The reverse (reverses the order of every outer product).",
@@ -140,10 +140,23 @@ impl Gen<'_> {
             ),
             (Method::Dual, self.dual_doc(), self.dual(&a)),
             (Method::Undual, self.undual_doc(), self.undual(&a)),
+            (
+                Method::Square,
+                "The geometric square `x * x`, expanded in one set of coefficients: the terms \
+                 `x_i x_j` and `x_j x_i` of anticommuting blades cancel before any code is \
+                 emitted (a bivector's square keeps no bivector part), and the result takes \
+                 the smallest type that holds what is left.",
+                self.table.product(&a, &a, Product::Geometric),
+            ),
         ];
         let mut out = TokenStream::new();
         for (method, fdoc, m) in unary.iter() {
-            let o = self.infer(m);
+            // The square of a versor is a versor: the smallest versor type, as `x * x`.
+            let o = if *method == Method::Square && t.versor {
+                self.infer_versor_product(m)
+            } else {
+                self.infer(m)
+            };
             if o == OutType::Zero
                 || self.skip_unfit(o, m, &format!("{}::{}", t.name, method.name()))
             {
