@@ -159,12 +159,11 @@ int main(int argc, char **argv) {
   row(rec, "cga.motor_point", ma, pts, sw, pt, stray);
   ik_row<gatl_ik::Taylor>(rec, "cga.ik_taylor", in["cga.ik_angles"], stray);
   ik_row<gatl_ik::Closed>(rec, "cga.ik_exp", in["cga.ik_angles"], stray);
-  auto b2a = operands(in, "cga.blade2_a", 10, make_bivector), b2b = operands(in, "cga.blade2_b", 10, make_bivector);
-  auto q4 = operands(in, "cga.blade4", 5, gatl_ops::make_quadvector);
-  gatl_ops::pair_rows<true, false>(rec, "11", va, vb, stray);
-  gatl_ops::pair_rows<false, false>(rec, "12", va, b2a, stray);
-  gatl_ops::pair_rows<true, false>(rec, "22", b2a, b2b, stray);
-  gatl_ops::pair_rows<false, true>(rec, "14", va, q4, stray);
+  {
+    auto l = gatl_ops::side(in, 'a'), r = gatl_ops::side(in, 'b');
+    gatl_ops::all_pairs(rec, l, r, stray, std::make_integer_sequence<int, 6>{});
+    gatl_ops::all_unary(rec, l, stray, std::make_integer_sequence<int, 6>{});
+  }
   rec.write(argv[2]);
   return stray > 1e-9 ? 1 : 0;
 }

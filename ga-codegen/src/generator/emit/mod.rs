@@ -47,6 +47,7 @@ mod wgsl;
 pub use exp_log::decompose::Refusal;
 pub use exp_log::refusals;
 pub use ops::{Method, Op, OpSummary, OutType};
+pub(crate) use products::scalar_ops::SCALAR_DUAL;
 pub use render::snake;
 pub use wgsl::{generate_wgsl, generate_wgsl_to};
 
@@ -426,6 +427,7 @@ pub fn generate(spec: &Spec, opts: &EmitOptions) -> Result<Generated, GenError> 
         }
     }
     g.named_products();
+    g.grade_zero_operators();
     for d in &spec.sandwiches {
         g.sandwich(d)?;
     }
