@@ -96,8 +96,9 @@ void pair_rows(Record &rec, const std::vector<A> &a, const std::vector<B> &b, do
     // Ours is GATL's complement form times (-1)^((5 - ga)(5 - gb)) in one basis order (our
     // `RegressiveProduct` doc); GATL's pseudoscalar e1^e2^e3^no^ni is minus ours, which flips
     // its complement form once more.
-    constexpr double sign = ((5 - GA) * (5 - GB)) % 2 ? 1.0 : -1.0;
-    op_row(rec, k("rp"), a, b, [](auto const &x, auto const &y) { return sign * rp(x, y); }, stray);
+    op_row(rec, k("rp"), a, b, [](auto const &x, auto const &y) {
+      if constexpr ((5 - GA) * (5 - GB) % 2 != 0) return rp(x, y); else return -rp(x, y);
+    }, stray);
   }
   op_row(rec, k("igp"), a, b, [](auto const &x, auto const &y) { return igp(x, y); }, stray);
 }
@@ -132,17 +133,6 @@ template <int GA, int... GB, class L, class R>
 void row_of_pairs(Record &rec, const L &l, const R &r, double &stray,
                   std::integer_sequence<int, GB...>) {
   (pair_rows<GA, GB>(rec, std::get<GA>(l), std::get<GB>(r), stray), ...);
-}
-
-template <int... GA, class L, class R>
-void all_pairs(Record &rec, const L &l, const R &r, double &stray,
-               std::integer_sequence<int, GA...>) {
-  (row_of_pairs<GA>(rec, l, r, stray, std::make_integer_sequence<int, 6>{}), ...);
-}
-
-template <int... G, class L>
-void all_unary(Record &rec, const L &l, double &stray, std::integer_sequence<int, G...>) {
-  (unary_rows<G>(rec, std::get<G>(l), stray), ...);
 }
 
 }  // namespace gatl_ops

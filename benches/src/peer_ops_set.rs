@@ -281,26 +281,89 @@ pub fn op_rows(l: [&[f64]; 6], r: [&[f64]; 6]) -> Vec<Row> {
 /// this also keeps inverses and quotients well conditioned, so that two implementations agree
 /// to rounding).
 pub fn blade(grade: usize, rng: &mut crate::timing::Lcg) -> Vec<f64> {
+    let c = blade_mv(grade, rng).to_array();
+    let at = |name: &&str| Mv::BLADES.iter().position(|b| b == name).unwrap();
+    let pick = |blades: &[&str]| blades.iter().map(|n| c[at(n)]).collect();
+    match grade {
+        0 => vec![c[0]],
+        1 => pick(&Vector::BLADES),
+        2 => pick(&Bivector::BLADES),
+        3 => pick(&Trivector::BLADES),
+        4 => pick(&Quadvector::BLADES),
+        5 => pick(&Pseudoscalar::BLADES),
+        _ => unreachable!("grade {grade}"),
+    }
+}
+
+/// The blade of [`blade`] as a multivector.
+fn blade_mv(grade: usize, rng: &mut crate::timing::Lcg) -> Mv {
     loop {
         let s = rng.uniform();
-        let mut m = cga::Mv::from_array(std::array::from_fn(|i| if i == 0 { s } else { 0.0 }));
+        let mut m = Mv::from_array(std::array::from_fn(|i| if i == 0 { s } else { 0.0 }));
         for _ in 0..grade {
             m = m ^ Vector::from_array(rng.array::<5>());
         }
-        let c = m.to_array();
-        let squares: f64 = c.iter().map(|x| x * x).sum();
-        if m.norm_squared().abs() < squares / 20.0 {
-            continue;
+        let squares: f64 = m.to_array().iter().map(|x| x * x).sum();
+        if m.norm_squared().abs() >= squares / 20.0 {
+            return m;
         }
-        let at = |name: &&str| Mv::BLADES.iter().position(|b| b == name).unwrap();
-        return match grade {
-            0 => vec![c[0]],
-            1 => Vector::BLADES.iter().map(|n| c[at(n)]).collect(),
-            2 => Bivector::BLADES.iter().map(|n| c[at(n)]).collect(),
-            3 => Trivector::BLADES.iter().map(|n| c[at(n)]).collect(),
-            4 => Quadvector::BLADES.iter().map(|n| c[at(n)]).collect(),
-            5 => Pseudoscalar::BLADES.iter().map(|n| c[at(n)]).collect(),
-            _ => unreachable!("grade {grade}"),
-        };
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use ga_codegen::runtime::derived::DerivedProducts as _;
+
+    /// [`products`] against the generic multivector: a product of ga-benchmark's set has a row
+    /// for a pair of grades exactly when it is not zero on random blades of those grades.
+    #[test]
+    fn the_rows_are_the_products_not_identically_zero() {
+        let mut rng = crate::timing::Lcg(0x0b5e7);
+        for (ga, gb, _) in pairs() {
+            let mut nonzero = Vec::new();
+            for _ in 0..3 {
+                let a = blade_mv(ga, &mut rng).to_multivector();
+                let b = blade_mv(gb, &mut rng).to_multivector();
+                let alg = a.algebra().clone();
+                let scalar = |x: f64| ga_codegen::Multivector::scalar(&alg, x);
+                let all = [
+                    ("gp", a.gp(&b)),
+                    ("op", a.outer(&b)),
+                    ("lc", a.left_contraction(&b)),
+                    ("rc", a.right_contraction(&b)),
+                    ("sp", scalar(a.scalar_product(&b))),
+                    ("dot", a.dot_product(&b)),
+                    ("hip", a.hestenes_inner_product(&b)),
+                    ("cp", a.commutator_product(&b)),
+                    ("rp", a.regressive_product(&b)),
+                    (
+                        "igp",
+                        a.inverse_geometric_product(&b)
+                            .expect("an invertible blade"),
+                    ),
+                ];
+                for (key, m) in all {
+                    if m.max_abs() > 1e-12 && !nonzero.contains(&key) {
+                        nonzero.push(key);
+                    }
+                }
+            }
+            let mut want = products(ga, gb);
+            want.sort_unstable();
+            nonzero.sort_unstable();
+            assert_eq!(nonzero, want, "grades ({ga}, {gb})");
+        }
+    }
+
+    /// Blades are blades of their grade, normalisable: `|<x ~x>_0|` is not small.
+    #[test]
+    fn blades_have_their_grade_and_a_norm() {
+        let mut rng = crate::timing::Lcg(3);
+        for g in 0..=MAX_GRADE {
+            let m = blade_mv(g, &mut rng).to_multivector();
+            assert!((m.max_diff(&m.grade(g as u32))) == 0.0, "grade {g}");
+            assert!(m.norm_squared().abs() >= 1e-3, "grade {g}");
+        }
     }
 }

@@ -14,7 +14,14 @@ use cga::{Bivector, Pseudoscalar, Quadvector, Trivector, Vector};
 
 /// The unary operations (keys, in row order).
 pub const UNARY: [&str; 8] = [
-    "rev", "inv", "conj", "dual", "undual", "inverse", "normalize", "nsq",
+    "rev",
+    "inv",
+    "conj",
+    "dual",
+    "undual",
+    "inverse",
+    "normalize",
+    "nsq",
 ];
 
 /// An operation's name as printed.
@@ -53,9 +60,15 @@ macro_rules! typed_rows {
         row1($rec, concat!("un.", $grade, ".conj"), $a, |x| x.conjugate());
         row1($rec, concat!("un.", $grade, ".dual"), $a, |x| x.dual());
         row1($rec, concat!("un.", $grade, ".undual"), $a, |x| x.undual());
-        row1($rec, concat!("un.", $grade, ".inverse"), $a, |x| x.inverse());
-        row1($rec, concat!("un.", $grade, ".normalize"), $a, |x| x.normalized());
-        row1($rec, concat!("un.", $grade, ".nsq"), $a, |x| x.norm_squared());
+        row1($rec, concat!("un.", $grade, ".inverse"), $a, |x| {
+            x.inverse()
+        });
+        row1($rec, concat!("un.", $grade, ".normalize"), $a, |x| {
+            x.normalized()
+        });
+        row1($rec, concat!("un.", $grade, ".nsq"), $a, |x| {
+            x.norm_squared()
+        });
     };
 }
 

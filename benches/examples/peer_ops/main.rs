@@ -164,7 +164,9 @@ fn operand(name: &str, rng: &mut Lcg) -> Vec<f64> {
         "cga.ik_angles" => (0..5)
             .map(|_| rng.uniform() * std::f64::consts::FRAC_PI_2)
             .collect(),
-        _ if name.starts_with("cga.blade") => ops::blade(usize::from(name.as_bytes()[9] - b'0'), rng),
+        _ if name.starts_with("cga.blade") => {
+            ops::blade(usize::from(name.as_bytes()[9] - b'0'), rng)
+        }
         _ => unreachable!("{name}"),
     }
 }

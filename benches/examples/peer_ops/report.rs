@@ -292,11 +292,11 @@ pub(crate) fn report(dir: &Path, rounds: usize) -> i32 {
                     bad += 1;
                 }
                 (
-                o.map_or("-".into(), |o| format!("{:.2}", o.value)),
-                format!("{} not run", shown(peer)),
-                "-".into(),
-                "-".into(),
-            )
+                    o.map_or("-".into(), |o| format!("{:.2}", o.value)),
+                    format!("{} not run", shown(peer)),
+                    "-".into(),
+                    "-".into(),
+                )
             }
         };
         let target = if target.is_infinite() {

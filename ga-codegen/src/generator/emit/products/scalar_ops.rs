@@ -131,7 +131,10 @@ impl Gen<'_> {
                 #[inline] fn undual(self) -> #tou { let s = self; #bu }
             }
         });
-        for m in [crate::generator::emit::Method::Dual, crate::generator::emit::Method::Undual] {
+        for m in [
+            crate::generator::emit::Method::Dual,
+            crate::generator::emit::Method::Undual,
+        ] {
             self.methods.push((sname.clone(), m));
         }
     }
