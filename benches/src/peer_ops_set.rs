@@ -168,7 +168,7 @@ fn row<A: Copy, B: Copy, T: AsMv>(
     ));
 }
 
-/// The rows of one pair: every product the pair has, in [`PAIRS`] order.
+/// The rows of one pair: every product the pair has, in [`products`] order.
 macro_rules! pair_rows {
     ($rec:expr, $pair:literal, $ab:expr, [$($op:ident),*]) => {
         $(pair_rows!(@one $rec, $pair, $ab, $op);)*

@@ -235,7 +235,7 @@ pub(crate) fn report(dir: &Path, rounds: usize) -> i32 {
     println!("|---|---|---|---|---|---|---|");
     let (mut pass, mut miss, mut bad) = (0, 0, 0);
     // The ga-benchmark operation rows' ratios, for the summary below the table.
-    let mut set: Vec<(String, f64)> = Vec::new();
+    let mut set: Vec<(String, String, f64)> = Vec::new();
     for (label, key, peer, pkey, target) in rows() {
         let (key, pkey) = (key.as_str(), pkey.as_str());
         let o = median(&ours, key);
@@ -267,7 +267,7 @@ pub(crate) fn report(dir: &Path, rounds: usize) -> i32 {
                 };
                 let met = Target::AtMost(target).reached_by(r.value);
                 if key.starts_with("ops.") || key.starts_with("un.") {
-                    set.push((label.clone(), r.value));
+                    set.push((key.to_string(), label.clone(), r.value));
                 }
                 let grade = if target.is_infinite() {
                     "no target"
@@ -317,22 +317,52 @@ pub(crate) fn report(dir: &Path, rounds: usize) -> i32 {
     }
 }
 
-/// The ga-benchmark operation set in brief: how many rows are at or below 1.0x GATL, the
-/// spread of the ratios, and every row above.
-fn ops_summary(set: &mut [(String, f64)]) {
+/// The ga-benchmark operation set in brief: the ratios as two grids (grade pairs by product,
+/// grades by unary operation; `-` where a product is identically zero), how many rows are at or
+/// below 1.0x GATL, and every row above.
+fn ops_summary(set: &mut [(String, String, f64)]) {
     if set.is_empty() {
         return;
     }
-    set.sort_by(|a, b| a.1.total_cmp(&b.1));
-    let at_most = set.iter().filter(|(_, r)| *r <= 1.0).count();
-    let mid = set[set.len() / 2].1;
+    let ratio: BTreeMap<&str, f64> = set.iter().map(|(k, _, r)| (k.as_str(), *r)).collect();
+    let cell = |key: String| {
+        ratio
+            .get(key.as_str())
+            .map_or("-".into(), |r| format!("{r:.2}"))
+    };
+    let products = [
+        "gp", "op", "lc", "rc", "sp", "dot", "hip", "cp", "rp", "igp",
+    ];
+    println!("\nga-benchmark's binary operations, ours / GATL by grade pair:\n");
+    println!("| grades | {} |", products.join(" | "));
+    println!("|---{}|", "|---".repeat(products.len()));
+    for (ga, gb, pair) in crate::ops::pairs() {
+        let cells: Vec<String> = products
+            .iter()
+            .map(|p| cell(format!("ops.{pair}.{p}")))
+            .collect();
+        println!("| ({ga}, {gb}) | {} |", cells.join(" | "));
+    }
+    println!("\nga-benchmark's unary operations, ours / GATL by grade:\n");
+    println!("| grade | {} |", crate::ops::UNARY.join(" | "));
+    println!("|---{}|", "|---".repeat(crate::ops::UNARY.len()));
+    for g in 0..=5 {
+        let cells: Vec<String> = crate::ops::UNARY
+            .iter()
+            .map(|u| cell(format!("un.{g}.{u}")))
+            .collect();
+        println!("| {g} | {} |", cells.join(" | "));
+    }
+    set.sort_by(|a, b| a.2.total_cmp(&b.2));
+    let at_most = set.iter().filter(|(_, _, r)| *r <= 1.0).count();
+    let mid = set[set.len() / 2].2;
     println!(
         "\nga-benchmark operation set: {at_most} of {} rows <= 1.0x GATL (ratios {:.2} to {:.2}, median {mid:.2}); above 1.0x:",
         set.len(),
-        set[0].1,
-        set[set.len() - 1].1
+        set[0].2,
+        set[set.len() - 1].2
     );
-    for (label, r) in set.iter().filter(|(_, r)| *r > 1.0) {
+    for (_, label, r) in set.iter().filter(|(_, _, r)| *r > 1.0) {
         println!("- {label}: {r:.2}");
     }
 }
