@@ -277,7 +277,8 @@ pub struct Generated {
     pub types: Vec<(String, usize)>,
     /// Every emitted binary operation, sandwich and conversion (`from`).
     pub ops: Vec<OpSummary>,
-    /// Emitted unary methods whose result is not fixed: (type, method).
+    /// Emitted unary methods whose result is not fixed: (type, method); the type is the scalar
+    /// type's name (`f64`, `f32`) for its `dual` and `undual` (trait `ScalarDual`).
     pub methods: Vec<(String, Method)>,
     /// Operations skipped because identically zero.
     pub zero_ops: usize,

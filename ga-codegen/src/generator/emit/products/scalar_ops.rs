@@ -1,7 +1,7 @@
 //! What ga-benchmark times on grade-0 operands that the operators between declared types and
 //! the named products do not cover: the outer product and the left contraction with the scalar
 //! on either side (`s ^ x`, `x ^ s`, `s | x`; `x | s` is zero unless `x` has grade 0), and the
-//! dual and undual of the scalar (trait [`ScalarDual`], as the scalar type has no inherent
+//! dual and undual of the scalar (trait `ScalarDual`, as the scalar type has no inherent
 //! methods of ours). The operands are the declared types of one grade, as for the named
 //! products; every impl is checked against the generic multivector like the operators.
 
