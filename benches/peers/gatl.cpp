@@ -12,78 +12,13 @@
 // permutation that sorts (4, 1, 2, 5) ascending: `blade()` computes bits and sign for each of
 // our blade names. Components of a result that our type does not hold must be zero (checked).
 // Built by `run.sh` (-O3 -DNDEBUG, no -march).
-#include <gatl/ga3c.hpp>
-
-#include <cmath>
-
-#include "peer_io.hpp"
+#include "gatl_common.hpp"
 #include "gatl_ik.hpp"
-
-using namespace ga3c;
-using namespace peer;
-
-// Our blade name (`s`, `eo1`, `e12i`, ...) as GATL's bitset and the sign of our blade in it.
-static std::pair<bitset_t, double> blade(const std::string &name) {
-  std::vector<int> idx;  // GATL indices: e1..e3 = 1..3, no = 4, ni = 5
-  for (char ch : name.substr(1)) idx.push_back(ch == 'o' ? 4 : ch == 'i' ? 5 : ch - '0');
-  bitset_t bits = 0;
-  int swaps = 0;
-  for (std::size_t a = 0; a < idx.size(); ++a) {
-    bits |= bitset_t(1) << (idx[a] - 1);
-    for (std::size_t b = a + 1; b < idx.size(); ++b) swaps += idx[a] > idx[b];
-  }
-  return {bits, swaps % 2 ? -1.0 : 1.0};
-}
-
-// Appends one result in our blade order; the largest component outside it goes to `stray`.
-template <class E>
-static void append(const E &e, const std::vector<std::string> &blades, std::vector<double> &v,
-                   double &stray) {
-  std::map<bitset_t, double> c;
-  for_each_component(e, [&](bitset_t b, double x, entry_source_t, entry_source_t, bool &) {
-    c[b] += x;
-  });
-  for (auto &name : blades) {
-    auto [bits, sign] = blade(name);
-    v.push_back(sign * c[bits]);
-    c.erase(bits);
-  }
-  for (auto &[bits, x] : c) stray = std::max(stray, std::abs(x));
-}
-
-// Every result in our blade order.
-template <class E>
-static std::vector<double> ours(const std::vector<E> &out, const std::vector<std::string> &blades,
-                                double &stray) {
-  std::vector<double> v;
-  for (auto &e : out) append(e, blades, v, stray);
-  return v;
-}
-
-static auto make_vector(const double *v) { return v[0] * no + v[1] * e1 + v[2] * e2 + v[3] * e3 + v[4] * ni; }
-static auto make_bivector(const double *b) {
-  return b[0] * (no ^ e1) + b[1] * (no ^ e2) + b[2] * (no ^ e3) + b[3] * (no ^ ni) +
-         b[4] * (e1 ^ e2) + b[5] * (e1 ^ e3) + b[6] * (e2 ^ e3) + b[7] * (e1 ^ ni) +
-         b[8] * (e2 ^ ni) + b[9] * (e3 ^ ni);
-}
-static auto make_motor(const double *m) {
-  return scalar(m[0]) + m[1] * (e1 ^ e2) + m[2] * (e1 ^ e3) + m[3] * (e2 ^ e3) + m[4] * (e1 ^ ni) +
-         m[5] * (e2 ^ ni) + m[6] * (e3 ^ ni) + m[7] * (e1 ^ e2 ^ e3 ^ ni);
-}
-static auto make_point(const double *p) { return no + p[0] * e1 + p[1] * e2 + p[2] * e3 + p[3] * ni; }
 
 template <class M, class P>
 static auto sandwich(const M &m, const P &p) {
   auto [lazy, m_, p_] = make_lazy_context_tuple(m, p);
   return lazy.eval(m_ * p_ * ~m_);
-}
-
-// The operands of a section, built by `make` from each operand's coefficients.
-template <class F>
-static auto operands(Input &in, const char *section, std::size_t width, F make) {
-  std::vector<decltype(make(in[section].data()))> v;
-  for (std::size_t i = 0; i < N; ++i) v.push_back(make(in[section].data() + width * i));
-  return v;
 }
 
 // Times `out[i] = op(a[i], b[i])` and records the outputs in our blade order.
@@ -101,7 +36,11 @@ static void row(Record &rec, const char *key, const std::vector<A> &a, const std
   stray = std::max(stray, s);
 }
 
-#include "gatl_ops.hpp"
+// The operation set (gatl_ops.cpp, one object per left grade GA: its binary rows (GA, 0..5) and
+// its unary rows of grade GA).
+namespace gatl_ops {
+template <int GA> void rows(Record &rec, Input &in, double &stray);
+}
 
 // Times ga-benchmark's inverse kinematics (gatl_ik.hpp), one solve per 5 angles, and records
 // (R1, R2, R3, T2, R4, Rg, Jg_f) per solve as our Rotor, 4 Motors, Translator, Vector (45 values;
@@ -159,12 +98,8 @@ int main(int argc, char **argv) {
   row(rec, "cga.motor_point", ma, pts, sw, pt, stray);
   ik_row<gatl_ik::Taylor>(rec, "cga.ik_taylor", in["cga.ik_angles"], stray);
   ik_row<gatl_ik::Closed>(rec, "cga.ik_exp", in["cga.ik_angles"], stray);
-  auto b2a = operands(in, "cga.blade2_a", 10, make_bivector), b2b = operands(in, "cga.blade2_b", 10, make_bivector);
-  auto q4 = operands(in, "cga.blade4", 5, gatl_ops::make_quadvector);
-  gatl_ops::pair_rows<true, false>(rec, "11", va, vb, stray);
-  gatl_ops::pair_rows<false, false>(rec, "12", va, b2a, stray);
-  gatl_ops::pair_rows<true, false>(rec, "22", b2a, b2b, stray);
-  gatl_ops::pair_rows<false, true>(rec, "14", va, q4, stray);
+  gatl_ops::rows<0>(rec, in, stray), gatl_ops::rows<1>(rec, in, stray), gatl_ops::rows<2>(rec, in, stray);
+  gatl_ops::rows<3>(rec, in, stray), gatl_ops::rows<4>(rec, in, stray), gatl_ops::rows<5>(rec, in, stray);
   rec.write(argv[2]);
   return stray > 1e-9 ? 1 : 0;
 }

@@ -25,7 +25,9 @@ inline const std::vector<std::pair<std::string, std::size_t>> &sections() {
       {"pga.rotor_b", 4},     {"pga.line", 6},        {"cga.vector_a", 5}, {"cga.vector_b", 5},
       {"cga.bivector_a", 10}, {"cga.bivector_b", 10}, {"cga.motor_a", 8},  {"cga.motor_b", 8},
       {"cga.point", 4},       {"cga.ik_angles", 5},  {"cga.blade2_a", 10},
-      {"cga.blade2_b", 10},   {"cga.blade4", 5}};
+      {"cga.blade2_b", 10},   {"cga.blade4_a", 5},    {"cga.blade0_a", 1}, {"cga.blade0_b", 1},
+      {"cga.blade1_a", 5},    {"cga.blade1_b", 5},    {"cga.blade3_a", 10}, {"cga.blade3_b", 10},
+      {"cga.blade4_b", 5},    {"cga.blade5_a", 1},    {"cga.blade5_b", 1}};
   return s;
 }
 

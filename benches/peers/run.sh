@@ -36,7 +36,17 @@ fi
 if [ "$gatl" != - ]; then
   [ -f "$gatl/cpp/include/gatl/ga3c.hpp" ] || { echo "no GATL headers under $gatl/cpp/include" >&2; exit 2; }
   echo "GATL $(describe "$gatl") ($(git -C "$gatl" rev-parse HEAD 2>/dev/null || echo '?')): baseline"
-  "${cxx[@]}" -I"$gatl/cpp/include" "$here/gatl.cpp" -o "$out/gatl-peer"
+  # The operation set in one object per left grade (gatl_ops.cpp): one translation unit for
+  # all of it needs many GiB of compiler memory. Objects are rebuilt only when a source changed.
+  objs=()
+  for g in 0 1 2 3 4 5; do
+    o="$out/gatl_ops$g.o"
+    if [ ! -f "$o" ] || [ -n "$(find "$here" -name 'gatl_*' -newer "$o")" ] || [ "$here/peer_io.hpp" -nt "$o" ]; then
+      "${cxx[@]}" -I"$gatl/cpp/include" -DGATL_OPS_LEFT=$g -c "$here/gatl_ops.cpp" -o "$o"
+    fi
+    objs+=("$o")
+  done
+  "${cxx[@]}" -I"$gatl/cpp/include" "$here/gatl.cpp" "${objs[@]}" -o "$out/gatl-peer"
   peers+=(gatl)
 fi
 echo "g++: $(g++ -dumpfullversion); rustc: $(rustc --version)"

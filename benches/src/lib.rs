@@ -4,6 +4,7 @@ pub mod cga_report;
 pub mod codegen_report;
 pub use devkit::grade;
 pub mod peer_ops_set;
+pub mod peer_ops_unary;
 pub mod timing;
 
 #[cfg(test)]

@@ -1,17 +1,19 @@
-//! ga-benchmark's binary operation set for 3D CGA f64 (a subset: the products of grade pairs
-//! (1,1), (1,2), (2,2), (1,4) on blades): our side of the peer harness's operation rows
-//! (`benches/examples/peer_ops/`, GATL's side `benches/peers/gatl_ops.hpp`).
+//! ga-benchmark's binary operation set for 3D CGA f64: every product it times for every pair of
+//! grades 0..=5 on blades, our side of the peer harness's operation rows
+//! (`benches/examples/peer_ops/`, GATL's side `benches/peers/gatl_ops.hpp`). The unary set is
+//! in [`crate::peer_ops_unary`].
 //!
-//! It lives in the library, compiled apart from the example: in the example crate its 33
+//! It lives in the library, compiled apart from the example: in the example crate its
 //! instantiated loops changed LLVM's inlining there (the `bivector * bivector` row's
 //! `Bivector * Bivector` went out of line, 14 ns to 38), and passing the closures by
 //! reference instead kept a call per operand in these rows.
 //!
 //! Each row times `o[i] = a[i] op b[i]` over the N operands; its outputs, for the first
 //! [`CHECKED`] operands, are written as all 32 coefficients in `Mv` blade order (GATL maps its
-//! blades to those names as for the other CGA rows). A product that is identically zero for a
-//! pair (the regressive product below grade 5, right contractions and scalar products of
-//! unequal grades) is not generated, and has no row.
+//! blades to those names as for the other CGA rows). Operands of grade 0..=5 are `f64`,
+//! `Vector`, `Bivector`, `Trivector`, `Quadvector`, `Pseudoscalar`; the grade-(0, 0) rows are
+//! plain `f64` arithmetic. A product that is identically zero for a pair (see [`products`]) is
+//! not generated, and has no row.
 
 use crate::grade::Spread;
 use cga::f64::{
@@ -30,20 +32,38 @@ const PASSES: usize = 41;
 /// Operands whose outputs are compared (all N are timed).
 pub const CHECKED: usize = 1000;
 
-/// The grade pairs and their products, as `(pair key, product keys)`: what the rows and the
-/// report's table are made of.
-pub const PAIRS: [(&str, &[&str]); 4] = [
-    (
-        "11",
-        &["gp", "op", "lc", "rc", "sp", "dot", "hip", "cp", "igp"],
-    ),
-    ("12", &["gp", "op", "lc", "dot", "hip", "cp", "igp"]),
-    (
-        "22",
-        &["gp", "op", "lc", "rc", "sp", "dot", "hip", "cp", "igp"],
-    ),
-    ("14", &["gp", "op", "lc", "dot", "hip", "cp", "rp", "igp"]),
-];
+/// The highest grade (3D CGA: 5 basis vectors).
+pub const MAX_GRADE: usize = 5;
+
+/// The products of ga-benchmark's set that are not identically zero on blades of grades `ga`,
+/// `gb` (keys, in row order): the outer product needs `ga + gb <= 5`, the left contraction
+/// `ga <= gb`, the right one `ga >= gb`, the scalar product `ga = gb`, the Hestenes inner product
+/// two non-scalars, the commutator product two grades in 1..=4 (a scalar and the
+/// pseudoscalar of an odd dimension commute with everything), the regressive product
+/// `ga + gb >= 5`.
+pub fn products(ga: usize, gb: usize) -> Vec<&'static str> {
+    let mut v = vec!["gp"];
+    let mut add = |on: bool, key| on.then(|| v.push(key));
+    add(ga + gb <= MAX_GRADE, "op");
+    add(ga <= gb, "lc");
+    add(ga >= gb, "rc");
+    add(ga == gb, "sp");
+    add(true, "dot");
+    add(ga > 0 && gb > 0, "hip");
+    let inner = 1..MAX_GRADE;
+    add(inner.contains(&ga) && inner.contains(&gb), "cp");
+    add(ga + gb >= MAX_GRADE, "rp");
+    add(true, "igp");
+    v
+}
+
+/// Every grade pair ga-benchmark times, `(ga, gb)` for `ga, gb` in `0..=5`, with its key
+/// (`"23"`).
+pub fn pairs() -> Vec<(usize, usize, String)> {
+    (0..=MAX_GRADE)
+        .flat_map(|a| (0..=MAX_GRADE).map(move |b| (a, b, format!("{a}{b}"))))
+        .collect()
+}
 
 /// A product's name as printed.
 pub fn product_name(key: &str) -> &'static str {
@@ -63,7 +83,7 @@ pub fn product_name(key: &str) -> &'static str {
 }
 
 /// A result as its 32 coefficients in `Mv` blade order.
-trait AsMv: Copy + Default {
+pub(crate) trait AsMv: Copy + Default {
     fn mv(&self) -> [f64; 32];
 }
 
@@ -97,7 +117,8 @@ as_mv!(
     Quadvector,
     Pseudoscalar,
     Even,
-    Odd
+    Odd,
+    Mv
 );
 
 /// One row: key, ns per op, the first [`CHECKED`] outputs as 32 coefficients each.
@@ -105,7 +126,7 @@ pub type Row = (String, f64, Vec<f64>);
 
 /// The harness's timer: the median over [`PASSES`] of one pass (after 3 warm-up passes), in ns
 /// per operand, `o[i] = f(a[i], b[i])` by iterators.
-fn time_pass<A: Copy, B: Copy, T>(
+pub(crate) fn time_pass<A: Copy, B: Copy, T>(
     o: &mut [T],
     a: &[A],
     b: &[B],
@@ -147,7 +168,7 @@ fn row<A: Copy, B: Copy, T: AsMv>(
     ));
 }
 
-/// The rows of one pair: every product the pair has, in [`PAIRS`] order.
+/// The rows of one pair: every product the pair has, in [`products`] order.
 macro_rules! pair_rows {
     ($rec:expr, $pair:literal, $ab:expr, [$($op:ident),*]) => {
         $(pair_rows!(@one $rec, $pair, $ab, $op);)*
@@ -164,55 +185,185 @@ macro_rules! pair_rows {
     (@one $rec:expr, $pair:literal, $ab:expr, igp) => { row($rec, concat!("ops.", $pair, ".igp"), $ab, |x, y| x.inverse_geometric_product(y)) };
 }
 
-/// Every operation row (keys `ops.PAIR.PRODUCT`), from the coefficients of the operands (our
-/// blade order): vectors `va`, `vb`, grade-2 blades `ba`, `bb`, grade-4 blades `q4`.
-pub fn op_rows(va: &[f64], vb: &[f64], ba: &[f64], bb: &[f64], q4: &[f64]) -> Vec<Row> {
-    fn typed<T, const K: usize>(v: &[f64], from: fn([f64; K]) -> T) -> Vec<T> {
-        v.chunks_exact(K)
-            .map(|c| from(c.try_into().unwrap()))
-            .collect()
+/// The rows of many pairs: `[a b: products]` for operands `a`, `b` (slices).
+macro_rules! all_pairs {
+    ($rec:expr, $($pair:literal $a:ident $b:ident: [$($op:ident)*])*) => {
+        $(pair_rows!($rec, $pair, (&$a[..], &$b[..]), [$($op),*]);)*
+    };
+}
+
+/// The typed operands of one side: grade 0 as `f64`, 1..=5 as the generated blade types.
+struct Operands {
+    s: Vec<f64>,
+    v: Vec<Vector>,
+    b: Vec<Bivector>,
+    t: Vec<Trivector>,
+    q: Vec<Quadvector>,
+    p: Vec<Pseudoscalar>,
+}
+
+impl Operands {
+    /// From the coefficients of blades of grade 0..=5 (our blade order).
+    fn new(c: [&[f64]; 6]) -> Operands {
+        fn typed<T, const K: usize>(v: &[f64], from: fn([f64; K]) -> T) -> Vec<T> {
+            v.chunks_exact(K)
+                .map(|c| from(c.try_into().unwrap()))
+                .collect()
+        }
+        Operands {
+            s: c[0].to_vec(),
+            v: typed(c[1], Vector::from_array),
+            b: typed(c[2], Bivector::from_array),
+            t: typed(c[3], Trivector::from_array),
+            q: typed(c[4], Quadvector::from_array),
+            p: typed(c[5], Pseudoscalar::from_array),
+        }
     }
-    let (va, vb) = (typed(va, Vector::from_array), typed(vb, Vector::from_array));
-    let (ba, bb) = (
-        typed(ba, Bivector::from_array),
-        typed(bb, Bivector::from_array),
-    );
-    let q4 = typed(q4, Quadvector::from_array);
+}
+
+/// Every binary operation row (keys `ops.PAIR.PRODUCT`, [`pairs`] and [`products`] in order),
+/// from the coefficients of blades of grade 0..=5, left operands `l` and right ones `r`.
+pub fn op_rows(l: [&[f64]; 6], r: [&[f64]; 6]) -> Vec<Row> {
+    let (l, r) = (Operands::new(l), Operands::new(r));
+    let (s0, v1, b2, t3, q4, p5) = (&l.s, &l.v, &l.b, &l.t, &l.q, &l.p);
+    let (s0r, v1r, b2r, t3r, q4r, p5r) = (&r.s, &r.v, &r.b, &r.t, &r.q, &r.p);
     let rec = &mut Vec::new();
-    pair_rows!(
-        rec,
-        "11",
-        (&va[..], &vb[..]),
-        [gp, op, lc, rc, sp, dot, hip, cp, igp]
-    );
-    pair_rows!(
-        rec,
-        "12",
-        (&va[..], &ba[..]),
-        [gp, op, lc, dot, hip, cp, igp]
-    );
-    pair_rows!(
-        rec,
-        "22",
-        (&ba[..], &bb[..]),
-        [gp, op, lc, rc, sp, dot, hip, cp, igp]
-    );
-    pair_rows!(
-        rec,
-        "14",
-        (&va[..], &q4[..]),
-        [gp, op, lc, dot, hip, cp, rp, igp]
+    // Two scalars: `f64` arithmetic (the inverse geometric product is the quotient).
+    let ss = (&s0[..], &s0r[..]);
+    for key in ["gp", "op", "lc", "rc", "sp", "dot"] {
+        row(rec, &format!("ops.00.{key}"), ss, |x: f64, y: f64| x * y);
+    }
+    row(rec, "ops.00.igp", ss, |x: f64, y: f64| x / y);
+    all_pairs!(rec,
+        "01" s0 v1r: [gp op lc dot igp]
+        "02" s0 b2r: [gp op lc dot igp]
+        "03" s0 t3r: [gp op lc dot igp]
+        "04" s0 q4r: [gp op lc dot igp]
+        "05" s0 p5r: [gp op lc dot rp igp]
+        "10" v1 s0r: [gp op rc dot igp]
+        "11" v1 v1r: [gp op lc rc sp dot hip cp igp]
+        "12" v1 b2r: [gp op lc dot hip cp igp]
+        "13" v1 t3r: [gp op lc dot hip cp igp]
+        "14" v1 q4r: [gp op lc dot hip cp rp igp]
+        "15" v1 p5r: [gp lc dot hip rp igp]
+        "20" b2 s0r: [gp op rc dot igp]
+        "21" b2 v1r: [gp op rc dot hip cp igp]
+        "22" b2 b2r: [gp op lc rc sp dot hip cp igp]
+        "23" b2 t3r: [gp op lc dot hip cp rp igp]
+        "24" b2 q4r: [gp lc dot hip cp rp igp]
+        "25" b2 p5r: [gp lc dot hip rp igp]
+        "30" t3 s0r: [gp op rc dot igp]
+        "31" t3 v1r: [gp op rc dot hip cp igp]
+        "32" t3 b2r: [gp op rc dot hip cp rp igp]
+        "33" t3 t3r: [gp lc rc sp dot hip cp rp igp]
+        "34" t3 q4r: [gp lc dot hip cp rp igp]
+        "35" t3 p5r: [gp lc dot hip rp igp]
+        "40" q4 s0r: [gp op rc dot igp]
+        "41" q4 v1r: [gp op rc dot hip cp rp igp]
+        "42" q4 b2r: [gp rc dot hip cp rp igp]
+        "43" q4 t3r: [gp rc dot hip cp rp igp]
+        "44" q4 q4r: [gp lc rc sp dot hip cp rp igp]
+        "45" q4 p5r: [gp lc dot hip rp igp]
+        "50" p5 s0r: [gp op rc dot rp igp]
+        "51" p5 v1r: [gp rc dot hip rp igp]
+        "52" p5 b2r: [gp rc dot hip rp igp]
+        "53" p5 t3r: [gp rc dot hip rp igp]
+        "54" p5 q4r: [gp rc dot hip rp igp]
+        "55" p5 p5r: [gp lc rc sp dot hip rp igp]
     );
     std::mem::take(rec)
 }
 
-/// A blade operand of grade 2 or 4: the outer product of random vectors (ga-benchmark's
-/// `MakeRandomBlade`), in our blade order.
+/// A blade operand of grade `grade` in `0..=5`: a random scalar times the outer product of
+/// `grade` random vectors (ga-benchmark's `MakeRandomBlade`, with the vectors' coordinates all
+/// random), in our blade order, drawn again until `|<x ~x>_0|` is at least 1/20 of the sum of
+/// the squared coefficients (ga-benchmark's `MakeRandomInvertibleBlade` asks a non-zero norm;
+/// this also keeps inverses and quotients well conditioned, so that two implementations agree
+/// to rounding).
 pub fn blade(grade: usize, rng: &mut crate::timing::Lcg) -> Vec<f64> {
-    let mut vec = || Vector::from_array(rng.array::<5>());
+    let c = blade_mv(grade, rng).to_array();
+    let at = |name: &&str| Mv::BLADES.iter().position(|b| b == name).unwrap();
+    let pick = |blades: &[&str]| blades.iter().map(|n| c[at(n)]).collect();
     match grade {
-        2 => (vec() ^ vec()).to_array().to_vec(),
-        4 => (((vec() ^ vec()) ^ vec()) ^ vec()).to_array().to_vec(),
+        0 => vec![c[0]],
+        1 => pick(&Vector::BLADES),
+        2 => pick(&Bivector::BLADES),
+        3 => pick(&Trivector::BLADES),
+        4 => pick(&Quadvector::BLADES),
+        5 => pick(&Pseudoscalar::BLADES),
         _ => unreachable!("grade {grade}"),
+    }
+}
+
+/// The blade of [`blade`] as a multivector.
+fn blade_mv(grade: usize, rng: &mut crate::timing::Lcg) -> Mv {
+    loop {
+        let s = rng.uniform();
+        let mut m = Mv::from_array(std::array::from_fn(|i| if i == 0 { s } else { 0.0 }));
+        for _ in 0..grade {
+            m = m ^ Vector::from_array(rng.array::<5>());
+        }
+        let squares: f64 = m.to_array().iter().map(|x| x * x).sum();
+        if m.norm_squared().abs() >= squares / 20.0 {
+            return m;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use ga_codegen::runtime::derived::DerivedProducts as _;
+
+    /// [`products`] against the generic multivector: a product of ga-benchmark's set has a row
+    /// for a pair of grades exactly when it is not zero on random blades of those grades.
+    #[test]
+    fn the_rows_are_the_products_not_identically_zero() {
+        let mut rng = crate::timing::Lcg(0x0b5e7);
+        for (ga, gb, _) in pairs() {
+            let mut nonzero = Vec::new();
+            for _ in 0..3 {
+                let a = blade_mv(ga, &mut rng).to_multivector();
+                let b = blade_mv(gb, &mut rng).to_multivector();
+                let alg = a.algebra().clone();
+                let scalar = |x: f64| ga_codegen::Multivector::scalar(&alg, x);
+                let all = [
+                    ("gp", a.gp(&b)),
+                    ("op", a.outer(&b)),
+                    ("lc", a.left_contraction(&b)),
+                    ("rc", a.right_contraction(&b)),
+                    ("sp", scalar(a.scalar_product(&b))),
+                    ("dot", a.dot_product(&b)),
+                    ("hip", a.hestenes_inner_product(&b)),
+                    ("cp", a.commutator_product(&b)),
+                    ("rp", a.regressive_product(&b)),
+                    (
+                        "igp",
+                        a.inverse_geometric_product(&b)
+                            .expect("an invertible blade"),
+                    ),
+                ];
+                for (key, m) in all {
+                    if m.max_abs() > 1e-12 && !nonzero.contains(&key) {
+                        nonzero.push(key);
+                    }
+                }
+            }
+            let mut want = products(ga, gb);
+            want.sort_unstable();
+            nonzero.sort_unstable();
+            assert_eq!(nonzero, want, "grades ({ga}, {gb})");
+        }
+    }
+
+    /// Blades are blades of their grade, normalisable: `|<x ~x>_0|` is not small.
+    #[test]
+    fn blades_have_their_grade_and_a_norm() {
+        let mut rng = crate::timing::Lcg(3);
+        for g in 0..=MAX_GRADE {
+            let m = blade_mv(g, &mut rng).to_multivector();
+            assert!((m.max_diff(&m.grade(g as u32))) == 0.0, "grade {g}");
+            assert!(m.norm_squared().abs() >= 1e-3, "grade {g}");
+        }
     }
 }

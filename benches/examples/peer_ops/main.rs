@@ -50,7 +50,7 @@ const N: usize = 10_000;
 const PASSES: usize = 41;
 
 /// The input file's sections: name and f64 values per operand, in file order.
-const SECTIONS: [(&str, usize); 17] = [
+const SECTIONS: [(&str, usize); 26] = [
     ("pga.motor_a", 8),  // s e23 e31 e12 e01 e02 e03 e0123 (unit)
     ("pga.motor_b", 8),  // the same
     ("pga.point", 4),    // e032 e013 e021 e123 (e123 = 1)
@@ -67,7 +67,16 @@ const SECTIONS: [(&str, usize); 17] = [
     ("cga.ik_angles", 5), // ga-benchmark's inverse kinematics: 5 joint angles
     ("cga.blade2_a", 10), // blades for the operation rows (`ops.rs`): outer products of vectors
     ("cga.blade2_b", 10),
-    ("cga.blade4", 5),
+    ("cga.blade4_a", 5),
+    ("cga.blade0_a", 1), // the rest of the blades of grade 0..=5, left (a) and right (b) operands
+    ("cga.blade0_b", 1),
+    ("cga.blade1_a", 5),
+    ("cga.blade1_b", 5),
+    ("cga.blade3_a", 10),
+    ("cga.blade3_b", 10),
+    ("cga.blade4_b", 5),
+    ("cga.blade5_a", 1),
+    ("cga.blade5_b", 1),
 ];
 
 fn main() {
@@ -155,8 +164,9 @@ fn operand(name: &str, rng: &mut Lcg) -> Vec<f64> {
         "cga.ik_angles" => (0..5)
             .map(|_| rng.uniform() * std::f64::consts::FRAC_PI_2)
             .collect(),
-        "cga.blade2_a" | "cga.blade2_b" => ops::blade(2, rng),
-        "cga.blade4" => ops::blade(4, rng),
+        _ if name.starts_with("cga.blade") => {
+            ops::blade(usize::from(name.as_bytes()[9] - b'0'), rng)
+        }
         _ => unreachable!("{name}"),
     }
 }

@@ -114,13 +114,22 @@ fn rows() -> Vec<(String, String, &'static str, String, f64)> {
             f64::INFINITY,
         ));
     }
-    for (pair, products) in crate::ops::PAIRS {
-        for op in products {
+    for (ga, gb, pair) in crate::ops::pairs() {
+        for op in crate::ops::products(ga, gb) {
             let key = format!("ops.{pair}.{op}");
-            let (ga, gb) = (&pair[..1], &pair[1..]);
             let label = format!(
                 "CGA f64 op, grades ({ga}, {gb}) blades: {} product",
                 crate::ops::product_name(op)
+            );
+            rows.push((label, key.clone(), "gatl", key, 1.0));
+        }
+    }
+    for g in 0..=5 {
+        for op in crate::ops::UNARY {
+            let key = format!("un.{g}.{op}");
+            let label = format!(
+                "CGA f64 op, grade {g} blade: {}",
+                crate::ops::unary_name(op)
             );
             rows.push((label, key.clone(), "gatl", key, 1.0));
         }
@@ -225,6 +234,8 @@ pub(crate) fn report(dir: &Path, rounds: usize) -> i32 {
     );
     println!("|---|---|---|---|---|---|---|");
     let (mut pass, mut miss, mut bad) = (0, 0, 0);
+    // The ga-benchmark operation rows' ratios, for the summary below the table.
+    let mut set: Vec<(String, String, f64)> = Vec::new();
     for (label, key, peer, pkey, target) in rows() {
         let (key, pkey) = (key.as_str(), pkey.as_str());
         let o = median(&ours, key);
@@ -255,6 +266,9 @@ pub(crate) fn report(dir: &Path, rounds: usize) -> i32 {
                     ..Spread::median_of(&mut per_round)
                 };
                 let met = Target::AtMost(target).reached_by(r.value);
+                if key.starts_with("ops.") || key.starts_with("un.") {
+                    set.push((key.to_string(), label.clone(), r.value));
+                }
                 let grade = if target.is_infinite() {
                     "no target"
                 } else if met {
@@ -271,12 +285,19 @@ pub(crate) fn report(dir: &Path, rounds: usize) -> i32 {
                     grade.to_string(),
                 )
             }
-            (o, _) => (
-                o.map_or("-".into(), |o| format!("{:.2}", o.value)),
-                format!("{} not run", shown(peer)),
-                "-".into(),
-                "-".into(),
-            ),
+            (o, _) => {
+                // A peer that ran but lacks the row, or our side lacking a row the peer has:
+                // the two sides list different rows.
+                if !peers[peer].is_empty() {
+                    bad += 1;
+                }
+                (
+                    o.map_or("-".into(), |o| format!("{:.2}", o.value)),
+                    format!("{} not run", shown(peer)),
+                    "-".into(),
+                    "-".into(),
+                )
+            }
         };
         let target = if target.is_infinite() {
             "-".to_string()
@@ -288,9 +309,60 @@ pub(crate) fn report(dir: &Path, rounds: usize) -> i32 {
         );
     }
     println!("\n{pass} targets met, {miss} missed; outputs compared element by element (relative to max(1, |ours|); tolerance 1e-4 f32, 1e-10 f64): {bad} rows differ");
+    ops_summary(&mut set);
     if ours.is_empty() || bad > 0 {
         1
     } else {
         0
+    }
+}
+
+/// The ga-benchmark operation set in brief: the ratios as two grids (grade pairs by product,
+/// grades by unary operation; `-` where a product is identically zero), how many rows are at or
+/// below 1.0x GATL, and every row above.
+fn ops_summary(set: &mut [(String, String, f64)]) {
+    if set.is_empty() {
+        return;
+    }
+    let ratio: BTreeMap<&str, f64> = set.iter().map(|(k, _, r)| (k.as_str(), *r)).collect();
+    let cell = |key: String| {
+        ratio
+            .get(key.as_str())
+            .map_or("-".into(), |r| format!("{r:.2}"))
+    };
+    let products = [
+        "gp", "op", "lc", "rc", "sp", "dot", "hip", "cp", "rp", "igp",
+    ];
+    println!("\nga-benchmark's binary operations, ours / GATL by grade pair:\n");
+    println!("| grades | {} |", products.join(" | "));
+    println!("|---{}|", "|---".repeat(products.len()));
+    for (ga, gb, pair) in crate::ops::pairs() {
+        let cells: Vec<String> = products
+            .iter()
+            .map(|p| cell(format!("ops.{pair}.{p}")))
+            .collect();
+        println!("| ({ga}, {gb}) | {} |", cells.join(" | "));
+    }
+    println!("\nga-benchmark's unary operations, ours / GATL by grade:\n");
+    println!("| grade | {} |", crate::ops::UNARY.join(" | "));
+    println!("|---{}|", "|---".repeat(crate::ops::UNARY.len()));
+    for g in 0..=5 {
+        let cells: Vec<String> = crate::ops::UNARY
+            .iter()
+            .map(|u| cell(format!("un.{g}.{u}")))
+            .collect();
+        println!("| {g} | {} |", cells.join(" | "));
+    }
+    set.sort_by(|a, b| a.2.total_cmp(&b.2));
+    let at_most = set.iter().filter(|(_, _, r)| *r <= 1.0).count();
+    let mid = set[set.len() / 2].2;
+    println!(
+        "\nga-benchmark operation set: {at_most} of {} rows <= 1.0x GATL (ratios {:.2} to {:.2}, median {mid:.2}); above 1.0x:",
+        set.len(),
+        set[0].2,
+        set[set.len() - 1].2
+    );
+    for (_, label, r) in set.iter().filter(|(_, _, r)| *r > 1.0) {
+        println!("- {label}: {r:.2}");
     }
 }

@@ -123,6 +123,7 @@ pub fn emit_checks(spec: &Spec, generated: &Generated, runtime: &str) -> String 
     for t in &spec.types {
         body.extend(type_checks(spec, t, generated));
     }
+    body.extend(scalar_method_checks(generated));
     for o in &generated.ops {
         body.extend(match o.op.trait_name() {
             Some(_) => named_check(spec, o.op, &o.left, &o.right),
@@ -295,7 +296,8 @@ fn type_checks(spec: &Spec, t: &TypeDef, generated: &Generated) -> TokenStream {
 /// The check of one emitted binary operation, sandwich or conversion.
 fn op_check(spec: &Spec, op: Op, left: &str, right: &str) -> TokenStream {
     let (l, r) = (snake(left), snake(right));
-    let (rand_l, rand_r) = (ident(&format!("rand_{l}")), ident(&format!("rand_{r}")));
+    // The scalar on one side (`s ^ x`, `s | x`, ...): `rand_scalar`.
+    let (rand_l, rand_r) = (rand_of(left), rand_of(right));
     let body = match op {
         Op::Geometric | Op::Outer | Op::LeftContraction | Op::Add | Op::Sub => {
             let what = text(&format!("{left} {} {right}", op.symbol()));
@@ -414,4 +416,20 @@ fn named_check(spec: &Spec, op: Op, left: &str, right: &str) -> TokenStream {
         _ => quote!(check(c, f, #what, #got, ma.#m(&mb));),
     };
     quote!({ let a = #rand_l(&mut rng); let b = #rand_r(&mut rng); let (ma, mb) = (a.mv(), b.mv()); #body })
+}
+
+/// The checks of the scalar's methods (`ScalarDual::dual`, `ScalarDual::undual`, called through
+/// their trait) against the generic multivector's.
+fn scalar_method_checks(generated: &Generated) -> TokenStream {
+    let mut out = TokenStream::new();
+    for (tn, m) in &generated.methods {
+        if !matches!(tn.as_str(), "f64" | "f32") {
+            continue;
+        }
+        let what = text(&format!("{tn}::{}", m.name()));
+        let method = ident(m.name());
+        let tr = ident(crate::generator::emit::SCALAR_DUAL);
+        out.extend(quote!({ let a = rand_scalar(&mut rng); let ma = a.mv(); check(c, f, #what, #tr::#method(a).mv(), ma.#method()); }));
+    }
+    out
 }

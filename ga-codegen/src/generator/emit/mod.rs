@@ -47,6 +47,7 @@ mod wgsl;
 pub use exp_log::decompose::Refusal;
 pub use exp_log::refusals;
 pub use ops::{Method, Op, OpSummary, OutType};
+pub(crate) use products::scalar_ops::SCALAR_DUAL;
 pub use render::snake;
 pub use wgsl::{generate_wgsl, generate_wgsl_to};
 
@@ -276,7 +277,8 @@ pub struct Generated {
     pub types: Vec<(String, usize)>,
     /// Every emitted binary operation, sandwich and conversion (`from`).
     pub ops: Vec<OpSummary>,
-    /// Emitted unary methods whose result is not fixed: (type, method).
+    /// Emitted unary methods whose result is not fixed: (type, method); the type is the scalar
+    /// type's name (`f64`, `f32`) for its `dual` and `undual` (trait `ScalarDual`).
     pub methods: Vec<(String, Method)>,
     /// Operations skipped because identically zero.
     pub zero_ops: usize,
@@ -426,6 +428,7 @@ pub fn generate(spec: &Spec, opts: &EmitOptions) -> Result<Generated, GenError> 
         }
     }
     g.named_products();
+    g.grade_zero_operators();
     for d in &spec.sandwiches {
         g.sandwich(d)?;
     }

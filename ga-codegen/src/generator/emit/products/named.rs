@@ -30,6 +30,14 @@ impl Gen<'_> {
     /// The operands of the named products: the scalar, then every declared type whose stored
     /// and constant blades all have one grade, in spec order.
     fn named_operands(&self) -> Vec<Operand> {
+        std::iter::once(Operand::Scalar)
+            .chain(self.one_grade_types().into_iter().map(Operand::Type))
+            .collect()
+    }
+
+    /// The declared types whose stored and constant blades all have one grade, in spec order
+    /// (the operands of the named products besides the scalar).
+    pub(crate) fn one_grade_types(&self) -> Vec<usize> {
         let one_grade = |t: &crate::generator::spec::TypeDef| {
             let mut grades = t
                 .fields
@@ -40,12 +48,8 @@ impl Gen<'_> {
             let first = grades.next();
             first.is_some() && grades.all(|g| Some(g) == first)
         };
-        std::iter::once(Operand::Scalar)
-            .chain(
-                (0..self.spec.types.len())
-                    .filter(|&t| one_grade(&self.spec.types[t]))
-                    .map(Operand::Type),
-            )
+        (0..self.spec.types.len())
+            .filter(|&t| one_grade(&self.spec.types[t]))
             .collect()
     }
 
