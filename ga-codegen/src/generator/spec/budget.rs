@@ -224,6 +224,10 @@ pub(super) fn check(
         return Ok(());
     }
     let biggest_sandwich = e.sandwiches.iter().max_by_key(|s| s.units);
+    let blades: usize = types
+        .iter()
+        .map(|t| t.fields.len() + t.constants.len())
+        .sum();
     let (cause, location, type_name) = match biggest_sandwich {
         Some(sc) if sc.units >= e.pairs.max(e.types) => {
             let s = &sandwiches[sc.index];
@@ -240,10 +244,7 @@ pub(super) fn check(
                  all): {} units; declare fewer or smaller types",
                 types.len(),
                 types.len() * types.len(),
-                types
-                    .iter()
-                    .map(|t| t.fields.len() + t.constants.len())
-                    .sum::<usize>(),
+                blades,
                 e.pairs
             ),
             SpecLocation::Spec,
@@ -251,8 +252,10 @@ pub(super) fn check(
         ),
         _ => (
             format!(
-                "the methods of the {} types ({:.1} terms per blade product): {} units",
+                "the methods of the {} types ({} blades in all, {:.1} terms per blade \
+                 product): {} units; declare fewer or smaller types",
                 types.len(),
+                blades,
                 cost.terms,
                 e.types
             ),
