@@ -16,7 +16,7 @@
 //!   product `V X` and then `(V X) ~V`), plus its matrix form; for a `unit` versor also
 //!   `2 m v^2` (the identities of `V ~V = 1`) and `SAMPLE_UNITS m c^2` for its check on 32
 //!   sample unit versors, exponentials whose products span the `c` blades of the versor's
-//!   closure ([`super::unit_cost`]): a motor's 8, QCGA's translator 184 (51 reached), a general
+//!   closure (`spec/unit_cost.rs`): a motor's 8, QCGA's translator 184 (51 reached), a general
 //!   QCGA rotor 16,384;
 //! - each emitted item costs `ITEM` units (formatting, parsing, printing).
 //!
