@@ -472,12 +472,7 @@ mod tests {
     use super::*;
     use crate::generator::spec::Spec;
 
-    fn spec(name: &str) -> Spec {
-        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("../algebras")
-            .join(format!("{name}.toml"));
-        Spec::from_file(&path).expect("valid spec")
-    }
+    use crate::generator::spec::shipped_spec as spec;
 
     fn ty<'a>(s: &'a Spec, name: &str) -> &'a TypeDef {
         s.types.iter().find(|t| t.name == name).expect("type")

@@ -312,3 +312,12 @@ fn is_device(kind: &std::fs::FileType) -> bool {
 fn is_device(_: &std::fs::FileType) -> bool {
     false
 }
+
+/// A spec shipped in `algebras/` by name (`"qcga"`), for unit tests.
+#[cfg(test)]
+pub(crate) fn shipped_spec(name: &str) -> Spec {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../algebras")
+        .join(format!("{name}.toml"));
+    Spec::from_file(&path).expect("valid spec")
+}

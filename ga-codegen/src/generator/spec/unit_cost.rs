@@ -88,14 +88,8 @@ fn closure_blades(metric: &Metric, t: &TypeDef, cap: usize) -> HashSet<Bitmap> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::generator::spec::Spec;
 
-    fn spec(name: &str) -> Spec {
-        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("../algebras")
-            .join(format!("{name}.toml"));
-        Spec::from_file(&path).expect("valid spec")
-    }
+    use crate::generator::spec::{shipped_spec as spec, Spec};
 
     fn closure(s: &Spec, name: &str) -> HashSet<Bitmap> {
         let t = s.types.iter().find(|t| t.name == name).expect("type");
