@@ -35,8 +35,10 @@ pub(crate) fn max_abs(c: &[S]) -> S {
 /// subnormal over `k`.
 #[inline]
 pub(crate) fn precise_scale(k: S, what: &'static str) -> Result<()> {
-    let smallest = S::from_bits(1);
-    if smallest <= S::EPSILON.sqrt() * k {
+    // `smallest / sqrt(eps)` is exact enough (a few thousand subnormal steps); the product
+    // `sqrt(eps) * k` is not: near the limit it underflows and rounds up to `smallest`.
+    let limit = S::from_bits(1) / S::EPSILON.sqrt();
+    if limit <= k {
         Ok(())
     } else {
         Err(CgaError::Overflow { what })
