@@ -20,7 +20,10 @@ use cga::f64::{
     CommutatorProduct, DotProduct, HestenesInnerProduct, InverseGeometricProduct,
     RegressiveProduct, RightContraction, ScalarProduct,
 };
-use cga::{Bivector, Even, Mv, Odd, Pseudoscalar, Quadvector, ScalarBivector, Trivector, Vector};
+use cga::{
+    Bivector, Even, Mv, Odd, Pseudoscalar, Quadvector, ScalarBivector, Trivector,
+    TrivectorPseudoscalar, Vector,
+};
 use std::hint::black_box;
 use std::time::Instant;
 
@@ -114,6 +117,7 @@ as_mv!(
     ScalarBivector,
     Bivector,
     Trivector,
+    TrivectorPseudoscalar,
     Quadvector,
     Pseudoscalar,
     Even,
