@@ -1,5 +1,6 @@
 //! Every generated product, method, sandwich, matrix form and conversion, for every type pair of
-//! every algebra, against the slow generic multivector on 200 seeded random inputs.
+//! every algebra (f64, and f32 where the crate generates it), against the slow generic
+//! multivector on 200 seeded random inputs.
 
 fn run(name: &str, (count, fails): (usize, Vec<String>)) {
     println!("{name}: {count} comparisons");
@@ -25,6 +26,16 @@ fn cga_f32_generated_matches_generic() {
 #[test]
 fn pga3d_generated_matches_generic() {
     run("pga3d", tests::pga3d::checks::check_all(200, 2));
+}
+
+#[test]
+fn pga3d_f32_generated_matches_generic() {
+    run("pga3d_f32", tests::pga3d_f32::checks::check_all(200, 9));
+}
+
+#[test]
+fn g3_f32_generated_matches_generic() {
+    run("g3_f32", tests::g3_f32::checks::check_all(200, 10));
 }
 
 #[test]
@@ -55,4 +66,24 @@ fn signature_220_generated_matches_generic() {
 #[test]
 fn signature_320_generated_matches_generic() {
     run("sig320", tests::sig320::checks::check_all(200, 8));
+}
+
+#[test]
+fn sta_f32_generated_matches_generic() {
+    run("sta_f32", tests::sta_f32::checks::check_all(200, 11));
+}
+
+#[test]
+fn sig201_f32_generated_matches_generic() {
+    run("sig201_f32", tests::sig201_f32::checks::check_all(200, 12));
+}
+
+#[test]
+fn sig400_f32_generated_matches_generic() {
+    run("sig400_f32", tests::sig400_f32::checks::check_all(200, 13));
+}
+
+#[test]
+fn sig220_f32_generated_matches_generic() {
+    run("sig220_f32", tests::sig220_f32::checks::check_all(200, 14));
 }

@@ -199,6 +199,26 @@ fn vector_part(o: Odd) -> Vector {
     Vector::new(o.eo, o.e1, o.e2, o.e3, o.ei)
 }
 
+/// The vector part of a product's result, whichever odd type holds it.
+trait VectorPart {
+    fn vector_part(self) -> Vector;
+}
+
+impl VectorPart for Odd {
+    #[inline(always)]
+    fn vector_part(self) -> Vector {
+        vector_part(self)
+    }
+}
+
+impl VectorPart for cga::TrivectorPseudoscalar {
+    /// None: the type holds grades 3 and 5 only (`Pseudoscalar * Rotor`).
+    #[inline(always)]
+    fn vector_part(self) -> Vector {
+        Vector::new(0.0, 0.0, 0.0, 0.0, 0.0)
+    }
+}
+
 /// The vector part of `o r` for an odd `o` and a versor `r`, as the sum of the vector parts
 /// of `o`'s grades times `r` (products small enough to be inlined, so only the vector part is
 /// computed).
@@ -208,14 +228,15 @@ where
     R: Copy,
     Vector: std::ops::Mul<R, Output = Odd>,
     Trivector: std::ops::Mul<R, Output = Odd>,
-    cga::Pseudoscalar: std::ops::Mul<R, Output = Odd>,
+    cga::Pseudoscalar: std::ops::Mul<R>,
+    <cga::Pseudoscalar as std::ops::Mul<R>>::Output: VectorPart,
 {
     let v = Vector::new(o.eo, o.e1, o.e2, o.e3, o.ei);
     let t = Trivector::new(
         o.eo12, o.eo13, o.eo1i, o.eo23, o.eo2i, o.eo3i, o.e123, o.e12i, o.e13i, o.e23i,
     );
     let (a, b) = (vector_part(v * r), vector_part(t * r));
-    let c = vector_part(cga::Pseudoscalar::new(o.eo123i) * r);
+    let c = (cga::Pseudoscalar::new(o.eo123i) * r).vector_part();
     Vector::new(
         a.eo + b.eo + c.eo,
         a.e1 + b.e1 + c.e1,

@@ -10,7 +10,7 @@
 #[cfg(target_arch = "x86_64")]
 use core::arch::x86_64::{
     __m128, _mm_add_ps, _mm_loadu_ps, _mm_mul_ps, _mm_set1_ps, _mm_setr_ps, _mm_shuffle_ps,
-    _mm_storeu_ps, _mm_sub_ps, _mm_xor_ps,
+    _mm_storeu_ps, _mm_sub_ps, _mm_unpackhi_ps, _mm_unpacklo_ps, _mm_xor_ps,
 };
 
 /// Four `f32` lanes.
@@ -52,6 +52,29 @@ impl F32x4 {
     #[must_use]
     pub fn shuffle<const IMM: i32>(self) -> F32x4 {
         F32x4(unsafe { _mm_shuffle_ps::<IMM>(self.0, self.0) })
+    }
+
+    /// Two lanes of `self` then two of `b`, as `_mm_shuffle_ps(self, b)`: lanes 0 and 1 are
+    /// lanes `IMM & 3` and `(IMM >> 2) & 3` of `self`, lanes 2 and 3 lanes `(IMM >> 4) & 3`
+    /// and `(IMM >> 6) & 3` of `b`.
+    #[inline(always)]
+    #[must_use]
+    pub fn shuffle2<const IMM: i32>(self, b: F32x4) -> F32x4 {
+        F32x4(unsafe { _mm_shuffle_ps::<IMM>(self.0, b.0) })
+    }
+
+    /// `(self0, b0, self1, b1)`.
+    #[inline(always)]
+    #[must_use]
+    pub fn unpack_lo(self, b: F32x4) -> F32x4 {
+        F32x4(unsafe { _mm_unpacklo_ps(self.0, b.0) })
+    }
+
+    /// `(self2, b2, self3, b3)`.
+    #[inline(always)]
+    #[must_use]
+    pub fn unpack_hi(self, b: F32x4) -> F32x4 {
+        F32x4(unsafe { _mm_unpackhi_ps(self.0, b.0) })
     }
 
     /// Negate the lanes whose bit is set in `MASK` (bit `i` for lane `i`): an exact sign flip.
@@ -103,6 +126,30 @@ impl F32x4 {
     pub fn shuffle<const IMM: i32>(self) -> F32x4 {
         let l = |i: i32| self.0[((IMM >> (2 * i)) & 3) as usize];
         F32x4([l(0), l(1), l(2), l(3)])
+    }
+
+    /// Two lanes of `self` then two of `b`, as `_mm_shuffle_ps(self, b)`: lanes 0 and 1 are
+    /// lanes `IMM & 3` and `(IMM >> 2) & 3` of `self`, lanes 2 and 3 lanes `(IMM >> 4) & 3`
+    /// and `(IMM >> 6) & 3` of `b`.
+    #[inline(always)]
+    #[must_use]
+    pub fn shuffle2<const IMM: i32>(self, b: F32x4) -> F32x4 {
+        let l = |x: &[f32; 4], i: i32| x[((IMM >> (2 * i)) & 3) as usize];
+        F32x4([l(&self.0, 0), l(&self.0, 1), l(&b.0, 2), l(&b.0, 3)])
+    }
+
+    /// `(self0, b0, self1, b1)`.
+    #[inline(always)]
+    #[must_use]
+    pub fn unpack_lo(self, b: F32x4) -> F32x4 {
+        F32x4([self.0[0], b.0[0], self.0[1], b.0[1]])
+    }
+
+    /// `(self2, b2, self3, b3)`.
+    #[inline(always)]
+    #[must_use]
+    pub fn unpack_hi(self, b: F32x4) -> F32x4 {
+        F32x4([self.0[2], b.0[2], self.0[3], b.0[3]])
     }
 
     /// Negate the lanes whose bit is set in `MASK` (bit `i` for lane `i`): an exact sign flip.
@@ -172,6 +219,10 @@ mod tests {
         const IMM: i32 = shuffle_imm([3, 2, 1, 0]);
         assert_eq!(a.shuffle::<IMM>().to_array(), [0.5, 3.0, -2.0, 1.5]);
         assert_eq!(a.flip::<0b0101>().to_array(), [-1.5, -2.0, -3.0, 0.5]);
+        assert_eq!(a.unpack_lo(b).to_array(), [1.5, 4.0, -2.0, 0.25]);
+        assert_eq!(a.unpack_hi(b).to_array(), [3.0, -1.0, 0.5, 2.0]);
+        const IMM2: i32 = shuffle_imm([3, 0, 1, 2]);
+        assert_eq!(a.shuffle2::<IMM2>(b).to_array(), [0.5, 1.5, 0.25, -1.0]);
         assert_eq!(
             F32x4::from_array([1.0, 2.0, 3.0, 4.0]).to_array(),
             [1.0, 2.0, 3.0, 4.0]

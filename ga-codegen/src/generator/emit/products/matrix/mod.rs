@@ -9,7 +9,15 @@
 //! (the constant row of a point's weight, the zero constant column) is not stored: `apply`
 //! writes it as a constant, or skips it when it is zero. `apply` is then, per output chunk,
 //! a sum of `column chunk * splat(operand field)`: for a 4-field point in f32, 4 shuffles,
-//! 4 multiplies and 3 adds, what a hand-written SSE batch loop does.
+//! 4 multiplies and 3 adds.
+//!
+//! In f32 the matrix may instead be stored by diagonals of its 4 x 4 blocks: diagonal `k` of
+//! the block of output quad `q` and operand quad `p` holds, in lane `i`, the entry of row
+//! `4q + i` and operand field `4p + (i ^ k)`, and `apply` multiplies it by the operand quad
+//! with its lanes permuted the same way. The four permutations (`i ^ k`) cover the block, and
+//! the first is the identity: for a 4-field point, 3 shuffles, 4 multiplies and 3 adds, what
+//! klein's hand-written SSE batch loop does. The form with fewer vector operations in `apply`
+//! is emitted.
 
 use crate::generator::emit::lanes::quad::{quad_sum, QuadLoads};
 use crate::generator::emit::lanes::LaneTerms;
@@ -22,12 +30,40 @@ use proc_macro2::{Ident, Literal, TokenStream};
 use quote::quote;
 use std::collections::BTreeSet;
 
-/// One column chunk: operand field `col` (`None`: the constant column), the output rows from
-/// `first_row` on (as many as a lane type holds), and how `apply` gets it.
+mod diagonal;
+use diagonal::permuted;
+
+/// Where `apply` uses a chunk.
+#[derive(Clone, Copy)]
+enum Role {
+    /// Column `col` (`None`: the constant column), output rows from `first_row` on: times
+    /// that operand field in every lane.
+    Column {
+        col: Option<usize>,
+        first_row: usize,
+    },
+    /// Diagonal `k` of the block of output quad `q` and operand quad `p` (f32): times the
+    /// operand quad `p` with lane `i` taken from lane `i ^ k`.
+    Diagonal { q: usize, p: usize, k: usize },
+}
+
+/// One chunk of the matrix: its role in `apply`, the entry `(row, column)` each lane holds
+/// (column `nx` is the constant column; `None` past the last row or operand field), and how
+/// `apply` gets it.
 struct Chunk {
-    col: Option<usize>,
-    first_row: usize,
+    role: Role,
+    entries: Vec<Option<(usize, usize)>>,
     kind: ChunkKind,
+}
+
+impl Chunk {
+    /// The output chunk (`first_row / width`) the chunk adds to.
+    fn out_quad(&self, width: usize) -> usize {
+        match self.role {
+            Role::Column { first_row, .. } => first_row / width,
+            Role::Diagonal { q, .. } => q,
+        }
+    }
 }
 
 enum ChunkKind {
@@ -68,28 +104,21 @@ impl Gen<'_> {
         let mut chunks = Vec::new();
         for j in 0..=nx {
             for first_row in (0..ny).step_by(width) {
-                let lanes: Vec<&Poly> = (first_row..first_row + width)
-                    .map(|k| m.coef.get(k).map_or(&ZERO, |row| &row[j]))
+                let entries: Vec<_> = (first_row..first_row + width)
+                    .map(|k| (k < ny).then_some((k, j)))
                     .collect();
-                let kind = if lanes.iter().all(|p| p.is_zero()) {
-                    ChunkKind::Zero
-                } else if let Some(cs) = lanes
-                    .iter()
-                    .map(|p| p.as_constant())
-                    .collect::<Option<Vec<_>>>()
-                {
-                    ChunkKind::Constant(cs)
-                } else {
-                    let col = match j < nx {
-                        true => m.tx.fields[j].name.clone(),
-                        false => "1".to_string(),
-                    };
-                    ChunkKind::Stored(ident(&format!("c_{col}_{}", first_row / width)))
+                let col = match j < nx {
+                    true => m.tx.fields[j].name.clone(),
+                    false => "1".to_string(),
                 };
+                let name = format!("c_{col}_{}", first_row / width);
                 chunks.push(Chunk {
-                    col: (j < nx).then_some(j),
-                    first_row,
-                    kind,
+                    role: Role::Column {
+                        col: (j < nx).then_some(j),
+                        first_row,
+                    },
+                    kind: chunk_kind(m, &entries, &name),
+                    entries,
                 });
             }
         }
@@ -101,7 +130,7 @@ impl Gen<'_> {
     pub(crate) fn sandwich_matrix(&self, m: &MatrixInput<'_>) -> TokenStream {
         let (tv, tx, to) = (m.tv, m.tx, m.to);
         let (width, lane) = self.matrix_lanes();
-        let chunks = self.matrix_chunks(m, width);
+        let chunks = self.matrix_layout(m, width);
         let s = &self.s;
         let (nx, ny) = (tx.fields.len(), to.fields.len());
         let (xn, on, vn) = (ident(&tx.name), ident(&to.name), ident(&tv.name));
@@ -115,17 +144,40 @@ impl Gen<'_> {
             .collect();
         // The struct and its construction.
         let field_docs = stored.iter().map(|(_, c)| {
-            let rows: Vec<&str> = (c.first_row..(c.first_row + width).min(ny))
-                .map(|k| to.fields[k].name.as_str())
+            let rows: Vec<&str> = c
+                .entries
+                .iter()
+                .flatten()
+                .map(|&(k, _)| to.fields[k].name.as_str())
                 .collect();
-            let col = c.col.map_or("The constant column".to_string(), |j| {
-                format!("Column `{}`", tx.fields[j].name)
-            });
-            doc(&format!("{col}, rows `{}`.", rows.join("`, `")))
+            match c.role {
+                Role::Column { col, .. } => {
+                    let col = col.map_or("The constant column".to_string(), |j| {
+                        format!("Column `{}`", tx.fields[j].name)
+                    });
+                    doc(&format!("{col}, rows `{}`.", rows.join("`, `")))
+                }
+                Role::Diagonal { .. } => {
+                    let pairs: Vec<String> = c
+                        .entries
+                        .iter()
+                        .map(|e| match e {
+                            Some((k, j)) => {
+                                format!("`{}` from `{}`", to.fields[*k].name, tx.fields[*j].name)
+                            }
+                            None => "0".to_string(),
+                        })
+                        .collect();
+                    doc(&format!(
+                        "A block diagonal, lane by lane: {}.",
+                        pairs.join(", ")
+                    ))
+                }
+            }
         });
         let names: Vec<&Ident> = stored.iter().map(|(n, _)| *n).collect();
-        let (lets, values) = self.chunk_values(m, &stored, width);
-        let rows_fn = rows_fn(&chunks, &stored, width, (nx, ny), self.scalar);
+        let (lets, values) = self.chunk_values(m, &stored);
+        let rows_fn = rows_fn(&chunks, &stored, (nx, ny), self.scalar);
         let mut apply = apply_body(&chunks, tx, to, width, self.scalar);
         // The lane type, where the body uses it.
         let ln = lane_name(self.scalar);
@@ -142,7 +194,7 @@ impl Gen<'_> {
         let mdoc = doc(&format!(
             "The linear (outermorphism) form of the sandwich of a `{x}` by a `{v}`: build it \
              once per versor (`{v}::{f}_matrix`) and `apply` it to many operands.\n\nRows: {}. \
-             Columns: {}. Stored by columns in {width}-lane chunks; chunks that are the same \
+             Columns: {}. Stored in {width}-lane chunks, {form}; chunks that are the same \
              for every versor (zeros, the constant entries) are not stored. `rows()` gives \
              every entry.",
             out_rows.join(", "),
@@ -150,6 +202,13 @@ impl Gen<'_> {
             x = tx.name,
             v = tv.name,
             f = snake(&tx.name),
+            form = match chunks
+                .iter()
+                .any(|c| matches!(c.role, Role::Diagonal { .. }))
+            {
+                true => "by diagonals of its 4 x 4 blocks (`apply` permutes the operand's lanes)",
+                false => "by columns",
+            },
         ));
         let fdoc = doc(&format!(
             "The matrix form of `self.sandwich(x)` for `x: {}`; see [`{mat}`].",
@@ -196,13 +255,18 @@ impl Gen<'_> {
         &self,
         m: &MatrixInput<'_>,
         stored: &[(&Ident, &Chunk)],
-        width: usize,
     ) -> (TokenStream, Vec<TokenStream>) {
-        let nx = m.tx.fields.len();
         if stored.is_empty() {
             return (TokenStream::new(), Vec::new());
         }
-        if self.scalar == ScalarType::F32 {
+        let diagonal = stored
+            .iter()
+            .any(|(_, c)| matches!(c.role, Role::Diagonal { .. }));
+        if self.scalar == ScalarType::F32 && diagonal {
+            if let Some(built) = self.diagonal_values(m, stored) {
+                return built;
+            }
+        } else if self.scalar == ScalarType::F32 {
             let mut loads = QuadLoads::default();
             let quads: Option<Vec<TokenStream>> = stored
                 .iter()
@@ -217,11 +281,9 @@ impl Gen<'_> {
         let values = stored
             .iter()
             .map(|(_, c)| {
-                let ny = m.to.fields.len();
-                let lanes = (c.first_row..c.first_row + width).map(|k| match c.col {
-                    _ if k >= ny => quote!(0.0),
-                    Some(j) => m.entries[k][j].clone(),
-                    None => m.entries[k][nx].clone(),
+                let lanes = c.entries.iter().map(|e| match *e {
+                    Some((k, j)) => m.entries[k][j].clone(),
+                    None => quote!(0.0),
                 });
                 let ln = lane_name(self.scalar);
                 quote!(#ln::new(#(#lanes),*))
@@ -236,16 +298,14 @@ impl Gen<'_> {
 /// or a product of two versor fields. Lanes whose entry is a constant (or past the last row)
 /// are free in the lane sums and set by a mask and the constants at the end.
 fn quad_chunk(m: &MatrixInput<'_>, c: &Chunk, loads: &mut QuadLoads) -> Option<TokenStream> {
-    let (nx, ny) = (m.tx.fields.len(), m.to.fields.len());
     let mut consts = [Rational::ZERO; 4];
     // The quadratic terms `c a.x a.y` of each lane.
     let mut quadratic: Vec<Vec<(u16, u16, Rational)>> = vec![Vec::new(); 4];
     for (i, terms) in quadratic.iter_mut().enumerate() {
-        let k = c.first_row + i;
-        if k >= ny {
+        let Some((k, j)) = c.entries[i] else {
             continue;
-        }
-        for (mono, &coef) in &m.coef[k][c.col.unwrap_or(nx)].0 {
+        };
+        for (mono, &coef) in &m.coef[k][j].0 {
             match mono.as_slice() {
                 [] => consts[i] = coef,
                 [x, y] if x.operand == 0 && y.operand == 0 => terms.push((x.field, y.field, coef)),
@@ -320,6 +380,25 @@ fn lane_name(scalar: ScalarType) -> Ident {
 /// The zero polynomial, for rows past the last output field.
 static ZERO: Poly = Poly(std::collections::BTreeMap::new());
 
+/// How a chunk with these entries is had: zero, constant, or stored as field `name`.
+fn chunk_kind(m: &MatrixInput<'_>, entries: &[Option<(usize, usize)>], name: &str) -> ChunkKind {
+    let lanes: Vec<&Poly> = entries
+        .iter()
+        .map(|e| e.map_or(&ZERO, |(k, j)| &m.coef[k][j]))
+        .collect();
+    if lanes.iter().all(|p| p.is_zero()) {
+        ChunkKind::Zero
+    } else if let Some(cs) = lanes
+        .iter()
+        .map(|p| p.as_constant())
+        .collect::<Option<Vec<_>>>()
+    {
+        ChunkKind::Constant(cs)
+    } else {
+        ChunkKind::Stored(ident(name))
+    }
+}
+
 /// The lanes of a chunk as an array expression (`self.c_x_q` read out).
 fn lanes_of(name: &Ident, scalar: ScalarType) -> TokenStream {
     match scalar {
@@ -332,7 +411,6 @@ fn lanes_of(name: &Ident, scalar: ScalarType) -> TokenStream {
 fn rows_fn(
     chunks: &[Chunk],
     stored: &[(&Ident, &Chunk)],
-    width: usize,
     (nx, ny): (usize, usize),
     scalar: ScalarType,
 ) -> TokenStream {
@@ -342,11 +420,13 @@ fn rows_fn(
     });
     let rows = (0..ny).map(|k| {
         let entries = (0..=nx).map(|j| {
-            let chunk = chunks
+            let (chunk, lane) = chunks
                 .iter()
-                .find(|c| c.col.unwrap_or(nx) == j && c.first_row / width == k / width)
+                .find_map(|c| {
+                    let lane = c.entries.iter().position(|e| *e == Some((k, j)))?;
+                    Some((c, lane))
+                })
                 .expect("every entry is in a chunk");
-            let lane = k % width;
             match &chunk.kind {
                 ChunkKind::Zero => quote!(0.0),
                 ChunkKind::Constant(cs) => lit(cs[lane]),
@@ -362,7 +442,7 @@ fn rows_fn(
 }
 
 /// The body of `apply`: per output chunk, the sum of its column chunks times the operand's
-/// fields splatted.
+/// fields splatted, or of its diagonal chunks times the operand's quads permuted.
 fn apply_body(
     chunks: &[Chunk],
     tx: &TypeDef,
@@ -377,8 +457,25 @@ fn apply_body(
     let mut outs = Vec::new();
     for q in 0..nq {
         let mut terms = Vec::new();
-        for c in chunks.iter().filter(|c| c.first_row == q * width) {
-            let term = match (&c.kind, c.col) {
+        for c in chunks.iter().filter(|c| c.out_quad(width) == q) {
+            let col = match c.role {
+                Role::Column { col, .. } => col,
+                Role::Diagonal { p, k, .. } => {
+                    let x = permuted(p, k);
+                    let term = match &c.kind {
+                        ChunkKind::Zero => continue,
+                        ChunkKind::Stored(n) => quote!(self.#n * #x),
+                        ChunkKind::Constant(cs) if cs.iter().all(|&c| c == Rational::ONE) => x,
+                        ChunkKind::Constant(cs) => {
+                            let cs = cs.iter().map(|&c| lit(c));
+                            quote!(#ln::new(#(#cs),*) * #x)
+                        }
+                    };
+                    terms.push(term);
+                    continue;
+                }
+            };
+            let term = match (&c.kind, col) {
                 (ChunkKind::Zero, _) => continue,
                 (ChunkKind::Stored(n), Some(j)) => {
                     let x = splat(tx, j, scalar);
@@ -428,8 +525,10 @@ fn apply_body(
     });
     let used: BTreeSet<usize> = chunks
         .iter()
-        .filter_map(|c| match (&c.kind, c.col) {
-            (ChunkKind::Stored(_), Some(j)) => Some(j / 4),
+        .filter_map(|c| match (&c.kind, c.role) {
+            (ChunkKind::Zero, _) => None,
+            (_, Role::Diagonal { p, .. }) => Some(p),
+            (ChunkKind::Stored(_), Role::Column { col: Some(j), .. }) => Some(j / 4),
             _ => None,
         })
         .collect();
