@@ -151,7 +151,8 @@ const ILL_CONDITIONED: f64 = 1e-10;
 /// every coefficient of the logarithm (the six of a rigid motion, and the dilation when keys
 /// scale). The normal equations `A^T A R = A^T Q` are solved by Cholesky, or by the SVD of `A`
 /// when `A^T A` is ill-conditioned (its reciprocal condition number below `1e-10`) or
-/// singular (a control point no parameter reaches).
+/// singular (a control point no parameter reaches). To fit many key sets at the same
+/// parameters, prepare a [`BsplineFitter`] once.
 ///
 /// # Errors
 /// [`KeyError::BadSetup`] when `control_count < 2`, `control_count > keys.len()`, the lengths
@@ -166,73 +167,150 @@ pub fn fit_bspline(
     if lambda.len() != n {
         return Err(KeyError::BadSetup(format!("{n} keys but {} parameters", lambda.len())).into());
     }
-    if control_count < 2 || control_count > n {
-        return Err(KeyError::BadSetup(format!(
-            "{control_count} control motors for {n} keys: need 2 <= controls <= keys"
-        ))
-        .into());
-    }
-    if let Some(i) = lambda.iter().position(|l| !(0.0..=1.0).contains(l)) {
-        return Err(KeyError::ParameterOutOfRange {
-            index: i,
-            value: lambda[i],
-        }
-        .into());
-    }
-    let m = control_count;
-    let p = bspline_degree(m);
-    let mut a = DMatrix::<f64>::zeros(n, m);
-    let mut w = [0.0; 4];
-    for (i, &l) in lambda.iter().enumerate() {
-        let first = bspline_basis(m, p, l, &mut w);
-        for k in 0..=p {
-            a[(i, first + k)] = w[k];
-        }
-    }
-    let mut q = DMatrix::<f64>::zeros(n, 10);
-    for (i, k) in keys.iter().enumerate() {
-        let b = k
-            .try_log()
-            .map_err(|source| KeyError::Invalid { index: i, source })?;
-        for (c, v) in b.to_array().iter().enumerate() {
-            q[(i, c)] = *v;
-        }
-    }
-    let ata = a.transpose() * &a;
-    let atq = a.transpose() * &q;
-    let (r, solver) = match solve_normal(&ata, &atq) {
-        Some(r) => (r, FitSolver::Cholesky),
-        None => {
-            let svd = a.clone().svd(true, true);
-            let r = svd
-                .solve(&q, 1e-12)
-                .map_err(|e| KeyError::BadSetup(format!("SVD failed: {e}")))?;
-            (r, FitSolver::Svd)
-        }
-    };
-    let residual = &a * &r - &q;
-    let max_residual = (0..n).map(|i| residual.row(i).norm()).fold(0.0, f64::max);
-    let mut controls = Vec::with_capacity(m);
-    for j in 0..m {
-        let mut c = [0.0; 10];
-        for (k, v) in c.iter_mut().enumerate() {
-            *v = r[(j, k)];
-        }
-        let motor = Bivector::from_array(c)
-            .try_exp_scaled()
-            .map_err(|source| KeyError::Invalid { index: j, source })?;
-        controls.push(motor);
-    }
+    let fitter = BsplineFitter::new(lambda, control_count)?;
+    let mut scratch = FitScratch::default();
+    let mut controls = vec![ScaledMotor::IDENTITY; control_count];
+    let max_residual = fitter.fit_into(keys, &mut scratch, &mut controls)?;
     Ok(BsplineFit {
         controls,
         max_residual,
-        solver,
+        solver: fitter.solver,
     })
 }
 
-/// Cholesky solve of the normal equations, or `None` when `A^T A` is singular or
-/// ill-conditioned.
-fn solve_normal(ata: &DMatrix<f64>, atq: &DMatrix<f64>) -> Option<DMatrix<f64>> {
+/// The least-squares fit of [`fit_bspline`] prepared for fixed parameters `lambda_i` (bind
+/// once, fit many key sets): the basis matrix `A` and the matrix `S` with `log R = S log Q`,
+/// `S = (A^T A)^-1 A^T` by Cholesky, or the pseudo-inverse of `A` by SVD.
+#[derive(Clone, Debug)]
+pub struct BsplineFitter {
+    /// `A_ij = N_j(lambda_i)`: keys by controls.
+    basis: DMatrix<f64>,
+    /// `S`: controls by keys.
+    solve: DMatrix<f64>,
+    solver: FitSolver,
+}
+
+/// The logarithms a [`BsplineFitter`] works on, kept by the caller between fits so that a fit
+/// allocates nothing.
+#[derive(Clone, Debug, Default)]
+pub struct FitScratch {
+    keys: Vec<[f64; 10]>,
+    controls: Vec<[f64; 10]>,
+}
+
+impl BsplineFitter {
+    /// Prepare the fit of `control_count` controls to keys at `lambda`.
+    ///
+    /// # Errors
+    /// As [`fit_bspline`]'s setup: `control_count` below 2 or above the number of parameters,
+    /// a parameter outside `[0, 1]`, or an SVD that fails.
+    pub fn new(lambda: &[f64], control_count: usize) -> Result<Self> {
+        let n = lambda.len();
+        if control_count < 2 || control_count > n {
+            return Err(KeyError::BadSetup(format!(
+                "{control_count} control motors for {n} keys: need 2 <= controls <= keys"
+            ))
+            .into());
+        }
+        if let Some(i) = lambda.iter().position(|l| !(0.0..=1.0).contains(l)) {
+            return Err(KeyError::ParameterOutOfRange {
+                index: i,
+                value: lambda[i],
+            }
+            .into());
+        }
+        let m = control_count;
+        let p = bspline_degree(m);
+        let mut a = DMatrix::<f64>::zeros(n, m);
+        let mut w = [0.0; 4];
+        for (i, &l) in lambda.iter().enumerate() {
+            let first = bspline_basis(m, p, l, &mut w);
+            for k in 0..=p {
+                a[(i, first + k)] = w[k];
+            }
+        }
+        let at = a.transpose();
+        let (solve, solver) = match solve_normal(&(&at * &a), &at) {
+            Some(s) => (s, FitSolver::Cholesky),
+            None => {
+                let s = a
+                    .clone()
+                    .svd(true, true)
+                    .pseudo_inverse(1e-12)
+                    .map_err(|e| KeyError::BadSetup(format!("SVD failed: {e}")))?;
+                (s, FitSolver::Svd)
+            }
+        };
+        Ok(BsplineFitter {
+            basis: a,
+            solve,
+            solver,
+        })
+    }
+
+    /// How the normal equations were solved.
+    pub fn solver(&self) -> FitSolver {
+        self.solver
+    }
+
+    /// Fit the controls to `keys` (one per parameter), written to `controls` (one per
+    /// control); returns the largest residual `|log Q_i - sum_j N_j(lambda_i) log R_j|`.
+    /// Allocation-free once `scratch` has served a fit of this size.
+    ///
+    /// # Errors
+    /// [`KeyError::BadSetup`] when the counts differ from the prepared ones;
+    /// [`KeyError::Invalid`] for a key that is not a scaled motor or a control that overflows.
+    pub fn fit_into(
+        &self,
+        keys: &[ScaledMotor],
+        scratch: &mut FitScratch,
+        controls: &mut [ScaledMotor],
+    ) -> Result<f64> {
+        let (n, m) = self.basis.shape();
+        if keys.len() != n || controls.len() != m {
+            return Err(KeyError::BadSetup(format!(
+                "{} keys and {} controls for a fit of {n} keys and {m} controls",
+                keys.len(),
+                controls.len()
+            ))
+            .into());
+        }
+        scratch.keys.resize(n, [0.0; 10]);
+        scratch.controls.resize(m, [0.0; 10]);
+        for (i, (k, q)) in keys.iter().zip(&mut scratch.keys).enumerate() {
+            let b = k
+                .try_log()
+                .map_err(|source| KeyError::Invalid { index: i, source })?;
+            *q = b.to_array();
+        }
+        for (j, r) in scratch.controls.iter_mut().enumerate() {
+            *r = [0.0; 10];
+            for (i, q) in scratch.keys.iter().enumerate() {
+                let s = self.solve[(j, i)];
+                r.iter_mut().zip(q).for_each(|(r, q)| *r += s * q);
+            }
+        }
+        let mut max_residual: f64 = 0.0;
+        for (i, q) in scratch.keys.iter().enumerate() {
+            let mut e = q.map(|x| -x);
+            for (j, r) in scratch.controls.iter().enumerate() {
+                let a = self.basis[(i, j)];
+                e.iter_mut().zip(r).for_each(|(e, r)| *e += a * r);
+            }
+            max_residual = max_residual.max(e.iter().map(|e| e * e).sum::<f64>().sqrt());
+        }
+        for (j, (r, c)) in scratch.controls.iter().zip(controls).enumerate() {
+            *c = Bivector::from_array(*r)
+                .try_exp_scaled()
+                .map_err(|source| KeyError::Invalid { index: j, source })?;
+        }
+        Ok(max_residual)
+    }
+}
+
+/// Cholesky solve of the normal equations `A^T A X = rhs`, or `None` when `A^T A` is singular
+/// or ill-conditioned.
+fn solve_normal(ata: &DMatrix<f64>, rhs: &DMatrix<f64>) -> Option<DMatrix<f64>> {
     let chol = ata.clone().cholesky()?;
     let l = chol.l();
     let d = DVector::from_iterator(l.nrows(), (0..l.nrows()).map(|i| l[(i, i)]));
@@ -241,5 +319,5 @@ fn solve_normal(ata: &DMatrix<f64>, atq: &DMatrix<f64>) -> Option<DMatrix<f64>> 
     if lo.is_nan() || lo <= 0.0 || (lo / hi).powi(2) < ILL_CONDITIONED {
         return None;
     }
-    Some(chol.solve(atq))
+    Some(chol.solve(rhs))
 }

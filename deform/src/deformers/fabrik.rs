@@ -3,7 +3,7 @@
 //! cubic B-spline is fitted to them (section III.C) and drives a spline-aligned deformation.
 
 use crate::blend::KeyError;
-use crate::deformers::bspline::{fit_bspline, BsplineFit};
+use crate::deformers::bspline::{BsplineFit, BsplineFitter, FitScratch, FitSolver};
 use crate::deformers::deformer::{deformer_via_blend, Deformer};
 use crate::deformers::spline::{SplineDeformer, SplineOptions, WeightScheme};
 use crate::deformers::Result;
@@ -54,8 +54,9 @@ pub struct FabrikSolution {
     pub distance: f64,
 }
 
-/// Check a chain and return its bone lengths.
-fn bone_lengths(joints: &[DVec3]) -> Result<Vec<f64>> {
+/// Check a chain: at least 2 joints, every joint finite, every bone of positive finite
+/// length.
+fn check_chain(joints: &[DVec3]) -> Result<()> {
     if joints.len() < 2 {
         return Err(KeyError::BadSetup(format!(
             "a chain needs at least 2 joints, got {}",
@@ -66,19 +67,23 @@ fn bone_lengths(joints: &[DVec3]) -> Result<Vec<f64>> {
     if let Some(i) = joints.iter().position(|p| !p.is_finite()) {
         return Err(KeyError::BadSetup(format!("joint {i} is not finite")).into());
     }
-    let lengths: Vec<f64> = joints.windows(2).map(|w| w[0].distance(w[1])).collect();
-    if let Some(i) = lengths
-        .iter()
-        .position(|&l| l.is_nan() || l <= 0.0 || !l.is_finite())
-    {
-        return Err(KeyError::BadSetup(format!(
-            "bone {i} (joints {i} and {}) has length {}",
-            i + 1,
-            lengths[i]
-        ))
-        .into());
+    for (i, w) in joints.windows(2).enumerate() {
+        let l = w[0].distance(w[1]);
+        if l.is_nan() || l <= 0.0 || !l.is_finite() {
+            return Err(KeyError::BadSetup(format!(
+                "bone {i} (joints {i} and {}) has length {l}",
+                i + 1
+            ))
+            .into());
+        }
     }
-    Ok(lengths)
+    Ok(())
+}
+
+/// Check a chain and return its bone lengths.
+fn bone_lengths(joints: &[DVec3]) -> Result<Vec<f64>> {
+    check_chain(joints)?;
+    Ok(joints.windows(2).map(|w| w[0].distance(w[1])).collect())
 }
 
 /// `b` moved to distance `l` from `a` along `b - a` (or along `fallback` when they coincide).
@@ -120,6 +125,25 @@ fn distance(a: DVec3, b: DVec3) -> f64 {
 /// non-finite target or a tolerance that is not positive.
 pub fn fabrik(joints: &[DVec3], target: DVec3, options: &FabrikOptions) -> Result<FabrikSolution> {
     let lengths = bone_lengths(joints)?;
+    let mut p = joints.to_vec();
+    let (status, iterations, distance) = solve_into(joints, &lengths, target, options, &mut p)?;
+    Ok(FabrikSolution {
+        joints: p,
+        status,
+        iterations,
+        distance,
+    })
+}
+
+/// [`fabrik`] from the checked chain `joints` with its bone `lengths`, solved in `p` (resized
+/// to the chain): the status, the passes made and the end effector's distance to the target.
+fn solve_into(
+    joints: &[DVec3],
+    lengths: &[f64],
+    target: DVec3,
+    options: &FabrikOptions,
+    p: &mut Vec<DVec3>,
+) -> Result<(FabrikStatus, usize, f64)> {
     if !target.is_finite() {
         return Err(KeyError::BadSetup("the target is not finite".into()).into());
     }
@@ -128,20 +152,15 @@ pub fn fabrik(joints: &[DVec3], target: DVec3, options: &FabrikOptions) -> Resul
     }
     let n = joints.len();
     let root = joints[0];
-    let mut p = joints.to_vec();
+    p.clear();
+    p.extend_from_slice(joints);
     let total: f64 = lengths.iter().sum();
     let fallback = (joints[n - 1] - root).try_normalize().unwrap_or(DVec3::X);
     if distance(root, target) > total {
         for i in 0..n - 1 {
             p[i + 1] = place(p[i], target, lengths[i], fallback);
         }
-        let distance = distance(p[n - 1], target);
-        return Ok(FabrikSolution {
-            joints: p,
-            status: FabrikStatus::Unreachable,
-            iterations: 0,
-            distance,
-        });
+        return Ok((FabrikStatus::Unreachable, 0, distance(p[n - 1], target)));
     }
     let mut iterations = 0;
     let mut distance = distance(p[n - 1], target);
@@ -164,12 +183,7 @@ pub fn fabrik(joints: &[DVec3], target: DVec3, options: &FabrikOptions) -> Resul
     } else {
         FabrikStatus::IterationLimit
     };
-    Ok(FabrikSolution {
-        joints: p,
-        status,
-        iterations,
-        distance,
-    })
+    Ok((status, iterations, distance))
 }
 
 /// The key motors `Q_i` of a posed chain relative to its rest pose: joint `i`'s frame turns
@@ -180,8 +194,8 @@ pub fn fabrik(joints: &[DVec3], target: DVec3, options: &FabrikOptions) -> Resul
 /// # Errors
 /// [`KeyError::BadSetup`] when the chains differ in length or have a zero-length bone.
 pub fn chain_key_motors(rest: &[DVec3], posed: &[DVec3]) -> Result<Vec<ScaledMotor>> {
-    bone_lengths(rest)?;
-    bone_lengths(posed)?;
+    check_chain(rest)?;
+    check_chain(posed)?;
     if rest.len() != posed.len() {
         return Err(KeyError::BadSetup(format!(
             "rest chain has {} joints, posed chain {}",
@@ -190,16 +204,21 @@ pub fn chain_key_motors(rest: &[DVec3], posed: &[DVec3]) -> Result<Vec<ScaledMot
         ))
         .into());
     }
+    let mut keys = vec![ScaledMotor::IDENTITY; rest.len()];
+    key_motors_into(rest, posed, &mut keys);
+    Ok(keys)
+}
+
+/// [`chain_key_motors`] of two checked chains of the same length, into `keys` (one per joint).
+fn key_motors_into(rest: &[DVec3], posed: &[DVec3], keys: &mut [ScaledMotor]) {
     let n = rest.len();
-    Ok((0..n)
-        .map(|i| {
-            let b = i.min(n - 2);
-            let from = (rest[b + 1] - rest[b]).normalize();
-            let to = (posed[b + 1] - posed[b]).normalize();
-            let q = DQuat::from_rotation_arc(from, to);
-            ScaledMotor::from_scale_rotation_translation(1.0, q, posed[i] - q * rest[i])
-        })
-        .collect())
+    for (i, key) in keys.iter_mut().enumerate() {
+        let b = i.min(n - 2);
+        let from = (rest[b + 1] - rest[b]).normalize();
+        let to = (posed[b + 1] - posed[b]).normalize();
+        let q = DQuat::from_rotation_arc(from, to);
+        *key = ScaledMotor::from_scale_rotation_translation(1.0, q, posed[i] - q * rest[i]);
+    }
 }
 
 /// The spline parameter of each joint: its distance from the root along the rest chain,
@@ -228,14 +247,53 @@ pub struct ChainPose {
     pub fit: BsplineFit,
 }
 
+/// What [`ChainDeformer::pose_to_target_using`] reports; the solved joints and the fitted
+/// controls stay in its [`ChainScratch`] ([`ChainScratch::joints`], [`ChainScratch::controls`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ChainPoseSummary {
+    /// How the solve ended.
+    pub status: FabrikStatus,
+    /// FABRIK passes made.
+    pub iterations: usize,
+    /// Distance from the end effector to the target.
+    pub distance: f64,
+    /// The fit's largest residual (see [`BsplineFit::max_residual`]).
+    pub max_residual: f64,
+}
+
+/// The working memory of [`ChainDeformer::pose_to_target_using`], owned by the caller: after
+/// one pose, further poses allocate nothing.
+#[derive(Clone, Debug)]
+pub struct ChainScratch {
+    joints: Vec<DVec3>,
+    keys: Vec<ScaledMotor>,
+    controls: Vec<ScaledMotor>,
+    fit: FitScratch,
+    spline: <SplineDeformer as Deformer>::Scratch,
+}
+
+impl ChainScratch {
+    /// The solved joints of the last pose, root first.
+    pub fn joints(&self) -> &[DVec3] {
+        &self.joints
+    }
+
+    /// The control motors the last pose was posed with.
+    pub fn controls(&self) -> &[ScaledMotor] {
+        &self.controls
+    }
+}
+
 /// A mesh bound to a kinematic chain (the paper's Fig. 5): moving the chain's end effector
 /// solves the chain by FABRIK, fits a cubic B-spline of `control_count` motors to its joint
-/// frames and poses the mesh by spline-aligned deformation.
+/// frames and poses the mesh by spline-aligned deformation. The fit's matrices are prepared at
+/// bind; a pose with a warm [`ChainScratch`] allocates nothing.
 #[derive(Clone, Debug)]
 pub struct ChainDeformer {
     spline: SplineDeformer,
     rest: Vec<DVec3>,
-    parameters: Vec<f64>,
+    lengths: Vec<f64>,
+    fitter: BsplineFitter,
 }
 
 impl ChainDeformer {
@@ -262,6 +320,7 @@ impl ChainDeformer {
             ))
             .into());
         }
+        let fitter = BsplineFitter::new(&parameters, control_count)?;
         let options = SplineOptions {
             scheme: WeightScheme::BSpline,
             ..options
@@ -270,8 +329,9 @@ impl ChainDeformer {
         let spline = SplineDeformer::bind(mesh, root_set, tip_set, &rest, options)?;
         Ok(ChainDeformer {
             spline,
+            lengths: bone_lengths(joints)?,
             rest: joints.to_vec(),
-            parameters,
+            fitter,
         })
     }
 
@@ -285,23 +345,89 @@ impl ChainDeformer {
         &self.spline
     }
 
+    /// How the fit's normal equations are solved (fixed at bind by the joints' parameters).
+    pub fn fit_solver(&self) -> FitSolver {
+        self.fitter.solver()
+    }
+
+    /// A scratch for [`ChainDeformer::pose_to_target_using`], sized for this chain and mesh.
+    pub fn chain_scratch(&self) -> ChainScratch {
+        let (n, m) = (self.rest.len(), self.spline.key_count());
+        ChainScratch {
+            joints: Vec::with_capacity(n),
+            keys: vec![ScaledMotor::IDENTITY; n],
+            controls: vec![ScaledMotor::IDENTITY; m],
+            fit: FitScratch::default(),
+            spline: self.spline.scratch(),
+        }
+    }
+
     /// Move the end effector towards `target` and pose the mesh, in one call: FABRIK from the
     /// rest chain, joint frames as key motors, B-spline fit, spline-aligned deformation.
-    /// An unreachable target stretches the chain towards it (see [`FabrikStatus`]).
+    /// An unreachable target stretches the chain towards it (see [`FabrikStatus`]). For a pose
+    /// loop, [`ChainDeformer::pose_to_target_using`] keeps the working memory.
     ///
     /// # Errors
-    /// As [`fabrik`], [`fit_bspline`] and [`Deformer::pose`].
+    /// As [`fabrik`], [`BsplineFitter::fit_into`] and [`Deformer::pose`].
     pub fn pose_to_target(
         &self,
         target: DVec3,
         options: &FabrikOptions,
         positions: &mut [DVec3],
     ) -> Result<ChainPose> {
-        let solution = fabrik(&self.rest, target, options)?;
-        let keys = chain_key_motors(&self.rest, &solution.joints)?;
-        let fit = fit_bspline(&keys, &self.parameters, self.spline.key_count())?;
-        self.spline.pose(&fit.controls, positions)?;
-        Ok(ChainPose { solution, fit })
+        let mut scratch = self.chain_scratch();
+        let summary = self.pose_to_target_using(target, options, &mut scratch, positions)?;
+        Ok(ChainPose {
+            solution: FabrikSolution {
+                joints: scratch.joints,
+                status: summary.status,
+                iterations: summary.iterations,
+                distance: summary.distance,
+            },
+            fit: BsplineFit {
+                controls: scratch.controls,
+                max_residual: summary.max_residual,
+                solver: self.fitter.solver(),
+            },
+        })
+    }
+
+    /// [`ChainDeformer::pose_to_target`] with the caller's scratch (from
+    /// [`ChainDeformer::chain_scratch`]; one of another chain is resized): allocation-free
+    /// once the scratch has served a pose of this chain.
+    ///
+    /// # Errors
+    /// As [`ChainDeformer::pose_to_target`].
+    pub fn pose_to_target_using(
+        &self,
+        target: DVec3,
+        options: &FabrikOptions,
+        scratch: &mut ChainScratch,
+        positions: &mut [DVec3],
+    ) -> Result<ChainPoseSummary> {
+        let (status, iterations, distance) = solve_into(
+            &self.rest,
+            &self.lengths,
+            target,
+            options,
+            &mut scratch.joints,
+        )?;
+        check_chain(&scratch.joints)?;
+        let (n, m) = (self.rest.len(), self.spline.key_count());
+        scratch.keys.resize(n, ScaledMotor::IDENTITY);
+        scratch.controls.resize(m, ScaledMotor::IDENTITY);
+        key_motors_into(&self.rest, &scratch.joints, &mut scratch.keys);
+        let max_residual =
+            self.fitter
+                .fit_into(&scratch.keys, &mut scratch.fit, &mut scratch.controls)?;
+        self.spline
+            .pose_using(&scratch.controls, &mut scratch.spline, positions)?;
+        Ok(ChainPoseSummary {
+            status,
+            iterations,
+            distance,
+            max_residual,
+        })
     }
 }
 

@@ -240,3 +240,75 @@ fn a_scratch_of_another_arap_is_replaced_not_misread() {
         .fold(0.0, f64::max);
     assert!(worst <= 1e-12, "off by {worst:e}");
 }
+
+/// FABRIK + B-spline (the first paper's Fig. 5): a warm `ChainScratch` poses the chain
+/// towards new targets without allocating, agrees with the one-off `pose_to_target`, and a
+/// scratch of a chain with other joint and control counts is resized, not misread.
+#[test]
+fn a_warm_chain_scratch_poses_to_targets_without_allocating() {
+    use deform::deformers::fabrik::{straight_chain, FabrikOptions};
+    use deform::deformers::spline::SplineOptions;
+    let mesh = bar();
+    let (first, last) = (tube_ring(SIDES, 0), tube_ring(SIDES, RINGS - 1));
+    let bind = |joints: usize, controls: usize| {
+        let chain = straight_chain(&mesh, &first, &last, joints);
+        let options = SplineOptions::default();
+        deform::ChainDeformer::bind(&mesh, &first, &last, &chain, controls, options).expect("bind")
+    };
+    let d = bind(7, 4);
+    let options = FabrikOptions::default();
+    let targets = [
+        DVec3::new(8.0, 3.0, 0.0),
+        DVec3::new(6.0, -2.0, 4.0),
+        DVec3::new(30.0, 0.0, 0.0), // out of reach: the chain stretches towards it
+    ];
+    // A scratch warmed by a chain of other counts first.
+    let other = bind(4, 3);
+    let mut scratch = other.chain_scratch();
+    let mut out = vec![DVec3::ZERO; mesh.positions.len()];
+    other
+        .pose_to_target_using(targets[0], &options, &mut scratch, &mut out)
+        .expect("pose");
+    d.pose_to_target_using(targets[0], &options, &mut scratch, &mut out)
+        .expect("pose");
+    let mut summaries = Vec::with_capacity(targets.len());
+    let mut posed = vec![vec![DVec3::ZERO; out.len()]; targets.len()];
+    // One worker thread, so every allocation of a pose happens on the thread that counts.
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .expect("pool");
+    let counted = pool.install(|| {
+        let before = allocations();
+        for (t, p) in targets.iter().zip(&mut posed) {
+            let summary = d
+                .pose_to_target_using(*t, &options, &mut scratch, p)
+                .expect("pose");
+            summaries.push(summary);
+        }
+        allocations() - before
+    });
+    assert_eq!(
+        counted,
+        0,
+        "{counted} allocations in {} warm poses",
+        targets.len()
+    );
+    for ((t, p), summary) in targets.iter().zip(&posed).zip(&summaries) {
+        let r = d.pose_to_target(*t, &options, &mut out).expect("pose");
+        assert_eq!(r.solution.status, summary.status);
+        assert_eq!(r.fit.max_residual, summary.max_residual);
+        let worst = out
+            .iter()
+            .zip(p)
+            .map(|(a, b)| (*a - *b).length())
+            .fold(0.0, f64::max);
+        assert!(worst <= 1e-12, "target {t}: off by {worst:e}");
+    }
+    // The last pose's joints and controls stay in the scratch: the stretched chain points at
+    // the unreachable target.
+    let joints = scratch.joints();
+    let dir = (joints[joints.len() - 1] - joints[0]).normalize();
+    assert!((dir - (targets[2] - joints[0]).normalize()).length() < 1e-9);
+    assert_eq!(scratch.controls().len(), 4);
+}

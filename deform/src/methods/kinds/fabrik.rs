@@ -4,7 +4,7 @@
 //! joint frames and poses the mesh by spline-aligned deformation. The root stays; the motors
 //! of the groups before the last are not used.
 
-use crate::deformers::fabrik::{straight_chain, ChainDeformer, FabrikOptions};
+use crate::deformers::fabrik::{straight_chain, ChainDeformer, ChainScratch, FabrikOptions};
 use crate::deformers::spline::SplineOptions;
 use crate::methods::error::{MethodError, MethodsError};
 use crate::methods::harmonic_cache::group_centres;
@@ -38,6 +38,8 @@ pub struct FabrikMethod;
 /// A mesh bound to its chain.
 struct Bound {
     chain: ChainDeformer,
+    /// The pose's working memory (a warm pose allocates nothing).
+    scratch: ChainScratch,
     /// The end effector at rest (the last group's centre).
     tip: DVec3,
     groups: usize,
@@ -87,6 +89,7 @@ impl MethodKind for FabrikMethod {
         let controls = settings.number(&CONTROLS);
         let chain = ChainDeformer::bind(mesh, root, tip, &joints, controls, options)?;
         Ok(Box::new(Bound {
+            scratch: chain.chain_scratch(),
             chain,
             tip: group_centres(mesh, std::slice::from_ref(tip))[0],
             groups: groups.len(),
@@ -119,7 +122,8 @@ impl PoseMethod for Bound {
         };
         let target = last.transform_point(self.tip);
         let options = FabrikOptions::default();
-        self.chain.pose_to_target(target, &options, out)?;
+        self.chain
+            .pose_to_target_using(target, &options, &mut self.scratch, out)?;
         Ok(None)
     }
 
