@@ -70,16 +70,24 @@ impl Gen<'_> {
         let n = proc_macro2::Literal::usize_unsuffixed(keys.len());
         let q_stmt = quote!(let q: [#s; #n] = [#(#q_vals),*];);
         let q = cx.declare(ident("q"), keys.iter().copied());
+        // P's part in the 4-space, -<Q J>_2 (J = r4 / sig): P itself in exact arithmetic,
+        // without the rounding of `v` outside the 4-space, which `(P + Q) / sin S` would
+        // multiply near the double half turn.
+        let qr4 = grade_part(&self.table.product(&q, r4, Product::Geometric), 2);
+        if qr4.0.keys().any(|b| !keys.contains(b)) {
+            return TokenStream::new();
+        }
+        let pin_vals = keys.iter().map(|b| {
+            let e = cx.at(&qr4, *b);
+            quote!(-(#e) * isg)
+        });
+        let pin_stmt = quote!(let pin: [#s; #n] = [#(#pin_vals),*];);
         let idx: Vec<_> = (0..keys.len())
             .map(proc_macro2::Literal::usize_unsuffixed)
             .collect();
-        let (pa_vals, pd_vals): (Vec<_>, Vec<_>) = keys
+        let (pa_vals, pd_vals): (Vec<_>, Vec<_>) = idx
             .iter()
-            .zip(&idx)
-            .map(|(b, i)| {
-                let pe = cx.at(p, *b);
-                (quote!(#pe + q[#i]), quote!(#pe - q[#i]))
-            })
+            .map(|i| (quote!(pin[#i] + q[#i]), quote!(pin[#i] - q[#i])))
             .unzip();
         let pa = cx.declare(ident("pa"), keys.iter().copied());
         let pd = cx.declare(ident("pd"), keys.iter().copied());
@@ -97,11 +105,25 @@ impl Gen<'_> {
             ScalarType::F64 => 1e-280,
             ScalarType::F32 => 1e-30,
         });
-        // Within this `sin S` of the double half turn, `(P + Q) / sin S` is rounding: the
-        // fallback's error (at most this) balances the formula's (the precision over it).
+        // Within this `sin S` of the double half turn the squares of `P + Q` near underflow,
+        // and the exact double half turn's logarithm (the fallback, off by at most this) is
+        // taken. Above it the formula keeps its precision however small `sin S` is: `r0 >= 0`
+        // puts `S` near a half turn only where `D` is near zero, so `P` is as small as
+        // `P + Q`, and `P + Q = pin + Q` is made from the 4-space's part of `P` (rounding of
+        // `v` outside it once reached the logarithm multiplied by `1 / sin S`, which took the
+        // fallback up to `sin S = 1e-8` and an error of that size).
         let near = float(match self.scalar {
-            ScalarType::F64 => 1e-8,
-            ScalarType::F32 => 3e-4,
+            ScalarType::F64 => 1e-150,
+            ScalarType::F32 => 1e-18,
+        });
+        // Where the metric is indefinite, `P + Q` near the double half turn may be rounding
+        // that is not a rotation (its square a small difference of its coefficients'): the
+        // formula's normalisation by `sin S` then errs by about `eps |P + Q|_2 / sin^2 S`, the
+        // fallback by `|P + Q|_2`; the fallback is taken where it errs less (about four
+        // units of roundoff).
+        let noise = float(match self.scalar {
+            ScalarType::F64 => 1e-15,
+            ScalarType::F32 => 5e-7,
         });
         // On spans with two directions of each sign, `S` or `D` may be imaginary (a complex
         // pair of squares: `cos D = r0 + sig > 1`; two boosts: both): `x / sinh x` of its
@@ -130,11 +152,13 @@ impl Gen<'_> {
                 let sig = r4sq.sqrt();
                 let isg = 1.0 / sig;
                 #q_stmt
+                #pin_stmt
                 let pa: [#s; #n] = [#(#pa_vals),*];
                 let pd: [#s; #n] = [#(#pd_vals),*];
                 let ss = (-0.5 * (#pa2)).max(0.0).sqrt();
                 let sd = (-0.5 * (#pd2)).max(0.0).sqrt();
-                if ss < #near && r0 < sig {
+                let pn: #s = pa.iter().map(|x| x * x).sum();
+                if (ss < #near || ss * ss < #noise * pn.sqrt()) && r0 < sig {
                     #fallback
                 }
                 let fs = 0.5 * #f_s;
@@ -146,7 +170,8 @@ impl Gen<'_> {
 
     /// `return` a logarithm of the double half turn `v = r4` (`P = 0`, `r0 = 0`: every
     /// `(pi/2)(u + v)` with `u v = r4` is one): `u` the unit 2-blade `<E r4>_2` of the basis
-    /// bivector `E` that gives the largest, `v = -u r4`. `None` when `lt` cannot hold them.
+    /// bivector `E` whose square is the most negative, `v = -u r4`. `None` when `lt` cannot
+    /// hold them.
     fn double_half_turn(
         &mut self,
         cx: &mut Ctx<'_>,
@@ -200,16 +225,19 @@ impl Gen<'_> {
         };
         Some(quote! {
             let cands: [[#s; #n]; #m] = [#(#cands),*];
+            // `-u u` of a candidate: the most rotation-like one (where the metric is
+            // indefinite, a candidate large in its coefficients may be nearly null).
+            let rot = |u: [#s; #n]| -> #s { -(#uu) };
             let mut u = cands[0];
             let mut best: #s = 0.0;
             for c in cands {
-                let n2: #s = c.iter().map(|x| x * x).sum();
+                let n2 = rot(c);
                 if n2 > best {
                     best = n2;
                     u = c;
                 }
             }
-            let k = 1.0 / (-(#uu)).sqrt();
+            let k = 1.0 / best.sqrt();
             for x in u.iter_mut() {
                 *x *= k;
             }
