@@ -227,15 +227,19 @@ fn key_motors_into(rest: &[DVec3], posed: &[DVec3], keys: &mut [ScaledMotor]) {
 /// # Errors
 /// As [`chain_key_motors`].
 pub fn chain_parameters(rest: &[DVec3]) -> Result<Vec<f64>> {
-    let lengths = bone_lengths(rest)?;
+    Ok(parameters_of(&bone_lengths(rest)?))
+}
+
+/// [`chain_parameters`] from the bone lengths of a checked chain.
+fn parameters_of(lengths: &[f64]) -> Vec<f64> {
     let total: f64 = lengths.iter().sum();
     let mut acc = 0.0;
     let mut out = vec![0.0];
-    for l in &lengths {
+    for l in lengths {
         acc += l;
         out.push((acc / total).min(1.0));
     }
-    Ok(out)
+    out
 }
 
 /// The result of [`ChainDeformer::pose_to_target`].
@@ -312,7 +316,8 @@ impl ChainDeformer {
         control_count: usize,
         options: SplineOptions,
     ) -> Result<Self> {
-        let parameters = chain_parameters(joints)?;
+        let lengths = bone_lengths(joints)?;
+        let parameters = parameters_of(&lengths);
         if control_count < 2 || control_count > joints.len() {
             return Err(KeyError::BadSetup(format!(
                 "{control_count} control motors for a chain of {} joints",
@@ -329,7 +334,7 @@ impl ChainDeformer {
         let spline = SplineDeformer::bind(mesh, root_set, tip_set, &rest, options)?;
         Ok(ChainDeformer {
             spline,
-            lengths: bone_lengths(joints)?,
+            lengths,
             rest: joints.to_vec(),
             fitter,
         })
