@@ -14,6 +14,8 @@
 //!   paired-lane form;
 //! - [`f32x4`]: four `f32` lanes ([`F32x4`](f32x4::F32x4)), for generated f32 products in
 //!   4-lane form;
+//! - [`trig`]: inlined `f32` sine, cosine and arctangent (evaluated in `f64`) for the
+//!   generated `exp` and `log`;
 //! - [`wide_lanes`]: the [`Lane`](wide_lanes::Lane) types of the generated structure-of-arrays
 //!   (`wide`) twins ([`F64x4`](wide_lanes::F64x4), [`F32x8`](wide_lanes::F32x8), or the scalar).
 
@@ -27,4 +29,5 @@ pub mod metric;
 pub mod multivector;
 pub mod rational;
 pub mod sparse;
+pub mod trig;
 pub mod wide_lanes;

@@ -162,6 +162,9 @@ fn inertia(a: &[Vec<f64>]) -> (usize, usize, usize) {
 /// The scalar helper functions shared by every emitted `exp` and `log` (private items of the
 /// generated module):
 ///
+/// - `exp_log_sin_cos(x) -> (sin x, cos x)` and `exp_log_atan2(y, x)`: libm's in `f64`, the
+///   runtime's inlined ones in `f32` ([`crate::runtime::trig`]: no call, so no spills around
+///   it; within one ulp);
 /// - `exp_log_simple(l) -> (c, s)`: for a simple bivector `b` with `b b = l`,
 ///   `exp(b) = c + s b`: `cos(t), sin(t)/t` with `t = sqrt(-l)` when `l < 0` (a rotation),
 ///   `cosh(t), sinh(t)/t` with `t = sqrt(l)` when `l > 0` (a boost), `1, 1` when `l = 0` (a
@@ -178,9 +181,10 @@ fn inertia(a: &[Vec<f64>]) -> (usize, usize, usize) {
 ///   (`sinc(t1 ± t2)`, no division by `l1 - l2`); when other squares are equal to within the
 ///   cube root of the precision (both near zero, or equal boosts) the limits `alpha = (s c + 1)/2`, `beta = s^2/2 - c ds/dl` at the mean are used, with an
 ///   error of the order of the squared difference.
-pub fn helpers(scalar: ScalarType) -> TokenStream {
+pub fn helpers(scalar: ScalarType, rt: &TokenStream) -> TokenStream {
     let s = scalar.tokens();
-    let mut out = simple_helpers(&s);
+    let mut out = trig_helpers(scalar, rt);
+    out.extend(simple_helpers(scalar, rt));
     out.extend(simple_dl_helper(scalar));
     out.extend(squares_helper(&s));
     out.extend(coefficients_helper(scalar));
@@ -200,8 +204,56 @@ fn equal_squares_tolerance(scalar: ScalarType) -> TokenStream {
     )
 }
 
-/// `exp_log_simple`, `exp_log_sinc` and `exp_log_x_over_sin` over the scalar type `s`.
-fn simple_helpers(s: &TokenStream) -> TokenStream {
+/// `exp_log_sin_cos` and `exp_log_atan2`: libm's in `f64`, the runtime's inlined `f32` ones.
+fn trig_helpers(scalar: ScalarType, rt: &TokenStream) -> TokenStream {
+    let (sin_cos, atan2) = match scalar {
+        ScalarType::F64 => (quote!(x.sin_cos()), quote!(y.atan2(x))),
+        ScalarType::F32 => (
+            quote!(#rt::runtime::trig::sin_cos_f32(x)),
+            quote!(#rt::runtime::trig::atan2_f32(y, x)),
+        ),
+    };
+    let s = scalar.tokens();
+    quote! {
+        /// `(sin x, cos x)` (in `f32` evaluated inline, without a libm call).
+        #[inline]
+        #[allow(dead_code)]
+        fn exp_log_sin_cos(x: #s) -> (#s, #s) {
+            #sin_cos
+        }
+
+        /// `atan2(y, x)` (in `f32` evaluated inline, without a libm call).
+        #[inline]
+        #[allow(dead_code)]
+        fn exp_log_atan2(y: #s, x: #s) -> #s {
+            #atan2
+        }
+    }
+}
+
+/// `exp_log_simple`, `exp_log_simple_slope`, `exp_log_sinc` and `exp_log_x_over_sin` over the
+/// scalar type; in `f32` the first two take the runtime's series on the principal range
+/// ([`crate::runtime::trig::simple_exp_series_f32`]: no square root, call or division).
+fn simple_helpers(scalar: ScalarType, rt: &TokenStream) -> TokenStream {
+    let s = scalar.tokens();
+    let third = constant(scalar, 1.0 / 3.0);
+    let (series_simple, series_slope) = match scalar {
+        ScalarType::F64 => (TokenStream::new(), TokenStream::new()),
+        ScalarType::F32 => (
+            quote! {
+                if l.abs() <= #rt::runtime::trig::SIMPLE_EXP_SERIES_MAX {
+                    let [c, s, _] = #rt::runtime::trig::simple_exp_series_f32(l);
+                    return (c, s);
+                }
+            },
+            quote! {
+                if l.abs() <= #rt::runtime::trig::SIMPLE_EXP_SERIES_MAX {
+                    let [c, s, d] = #rt::runtime::trig::simple_exp_series_f32(l);
+                    return (c, s, d);
+                }
+            },
+        ),
+    };
     quote! {
         /// `(c, s)` with `exp(b) = c + s b` for a simple bivector `b` squaring to `l`: `cos t,
         /// sin(t)/t` (`t = sqrt(-l)`, a rotation), `cosh t, sinh(t)/t` (`t = sqrt(l)`, a boost),
@@ -210,15 +262,30 @@ fn simple_helpers(s: &TokenStream) -> TokenStream {
         #[inline]
         #[allow(dead_code)]
         fn exp_log_simple(l: #s) -> (#s, #s) {
+            #series_simple
             if l < 0.0 {
                 let t = (-l).sqrt();
-                if t == 0.0 { (1.0, 1.0) } else { (t.cos(), t.sin() / t) }
+                if t == 0.0 {
+                    (1.0, 1.0)
+                } else {
+                    let (sn, c) = exp_log_sin_cos(t);
+                    (c, sn / t)
+                }
             } else if l > 0.0 {
                 let t = l.sqrt();
                 if t == 0.0 { (1.0, 1.0) } else { (t.cosh(), t.sinh() / t) }
             } else {
                 (1.0, 1.0)
             }
+        }
+
+        /// `(c, s, (c - s) / l)` of [`exp_log_simple`] at `l`, the last `1/3` at `l = 0`.
+        #[inline]
+        #[allow(dead_code)]
+        fn exp_log_simple_slope(l: #s) -> (#s, #s, #s) {
+            #series_slope
+            let (c, s) = exp_log_simple(l);
+            (c, s, if l != 0.0 { (c - s) / l } else { #third })
         }
 
         /// `sin(x) / x`, by its series below `1e-4`.
@@ -229,7 +296,7 @@ fn simple_helpers(s: &TokenStream) -> TokenStream {
                 let x2 = x * x;
                 1.0 - x2 * (1.0 / 6.0 - x2 * (1.0 / 120.0))
             } else {
-                x.sin() / x
+                exp_log_sin_cos(x).0 / x
             }
         }
 
@@ -394,7 +461,7 @@ pub fn complex_helpers(scalar: ScalarType) -> TokenStream {
         fn exp_log_x_over_sin_or_sinh(n: #s, c: #s) -> #s {
             if n >= 0.0 {
                 let sn = n.sqrt();
-                exp_log_x_over_sin(sn.atan2(c), sn)
+                exp_log_x_over_sin(exp_log_atan2(sn, c), sn)
             } else {
                 let sh = (-n).sqrt();
                 if sh < 1e-4 {
@@ -441,7 +508,8 @@ pub fn complex_helpers(scalar: ScalarType) -> TokenStream {
                     let v = (0.5 * (m - a)).sqrt();
                     (0.5 * b / v, v)
                 };
-                let (ch, sh, cv, sv) = (u.cosh(), u.sinh(), v.cos(), v.sin());
+                let (sv, cv) = exp_log_sin_cos(v);
+                let (ch, sh) = (u.cosh(), u.sinh());
                 let (hr, hi) = (sh * cv, ch * sv);
                 // sinh(z) / z = sinh(z) conj(z) / |z|^2, |z|^2 = |l|.
                 ((ch * cv, sh * sv), ((hr * u + hi * v) / m, (hi * u - hr * v) / m))

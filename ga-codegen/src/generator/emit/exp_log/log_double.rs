@@ -137,8 +137,8 @@ impl Gen<'_> {
         } else {
             (
                 TokenStream::new(),
-                quote!(exp_log_x_over_sin(ss.atan2(r0 - sig), ss)),
-                quote!(exp_log_x_over_sin(sd.atan2(r0 + sig), sd)),
+                quote!(exp_log_x_over_sin(exp_log_atan2(ss, r0 - sig), ss)),
+                quote!(exp_log_x_over_sin(exp_log_atan2(sd, r0 + sig), sd)),
             )
         };
         quote! {

@@ -174,7 +174,7 @@ impl Gen<'_> {
             #pr_stmt
             #rot_stmt
             let a = (-mr).max(0.0).sqrt();
-            let th = a.atan2(r0);
+            let th = exp_log_atan2(a, r0);
             let co = (r0 * r0 + a * a).sqrt();
             #kr
             #uo_stmt
@@ -349,7 +349,7 @@ impl Gen<'_> {
                     #pr_stmt
                     let a = (-sp).max(0.0).sqrt();
                     let r0a = r0.abs();
-                    let kr = (if a > 0.0 { a.atan2(r0a) / a } else { 1.0 / r0a }).copysign(r0);
+                    let kr = (if a > 0.0 { exp_log_atan2(a, r0a) / a } else { 1.0 / r0a }).copysign(r0);
                     #result
                 }
             }

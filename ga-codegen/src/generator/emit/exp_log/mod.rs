@@ -35,7 +35,7 @@ use crate::generator::spec::{Spec, TypeDef};
 use crate::generator::symbolic::{Poly, Product, SymMv, Var};
 use crate::runtime::blade::{grade, Bitmap};
 use crate::runtime::rational::Rational;
-use decompose::{classify, complex_helpers, constant, helpers, span, Refusal};
+use decompose::{classify, complex_helpers, helpers, span, Refusal};
 use proc_macro2::{Ident, TokenStream};
 use quote::quote;
 
@@ -341,7 +341,7 @@ impl Gen<'_> {
                 fn sqrt(self) -> Self;
             }
         });
-        self.out.extend(helpers(self.scalar));
+        self.out.extend(helpers(self.scalar, &self.rt));
         if complex_log || self.any_complex_exp(&pairs) {
             self.out.extend(complex_helpers(self.scalar));
         }
@@ -502,11 +502,9 @@ impl Gen<'_> {
                     .to_string(),
             ),
             ExpBranch::Null => {
-                let third = constant(self.scalar, 1.0 / 3.0);
                 (
                     quote! {
-                        let (c, sn) = exp_log_simple(s);
-                        let beta = if s != 0.0 { (c - sn) / s } else { #third };
+                        let (c, sn, beta) = exp_log_simple_slope(s);
                         let [alpha, s12] = [sn, sn];
                     },
                     "`W = <B B>_4` squares to zero identically, so `B = B1 + B2` with `B1 B1 = s` \

@@ -114,7 +114,7 @@ impl Gen<'_> {
                 let a = (-(#aa)).max(0.0).sqrt();
                 // Half the half-angle in `[pi/2, pi]`; not finite for a pure translation times
                 // -1 (no unique root).
-                let kr = 0.5 * a.atan2(r0) / a;
+                let kr = 0.5 * exp_log_atan2(a, r0) / a;
             };
             (body, halved)
         } else {
