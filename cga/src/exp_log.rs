@@ -110,24 +110,10 @@ impl Bivector {
     /// [`Bivector::try_exp_motor`].
     #[must_use]
     pub fn exp_motor(self) -> Motor {
-        let u = self.half_rotation();
-        let v = -2.0 * V3::new(self.e1i, self.e2i, self.e3i);
-        let phi2 = u.length_squared();
-        let phi = phi2.sqrt();
-        let (sn, c) = phi.sin_cos();
-        let sc = sinc(phi);
-        let qr = Quat::from_xyzw(sc * u.x, sc * u.y, sc * u.z, c);
-        // t = V v = sinc cos v + (1 - sinc cos)/phi^2 (u.v) u + sinc^2 (u x v)
-        let zr = sc * c;
-        let k = if phi2 > S::MIN_POSITIVE {
-            (1.0 - zr) / phi2
-        } else {
-            0.0
-        };
-        let _ = sn;
-        let t = zr * v + (k * u.dot(v)) * u + (sc * sc) * u.cross(v);
-        let qd = Quat::from_vec4((0.5 * t).extend(0.0)) * qr;
-        Motor::from_quats(qr, qd)
+        // The generated closed form (`Exp<Motor> for Bivector`), on the rigid part only.
+        let mut rigid = self;
+        (rigid.eo1, rigid.eo2, rigid.eo3, rigid.eoi) = (0.0, 0.0, 0.0, 0.0);
+        Exp::exp(rigid)
     }
 
     /// Checked [`Bivector::exp_motor`].
@@ -253,28 +239,10 @@ impl Motor {
     /// rotor part is zero (see [`Motor::try_log`]).
     #[must_use]
     pub fn log(self) -> Bivector {
-        let n2 = self.norm_squared();
-        let mut inv = 1.0 / n2.sqrt();
-        if self.s < 0.0 {
-            inv = -inv;
-        }
-        let qr = self.real_quat() * inv;
-        let mut qd = self.dual_quat_part() * inv;
-        // Project out the part that violates the versor condition (q_r . q_d = 0).
-        qd -= qr * qr.dot(qd);
-        let tq = qd * qr.conjugate();
-        let t = 2.0 * V3::new(tq.x, tq.y, tq.z);
-        let (u, f, a, sv) = quat_log(qr);
-        let xyz = V3::new(qr.x, qr.y, qr.z);
-        // v = V^-1 t = a t + (1 - a)(n.t) n - phi n x t
-        let sv2 = sv * sv;
-        let k = if sv2 > S::MIN_POSITIVE {
-            (1.0 - a) / sv2
-        } else {
-            0.0
-        };
-        let v = a * t + (k * xyz.dot(t)) * xyz - f * xyz.cross(t);
-        Bivector::from_parts(u, -0.5 * v, 0.0)
+        // `normalize_rigid` (a unit motor, the versor defect removed), then the generated
+        // closed form (`Log`); the generated `EvenVersor::normalize` gives the same motor but
+        // costs twice the whole log here.
+        Log::log(self.normalize_rigid())
     }
 
     /// Checked [`Motor::log`].
