@@ -1,5 +1,9 @@
 //! Closed-form exponential and logarithm of rigid and scaled motors (no series).
 //!
+//! The rigid ones ([`Bivector::exp_motor`], [`Motor::log`]) are the generator's closed forms
+//! (`Exp`, `Log` of the generated module, after [`Motor::normalize_rigid`] for the log); the
+//! scaled ones (dilations too) are written here, as follows.
+//!
 //! A generator is a bivector `B = B_E + b ei + l eo^ei` with `B_E` Euclidean (`e12, e13, e23`)
 //! and `b` a Euclidean vector (the `e1i, e2i, e3i` coefficients). It corresponds to the affine
 //! generator `[[2l I + W, v], [0, 0]]` with `v = -2b` and `W` the cross-product matrix of
