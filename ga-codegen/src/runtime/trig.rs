@@ -31,29 +31,45 @@ const PIO2_HI: f64 = f64::from_bits(0x3FF9_21FB_5440_0000);
 /// ... and the rest of `pi/2`.
 const PIO2_LO: f64 = f64::from_bits(0x3DD0_B461_1A62_6331);
 
-/// `sin r` on `|r| <= pi/4`: Taylor to `r^11` (truncation `r^13/13! < 2e-12`).
+/// `c[0] x^(N-1) + ... + c[N-1]` by Horner's rule (coefficients from the highest power).
+#[inline]
+fn horner<const N: usize>(c: &[f64; N], x: f64) -> f64 {
+    c[1..].iter().fold(c[0], |p, &k| p * x + k)
+}
+
+/// The Taylor coefficients of `(sin r - r) / r^3` in `r^2`, highest first: to `r^11`
+/// (truncation `r^13/13! < 2e-12` on `|r| <= pi/4`).
+const SIN_SERIES: [f64; 5] = [
+    -1.0 / 39_916_800.0,
+    1.0 / 362_880.0,
+    -1.0 / 5_040.0,
+    1.0 / 120.0,
+    -1.0 / 6.0,
+];
+
+/// The Taylor coefficients of `(cos r - 1) / r^2` in `r^2`, highest first: to `r^12`
+/// (truncation `r^14/14! < 4e-13` on `|r| <= pi/4`).
+const COS_REDUCED_SERIES: [f64; 6] = [
+    1.0 / 479_001_600.0,
+    -1.0 / 3_628_800.0,
+    1.0 / 40_320.0,
+    -1.0 / 720.0,
+    1.0 / 24.0,
+    -0.5,
+];
+
+/// `sin r` on `|r| <= pi/4`.
 #[inline]
 fn sin_reduced(r: f64) -> f64 {
     let r2 = r * r;
-    let p = -1.0 / 39_916_800.0;
-    let p = p * r2 + 1.0 / 362_880.0;
-    let p = p * r2 - 1.0 / 5_040.0;
-    let p = p * r2 + 1.0 / 120.0;
-    let p = p * r2 - 1.0 / 6.0;
-    r + r * r2 * p
+    r + r * r2 * horner(&SIN_SERIES, r2)
 }
 
-/// `cos r` on `|r| <= pi/4`: Taylor to `r^12` (truncation `r^14/14! < 4e-13`).
+/// `cos r` on `|r| <= pi/4`.
 #[inline]
 fn cos_reduced(r: f64) -> f64 {
     let r2 = r * r;
-    let p = 1.0 / 479_001_600.0;
-    let p = p * r2 - 1.0 / 3_628_800.0;
-    let p = p * r2 + 1.0 / 40_320.0;
-    let p = p * r2 - 1.0 / 720.0;
-    let p = p * r2 + 1.0 / 24.0;
-    let p = p * r2 - 0.5;
-    1.0 + r2 * p
+    1.0 + r2 * horner(&COS_REDUCED_SERIES, r2)
 }
 
 /// `(sin x, cos x)` for an `f32`, inlined (evaluated in `f64`; libm for `|x| > 1e5`, zeros,
@@ -88,18 +104,23 @@ const TAN_PI_12: f64 = 0.267_949_192_431_122_7;
 /// `sqrt(3)`.
 const SQRT_3: f64 = 1.732_050_807_568_877_2;
 
-/// `atan u` on `|u| <= tan(pi/12)`: Taylor to `u^15` (truncation `u^17/17 < 2e-11`).
+/// The Taylor coefficients of `(atan u - u) / u^3` in `u^2`, highest first: to `u^15`
+/// (truncation `u^17/17 < 2e-11` on `|u| <= tan(pi/12)`).
+const ATAN_SERIES: [f64; 7] = [
+    -1.0 / 15.0,
+    1.0 / 13.0,
+    -1.0 / 11.0,
+    1.0 / 9.0,
+    -1.0 / 7.0,
+    1.0 / 5.0,
+    -1.0 / 3.0,
+];
+
+/// `atan u` on `|u| <= tan(pi/12)`.
 #[inline]
 fn atan_reduced(u: f64) -> f64 {
     let u2 = u * u;
-    let p = -1.0 / 15.0;
-    let p = p * u2 + 1.0 / 13.0;
-    let p = p * u2 - 1.0 / 11.0;
-    let p = p * u2 + 1.0 / 9.0;
-    let p = p * u2 - 1.0 / 7.0;
-    let p = p * u2 + 1.0 / 5.0;
-    let p = p * u2 - 1.0 / 3.0;
-    u + u * u2 * p
+    u + u * u2 * horner(&ATAN_SERIES, u2)
 }
 
 /// `atan2(y, x)` for `f32`s, inlined (evaluated in `f64` with one division; libm when either
