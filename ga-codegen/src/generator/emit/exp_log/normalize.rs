@@ -91,7 +91,23 @@ impl Gen<'_> {
         if !vy.support().iter().all(|b| vt.blades().any(|x| x == *b)) {
             return None;
         }
-        let qn = cx.poly(&self.table.product(&n4, &n4, Product::Geometric).get(0));
+        let qp = self.table.product(&n4, &n4, Product::Geometric).get(0);
+        // `sqrt(n0^2 - q)` without squaring `n0`, which underflows when the rotation part is
+        // tiny next to the translation; `|n0|` where `q` is identically zero (PGA and CGA
+        // motors: two divisions and a square root fewer).
+        let sn = if qp.is_zero() {
+            quote!(let sn = n0.abs();)
+        } else {
+            let qn = cx.poly(&qp);
+            quote! {
+                let q: #s = #qn;
+                let sn = if n0 != 0.0 {
+                    n0.abs() * (1.0 - q / n0 / n0).max(0.0).sqrt()
+                } else {
+                    (-q).max(0.0).sqrt()
+                };
+            }
+        };
         let ys = (0..n4.0.len()).map(|i| {
             let i = proc_macro2::Literal::usize_unsuffixed(i);
             quote!(n4[#i])
@@ -106,14 +122,7 @@ impl Gen<'_> {
         Some(quote! {
             let n0: #s = #n0;
             #n4_stmt
-            // `sqrt(n0^2 - q)` without squaring `n0`, which underflows when the rotation
-            // part is tiny next to the translation.
-            let q: #s = #qn;
-            let sn = if n0 != 0.0 {
-                n0.abs() * (1.0 - q / n0 / n0).max(0.0).sqrt()
-            } else {
-                (-q).max(0.0).sqrt()
-            };
+            #sn
             let a = n0 + sn;
             let y: [#s; #m] = [a, #(#ys),*];
             // `sqrt(2 a) sn`, not `sqrt(2 a sn^2)`: `a sn^2 ~ n0^3` underflows likewise.
