@@ -114,10 +114,9 @@ impl Bivector {
     /// [`Bivector::try_exp_motor`].
     #[must_use]
     pub fn exp_motor(self) -> Motor {
-        // The generated closed form (`Exp<Motor> for Bivector`), on the rigid part only.
-        let mut rigid = self;
-        (rigid.eo1, rigid.eo2, rigid.eo3, rigid.eoi) = (0.0, 0.0, 0.0, 0.0);
-        Exp::exp(rigid)
+        // The generated closed form (`Exp<Motor> for Bivector`), which reads the blades of
+        // `Motor` only (the rigid part).
+        Exp::exp(self)
     }
 
     /// Checked [`Bivector::exp_motor`].

@@ -37,39 +37,17 @@ fn horner<const N: usize>(c: &[f64; N], x: f64) -> f64 {
     c[1..].iter().fold(c[0], |p, &k| p * x + k)
 }
 
-/// The Taylor coefficients of `(sin r - r) / r^3` in `r^2`, highest first: to `r^11`
-/// (truncation `r^13/13! < 2e-12` on `|r| <= pi/4`).
-const SIN_SERIES: [f64; 5] = [
-    -1.0 / 39_916_800.0,
-    1.0 / 362_880.0,
-    -1.0 / 5_040.0,
-    1.0 / 120.0,
-    -1.0 / 6.0,
-];
-
-/// The Taylor coefficients of `(cos r - 1) / r^2` in `r^2`, highest first: to `r^12`
-/// (truncation `r^14/14! < 4e-13` on `|r| <= pi/4`).
-const COS_REDUCED_SERIES: [f64; 6] = [
-    1.0 / 479_001_600.0,
-    -1.0 / 3_628_800.0,
-    1.0 / 40_320.0,
-    -1.0 / 720.0,
-    1.0 / 24.0,
-    -0.5,
-];
-
-/// `sin r` on `|r| <= pi/4`.
+/// `(sin r, cos r)` on `|r| <= pi/4`: the series of [`simple_exp_series_f32`] at `l = -r^2`
+/// (`sin r = r sinc`, to `r^15`; `cos r` to `r^14`: truncations under `1e-15`).
 #[inline]
-fn sin_reduced(r: f64) -> f64 {
-    let r2 = r * r;
-    r + r * r2 * horner(&SIN_SERIES, r2)
-}
-
-/// `cos r` on `|r| <= pi/4`.
-#[inline]
-fn cos_reduced(r: f64) -> f64 {
-    let r2 = r * r;
-    1.0 + r2 * horner(&COS_REDUCED_SERIES, r2)
+fn sin_cos_reduced(r: f64) -> (f64, f64) {
+    let l = -r * r;
+    let l2 = l * l;
+    let l4 = l2 * l2;
+    (
+        r * estrin7(&SINC_SERIES, l, l2, l4),
+        estrin7(&COS_SERIES, l, l2, l4),
+    )
 }
 
 /// `(sin x, cos x)` for an `f32`, inlined (evaluated in `f64`; libm for `|x| > 1e5`, zeros,
@@ -90,7 +68,7 @@ pub fn sin_cos_f32(x: f32) -> (f32, f32) {
     // x = k pi/2 + r, |r| <= pi/4 (to rounding).
     let k = (xd * (1.0 / FRAC_PI_2) + ROUND_SHIFT) - ROUND_SHIFT;
     let r = (xd - k * PIO2_HI) - k * PIO2_LO;
-    let (s, c) = (sin_reduced(r), cos_reduced(r));
+    let (s, c) = sin_cos_reduced(r);
     // |k| < 2^17 here, so the conversion is exact; `& 3` is k mod 4 for negative k too.
     let q = (k as i64) & 3;
     let (s, c) = if q & 1 == 0 { (s, c) } else { (c, s) };
