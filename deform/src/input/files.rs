@@ -33,6 +33,7 @@ pub fn read_document(path: &Path) -> Result<String, InputError> {
 /// let sel = deform::input::read_selection(&path, 4).unwrap();
 /// assert_eq!(sel.groups, vec![vec![0, 1], vec![3]]);
 /// assert!(deform::input::read_selection(&dir.join("sel.txt"), 4).is_err());
+/// std::fs::remove_dir_all(&dir).unwrap();
 /// ```
 ///
 /// # Errors

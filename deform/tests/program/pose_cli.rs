@@ -117,6 +117,7 @@ fn every_method_poses_from_the_command_line_as_the_library_does() {
             assert!(worst < 1e-12, "{} {flags:?}: {worst}", method.name());
         }
     }
+    std::fs::remove_dir_all(&dir).ok();
 }
 
 #[test]
@@ -194,4 +195,5 @@ fn option_values_are_the_library_names() {
         assert!(e.contains(flag), "{method}: {e}");
     }
     assert!(!std::path::Path::new(o).exists());
+    std::fs::remove_dir_all(&dir).ok();
 }
