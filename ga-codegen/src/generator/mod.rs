@@ -12,6 +12,7 @@
 pub mod checks;
 pub mod emit;
 pub(crate) mod factor;
+pub(crate) mod matrix_units;
 pub mod spec;
 pub(crate) mod symbolic;
 pub(crate) mod unit_versor;

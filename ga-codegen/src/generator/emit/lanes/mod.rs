@@ -330,10 +330,21 @@ impl Gen<'_> {
         ta: &TypeDef,
         tb: &TypeDef,
     ) -> Option<TokenStream> {
+        self.build_paired_into(&self.spec.types[ti], m, ta, tb)
+    }
+
+    /// [`Gen::build_paired`] into any result type `t` (a declared one, or the local matrix-unit
+    /// type of a matrix-form product).
+    pub(super) fn build_paired_into(
+        &self,
+        t: &TypeDef,
+        m: &SymMv,
+        ta: &TypeDef,
+        tb: &TypeDef,
+    ) -> Option<TokenStream> {
         if self.scalar != ScalarType::F64 {
             return None;
         }
-        let t = &self.spec.types[ti];
         let lanes = lane_terms(ta, tb, t, m)?;
         let names = PairNames { ta, tb };
         let mut loads = PairLoads::default();

@@ -117,10 +117,11 @@ pub(crate) fn quad_sum(
     loads: &mut QuadLoads,
 ) -> (TokenStream, usize) {
     let groups = quad_groups(quad, &mut loads.splats);
+    let alone = groups.len() == 1;
     let mut parts: Vec<(bool, TokenStream)> = Vec::new();
     let mut vector_ops = 0;
     for (coef, terms) in groups {
-        let (part, ops) = group_part(&coef, terms, (ta, tb), free, loads);
+        let (part, ops) = group_part(&coef, terms, (ta, tb), (free, alone), loads);
         vector_ops += ops;
         parts.push(part);
     }
@@ -158,14 +159,14 @@ fn quad_groups(quad: &[LaneTerms], splats: &mut BTreeSet<u16>) -> QuadGroups {
     groups
 }
 
-/// One group of an output quad as a signed part (`true`: subtracted): its terms summed (led by
-/// an added one) and signed (sign-bit flips) or scaled once by `coef`; with the vector
-/// operations it costs. The operand quads and shuffles used go to `loads`.
+/// One group of an output quad (`alone`: the quad's only group) as a signed part (`true`:
+/// subtracted): its terms summed (led by an added one) and signed (sign-bit flips) or scaled
+/// once by `coef`; with the vector operations it costs. The operand quads and shuffles used go to `loads`.
 fn group_part(
     coef: &[Rational; 4],
     mut terms: Vec<SignedTerm>,
     (ta, tb): (&TypeDef, &TypeDef),
-    free: [bool; 4],
+    (free, alone): ([bool; 4], bool),
     loads: &mut QuadLoads,
 ) -> ((bool, TokenStream), usize) {
     let mut vector_ops = 0usize;
@@ -182,7 +183,13 @@ fn group_part(
         // A quad built lane by lane costs about as much as the scalar terms it saves.
         vector_ops += if built { 4 } else { 2 };
     }
-    let grouped = if terms.len() > 1 { quote!((#sum)) } else { sum };
+    // Parenthesised unless it is the whole expression (one group, added, not scaled).
+    let whole = alone && !all_neg && is_unscaled(coef);
+    let grouped = if terms.len() > 1 && !whole {
+        quote!((#sum))
+    } else {
+        sum
+    };
     let (part, ops) = scale_group(coef, grouped);
     ((all_neg, part), vector_ops + ops)
 }

@@ -6,6 +6,7 @@
 
 pub(crate) mod infer;
 mod matrix;
+mod matrix_form;
 mod named;
 mod operators;
 pub(crate) mod sandwich;

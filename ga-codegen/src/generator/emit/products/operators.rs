@@ -69,14 +69,24 @@ impl Gen<'_> {
             let (tr, method) = op.trait_method().expect("an operator");
             let (tr, method) = (ident(tr), ident(method));
             let on = self.out_type(o);
+            // A type closed under the product with a 2 x 2 matrix factor: the matrix form.
+            let blocks = match o {
+                OutType::Type(ti) if op == Op::Geometric && ai == bi && ti == ai => {
+                    self.build_matrix_form(ti, &m)
+                }
+                _ => None,
+            };
             let paired = match o {
-                OutType::Type(ti) if op == Op::Geometric => self.build_paired(ti, &m, ta, tb),
+                OutType::Type(ti) if op == Op::Geometric && blocks.is_none() => {
+                    self.build_paired(ti, &m, ta, tb)
+                }
                 _ => None,
             };
             // f32 products between versor types in 4-lane form (see `lanes/quad.rs`).
             let quad = match o {
                 OutType::Type(ti)
                     if paired.is_none()
+                        && blocks.is_none()
                         && op == Op::Geometric
                         && self.scalar == ScalarType::F32 =>
                 {
@@ -90,7 +100,9 @@ impl Gen<'_> {
                 }
                 _ => None,
             };
-            let lane_form = if paired.is_some() {
+            let lane_form = if let Some((_, form)) = &blocks {
+                Some(form.as_str())
+            } else if paired.is_some() {
                 Some("paired-lane form: two output fields per `F64x2`")
             } else if quad.is_some() {
                 Some("4-lane form: four output fields per `F32x4`")
@@ -105,7 +117,7 @@ impl Gen<'_> {
                 ),
                 None => op.doc().to_string(),
             });
-            let paired = paired.or(quad);
+            let paired = blocks.map(|b| b.0).or(paired).or(quad);
             let body = paired.unwrap_or_else(|| self.build(o, &m, &names));
             // `^` and `|` are products written with `*`: say that this is meant.
             let allow = matches!(op, Op::Outer | Op::LeftContraction)
