@@ -314,12 +314,10 @@ mod tests {
         assert_eq!(terms(&e), 128);
     }
 
-    #[test]
-    fn the_conversions_are_inverse_and_the_table_is_the_product() {
-        let metric = cga();
-        let mut table = BladeTable::new(&metric);
-        let even: Vec<Bitmap> = (0..32).filter(|&b| grade(b).is_multiple_of(2)).collect();
-        let m = matrix_units(&mut table, &even).unwrap();
+    /// The conversions of `m` (the matrix units of `blades`) are inverse to each other, and
+    /// every pair of blades multiplied through the new basis gives its blade product (exact).
+    fn assert_exact(table: &mut BladeTable, blades: &[Bitmap], m: &MatrixUnits) {
+        let even = blades;
         let dim = even.len();
         // to_units after from_units is the identity.
         for k in 0..dim {
@@ -373,6 +371,41 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn the_conversions_are_inverse_and_the_table_is_the_product() {
+        let metric = cga();
+        let mut table = BladeTable::new(&metric);
+        let even: Vec<Bitmap> = (0..32).filter(|&b| grade(b).is_multiple_of(2)).collect();
+        let m = matrix_units(&mut table, &even).unwrap();
+        assert_exact(&mut table, &even, &m);
+        let all: Vec<Bitmap> = (0..32).collect();
+        let m = matrix_units(&mut table, &all).unwrap();
+        assert_exact(&mut table, &all, &m);
+    }
+
+    #[test]
+    fn a_non_orthogonal_rational_metric_splits_exactly() {
+        // Off-diagonal rational entries: the orthogonal squares are 1, 3/4 and a fraction;
+        // the split is found in the orthogonalised basis and checked in the user's one.
+        let r = |n, d| Rational::new(n, d);
+        let z = Rational::ZERO;
+        let g = vec![
+            vec![Rational::ONE, r(1, 2), z, r(2, 5)],
+            vec![r(1, 2), Rational::ONE, r(1, 3), z],
+            vec![z, r(1, 3), -Rational::ONE, r(1, 7)],
+            vec![r(2, 5), z, r(1, 7), r(3, 2)],
+        ];
+        let names = ["e1", "e2", "e3", "e4"]
+            .iter()
+            .map(|s| s.to_string())
+            .collect();
+        let metric = Metric::new(names, g).unwrap();
+        let mut table = BladeTable::new(&metric);
+        let all: Vec<Bitmap> = (0..16).collect();
+        let m = matrix_units(&mut table, &all).expect("1 is a square and 3/4 is not zero");
+        assert_exact(&mut table, &all, &m);
     }
 
     #[test]
