@@ -279,19 +279,7 @@ mod tests {
     use crate::runtime::metric::Metric;
 
     fn cga() -> Metric {
-        let names: Vec<String> = ["eo", "e1", "e2", "e3", "ei"]
-            .iter()
-            .map(|s| s.to_string())
-            .collect();
-        let z = 0.0;
-        let g = vec![
-            vec![z, z, z, z, -1.0],
-            vec![z, 1.0, z, z, z],
-            vec![z, z, 1.0, z, z],
-            vec![z, z, z, 1.0, z],
-            vec![-1.0, z, z, z, z],
-        ];
-        Metric::from_f64(names, &g).unwrap()
+        Metric::cga_null_basis()
     }
 
     fn terms(m: &MatrixUnits) -> usize {

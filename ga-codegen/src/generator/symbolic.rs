@@ -372,19 +372,7 @@ mod tests {
 
     #[test]
     fn chevalley_matches_congruence_route_on_null_basis() {
-        let names: Vec<String> = ["eo", "e1", "e2", "e3", "ei"]
-            .iter()
-            .map(|s| s.to_string())
-            .collect();
-        let z = 0.0;
-        let g = vec![
-            vec![z, z, z, z, -1.0],
-            vec![z, 1.0, z, z, z],
-            vec![z, z, 1.0, z, z],
-            vec![z, z, z, 1.0, z],
-            vec![-1.0, z, z, z, z],
-        ];
-        let metric = Metric::from_f64(names, &g).unwrap();
+        let metric = Metric::cga_null_basis();
         let alg = crate::Algebra::new(metric.clone());
         let mut t = BladeTable::new(&metric);
         for a in 0..32 {

@@ -206,15 +206,7 @@ mod tests {
     use std::sync::Arc;
 
     fn cga() -> Arc<Algebra> {
-        let z = 0.0;
-        let g = vec![
-            vec![z, z, z, z, -1.0],
-            vec![z, 1.0, z, z, z],
-            vec![z, z, 1.0, z, z],
-            vec![z, z, z, 1.0, z],
-            vec![-1.0, z, z, z, z],
-        ];
-        Algebra::from_metric(&["eo", "e1", "e2", "e3", "ei"], &g).unwrap()
+        Algebra::new(crate::runtime::metric::Metric::cga_null_basis())
     }
 
     #[test]

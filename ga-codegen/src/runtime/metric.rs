@@ -400,11 +400,11 @@ impl Metric {
     }
 }
 
+/// G(4,1) in the null basis `eo, e1, e2, e3, ei` (`eo . ei = -1`), the metric of
+/// `algebras/cga.toml`, for the unit tests of this crate.
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn cga() -> Metric {
+impl Metric {
+    pub(crate) fn cga_null_basis() -> Metric {
         let names = ["eo", "e1", "e2", "e3", "ei"]
             .iter()
             .map(|s| s.to_string())
@@ -421,6 +421,15 @@ mod tests {
             ],
         )
         .unwrap()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn cga() -> Metric {
+        Metric::cga_null_basis()
     }
 
     #[test]
