@@ -172,4 +172,7 @@ pub struct OpSummary {
     pub output: String,
     /// Number of multiply terms after simplification.
     pub terms: usize,
+    /// The multiplies of its matrix form, when it is computed through the matrix-unit basis
+    /// (a geometric product of a type holding every blade, or every even blade).
+    pub matrix_form: Option<usize>,
 }

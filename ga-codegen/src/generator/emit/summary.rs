@@ -27,9 +27,13 @@ impl Generated {
             .iter()
             .filter(|o| matches!(o.op, Op::Geometric | Op::Sandwich))
         {
+            let form = o
+                .matrix_form
+                .map(|n| format!(" (matrix form: {n} multiplies)"))
+                .unwrap_or_default();
             let _ = writeln!(
                 s,
-                "  {:<12} {:<9} {:<12} -> {:<12} {:>5} terms",
+                "  {:<12} {:<9} {:<12} -> {:<12} {:>5} terms{form}",
                 o.left,
                 o.op.symbol(),
                 o.right,

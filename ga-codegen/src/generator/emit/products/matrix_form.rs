@@ -81,13 +81,13 @@ fn blocks_type(mu: &MatrixUnits) -> TypeDef {
 
 impl Gen<'_> {
     /// The body of `a * b` for operands and result of type `ti` through the matrix-unit basis,
-    /// and the doc line saying so; `None` when the type is not such a subalgebra or the form
-    /// takes no fewer operations than `m`, the blade form.
+    /// the doc line saying so and its multiplies; `None` when the type is not such a
+    /// subalgebra or the form takes no fewer operations than `m`, the blade form.
     pub(crate) fn build_matrix_form(
         &mut self,
         ti: usize,
         m: &SymMv,
-    ) -> Option<(TokenStream, String)> {
+    ) -> Option<(TokenStream, String, usize)> {
         let t = &self.spec.types[ti];
         if !t.constants.is_empty() {
             return None;
@@ -192,6 +192,6 @@ impl Gen<'_> {
              multiplies in place of {direct_terms}",
             n = mu.size
         );
-        Some((body, doc))
+        Some((body, doc, product_terms))
     }
 }

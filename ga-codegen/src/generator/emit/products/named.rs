@@ -205,6 +205,7 @@ impl Gen<'_> {
             right: rname,
             output: self.out_name(o),
             terms: terms(&m),
+            matrix_form: None,
         });
     }
 }

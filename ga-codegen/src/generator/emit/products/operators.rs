@@ -100,7 +100,7 @@ impl Gen<'_> {
                 }
                 _ => None,
             };
-            let lane_form = if let Some((_, form)) = &blocks {
+            let lane_form = if let Some((_, form, _)) = &blocks {
                 Some(form.as_str())
             } else if paired.is_some() {
                 Some("paired-lane form: two output fields per `F64x2`")
@@ -117,6 +117,7 @@ impl Gen<'_> {
                 ),
                 None => op.doc().to_string(),
             });
+            let matrix_form = blocks.as_ref().map(|b| b.2);
             let paired = blocks.map(|b| b.0).or(paired).or(quad);
             let body = paired.unwrap_or_else(|| self.build(o, &m, &names));
             // `^` and `|` are products written with `*`: say that this is meant.
@@ -131,6 +132,7 @@ impl Gen<'_> {
                 right: tb.name.clone(),
                 output: self.out_name(o),
                 terms: terms(&m),
+                matrix_form,
             });
         }
         // Conversion into a type that holds every blade of this one.
@@ -142,6 +144,7 @@ impl Gen<'_> {
                 right: tb.name.clone(),
                 output: tb.name.clone(),
                 terms: 0,
+                matrix_form: None,
             });
             let body = self.build(OutType::Type(bi), &a, &names);
             self.out.extend(quote! {

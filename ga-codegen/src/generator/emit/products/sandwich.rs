@@ -337,6 +337,7 @@ impl Gen<'_> {
             right: tx.name.clone(),
             output: to.name.clone(),
             terms: nterms,
+            matrix_form: None,
         });
         Ok(())
     }

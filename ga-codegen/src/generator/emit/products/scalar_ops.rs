@@ -88,6 +88,7 @@ impl Gen<'_> {
             right,
             output: self.out_name(o),
             terms: terms(&m),
+            matrix_form: None,
         });
     }
 
