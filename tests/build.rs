@@ -35,6 +35,12 @@ fn main() {
         "sig320".to_string(),
         Spec::for_signature(3, 2, 0).unwrap_or_else(|e| panic!("{e}")),
     ));
+    // A metric that is not orthogonal (rational entries off the diagonal): its `Mv` and `Even`
+    // products go through the matrix-unit basis found in the orthogonalised basis.
+    specs.push((
+        "skew".to_string(),
+        Spec::from_toml(SKEW, "tests/build.rs (SKEW)").unwrap_or_else(|e| panic!("{e}")),
+    ));
     // The f32 twin of every module too (CGA's with 4-lane products), checked with an f32
     // tolerance; the closed-form exp/log tests use both.
     let f32_opts = EmitOptions {
@@ -54,3 +60,36 @@ fn main() {
         std::fs::write(out.join(format!("{name}_checks.rs")), checks).expect("write");
     }
 }
+
+/// G(3,1) written in a basis that is not orthogonal.
+const SKEW: &str = r#"
+name = "skew"
+doc = "A non-orthogonal metric with rational entries (signature (3,1))."
+basis = ["e1", "e2", "e3", "e4"]
+metric = [
+    [1, 0.5, 0, 0.4],
+    [0.5, 1, 0.25, 0],
+    [0, 0.25, -1, 0.125],
+    [0.4, 0, 0.125, 1.5],
+]
+
+[[type]]
+name = "Vector"
+doc = "Grade 1."
+blades = ["e1", "e2", "e3", "e4"]
+
+[[type]]
+name = "Bivector"
+doc = "Grade 2."
+blades = ["e12", "e13", "e14", "e23", "e24", "e34"]
+
+[[type]]
+name = "Even"
+doc = "The even subalgebra."
+blades = ["s", "e12", "e13", "e14", "e23", "e24", "e34", "e1234"]
+
+[[type]]
+name = "Mv"
+doc = "Every blade."
+blades = ["s", "e1", "e2", "e3", "e4", "e12", "e13", "e14", "e23", "e24", "e34", "e123", "e124", "e134", "e234", "e1234"]
+"#;

@@ -148,3 +148,15 @@ pub fn half_turn_conditioning(v: &ga_codegen::Multivector) -> f64 {
         .map(|c| 1.0 / (1.0 - c * c).sqrt().max(1e-8))
         .fold(1.0, f64::max)
 }
+algebra_module!(
+    skew,
+    "skew.rs",
+    "skew_checks.rs",
+    "G(3,1) in a non-orthogonal basis (`SKEW` in `build.rs`)."
+);
+algebra_module!(
+    skew_f32,
+    "skew_f32.rs",
+    "skew_f32_checks.rs",
+    "G(3,1) in a non-orthogonal basis, f32."
+);

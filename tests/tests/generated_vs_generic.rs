@@ -87,3 +87,13 @@ fn sig400_f32_generated_matches_generic() {
 fn sig220_f32_generated_matches_generic() {
     run("sig220_f32", tests::sig220_f32::checks::check_all(200, 14));
 }
+
+#[test]
+fn skew_metric_generated_matches_generic() {
+    run("skew", tests::skew::checks::check_all(200, 16));
+}
+
+#[test]
+fn skew_metric_f32_generated_matches_generic() {
+    run("skew_f32", tests::skew_f32::checks::check_all(200, 17));
+}
