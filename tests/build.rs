@@ -1,5 +1,6 @@
-//! Generates every algebra in `algebras/` (f64 and f32), plus the default spec of a signature, each with
-//! the check harness that compares its generated functions with the generic multivector.
+//! Generates every algebra in `algebras/` (f64 and f32), plus the default spec of a signature and
+//! a metric that is not orthogonal (`SKEW`), each with the check harness that compares its
+//! generated functions with the generic multivector.
 
 use ga_codegen::generator::checks::emit_checks;
 use ga_codegen::{generate, EmitOptions, ScalarType, Spec};
