@@ -69,7 +69,7 @@ impl Sum {
         let mut mags = std::collections::BTreeSet::new();
         for (c, atoms) in &self.0 {
             muls += atoms.len().saturating_sub(1);
-            let mag = if *c < Rational::ZERO { -*c } else { *c };
+            let mag = c.abs();
             if !atoms.is_empty() && mag != Rational::ONE {
                 mags.insert(mag);
             }
@@ -578,14 +578,5 @@ fn renumbered(p: &Poly, renum: &[u16]) -> Sum {
 
 /// The magnitude shared by every coefficient of `p`, or 1 when they differ.
 fn common_magnitude(p: &Poly) -> Rational {
-    let mut mag = None;
-    for &c in p.0.values() {
-        let m = if c < Rational::ZERO { -c } else { c };
-        match mag {
-            None => mag = Some(m),
-            Some(x) if x == m => {}
-            Some(_) => return Rational::ONE,
-        }
-    }
-    mag.unwrap_or(Rational::ONE)
+    Rational::shared_magnitude(p.0.values().copied()).unwrap_or(Rational::ONE)
 }

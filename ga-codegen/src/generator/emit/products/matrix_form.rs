@@ -17,34 +17,22 @@ use crate::runtime::rational::Rational;
 use proc_macro2::TokenStream;
 use quote::quote;
 
-/// `|c|`.
-fn abs(c: Rational) -> Rational {
-    if c < Rational::ZERO {
-        -c
-    } else {
-        c
-    }
-}
-
 /// Operations of a linear combination `c1 x1 + c2 x2 + ...`: the adds, and one multiply when
 /// the coefficients are not all `+-1` (a shared magnitude is factored out; mixed magnitudes
 /// cost one multiply per term).
 fn linear_ops(terms: &[(usize, Rational)]) -> usize {
     let adds = terms.len().saturating_sub(1);
-    let mags: Vec<Rational> = terms.iter().map(|t| abs(t.1)).collect();
-    let muls = match mags.first() {
-        None => 0,
-        Some(&g) if mags.iter().all(|&x| x == g) => usize::from(g != Rational::ONE),
-        Some(_) => terms.len(),
+    let muls = match Rational::shared_magnitude(terms.iter().map(|t| t.1)) {
+        Some(g) => usize::from(g != Rational::ONE),
+        None => terms.len(),
     };
     adds + muls
 }
 
 /// `p` rendered with a magnitude shared by all its terms factored out: `(x - y) * 0.5`.
 fn factored(p: &Poly, names: &Names) -> TokenStream {
-    let g = p.0.values().next().map(|c| abs(*c));
-    match g {
-        Some(g) if g != Rational::ONE && p.0.values().all(|c| abs(*c) == g) => {
+    match Rational::shared_magnitude(p.0.values().copied()) {
+        Some(g) if g != Rational::ONE => {
             let mut q = Poly::default();
             q.add_scaled(p, Rational::ONE / g);
             let (body, g) = (names.poly(&q), lit(g));

@@ -324,7 +324,7 @@ fn quad_chunk(m: &MatrixInput<'_>, c: &Chunk, loads: &mut QuadLoads) -> Option<T
     let magnitudes: std::collections::BTreeSet<Rational> = quadratic
         .iter()
         .flatten()
-        .map(|&(_, _, c)| if c < Rational::ZERO { -c } else { c })
+        .map(|&(_, _, c)| c.abs())
         .collect();
     let scale = match magnitudes.len() {
         1 => *magnitudes.iter().next().expect("one magnitude"),
