@@ -13,9 +13,10 @@
 //! blade products in the user's basis, so null bases and rational metrics need nothing special;
 //! degenerate directions simply stay in `C`.
 
-use crate::runtime::algebra::{add_term, checked_wedge, invert, Exact};
+use crate::runtime::algebra::{add_term, invert, Exact};
 use crate::runtime::blade::{grade, Bitmap};
 use crate::runtime::rational::Rational;
+use crate::runtime::sparse::blades::BladeProducts;
 use std::collections::BTreeMap;
 
 use super::symbolic::BladeTable;
@@ -52,42 +53,21 @@ fn rational_sqrt(q: Rational) -> Option<Rational> {
     Some(Rational::new(root(q.numer())?, root(q.denom())?))
 }
 
-/// Blades of an orthogonal basis, as subsets (bitmaps over the orthogonal vectors).
-struct Orthogonal {
-    /// Each orthogonal vector in the user's basis.
-    vectors: Vec<Exact>,
-    /// Their squares.
-    squares: Vec<Rational>,
-}
-
-impl Orthogonal {
-    /// `G_S G_S` (zero when `S` holds a null vector); `None` on overflow.
-    fn square(&self, s: Bitmap) -> Option<Rational> {
-        let g = grade(s);
-        let mut q = if (g * g.saturating_sub(1) / 2).is_multiple_of(2) {
-            Rational::ONE
-        } else {
-            -Rational::ONE
-        };
-        for (k, &d) in self.squares.iter().enumerate() {
-            if s & (1 << k) != 0 {
-                q = q.checked_mul(d)?;
-            }
+/// `G_S G_S` for the blade `S` of an orthogonal basis whose vectors square to `squares` (zero
+/// when `S` holds a null vector); `None` on overflow.
+fn square(squares: &[Rational], s: Bitmap) -> Option<Rational> {
+    let g = grade(s);
+    let mut q = if (g * g.saturating_sub(1) / 2).is_multiple_of(2) {
+        Rational::ONE
+    } else {
+        -Rational::ONE
+    };
+    for (k, &d) in squares.iter().enumerate() {
+        if s & (1 << k) != 0 {
+            q = q.checked_mul(d)?;
         }
-        Some(q)
     }
-
-    /// `G_S` in the user's blades (the outer product of its vectors, in index order).
-    fn blade(&self, s: Bitmap) -> Option<Exact> {
-        let mut out = Exact::new();
-        out.insert(0, Rational::ONE);
-        for (k, v) in self.vectors.iter().enumerate() {
-            if s & (1 << k) != 0 {
-                out = checked_wedge(&out, v)?;
-            }
-        }
-        Some(out)
-    }
+    Some(q)
 }
 
 /// True when the blades `S`, `T` of an orthogonal basis commute.
@@ -134,13 +114,13 @@ struct Split {
 
 /// The next split inside `group` (orthogonal blades that commute with every earlier pair), or
 /// `None`. The first pair in index order, so the choice is reproducible.
-fn next_split(o: &Orthogonal, group: &[Bitmap]) -> Option<Split> {
+fn next_split(squares: &[Rational], group: &[Bitmap]) -> Option<Split> {
     for &u in group.iter().filter(|&&u| u != 0) {
-        let Some(r) = o.square(u).and_then(rational_sqrt) else {
+        let Some(r) = square(squares, u).and_then(rational_sqrt) else {
             continue;
         };
         let found = group.iter().find_map(|&v| {
-            let l = o.square(v).filter(|l| !l.is_zero())?;
+            let l = square(squares, v).filter(|l| !l.is_zero())?;
             (!commute(u, v)).then_some((v, l))
         });
         if let Some((v, l)) = found {
@@ -171,21 +151,12 @@ pub(crate) fn matrix_units(table: &mut BladeTable, blades: &[Bitmap]) -> Option<
     if blades.len() > MAX_COORDINATES {
         return None;
     }
-    let (rows, squares) = table.metric().checked_orthogonal_basis()?;
-    let vectors = rows
-        .iter()
-        .map(|r| {
-            r.iter()
-                .enumerate()
-                .filter(|(_, c)| !c.is_zero())
-                .map(|(i, &c)| (1 << i, c))
-                .collect()
-        })
-        .collect();
-    let o = Orthogonal { vectors, squares };
+    // The orthogonal basis, its squares and its blades in the user's basis.
+    let o = BladeProducts::new(table.metric())?;
+    let blade = |s: Bitmap| o.to_user(s).map(|x| (*x).clone());
     let mut group: Vec<Bitmap> = all.into_iter().filter(|&s| parity_ok(s)).collect();
     let mut splits = Vec::new();
-    while let Some(s) = next_split(&o, &group) {
+    while let Some(s) = next_split(o.squares(), &group) {
         group.retain(|&t| commute(t, s.u) && commute(t, s.v));
         splits.push(s);
     }
@@ -197,8 +168,8 @@ pub(crate) fn matrix_units(table: &mut BladeTable, blades: &[Bitmap]) -> Option<
     let mut levels = Vec::new();
     for s in &splits {
         let one: Exact = [(0, Rational::ONE)].into_iter().collect();
-        let u = scaled(&o.blade(s.u)?, Rational::ONE.checked_div(s.r)?)?;
-        let v = o.blade(s.v)?;
+        let u = scaled(&blade(s.u)?, Rational::ONE.checked_div(s.r)?)?;
+        let v = blade(s.v)?;
         let e11 = scaled(&sum(&one, &u)?, half)?;
         let e22 = scaled(&sum(&one, &scaled(&u, -Rational::ONE)?)?, half)?;
         let e12 = product(table, &e11, &v)?;
@@ -206,7 +177,7 @@ pub(crate) fn matrix_units(table: &mut BladeTable, blades: &[Bitmap]) -> Option<
         levels.push([[e11, e12], [e21, e22]]);
     }
     let size = 1usize << splits.len();
-    let c_basis: Vec<Exact> = group.iter().map(|&c| o.blade(c)).collect::<Option<_>>()?;
+    let c_basis: Vec<Exact> = group.iter().map(|&c| blade(c)).collect::<Option<_>>()?;
     // New basis element (row, column, c): the product of each level's unit and `c`.
     let mut names = Vec::new();
     let mut basis = Vec::new();
