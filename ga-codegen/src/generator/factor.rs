@@ -17,7 +17,9 @@
 //! counting multiplies and adds. Nothing here is specific to one algebra.
 
 use crate::generator::spec::TypeDef;
-use crate::generator::symbolic::{BladeTable, Monomial, Poly, Product, SymMv, Var};
+use crate::generator::symbolic::{
+    shared_magnitude, BladeTable, Monomial, Poly, Product, SymMv, Var,
+};
 use crate::generator::unit_versor::{equivalent_mv_coeff, UnitIdeal};
 use crate::runtime::blade::{blade_name, Bitmap};
 use crate::runtime::rational::Rational;
@@ -578,5 +580,5 @@ fn renumbered(p: &Poly, renum: &[u16]) -> Sum {
 
 /// The magnitude shared by every coefficient of `p`, or 1 when they differ.
 fn common_magnitude(p: &Poly) -> Rational {
-    Rational::shared_magnitude(p.0.values().copied()).unwrap_or(Rational::ONE)
+    shared_magnitude(p.0.values().copied()).unwrap_or(Rational::ONE)
 }

@@ -366,6 +366,14 @@ impl BladeTable {
     }
 }
 
+/// The magnitude every one of `cs` shares (`|c|` the same for all), or `None` when they differ
+/// or there are none.
+pub(crate) fn shared_magnitude(cs: impl IntoIterator<Item = Rational>) -> Option<Rational> {
+    let mut cs = cs.into_iter().map(Rational::abs);
+    let first = cs.next()?;
+    cs.all(|c| c == first).then_some(first)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

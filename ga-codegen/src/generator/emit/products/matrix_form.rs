@@ -12,7 +12,7 @@ use crate::generator::emit::render::{ident, lit, Names};
 use crate::generator::emit::{Gen, ScalarType};
 use crate::generator::matrix_units::{matrix_units, MatrixUnits};
 use crate::generator::spec::{Field, TypeDef};
-use crate::generator::symbolic::{Poly, SymMv, Var};
+use crate::generator::symbolic::{shared_magnitude, Poly, SymMv, Var};
 use crate::runtime::rational::Rational;
 use proc_macro2::TokenStream;
 use quote::quote;
@@ -22,7 +22,7 @@ use quote::quote;
 /// cost one multiply per term).
 fn linear_ops(terms: &[(usize, Rational)]) -> usize {
     let adds = terms.len().saturating_sub(1);
-    let muls = match Rational::shared_magnitude(terms.iter().map(|t| t.1)) {
+    let muls = match shared_magnitude(terms.iter().map(|t| t.1)) {
         Some(g) => usize::from(g != Rational::ONE),
         None => terms.len(),
     };
@@ -31,7 +31,7 @@ fn linear_ops(terms: &[(usize, Rational)]) -> usize {
 
 /// `p` rendered with a magnitude shared by all its terms factored out: `(x - y) * 0.5`.
 fn factored(p: &Poly, names: &Names) -> TokenStream {
-    match Rational::shared_magnitude(p.0.values().copied()) {
+    match shared_magnitude(p.0.values().copied()) {
         Some(g) if g != Rational::ONE => {
             let mut q = Poly::default();
             q.add_scaled(p, Rational::ONE / g);
