@@ -36,6 +36,23 @@ impl OptionKind {
     }
 }
 
+/// `LxMxN` as three counts: whole numbers separated by `x` or `X`, each with or without spaces
+/// around it; `None` for anything else. The one reader of lattice sizes, for the methods' options
+/// and the program's `deform ffd --lattice`.
+///
+/// ```
+/// use deform::methods::option::parse_dims;
+/// assert_eq!(parse_dims("4x3X 3"), Some([4, 3, 3]));
+/// assert_eq!(parse_dims("4x3"), None);
+/// ```
+pub fn parse_dims(text: &str) -> Option<[usize; 3]> {
+    let counts: Option<Vec<usize>> = text
+        .split(['x', 'X'])
+        .map(|n| n.trim().parse().ok())
+        .collect();
+    counts?.try_into().ok()
+}
+
 /// An option's value; in JSON a string, a number, `[l, m, n]` or a boolean.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
 #[serde(untagged)]
@@ -105,10 +122,7 @@ impl OptionSpec {
                 _ => Err(out_of(span(range))),
             },
             OptionKind::Dims(range) => {
-                let dims: Option<Vec<usize>> = text.split('x').map(|n| n.parse().ok()).collect();
-                let dims: [usize; 3] = dims
-                    .and_then(|d| d.try_into().ok())
-                    .ok_or_else(|| out_of("LxMxN".into()))?;
+                let dims = parse_dims(text).ok_or_else(|| out_of("LxMxN".into()))?;
                 if dims.iter().all(|n| range.contains(n)) {
                     Ok(OptionValue::Dims(dims))
                 } else {
@@ -186,5 +200,10 @@ mod tests {
         ] {
             assert!(s.parse(text).is_err(), "{text}");
         }
+        // The program's `deform ffd --lattice` reads the same forms.
+        assert_eq!(
+            dims.parse(" 2X3 x 4").unwrap(),
+            OptionValue::Dims([2, 3, 4])
+        );
     }
 }

@@ -103,12 +103,11 @@ pub fn bounds(s: &str) -> Result<[f64; 6], String> {
     })
 }
 
-/// `LxMxN` as three counts.
+/// `LxMxN` as three counts, read as the methods' lattice option reads it
+/// ([`deform::methods::option::parse_dims`]).
 pub fn dims(s: &str) -> Result<[usize; 3], String> {
-    list(s, &['x', 'X']).map_err(|e| match e {
-        ListError::Item(x, e) => format!("{x:?}: {e}"),
-        ListError::Shape => format!("expected LxMxN, got {s:?}"),
-    })
+    deform::methods::option::parse_dims(s)
+        .ok_or_else(|| format!("expected LxMxN (three whole numbers), got {s:?}"))
 }
 
 #[cfg(test)]
@@ -153,7 +152,10 @@ mod tests {
             Err("\"1,2,3\": expected four finite numbers NX,NY,NZ,D".into())
         );
         assert!(bounds("1,2,3,4,5,inf").is_err());
-        assert_eq!(dims("2x2"), Err("expected LxMxN, got \"2x2\"".into()));
+        assert_eq!(
+            dims("2x2"),
+            Err("expected LxMxN (three whole numbers), got \"2x2\"".into())
+        );
         assert!(dims("2x-1x2").is_err());
     }
 }
