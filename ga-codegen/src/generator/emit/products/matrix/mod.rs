@@ -24,7 +24,7 @@ use crate::generator::emit::lanes::LaneTerms;
 use crate::generator::emit::render::{doc, ident, int, lit};
 use crate::generator::emit::{snake, Gen, ScalarType};
 use crate::generator::spec::TypeDef;
-use crate::generator::symbolic::Poly;
+use crate::generator::symbolic::{shared_magnitude, Poly};
 use crate::runtime::rational::Rational;
 use proc_macro2::{Ident, Literal, TokenStream};
 use quote::quote;
@@ -321,15 +321,8 @@ fn quad_chunk(m: &MatrixInput<'_>, c: &Chunk, loads: &mut QuadLoads) -> Option<T
             .filter(|t| t.iter().any(|&(x, y, _)| x == f || y == f))
             .count()
     };
-    let magnitudes: std::collections::BTreeSet<Rational> = quadratic
-        .iter()
-        .flatten()
-        .map(|&(_, _, c)| c.abs())
-        .collect();
-    let scale = match magnitudes.len() {
-        1 => *magnitudes.iter().next().expect("one magnitude"),
-        _ => Rational::ONE,
-    };
+    let scale =
+        shared_magnitude(quadratic.iter().flatten().map(|&(_, _, c)| c)).unwrap_or(Rational::ONE);
     let lanes: Vec<LaneTerms> = quadratic
         .iter()
         .map(|terms| {
